@@ -1,0 +1,11 @@
+// One function per subcommand: each registers its options on the app and the code to run.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace bluetile::cli {
+
+void add_relax_command(CLI::App& app);
+void add_centroids_command(CLI::App& app);
+
+}  // namespace bluetile::cli

@@ -1,0 +1,26 @@
+// Options shared by every subcommand that measures cells: which engine, and its settings.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "voronoi/engine.h"
+
+namespace bluetile::cli {
+
+struct EngineOptions {
+  std::string engine = "exact";
+  int resolution = 0;            // raster: ID-buffer side in pixels; 0 picks one from N
+  std::string coverage = "area";  // raster: point | area
+  std::string device;            // raster: Vulkan device name or index
+  int threads = 0;               // CPU threads; 0 = all cores
+};
+
+void add_engine_options(CLI::App* command, EngineOptions& options);
+
+// The engine the options ask for; throws Error when it cannot be had.
+std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options);
+
+}  // namespace bluetile::cli

@@ -1,0 +1,31 @@
+// bluetile: blue-noise point sets by Lloyd relaxation (Hiller, Deussen, Keller 2001).
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include "cli/commands.h"
+#include "core/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"bluetile: blue-noise sample points by Lloyd relaxation on the unit torus"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "bluetile 0.1.0");
+  bluetile::cli::add_relax_command(app);
+  bluetile::cli::add_centroids_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 prints help and usage errors itself, with its own exit codes (0 for --help).
+    return app.exit(e);
+  } catch (const bluetile::Error& e) {
+    std::fprintf(stderr, "bluetile: %s\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "bluetile: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "bluetile: internal error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

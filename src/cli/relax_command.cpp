@@ -1,0 +1,158 @@
+// bluetile relax: Lloyd relaxation of a random or given point set.
+#include <cstdio>
+#include <memory>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "cli/engine_options.h"
+#include "cli/progress.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/point_file.h"
+#include "core/rng.h"
+#include "relax/lloyd.h"
+
+namespace bluetile::cli {
+namespace {
+
+struct RelaxOptions {
+  long long count = 0;
+  std::string input;
+  int iterations = 80;
+  std::uint64_t seed = 1;
+  long long fixed = 0;
+  double tolerance = 0.0;
+  long long sets = 1;
+  std::string output;
+  std::string log;
+  bool verbose = false;
+  EngineOptions engine;
+};
+
+// Set k of a batch: its own seed, so set 0 of any batch equals the single set of that seed.
+std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_t count) {
+  Rng rng(derive_seed(seed, set));
+  std::vector<Point> points(count);
+  for (Point& p : points) p = rng.point(Domain{});
+  return points;
+}
+
+std::string set_file_name(const std::string& pattern, std::size_t set, std::size_t sets) {
+  std::string index = std::to_string(set);
+  std::string width = std::to_string(sets - 1);
+  index.insert(0, width.size() - index.size(), '0');
+  std::string name = pattern;
+  name.replace(name.find("{}"), 2, index);
+  return name;
+}
+
+void run_relax(const RelaxOptions& o) {
+  std::vector<PointSet> inputs;
+  if (!o.input.empty()) {
+    inputs.push_back(read_point_file(o.input));
+    if (inputs[0].points.empty()) throw Error(o.input + ": no points");
+  } else {
+    for (long long k = 0; k < o.sets; ++k)
+      inputs.push_back({random_points(o.seed, static_cast<std::size_t>(k), static_cast<std::size_t>(o.count)), {}});
+  }
+  const std::size_t n = inputs[0].points.size();
+  if (static_cast<std::size_t>(o.fixed) > n) {
+    throw Error("--fixed " + std::to_string(o.fixed) + " is more than the " + std::to_string(n) + " points");
+  }
+  if (o.sets > 1 && o.output.find("{}") == std::string::npos && o.output.find('#') != std::string::npos) {
+    throw Error("--output '" + o.output + "': file names with '#' cannot hold several sets");
+  }
+
+  std::vector<Scene> scenes;
+  for (PointSet& set : inputs) {
+    Scene scene = make_scene(set.points);
+    scene.wanted_begin = static_cast<std::size_t>(o.fixed);
+    scenes.push_back(std::move(scene));
+  }
+
+  auto engine = make_engine(o.engine);
+  std::ostringstream log_csv;
+  log_csv << "iteration,energy,max_displacement,mean_displacement,coincident,fallbacks\n";
+  log_csv.precision(17);
+  Progress progress("relax", o.iterations);
+  LloydOptions lloyd;
+  lloyd.iterations = o.iterations;
+  lloyd.tolerance = o.tolerance;
+  lloyd.on_iteration = [&](const LloydIteration& it) {
+    log_csv << it.iteration << ',' << it.energy << ',' << it.max_displacement << ',' << it.mean_displacement
+            << ',' << it.coincident << ',' << it.fallbacks << '\n';
+    if (o.verbose) {
+      progress.finish();
+      std::fprintf(stderr, "iteration %d: energy %.9e, max displacement %.3e, mean %.3e%s\n", it.iteration,
+                   it.energy, it.max_displacement, it.mean_displacement,
+                   it.coincident ? (", " + std::to_string(it.coincident) + " coincident").c_str() : "");
+    }
+    char detail[64];
+    std::snprintf(detail, sizeof detail, "max displacement %.2e", it.max_displacement);
+    progress.update(it.iteration, detail);
+  };
+  LloydResult result = relax_lloyd(*engine, scenes, lloyd);
+  progress.finish();
+
+  std::vector<std::string> header = {
+      "bluetile relax: " + std::to_string(n) + " points, " + std::to_string(result.history.size()) +
+      " iterations, engine " + std::string(engine->name()) +
+      (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + o.input) +
+      (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "")};
+  if (o.sets == 1) {
+    inputs[0].points = scenes[0].sites;
+    write_point_file(o.output, inputs[0], header);
+  } else if (o.output.find("{}") != std::string::npos) {
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
+      PointSet set{scenes[k].sites, {}};
+      write_point_file(set_file_name(o.output, k, scenes.size()), set, header);
+    }
+  } else {
+    // UTK's convention: one file, a '#' line before each set.
+    std::string text = format_points(PointSet{}, header);
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
+      text += "# set " + std::to_string(k) + "\n";
+      text += format_points(PointSet{scenes[k].sites, {}});
+    }
+    write_text_atomically(o.output, text);
+  }
+  if (!o.log.empty()) write_text_atomically(o.log, log_csv.str());
+
+  const LloydIteration* last = result.history.empty() ? nullptr : &result.history.back();
+  if (last && last->coincident) {
+    std::fprintf(stderr, "bluetile: warning: %zu sites coincide with another site and were not moved\n",
+                 last->coincident);
+  }
+  if (o.tolerance > 0.0 && !result.converged) {
+    std::fprintf(stderr, "bluetile: note: max displacement %.3e still above --tolerance %.3e after %d iterations\n",
+                 last ? last->max_displacement : 0.0, o.tolerance, o.iterations);
+  }
+}
+
+}  // namespace
+
+void add_relax_command(CLI::App& app) {
+  auto o = std::make_shared<RelaxOptions>();
+  CLI::App* cmd = app.add_subcommand("relax", "Relax a random (--count) or given (--input) point set by Lloyd's method");
+  auto* count = cmd->add_option("-n,--count", o->count, "Number of random points to start from")->check(CLI::Range(1LL, 100000000LL));
+  auto* input = cmd->add_option("-i,--input", o->input, "Point file to start from")->check(CLI::ExistingFile);
+  count->excludes(input);
+  input->excludes(count);
+  cmd->add_option("-k,--iterations", o->iterations, "Lloyd iterations")->check(CLI::Range(0, 100000000))->capture_default_str();
+  cmd->add_option("-s,--seed", o->seed, "Seed of the random start")->capture_default_str();
+  cmd->add_option("--fixed", o->fixed, "Keep the first M sites in place (they still shape the cells)")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--tolerance", o->tolerance, "Stop early once no site moves more than this (domain units)")->check(CLI::NonNegativeNumber);
+  auto* sets = cmd->add_option("--sets", o->sets, "Relax K independent sets (seeds derived from --seed); --output with {} writes one file each, else one file with '#' lines between sets")
+      ->check(CLI::Range(1LL, 10000000LL));
+  sets->needs(count);
+  cmd->add_option("-o,--output", o->output, "Output point file")->required();
+  cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
+  cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
+  add_engine_options(cmd, o->engine);
+  cmd->callback([o] {
+    if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");
+    run_relax(*o);
+  });
+}
+
+}  // namespace bluetile::cli

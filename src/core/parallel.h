@@ -1,0 +1,23 @@
+// A small persistent thread pool for data-parallel loops. Work is handed out in chunks from
+// an atomic counter, so which thread runs which chunk varies from run to run: callers must
+// make every chunk's result independent of that (each writes only its own outputs), which is
+// how the engines stay bit-identical whatever the thread count.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+
+namespace bluetile {
+
+// Number of threads used by parallel_for, at least 1. Default: the hardware's core count,
+// or BLUETILE_THREADS from the environment when set.
+std::size_t thread_count();
+void set_thread_count(std::size_t count);
+
+// Calls body(begin, end) over [0, count) in chunks of at most `grain` items, on up to
+// thread_count() threads including the caller. Returns when all chunks are done; rethrows the
+// first exception a chunk threw. Nested calls run serially on the calling thread.
+void parallel_for(std::size_t count, std::size_t grain,
+                  const std::function<void(std::size_t, std::size_t)>& body);
+
+}  // namespace bluetile

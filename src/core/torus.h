@@ -1,0 +1,62 @@
+// Periodic domain helpers. The domain is the rectangle [0,W) x [0,H) with opposite sides
+// identified (the unit torus by default). All offsets between sites are taken on the torus,
+// relative to a site, and wrapped into [-W/2, W/2) x [-H/2, H/2) before anything is summed
+// (DESIGN section 7).
+#pragma once
+
+#include <cmath>
+
+#include <glm/vec2.hpp>
+
+namespace bluetile {
+
+using Point = glm::dvec2;
+
+// A periodic rectangle [0, size.x) x [0, size.y).
+struct Domain {
+  Point size{1.0, 1.0};
+
+  double area() const { return size.x * size.y; }
+};
+
+// x wrapped into [0, period). Exact for values already inside; never returns period itself
+// (a value that would round up to period becomes 0).
+inline double wrap_coordinate(double x, double period) {
+  if (x >= 0.0 && x < period) return x;
+  double w = x - period * std::floor(x / period);
+  return w >= period ? 0.0 : w;
+}
+
+inline Point wrap_point(Point p, const Domain& domain) {
+  return {wrap_coordinate(p.x, domain.size.x), wrap_coordinate(p.y, domain.size.y)};
+}
+
+// d wrapped into [-period/2, period/2): the shortest periodic offset along one axis.
+inline double wrap_offset(double d, double period) {
+  double half = 0.5 * period;
+  if (d >= -half && d < half) return d;
+  double w = d - period * std::floor(d / period + 0.5);
+  return w >= half ? w - period : w;
+}
+
+// Shortest offset from a to b on the torus.
+inline Point torus_offset(Point a, Point b, const Domain& domain) {
+  return {wrap_offset(b.x - a.x, domain.size.x), wrap_offset(b.y - a.y, domain.size.y)};
+}
+
+inline double torus_distance_squared(Point a, Point b, const Domain& domain) {
+  Point d = torus_offset(a, b, domain);
+  return d.x * d.x + d.y * d.y;
+}
+
+inline double torus_distance(Point a, Point b, const Domain& domain) {
+  return std::sqrt(torus_distance_squared(a, b, domain));
+}
+
+// Nearest-neighbour distance of N sites on a perfect hexagonal lattice filling `area`:
+// sqrt(2 / (sqrt(3) N)) for the unit square. Used to express distances in lattice units.
+inline double hexagonal_spacing(double count, double area = 1.0) {
+  return std::sqrt(2.0 * area / (std::sqrt(3.0) * count));
+}
+
+}  // namespace bluetile

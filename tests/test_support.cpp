@@ -1,0 +1,67 @@
+#include "test_support.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "core/rng.h"
+
+namespace bluetile::test {
+
+TempDir::TempDir() {
+  std::string pattern = (std::filesystem::temp_directory_path() / "bluetile-test-XXXXXX").string();
+  path_ = mkdtemp(pattern.data());
+}
+
+TempDir::~TempDir() {
+  std::error_code ignored;
+  std::filesystem::remove_all(path_, ignored);
+}
+
+std::string TempDir::write(const std::string& name, const std::string& text) const {
+  std::ofstream(file(name), std::ios::binary) << text;
+  return file(name);
+}
+
+std::vector<std::string> TempDir::list() const {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(path_)) names.push_back(entry.path().filename().string());
+  return names;
+}
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+CommandResult run_bluetile(const std::vector<std::string>& arguments) {
+  TempDir capture;
+  std::string command = "'" BLUETILE_BINARY "'";
+  for (const auto& a : arguments) {
+    std::string quoted;
+    for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    command += " '" + quoted + "'";
+  }
+  command += " </dev/null >'" + capture.file("out") + "' 2>'" + capture.file("err") + "'";
+  int status = std::system(command.c_str());
+  CommandResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  result.out = read_text(capture.file("out"));
+  result.err = read_text(capture.file("err"));
+  return result;
+}
+
+std::vector<Point> uniform_points(std::size_t count, std::uint64_t seed) {
+  Rng rng(seed);
+  std::vector<Point> points(count);
+  for (Point& p : points) p = rng.point(Domain{});
+  return points;
+}
+
+}  // namespace bluetile::test

@@ -1,0 +1,40 @@
+// Helpers shared by the test files: temporary folders and running the bluetile binary.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/torus.h"
+
+namespace bluetile::test {
+
+// A fresh, empty folder under the system temp dir, removed when the object goes.
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::string& path() const { return path_; }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  // Writes `text` to file(name) and returns its path.
+  std::string write(const std::string& name, const std::string& text) const;
+  // Names of the files in the folder (to check nothing was left behind).
+  std::vector<std::string> list() const;
+
+ private:
+  std::string path_;
+};
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+
+// Runs the bluetile binary with `arguments` (shell-quoted here), stdin from /dev/null.
+CommandResult run_bluetile(const std::vector<std::string>& arguments);
+
+std::string read_text(const std::string& path);
+
+std::vector<Point> uniform_points(std::size_t count, std::uint64_t seed);
+
+}  // namespace bluetile::test
