@@ -14,9 +14,15 @@ int main(int argc, char** argv) {
   bluetile::cli::add_centroids_command(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    // CLI11 prints help and usage errors itself, with its own exit codes (0 for --help).
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "bluetile: %s (see --help)\n", e.what());
+    return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
   } catch (const bluetile::Error& e) {
     std::fprintf(stderr, "bluetile: %s\n", e.what());
     return 1;

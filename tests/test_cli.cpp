@@ -1,0 +1,136 @@
+// The command line as a user runs it: outputs, determinism, and bad input.
+#include <gtest/gtest.h>
+
+#include "core/point_file.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::read_text;
+using test::run_bluetile;
+using test::TempDir;
+
+TEST(Cli, HelpOnEverySubcommand) {
+  for (std::string sub : {"relax", "centroids"}) {
+    auto r = run_bluetile({sub, "--help"});
+    EXPECT_EQ(r.exit_code, 0) << sub;
+    EXPECT_NE(r.out.find("--output"), std::string::npos) << sub;
+  }
+  EXPECT_NE(run_bluetile({}).exit_code, 0);
+  EXPECT_NE(run_bluetile({"frobnicate"}).exit_code, 0);
+}
+
+TEST(Cli, RelaxIsDeterministicAcrossThreadCounts) {
+  TempDir dir;
+  auto a = run_bluetile({"relax", "-n", "500", "-k", "20", "--seed", "9", "--engine", "exact", "--threads", "1",
+                         "-o", dir.file("a.txt")});
+  auto b = run_bluetile({"relax", "-n", "500", "-k", "20", "--seed", "9", "--engine", "exact", "--threads", "2",
+                         "-o", dir.file("b.txt")});
+  auto c = run_bluetile({"relax", "-n", "500", "-k", "20", "--seed", "10", "--engine", "exact", "-o", dir.file("c.txt")});
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_EQ(read_text(dir.file("a.txt")), read_text(dir.file("b.txt")));
+  EXPECT_NE(read_text(dir.file("a.txt")), read_text(dir.file("c.txt")));
+  EXPECT_EQ(read_point_file(dir.file("a.txt")).points.size(), 500u);
+}
+
+TEST(Cli, RelaxLogAndFixedSites) {
+  TempDir dir;
+  auto r = run_bluetile({"relax", "-n", "300", "-k", "5", "--engine", "exact", "-o", dir.file("p.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_bluetile({"relax", "-i", dir.file("p.txt"), "-k", "7", "--fixed", "100", "--engine", "exact",
+                    "-o", dir.file("q.txt"), "--log", dir.file("log.csv"), "--verbose"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  PointSet before = read_point_file(dir.file("p.txt")), after = read_point_file(dir.file("q.txt"));
+  for (std::size_t i = 0; i < 100; ++i) ASSERT_EQ(before.points[i], after.points[i]);
+  EXPECT_NE(before.points[150], after.points[150]);
+  std::string log = read_text(dir.file("log.csv"));
+  EXPECT_EQ(log.rfind("iteration,energy,max_displacement,mean_displacement", 0), 0u);
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 8);
+  EXPECT_NE(r.err.find("iteration 7: energy"), std::string::npos);
+}
+
+TEST(Cli, RelaxSetsInOneFileAndOneFileEach) {
+  TempDir dir;
+  auto r = run_bluetile({"relax", "-n", "64", "--sets", "3", "-k", "5", "--engine", "exact", "-o", dir.file("all.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto sets = read_point_sets(dir.file("all.txt"));
+  ASSERT_EQ(sets.size(), 3u);
+  r = run_bluetile({"relax", "-n", "64", "--sets", "3", "-k", "5", "--engine", "exact", "-o", dir.file("set-{}.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_point_file(dir.file("set-2.txt")).points, sets[2].points);
+  // Set 0 of a batch is the single set of the same seed.
+  r = run_bluetile({"relax", "-n", "64", "-k", "5", "--engine", "exact", "-o", dir.file("one.txt")});
+  EXPECT_EQ(read_point_file(dir.file("one.txt")).points, sets[0].points);
+}
+
+TEST(Cli, CentroidsWritesOneLinePerPointInOrder) {
+  TempDir dir;
+  std::string in = dir.write("in.txt", "0.25 0.5\n0.75 0.5\n");
+  auto r = run_bluetile({"centroids", "-i", in, "-o", dir.file("c.txt"), "--engine", "exact"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string text = read_text(dir.file("c.txt"));
+  EXPECT_NE(text.find("\n0.25 0.5 0.5\n0.75 0.5 0.5\n"), std::string::npos) << text;
+}
+
+struct BadInput {
+  std::string name;
+  std::string content;
+  std::string message;  // expected in stderr
+};
+
+TEST(Cli, BadInputFilesFailCleanlyAndWriteNothing) {
+  const std::vector<BadInput> cases = {
+      {"nan.txt", "0.1 0.2\n0.3 nan\n", "nan.txt:2: not a finite number 'nan'"},
+      {"inf.txt", "0.1 -inf\n", "inf.txt:1: not a finite number '-inf'"},
+      {"text.txt", "hello world\n", "text.txt:1: not a number 'hello'"},
+      {"count.txt", "5\n0.1 0.2\n", "count.txt:1: count line says 5 points but 1 follow"},
+      {"columns.txt", "0.1 0.2 0.3 0.4\n", "columns.txt:1: expected 'x y' or 'x y level'"},
+      {"empty.txt", "# nothing\n", "empty.txt: no points"},
+  };
+  for (const auto& bad : cases) {
+    for (std::string sub : {"relax", "centroids"}) {
+      TempDir dir;
+      std::string in = dir.write(bad.name, bad.content);
+      auto r = run_bluetile({sub, "-i", in, "-o", dir.file("out.txt"), "--engine", "exact"});
+      EXPECT_NE(r.exit_code, 0) << sub << " " << bad.name;
+      EXPECT_NE(r.err.find(bad.message), std::string::npos) << sub << ": " << r.err;
+      EXPECT_EQ(r.err.rfind("bluetile: ", 0), 0u) << r.err;
+      EXPECT_EQ(dir.list(), std::vector<std::string>{bad.name}) << sub << " left output behind";
+    }
+  }
+}
+
+TEST(Cli, BadOptionsFailWithAMessage) {
+  TempDir dir;
+  std::string out = dir.file("o.txt");
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"relax", "-n", "0", "-o", out}, "--count"},
+      {{"relax", "-n", "-5", "-o", out}, "--count"},
+      {{"relax", "-n", "100", "-k", "-1", "-o", out}, "--iterations"},
+      {{"relax", "-o", out}, "--count or --input"},
+      {{"relax", "-n", "100"}, "--output"},
+      {{"relax", "-n", "10", "--fixed", "11", "-o", out, "--engine", "exact"}, "--fixed 11 is more than the 10 points"},
+      {{"relax", "-n", "10", "-i", BLUETILE_TEST_DATA "/../test_cli.cpp", "-o", out}, "excludes"},
+      {{"relax", "-i", dir.file("missing.txt"), "-o", out}, "missing.txt"},
+      {{"relax", "-n", "10", "--engine", "magic", "-o", out}, "--engine"},
+      {{"relax", "-n", "10", "--coverage", "blur", "-o", out}, "--coverage"},
+      {{"relax", "-n", "10", "--tolerance", "-1", "-o", out}, "--tolerance"},
+      {{"relax", "-n", "10", "-o", dir.file("no/such/dir/o.txt"), "--engine", "exact"}, "no/such/dir/o.txt"},
+  };
+  for (const auto& c : cases) {
+    auto r = run_bluetile(c.args);
+    EXPECT_NE(r.exit_code, 0) << c.args[1] << " " << c.args[2];
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << "expected '" << c.message << "' in: " << r.err;
+  }
+  EXPECT_EQ(dir.list(), std::vector<std::string>{});
+}
+
+}  // namespace
+}  // namespace bluetile

@@ -1,0 +1,86 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "relax/lloyd.h"
+#include "test_support.h"
+#include "voronoi/exact_engine.h"
+
+namespace bluetile {
+namespace {
+
+TEST(Lloyd, EnergyNeverRises) {
+  ExactEngine engine;
+  for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+    Scene scene = make_scene(test::uniform_points(1000, seed));
+    LloydOptions options;
+    options.iterations = 50;
+    LloydResult result = relax_lloyd(engine, scene, options);
+    ASSERT_EQ(result.history.size(), 50u);
+    for (std::size_t i = 1; i < result.history.size(); ++i) {
+      // Relative slack of 1e-12 for summation rounding only.
+      EXPECT_LE(result.history[i].energy, result.history[i - 1].energy * (1.0 + 1e-12))
+          << "seed " << seed << " iteration " << i + 1;
+    }
+    // Relaxation gets within a few percent of the hexagonal optimum 5/(18 sqrt 3) / N.
+    double hexagonal = 5.0 / (18.0 * std::sqrt(3.0)) / 1000.0;
+    EXPECT_LT(result.history.back().energy, 1.05 * hexagonal);
+    EXPECT_GT(result.history.back().energy, hexagonal);
+  }
+}
+
+TEST(Lloyd, SquareLatticeDoesNotMove) {
+  std::vector<Point> sites;
+  for (int y = 0; y < 8; ++y)
+    for (int x = 0; x < 8; ++x) sites.push_back({(x + 0.5) / 8, (y + 0.5) / 8});
+  Scene scene = make_scene(sites);
+  ExactEngine engine;
+  LloydOptions options;
+  options.iterations = 5;
+  LloydResult result = relax_lloyd(engine, scene, options);
+  EXPECT_LT(result.history.back().max_displacement, 1e-15);
+  for (std::size_t i = 0; i < sites.size(); ++i) EXPECT_LT(torus_distance(scene.sites[i], sites[i], scene.domain), 1e-15);
+}
+
+TEST(Lloyd, FixedSitesStayBitForBit) {
+  std::vector<Point> sites = test::uniform_points(400, 8);
+  Scene scene = make_scene(sites);
+  scene.wanted_begin = 100;
+  ExactEngine engine;
+  LloydOptions options;
+  options.iterations = 10;
+  relax_lloyd(engine, scene, options);
+  for (std::size_t i = 0; i < 100; ++i) ASSERT_EQ(scene.sites[i], sites[i]);
+  std::size_t moved = 0;
+  for (std::size_t i = 100; i < 400; ++i) moved += scene.sites[i] != sites[i];
+  EXPECT_EQ(moved, 300u);
+}
+
+TEST(Lloyd, StopsOnceBelowTheTolerance) {
+  Scene scene = make_scene(test::uniform_points(200, 2));
+  ExactEngine engine;
+  LloydOptions options;
+  options.iterations = 10000;
+  options.tolerance = 1e-4;
+  LloydResult result = relax_lloyd(engine, scene, options);
+  EXPECT_TRUE(result.converged);
+  EXPECT_LT(result.history.size(), 10000u);
+  EXPECT_LT(result.history.back().max_displacement, 1e-4);
+  EXPECT_GE(result.history[result.history.size() - 2].max_displacement, 1e-4);
+}
+
+TEST(Lloyd, CoincidentSiteKeepsItsPlace) {
+  std::vector<Point> sites = test::uniform_points(50, 4);
+  sites.push_back(sites[10]);
+  Scene scene = make_scene(sites);
+  ExactEngine engine;
+  LloydOptions options;
+  options.iterations = 1;
+  LloydResult result = relax_lloyd(engine, scene, options);
+  EXPECT_EQ(result.history[0].coincident, 1u);
+  EXPECT_EQ(scene.sites[50], sites[10]);
+  EXPECT_NE(scene.sites[10], sites[10]);  // the owner moved to its centroid: they separate
+}
+
+}  // namespace
+}  // namespace bluetile

@@ -1,0 +1,87 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/point_file.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::TempDir;
+
+// The message of the Error that parse_points throws for `text`, or "" when it parses.
+std::string parse_error(const std::string& text) {
+  try {
+    parse_points(text, "pts.txt");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(PointFile, ReadsCommentsCountAndLevels) {
+  PointSet set = parse_points("# made by hand\n3\n0.1 0.2 0\n0.3 0.4 1 # trailing comment\n\n0.5 0.6 1\n", "x");
+  ASSERT_EQ(set.points.size(), 3u);
+  EXPECT_EQ(set.points[1], Point(0.3, 0.4));
+  EXPECT_EQ(set.levels, (std::vector<int>{0, 1, 1}));
+  PointSet plain = parse_points("0.1 0.2\r\n0.3\t0.4\r\n", "x");
+  EXPECT_EQ(plain.points.size(), 2u);
+  EXPECT_FALSE(plain.has_levels());
+}
+
+TEST(PointFile, WrapsCoordinatesOntoTheTorus) {
+  PointSet set = parse_points("-0.25 1.5\n1 0\n-1e-20 0.5\n", "x");
+  EXPECT_EQ(set.points[0], Point(0.75, 0.5));
+  EXPECT_EQ(set.points[1], Point(0.0, 0.0));
+  EXPECT_EQ(set.points[2].x, 0.0);  // would round to 1.0, which is outside [0,1)
+}
+
+TEST(PointFile, MalformedLinesNameFileLineAndValue) {
+  EXPECT_EQ(parse_error("0.1 0.2\n0.3 nan\n"), "pts.txt:2: not a finite number 'nan'");
+  EXPECT_EQ(parse_error("0.1 0.2\ninf 0.3\n"), "pts.txt:2: not a finite number 'inf'");
+  EXPECT_EQ(parse_error("0.1 zero\n"), "pts.txt:1: not a number 'zero'");
+  EXPECT_EQ(parse_error("0.1 0.2x\n"), "pts.txt:1: not a number '0.2x'");
+  EXPECT_EQ(parse_error("1e999 0.2\n"), "pts.txt:1: coordinate out of range '1e999'");
+  EXPECT_EQ(parse_error("0.1 0.2\n0.5\n"), "pts.txt:2: expected 'x y' or 'x y level', got '0.5'");
+  EXPECT_EQ(parse_error("0.1 0.2 0 7\n"), "pts.txt:1: expected 'x y' or 'x y level', got 4 columns: '0.1 0.2 0 7'");
+  EXPECT_EQ(parse_error("0.1 0.2 0\n0.3 0.4\n"), "pts.txt:2: level column missing (earlier lines have one)");
+  EXPECT_EQ(parse_error("0.1 0.2\n0.3 0.4 1\n"), "pts.txt:2: level column appears here but not on earlier lines");
+  EXPECT_EQ(parse_error("0.1 0.2 -1\n"), "pts.txt:1: level must be a non-negative integer, got '-1'");
+  EXPECT_EQ(parse_error("0.1 0.2 1.5\n"), "pts.txt:1: level must be a non-negative integer, got '1.5'");
+  EXPECT_EQ(parse_error("# c\n3\n0.1 0.2\n0.3 0.4\n"), "pts.txt:2: count line says 3 points but 2 follow");
+  EXPECT_EQ(parse_error("-2\n"), "pts.txt:1: negative point count '-2'");
+  EXPECT_EQ(parse_error(std::string("0.1 0.2\n\0\n", 10)), "pts.txt:2: binary data (NUL byte): not a point file");
+  EXPECT_EQ(parse_error(""), "");
+}
+
+TEST(PointFile, MissingFileIsAnError) {
+  EXPECT_THROW(read_point_file("/nonexistent/points.txt"), Error);
+}
+
+TEST(PointFile, RoundTripsEveryBit) {
+  TempDir dir;
+  PointSet set;
+  set.points = test::uniform_points(1000, 42);
+  set.points.push_back({std::nextafter(1.0, 0.0), 5e-324});
+  for (std::size_t i = 0; i < set.points.size(); ++i) set.levels.push_back(static_cast<int>(i % 4));
+  write_point_file(dir.file("p.txt"), set, {"a header"});
+  PointSet back = read_point_file(dir.file("p.txt"));
+  ASSERT_EQ(back.points.size(), set.points.size());
+  for (std::size_t i = 0; i < set.points.size(); ++i) ASSERT_EQ(back.points[i], set.points[i]) << i;
+  EXPECT_EQ(back.levels, set.levels);
+  EXPECT_EQ(dir.list(), std::vector<std::string>{"p.txt"});  // no temporary left behind
+}
+
+TEST(PointFile, SeveralSetsSeparatedByHashLines) {
+  TempDir dir;
+  std::string path = dir.write("sets.txt", "# header\n# set 0\n0.1 0.1\n0.2 0.2\n# set 1\n0.3 0.3\n#\n");
+  auto sets = read_point_sets(path);
+  ASSERT_EQ(sets.size(), 2u);
+  EXPECT_EQ(sets[0].points.size(), 2u);
+  EXPECT_EQ(sets[1].points[0], Point(0.3, 0.3));
+}
+
+}  // namespace
+}  // namespace bluetile
