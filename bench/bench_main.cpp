@@ -19,6 +19,7 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <time.h>
 
 #include "alloc_tracker.h"
 #include "core/atomic_file.h"
@@ -84,6 +85,7 @@ struct Row {
   std::size_t threads = 0;
   int repeats = 0;
   double median_ms = 0, min_ms = 0;
+  double cpu_ms = 0;  // process CPU time per iteration (all threads), median
   double heap_peak_mib = 0, malloc_held_mib = 0;
   double err_mean = 0, err_max = 0;
   std::size_t coincident = 0, fallbacks = 0;
@@ -134,59 +136,107 @@ void apply_threads(const EngineSpec& spec, std::size_t default_threads) {
   set_thread_count(spec.threads ? spec.threads : default_threads);
 }
 
-// One engine on one input: timing, memory, error against `reference`.
-Row measure(const EngineSpec& spec, const std::vector<Point>& input, const std::vector<Cell>& reference,
-            const std::string& start, int warmup, int repeats, std::size_t default_threads) {
-  apply_threads(spec, default_threads);
+double process_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+// One engine being measured on one input.
+struct Trial {
+  const EngineSpec* spec = nullptr;
+  std::unique_ptr<CentroidEngine> engine;
+  Scene scene;
+  SceneCells cells;
+  std::vector<double> wall_ms, cpu_ms;
   Row row;
+};
+
+// One Lloyd iteration from `input`: the engine call plus moving the sites.
+void iterate(Trial& t, const std::vector<Point>& input, bool keep_time) {
+  std::copy(input.begin(), input.end(), t.scene.sites.begin());
+  const double c0 = process_cpu_ms();
+  auto t0 = Clock::now();
+  t.engine->compute(std::span<const Scene>(&t.scene, 1), std::span<SceneCells>(&t.cells, 1));
+  for (std::size_t i = 0; i < t.cells.cells.size(); ++i) t.scene.sites[i] = t.cells.cells[i].centroid;
+  auto t1 = Clock::now();
+  const double c1 = process_cpu_ms();
+  if (keep_time) {
+    t.wall_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    t.cpu_ms.push_back(c1 - c0);
+  }
+}
+
+// Builds the engine and runs its warm-ups alone, measuring its memory and its error against
+// `reference` on the first call.
+void prepare(Trial& t, const EngineSpec& spec, const std::vector<Point>& input, const std::vector<Cell>& reference,
+             const std::string& start, int warmup, std::size_t default_threads) {
+  apply_threads(spec, default_threads);
+  t.spec = &spec;
+  Row& row = t.row;
   row.engine = spec.engine, row.mode = spec.mode, row.resolution = spec.resolution;
-  row.n = input.size(), row.start = start, row.threads = thread_count(), row.repeats = repeats;
+  row.n = input.size(), row.start = start, row.threads = thread_count();
 
   // The scene and the output are allocated before the heap mark, so it counts only what the
   // engine itself holds or allocates while it works.
-  Scene scene = make_scene(input);
-  SceneCells cells;
-  cells.cells.reserve(input.size());
+  t.scene = make_scene(input);
+  t.cells.cells.reserve(input.size());
   heap_reset_peak();
   const std::size_t live_before = heap_live_bytes();
   const std::size_t malloc_before = malloc_held_bytes();
-  std::unique_ptr<CentroidEngine> engine = spec.make();
-
-  std::vector<double> times;
-  for (int r = 0; r < warmup + repeats; ++r) {
-    std::copy(input.begin(), input.end(), scene.sites.begin());
-    auto t0 = Clock::now();
-    engine->compute(std::span<const Scene>(&scene, 1), std::span<SceneCells>(&cells, 1));
-    for (std::size_t i = 0; i < cells.cells.size(); ++i) scene.sites[i] = cells.cells[i].centroid;
-    auto t1 = Clock::now();
-    if (r >= warmup) times.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
-    if (r == 0) {
-      double sum = 0, worst = 0;
-      for (std::size_t i = 0; i < cells.cells.size(); ++i) {
-        double e = torus_distance(cells.cells[i].centroid, reference[i].centroid, Domain{});
-        sum += e;
-        worst = std::max(worst, e);
-      }
-      row.err_mean = sum / static_cast<double>(cells.cells.size());
-      row.err_max = worst;
-      row.coincident = cells.coincident_count;
-      row.fallbacks = cells.fallback_count;
+  t.engine = spec.make();
+  for (int r = 0; r < warmup; ++r) {
+    iterate(t, input, false);
+    if (r > 0) continue;
+    double sum = 0, worst = 0;
+    for (std::size_t i = 0; i < t.cells.cells.size(); ++i) {
+      double e = torus_distance(t.cells.cells[i].centroid, reference[i].centroid, Domain{});
+      sum += e;
+      worst = std::max(worst, e);
     }
+    row.err_mean = sum / static_cast<double>(t.cells.cells.size());
+    row.err_max = worst;
+    row.coincident = t.cells.coincident_count;
+    row.fallbacks = t.cells.fallback_count;
   }
-  row.median_ms = median(times);
-  row.min_ms = *std::min_element(times.begin(), times.end());
   row.heap_peak_mib = heap_tracking_enabled() ? mib(static_cast<double>(heap_peak_bytes() - live_before)) : 0.0;
   std::size_t malloc_after = malloc_held_bytes();
   row.malloc_held_mib = mib(malloc_after > malloc_before ? static_cast<double>(malloc_after - malloc_before) : 0.0);
 #ifdef BLUETILE_HAVE_CGAL
-  if (auto* band = dynamic_cast<CgalBandEngine*>(engine.get())) {
+  if (auto* band = dynamic_cast<CgalBandEngine*>(t.engine.get())) {
     char buf[64];
-    std::snprintf(buf, sizeof buf, "band w = %.2f/sqrt(N), %d rebuilds", band->last_band_width() * std::sqrt(double(row.n)),
-                  band->last_rebuilds());
+    std::snprintf(buf, sizeof buf, "band w = %.2f/sqrt(N) after %d widenings",
+                  band->last_band_width() * std::sqrt(double(row.n)), band->last_widenings());
     row.note = buf;
   }
 #endif
-  return row;
+}
+
+// All engines on one input. Timed repeats are interleaved (round r runs every engine once, the
+// order rotating by r) so that load from other processes on a shared machine falls on all
+// engines alike: the ratios stay meaningful even when absolute times drift.
+std::vector<Row> measure_all(const std::vector<const EngineSpec*>& specs, const std::vector<Point>& input,
+                             const std::vector<Cell>& reference, const std::string& start, int warmup, int repeats,
+                             std::size_t default_threads) {
+  std::vector<Trial> trials(specs.size());
+  for (std::size_t k = 0; k < specs.size(); ++k)
+    prepare(trials[k], *specs[k], input, reference, start, warmup, default_threads);
+  for (int r = 0; r < repeats; ++r)
+    for (std::size_t j = 0; j < trials.size(); ++j) {
+      Trial& t = trials[(j + static_cast<std::size_t>(r)) % trials.size()];
+      apply_threads(*t.spec, default_threads);
+      iterate(t, input, true);
+    }
+  std::vector<Row> rows;
+  for (Trial& t : trials) {
+    t.row.repeats = repeats;
+    t.row.median_ms = median(t.wall_ms);
+    t.row.min_ms = *std::min_element(t.wall_ms.begin(), t.wall_ms.end());
+    t.row.cpu_ms = median(t.cpu_ms);
+    rows.push_back(t.row);
+  }
+  set_thread_count(default_threads);
+  return rows;
 }
 
 std::vector<EngineSpec> engine_specs(const Options& o) {
@@ -218,16 +268,25 @@ std::string format(const char* f, double v) {
 
 std::string sci(double v) { return v == 0.0 ? "0" : format("%.2e", v); }
 
+// Quoted when it holds a comma or a quote (RFC 4180).
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"") == std::string::npos) return s;
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
 std::string csv_text(const std::vector<Row>& rows, const std::vector<PaperRow>& paper) {
   std::ostringstream out;
-  out << "engine,mode,resolution,n,start,threads,repeats,median_ms,min_ms,sites_per_s,heap_peak_mib,"
+  out << "engine,mode,resolution,n,start,threads,repeats,median_ms,min_ms,cpu_ms,sites_per_s,heap_peak_mib,"
          "malloc_held_mib,err_mean,err_max,coincident,fallbacks,note\n";
   for (const Row& r : rows) {
-    out << r.engine << ',' << r.mode << ',' << r.resolution << ',' << r.n << ',' << r.start << ',' << r.threads << ','
+    out << r.engine << ',' << csv_field(r.mode) << ',' << r.resolution << ',' << r.n << ',' << r.start << ',' << r.threads << ','
         << r.repeats << ',' << format("%.6g", r.median_ms) << ',' << format("%.6g", r.min_ms) << ','
+        << format("%.6g", r.cpu_ms) << ','
         << format("%.6g", double(r.n) / (r.median_ms * 1e-3)) << ',' << format("%.4f", r.heap_peak_mib) << ','
         << format("%.4f", r.malloc_held_mib) << ',' << format("%.6e", r.err_mean) << ',' << format("%.6e", r.err_max)
-        << ',' << r.coincident << ',' << r.fallbacks << ',' << r.note << '\n';
+        << ',' << r.coincident << ',' << r.fallbacks << ',' << csv_field(r.note) << '\n';
   }
   for (const PaperRow& p : paper) {
     out << "paper-workload:" << p.label << ",80 iterations,0,1000,random," << p.threads << ",1,"
@@ -296,13 +355,31 @@ std::string markdown_text(const Options& o, const std::string& command, const st
       md << "\n";
     }
 
-  md << "\n### All rows\n\n| N | start | engine | mode | res | threads | ms/iter | Msites/s | heap MiB | "
+  md << "\n### Single-thread CPU time (process CPU time per iteration, less sensitive to other load): CGAL over exact\n\n"
+        "| N | start | exact 1t cpu ms | cgal-periodic cpu ms | periodic / exact 1t | cgal-band cpu ms | band / exact 1t |\n"
+        "|---:|---|---:|---:|---:|---:|---:|\n";
+  for (std::size_t n : sizes)
+    for (const std::string& start : o.starts) {
+      const Row* ex1 = find_row(rows, n, start, "exact", "1 thread");
+      if (!ex1) continue;
+      const Row* per = find_row(rows, n, start, "cgal-periodic", "");
+      const Row* band = find_row(rows, n, start, "cgal-band", "");
+      auto ms = [](const Row* r) { return r ? format("%.3f", r->cpu_ms) : std::string("-"); };
+      auto ratio = [](const Row* a, const Row* b) {
+        return a && b ? format("%.2fx", a->cpu_ms / b->cpu_ms) : std::string("-");
+      };
+      md << "| " << n << " | " << start << " | " << ms(ex1) << " | " << ms(per) << " | " << ratio(per, ex1) << " | "
+         << ms(band) << " | " << ratio(band, ex1) << " |\n";
+    }
+
+  md << "\n### All rows\n\n| N | start | engine | mode | res | threads | ms/iter | min ms | cpu ms | Msites/s | heap MiB | "
         "malloc MiB | err mean | err max | coinc. | fallb. | note |\n"
-        "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
+        "|---:|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
   for (const Row& r : rows) {
     md << "| " << r.n << " | " << r.start << " | " << r.engine << " | " << r.mode << " | "
        << (r.resolution ? std::to_string(r.resolution) : "") << " | " << r.threads << " | "
-       << format("%.3f", r.median_ms) << " | " << format("%.2f", double(r.n) / (r.median_ms * 1e3)) << " | "
+       << format("%.3f", r.median_ms) << " | " << format("%.3f", r.min_ms) << " | " << format("%.3f", r.cpu_ms)
+       << " | " << format("%.2f", double(r.n) / (r.median_ms * 1e3)) << " | "
        << (heap_tracking_enabled() ? format("%.2f", r.heap_peak_mib) : "n/a") << " | "
        << format("%.2f", r.malloc_held_mib) << " | " << sci(r.err_mean) << " | " << sci(r.err_max) << " | "
        << r.coincident << " | " << r.fallbacks << " | " << r.note << " |\n";
@@ -443,14 +520,19 @@ int run(int argc, char** argv) {
       std::vector<Cell> reference = reference_engine.compute(make_scene(input)).cells;
       std::cerr << "N=" << n << " " << start << " start (prepared in "
                 << format("%.1f", std::chrono::duration<double>(Clock::now() - t0).count()) << " s)\n";
+      std::vector<const EngineSpec*> chosen;
       for (const EngineSpec& spec : specs) {
         if (n > spec.max_n) {
           std::cerr << "  " << spec.label() << ": skipped (N above its limit)\n";
-          continue;
+        } else {
+          chosen.push_back(&spec);
         }
-        Row row = measure(spec, input, reference, start, o.warmup, repeats, default_threads);
-        std::fprintf(stderr, "  %-34s %10.3f ms/iter  err mean %.2e max %.2e  heap %.1f MiB\n", spec.label().c_str(),
-                     row.median_ms, row.err_mean, row.err_max, row.heap_peak_mib);
+      }
+      for (const Row& row : measure_all(chosen, input, reference, start, o.warmup, repeats, default_threads)) {
+        std::fprintf(stderr, "  %-34s %10.3f ms/iter (cpu %.3f)  err mean %.2e max %.2e  heap %.1f MiB\n",
+                     (row.engine + (row.mode.empty() ? "" : " " + row.mode) +
+                      (row.resolution ? " " + std::to_string(row.resolution) : "")).c_str(),
+                     row.median_ms, row.cpu_ms, row.err_mean, row.err_max, row.heap_peak_mib);
         rows.push_back(row);
       }
     }

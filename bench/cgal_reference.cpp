@@ -154,74 +154,88 @@ void compute_periodic(const Scene& scene, SceneCells& out) {
   count_coincident(out);
 }
 
-// Builds the band triangulation with width w; returns false when some circumcircle around an
-// original site leaves the replicated region (w too small).
-bool compute_band(const Scene& scene, SceneCells& out, double w) {
-  const std::size_t n = scene.sites.size();
-  std::vector<KPoint> points;
-  std::vector<std::uint32_t> owner;  // original site of each (replicated) point
-  points.reserve(n + 8 * static_cast<std::size_t>(std::ceil(w * static_cast<double>(n))) + 16);
-  owner.reserve(points.capacity());
-  for (std::size_t i = 0; i < n; ++i) {
-    points.emplace_back(scene.sites[i].x, scene.sites[i].y);
-    owner.push_back(static_cast<std::uint32_t>(i));
-  }
-  for (std::size_t i = 0; i < n; ++i) {
-    const Point s = scene.sites[i];
+// Periodic copies of the sites that lie in the box [-w, 1+w)^2 but not in [-inner, 1+inner)^2.
+void add_replicas(const Scene& scene, double inner, double w, std::vector<KPoint>& points) {
+  auto inside = [](Point c, double b) { return c.x >= -b && c.x < 1.0 + b && c.y >= -b && c.y < 1.0 + b; };
+  for (const Point s : scene.sites)
     for (int oy = -1; oy <= 1; ++oy)
       for (int ox = -1; ox <= 1; ++ox) {
-        if (ox == 0 && oy == 0) continue;
         Point c{s.x + ox, s.y + oy};
-        if (c.x >= -w && c.x < 1.0 + w && c.y >= -w && c.y < 1.0 + w) {
-          points.emplace_back(c.x, c.y);
-          owner.push_back(static_cast<std::uint32_t>(i));
-        }
+        if ((ox != 0 || oy != 0) && inside(c, w) && !inside(c, inner)) points.emplace_back(c.x, c.y);
       }
-  }
+}
 
+// The band method. Starts with width `w`; while some circumcircle around a wanted site leaves
+// the replicated box (a site outside it, never inserted, could lie inside that circle), doubles
+// w and inserts the new ring of copies into the same triangulation. Returns false when even
+// w = 1 (all eight neighbouring copies) cannot certify the cells: only tiny N.
+bool compute_band(const Scene& scene, SceneCells& out, double& w, int& widenings) {
+  const std::size_t n = scene.sites.size();
   PlainDelaunay tri;
-  std::vector<PlainDelaunay::Vertex_handle> vertex_of_site(n);
-  PlainDelaunay::Face_handle hint;
-  for (std::size_t k : spatial_order(points)) {
-    std::size_t before = tri.number_of_vertices();
-    PlainDelaunay::Vertex_handle v = tri.insert(points[k], hint);
-    const bool original = k < n;
-    if (tri.number_of_vertices() > before) {
-      v->info() = original ? owner[k] : std::numeric_limits<std::uint32_t>::max();
-    } else if (original) {
-      v->info() = std::min(v->info(), owner[k]);  // replicas never coincide with originals
-    }
-    if (original) vertex_of_site[k] = v;
-    hint = v->face();
-  }
+  std::vector<KPoint> points;
+  points.reserve(n);
+  for (const Point s : scene.sites) points.emplace_back(s.x, s.y);
+  add_replicas(scene, -1.0, w, points);  // inner = -1: every copy in the box is new
 
-  const double lo = -w, hi = 1.0 + w;
-  std::vector<Point> polygon;
-  for (std::size_t site = scene.wanted_begin; site < scene.wanted_end; ++site) {
-    PlainDelaunay::Vertex_handle v = vertex_of_site[site];
-    if (v->info() != site) continue;  // coincident with a lower index
-    if (n == 1) return false;         // the band cannot certify a lone site; widen to the limit
-    const Point origin = scene.sites[site];
-    polygon.clear();
-    auto fc = tri.incident_faces(v), done = fc;
-    do {
-      if (tri.is_infinite(fc)) return false;
-      Point corner[3];
-      for (int j = 0; j < 3; ++j) {
-        const KPoint& p = fc->vertex(j)->point();
-        corner[j] = Point{p.x(), p.y()} - origin;
+  PlainDelaunay::Face_handle hint;
+  auto insert_all = [&](bool with_originals) {
+    for (std::size_t k : spatial_order(points)) {
+      std::size_t before = tri.number_of_vertices();
+      PlainDelaunay::Vertex_handle v = tri.insert(points[k], hint);
+      const bool original = with_originals && k < n;
+      if (tri.number_of_vertices() > before) {
+        v->info() = original ? static_cast<std::uint32_t>(k) : std::numeric_limits<std::uint32_t>::max();
+      } else if (original) {
+        v->info() = std::min(v->info(), static_cast<std::uint32_t>(k));  // copies never meet originals
       }
-      Point c = circumcentre(corner[0], corner[1], corner[2]);
-      double r = std::sqrt((c.x - corner[0].x) * (c.x - corner[0].x) + (c.y - corner[0].y) * (c.y - corner[0].y));
-      Point ca = origin + c;
-      // Points outside the replicated box were never inserted, so a circle reaching past it
-      // might contain one: not certified.
-      if (ca.x - r < lo || ca.x + r > hi || ca.y - r < lo || ca.y + r > hi) return false;
-      polygon.push_back(c);
-    } while (++fc != done);
-    out.cells[site - scene.wanted_begin] = measure_polygon(polygon, origin);
+      hint = v->face();
+    }
+  };
+  insert_all(true);
+
+  std::vector<Point> polygon;
+  for (;;) {
+    const double lo = -w, hi = 1.0 + w;
+    bool certified = n > 1;  // a lone site has no triangles; the caller falls back
+    // Vertices in storage (spatial) order: site order would miss the cache at large N.
+    for (auto vit = tri.finite_vertices_begin(); certified && vit != tri.finite_vertices_end(); ++vit) {
+      PlainDelaunay::Vertex_handle v = vit;
+      const std::size_t site = v->info();  // the lowest index among coincident sites
+      if (site < scene.wanted_begin || site >= scene.wanted_end) continue;  // copies are max()
+      const Point origin = scene.sites[site];
+      polygon.clear();
+      auto fc = tri.incident_faces(v), done = fc;
+      do {
+        if (tri.is_infinite(fc)) {
+          certified = false;
+          break;
+        }
+        Point corner[3];
+        for (int j = 0; j < 3; ++j) {
+          const KPoint& p = fc->vertex(j)->point();
+          corner[j] = Point{p.x(), p.y()} - origin;
+        }
+        Point c = circumcentre(corner[0], corner[1], corner[2]);
+        Point to_corner = corner[0] - c;
+        double r = std::sqrt(to_corner.x * to_corner.x + to_corner.y * to_corner.y);
+        Point ca = origin + c;
+        if (ca.x - r < lo || ca.x + r > hi || ca.y - r < lo || ca.y + r > hi) {
+          certified = false;
+          break;
+        }
+        polygon.push_back(c);
+      } while (++fc != done);
+      if (certified) out.cells[site - scene.wanted_begin] = measure_polygon(polygon, origin);
+    }
+    if (certified) return true;
+    if (w >= 1.0) return false;
+    const double wider = std::min(1.0, 2.0 * w);
+    points.clear();
+    add_replicas(scene, w, wider, points);
+    insert_all(false);
+    w = wider;
+    ++widenings;
   }
-  return true;
 }
 
 }  // namespace
@@ -236,23 +250,18 @@ void CgalBandEngine::compute(std::span<const Scene> scenes, std::span<SceneCells
     check_scene(scene);
     init_cells(scene, out[i]);
     if (scene.sites.empty()) continue;
-    // 3/sqrt(N) is about twice the largest circumradius of uniform random sites up to 10^6.
-    double w = std::min(1.0, 3.0 / std::sqrt(static_cast<double>(scene.sites.size())));
-    int rebuilds = 0;
-    while (!compute_band(scene, out[i], w)) {
-      if (w >= 1.0) {
-        // A full ring of copies and still uncertified: only tiny N get here; their cells are
-        // those of the 3x3 copies, which the periodic engine handles. Fall back to it.
-        compute_periodic(scene, out[i]);
-        break;
-      }
-      init_cells(scene, out[i]);
-      w = std::min(1.0, 2.0 * w);
-      ++rebuilds;
+    // 4/sqrt(N) is about twice the largest circumradius of uniform random sites up to 10^6, so
+    // one pass usually certifies; the copies cost about 16 sqrt(N) extra points.
+    double w = std::min(1.0, 4.0 / std::sqrt(static_cast<double>(scene.sites.size())));
+    int widenings = 0;
+    if (!compute_band(scene, out[i], w, widenings)) {
+      // Only tiny N get here (a full ring of copies cannot certify them): use the periodic
+      // triangulation instead, which handles any N.
+      compute_periodic(scene, out[i]);
     }
     count_coincident(out[i]);
     last_band_width_ = w;
-    last_rebuilds_ = rebuilds;
+    last_widenings_ = widenings;
   }
 }
 

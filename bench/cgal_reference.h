@@ -9,9 +9,10 @@
 // of the triangles around its site, in counter-clockwise order.
 // - CgalPeriodicEngine: CGAL::Periodic_2_Delaunay_triangulation_2 over the sites.
 // - CgalBandEngine: a plain CGAL::Delaunay_triangulation_2 over the sites plus their periodic
-//   copies in a border band of width w around the unit square. w starts at 3/sqrt(N) and is
-//   doubled until every circumcircle around an original site lies inside the replicated
-//   region, which certifies that those triangles are Delaunay on the torus.
+//   copies in a border band of width w around the unit square. w starts at 4/sqrt(N) and is
+//   doubled (inserting the new ring of copies) until every circumcircle around an original
+//   site lies inside the replicated region, which certifies that those triangles are Delaunay
+//   on the torus.
 // Coincident sites: the lowest index owns the cell, the others are reported as coincident,
 // as in the exact engine. Only the unit torus is supported; other domains throw Error.
 #pragma once
@@ -35,13 +36,13 @@ class CgalBandEngine final : public CentroidEngine {
   using CentroidEngine::compute;
   void compute(std::span<const Scene> scenes, std::span<SceneCells> out) override;
 
-  // Band width of the last scene computed (domain units) and how many rebuilds it needed.
+  // Band width of the last scene computed (domain units) and how often it was doubled.
   double last_band_width() const { return last_band_width_; }
-  int last_rebuilds() const { return last_rebuilds_; }
+  int last_widenings() const { return last_widenings_; }
 
  private:
   double last_band_width_ = 0.0;
-  int last_rebuilds_ = 0;
+  int last_widenings_ = 0;
 };
 
 // "5.5.1" etc.
