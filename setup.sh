@@ -4,11 +4,12 @@
 #
 #   ./setup.sh demo [DIR]   build, then relax 1000 points (80 iterations) and write the points,
 #                           images and a report to DIR (default: out/)
-#   ./setup.sh test         build, then run the whole test suite (ctest)
+#   ./setup.sh test         build, then run the whole test suite (ctest), then build it with
+#                           address + undefined sanitizers (in build-sanitize/) and run it again
 #   ./setup.sh build        install and build only
 #
 # Environment: BLUETILE_BUILD_DIR (default build), BLUETILE_BUILD_TYPE (default Release),
-# BLUETILE_SANITIZE=ON for an address + undefined sanitizer build (its own folder).
+# BLUETILE_SANITIZE=OFF skips the sanitizer pass of `test`.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -43,20 +44,23 @@ install_missing() {
   "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
+# build DIR CMAKE_ARGS...: configures (once) and builds into DIR.
 build() {
-  local type=${BLUETILE_BUILD_TYPE:-Release}
-  local sanitize=${BLUETILE_SANITIZE:-OFF}
-  local dir=${BLUETILE_BUILD_DIR:-build}
-  [ "$sanitize" = ON ] && dir=${BLUETILE_BUILD_DIR:-build-sanitize}
-  cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE="$type" -DBLUETILE_SANITIZE="$sanitize" >/dev/null
+  local dir=$1
+  shift
+  cmake -S . -B "$dir" -G Ninja "$@" >/dev/null
   cmake --build "$dir"
-  BUILD_DIR=$dir
+}
+
+run_tests() {
+  local dir=$1
+  ctest --test-dir "$dir" --output-on-failure -j 2
 }
 
 demo() {
   local out=${1:-out}
   mkdir -p "$out"
-  local bin="$BUILD_DIR/bluetile"
+  local bin="$build_dir/bluetile"
   "$bin" relax --count 1000 --iterations 80 --seed 1 --output "$out/points.txt" \
     --log "$out/relax-log.csv"
   "$bin" analyze --input "$out/points.txt" --output "$out"
@@ -64,10 +68,33 @@ demo() {
   cat "$out/report.txt"
 }
 
+build_dir=${BLUETILE_BUILD_DIR:-build}
+build_type=${BLUETILE_BUILD_TYPE:-Release}
 what=${1:-}
 case "$what" in
-  demo) install_missing; build; shift; demo "$@" ;;
-  test) install_missing; build; ctest --test-dir "$BUILD_DIR" --output-on-failure -j 2 ;;
-  build) install_missing; build ;;
-  *) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 2 ;;
+  demo)
+    install_missing
+    build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
+    shift
+    demo "$@"
+    ;;
+  test)
+    install_missing
+    build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
+    run_tests "$build_dir"
+    # The same tests once more with address + undefined-behaviour sanitizers.
+    if [ "${BLUETILE_SANITIZE:-ON}" = ON ]; then
+      echo "setup: tests under address + undefined sanitizers" >&2
+      build "$build_dir-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLUETILE_SANITIZE=ON -DBLUETILE_BUILD_BENCH=OFF
+      run_tests "$build_dir-sanitize"
+    fi
+    ;;
+  build)
+    install_missing
+    build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
+    ;;
+  *)
+    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
+    exit 2
+    ;;
 esac
