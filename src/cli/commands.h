@@ -7,6 +7,8 @@ namespace bluetile::cli {
 
 void add_relax_command(CLI::App& app);
 void add_centroids_command(CLI::App& app);
+void add_analyze_command(CLI::App& app);
+void add_dart_command(CLI::App& app);
 void add_progressive_command(CLI::App& app);
 
 }  // namespace bluetile::cli

@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "bluetile 0.1.0");
   bluetile::cli::add_relax_command(app);
   bluetile::cli::add_centroids_command(app);
+  bluetile::cli::add_analyze_command(app);
+  bluetile::cli::add_dart_command(app);
   bluetile::cli::add_progressive_command(app);
   try {
     app.parse(argc, argv);

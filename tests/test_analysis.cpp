@@ -1,0 +1,363 @@
+// Analysis against independent references: the periodogram against a plain complex sum and
+// hand-computed cases, radial binning against a hand-computed annulus, nearest neighbours
+// against brute force on the torus, white noise against its expected spectrum.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <algorithm>
+#include <complex>
+#include <filesystem>
+#include <numbers>
+
+#include <nlohmann/json.hpp>
+
+#include "analysis/nearest_neighbour.h"
+#include "analysis/periodogram.h"
+#include "analysis/radial_power.h"
+#include "analysis/summary.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::uniform_points;
+
+double brute_force_power(const std::vector<Point>& points, int kx, int ky) {
+  std::complex<double> sum = 0.0;
+  for (const Point& p : points) {
+    // Phase reduced to [0, 1) in long double so the reference is accurate at high k.
+    long double t = static_cast<long double>(kx) * p.x + static_cast<long double>(ky) * p.y;
+    t -= std::floor(t);
+    sum += std::polar(1.0, -2.0 * std::numbers::pi * static_cast<double>(t));
+  }
+  return std::norm(sum) / static_cast<double>(points.size());
+}
+
+std::vector<Point> square_lattice(int m, Point offset = {0.0, 0.0}) {
+  std::vector<Point> points;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) points.push_back(wrap_point(Point{i / double(m), j / double(m)} + offset, Domain{}));
+  return points;
+}
+
+TEST(Periodogram, MatchesPlainComplexSumEverywhere) {
+  // 300 points span two blocks of the kernel; F = 150 spans tiles that straddle k = 0 unevenly.
+  auto points = uniform_points(300, 11);
+  const int f = 150;
+  Periodogram p = compute_periodogram(points, f);
+  ASSERT_EQ(p.size, f);
+  double worst = 0.0;
+  for (int ky = -f / 2; ky < f / 2; ++ky) {
+    for (int kx = -f / 2; kx < f / 2; ++kx) {
+      double expected = brute_force_power(points, kx, ky);
+      worst = std::max(worst, std::abs(p.at(kx, ky) - expected));
+    }
+  }
+  // Values are O(1) to O(10); the recurrences lose a few ulps per step.
+  EXPECT_LT(worst, 1e-10);
+}
+
+TEST(Periodogram, DcIsExactlyN) {
+  for (std::size_t n : {2u, 257u, 1000u}) {
+    auto points = uniform_points(n, 5);
+    Periodogram p = compute_periodogram(points, default_periodogram_size(n));
+    EXPECT_EQ(p.at(0, 0), static_cast<double>(n)) << "N = " << n;
+  }
+}
+
+TEST(Periodogram, HandComputedCases) {
+  // One point: |exp(..)|^2 / 1 = 1 at every k.
+  Periodogram one = compute_periodogram(std::vector<Point>{{0.3, 0.7}}, 16);
+  for (double v : one.power) EXPECT_NEAR(v, 1.0, 1e-13);
+  // Two points half a period apart in x: S = 1 + (-1)^kx, so P = 2 for even kx and 0 for odd.
+  Periodogram two = compute_periodogram(std::vector<Point>{{0.0, 0.25}, {0.5, 0.25}}, 16);
+  for (int ky = -8; ky < 8; ++ky) {
+    for (int kx = -8; kx < 8; ++kx) {
+      double expected = (kx % 2 == 0) ? 2.0 : 0.0;
+      EXPECT_NEAR(two.at(kx, ky), expected, 1e-12) << kx << "," << ky;
+    }
+  }
+}
+
+TEST(Periodogram, SquareLatticeHasPowerExactlyAtLatticeFrequencies) {
+  const int m = 8;
+  auto points = square_lattice(m, {0.03, 0.01});
+  Periodogram p = compute_periodogram(points, 64);
+  for (int ky = -32; ky < 32; ++ky) {
+    for (int kx = -32; kx < 32; ++kx) {
+      if (kx % m == 0 && ky % m == 0) EXPECT_NEAR(p.at(kx, ky), m * m, 1e-9) << kx << "," << ky;
+      else EXPECT_LT(p.at(kx, ky), 1e-20) << kx << "," << ky;
+    }
+  }
+}
+
+TEST(Periodogram, BitIdenticalWhateverTheThreadCount) {
+  auto points = uniform_points(700, 3);
+  const std::size_t before = thread_count();
+  set_thread_count(1);
+  Periodogram serial = compute_periodogram(points, 200);
+  set_thread_count(2);
+  Periodogram two = compute_periodogram(points, 200);
+  set_thread_count(5);
+  Periodogram five = compute_periodogram(points, 200);
+  set_thread_count(before);
+  EXPECT_TRUE(serial.power == two.power);
+  EXPECT_TRUE(serial.power == five.power);
+}
+
+TEST(Periodogram, RejectsBadArguments) {
+  EXPECT_THROW(compute_periodogram(std::vector<Point>{}, 16), Error);
+  EXPECT_THROW(compute_periodogram(uniform_points(3, 1), 15), Error);
+  EXPECT_THROW(compute_periodogram(uniform_points(3, 1), 0), Error);
+  EXPECT_EQ(default_periodogram_size(1000), 316);  // 2 floor(5 sqrt(1000)) = 2 * 158
+}
+
+TEST(RadialPower, HandComputedAnnulus) {
+  // F = 4: k in {-2..1}^2. P = 10 + kx + 2 ky, chosen so every annulus has a spread.
+  Periodogram p;
+  p.size = 4;
+  p.power.resize(16);
+  for (int ky = -2; ky < 2; ++ky)
+    for (int kx = -2; kx < 2; ++kx) p.power[static_cast<std::size_t>((ky + 2) * 4 + kx + 2)] = 10 + kx + 2 * ky;
+  auto radial = radial_power(p, 1.0);
+  // Annuli wholly inside the square: |k| < 2, so annulus 0 (k = 0) and annulus 1 (|k| in [1, 2)).
+  ASSERT_EQ(radial.size(), 2u);
+  EXPECT_EQ(radial[0].count, 1u);
+  EXPECT_EQ(radial[0].power, 10.0);
+  EXPECT_TRUE(std::isnan(radial[0].anisotropy_db));
+  // Annulus 1: (+-1, 0), (0, +-1), (+-1, +-1): values 11, 9, 12, 8, 13, 11, 9, 7.
+  const double values[] = {11, 9, 12, 8, 13, 11, 9, 7};
+  double mean = 80.0 / 8.0, ss = 0.0;
+  for (double v : values) ss += (v - mean) * (v - mean);  // 1+1+4+4+9+1+1+9 = 30
+  EXPECT_EQ(radial[1].count, 8u);
+  EXPECT_DOUBLE_EQ(radial[1].power, 10.0);
+  EXPECT_DOUBLE_EQ(radial[1].frequency, 1.0);
+  EXPECT_NEAR(radial[1].anisotropy_db, 10.0 * std::log10((ss / 7.0) / (mean * mean)), 1e-12);
+  EXPECT_NEAR(radial[1].anisotropy_db, 10.0 * std::log10(30.0 / 7.0 / 100.0), 1e-12);
+
+  // Width 1.5: one annulus, |k| < 1.5, the 3x3 block around 0: mean 10.
+  auto wide = radial_power(p, 1.5);
+  ASSERT_EQ(wide.size(), 1u);
+  EXPECT_EQ(wide[0].count, 9u);
+  EXPECT_DOUBLE_EQ(wide[0].power, 10.0);
+  EXPECT_THROW(radial_power(p, 0.0), Error);
+  EXPECT_THROW(radial_power(p, 3.0), Error);
+}
+
+TEST(RadialPower, WhiteNoiseIsFlatAtOneAndIsotropic) {
+  // For independent uniform points E[P(k)] = 1 at every k != 0 and P(k) is about exponentially
+  // distributed, so A = var / mean^2 is about 1 (0 dB).
+  const std::size_t n = 1000;
+  auto points = uniform_points(n, 2024);
+  Periodogram p = compute_periodogram(points, default_periodogram_size(n));
+  auto radial = radial_power(p);
+  ASSERT_EQ(radial.size(), 158u);
+  double power = 0.0, weights = 0.0, db = 0.0;
+  std::size_t counted = 0;
+  for (std::size_t i = 10; i < radial.size(); ++i) {
+    power += radial[i].power * static_cast<double>(radial[i].count);
+    weights += static_cast<double>(radial[i].count);
+    db += radial[i].anisotropy_db;
+    ++counted;
+    // Annulus i has about pi i independent values (P(k) = P(-k)): sd of P_i about 1/sqrt(pi i),
+    // at most 0.18 here; 0.75 is over 4 sd.
+    EXPECT_NEAR(radial[i].power, 1.0, 0.75) << "annulus " << i;
+  }
+  // About 38000 independent values: sd of the mean about 0.005; tolerance 0.03.
+  EXPECT_NEAR(power / weights, 1.0, 0.03);
+  // Mean anisotropy over 148 annuli; the log of a sample variance ratio is biased low by a few
+  // tenths of a dB at the smallest annuli. Tolerance 0.5 dB.
+  EXPECT_NEAR(db / static_cast<double>(counted), 0.0, 0.5);
+}
+
+TEST(RadialPower, AveragedWhiteNoiseStaysAtOne) {
+  std::vector<Periodogram> ps;
+  for (std::uint64_t seed = 0; seed < 8; ++seed) ps.push_back(compute_periodogram(uniform_points(200, 100 + seed), 80));
+  auto radial = radial_power(average_periodograms(ps));
+  double power = 0.0;
+  for (std::size_t i = 5; i < radial.size(); ++i) power += radial[i].power;
+  EXPECT_NEAR(power / static_cast<double>(radial.size() - 5), 1.0, 0.05);
+  // Averaging M periodograms divides the variance by M: the white-noise level is -10 log10(M) dB.
+  double db = 0.0;
+  for (std::size_t i = 5; i < radial.size(); ++i) db += radial[i].anisotropy_db;
+  EXPECT_NEAR(db / static_cast<double>(radial.size() - 5), -10.0 * std::log10(8.0), 1.0);
+}
+
+TEST(NearestNeighbour, MatchesBruteForceOnTheTorus) {
+  auto points = uniform_points(600, 9);
+  // Pairs that are close only across the border, in x, in y and across a corner.
+  points.push_back({0.0005, 0.4});
+  points.push_back({0.9995, 0.4});
+  points.push_back({0.7, 0.0002});
+  points.push_back({0.7, 0.9999});
+  points.push_back({0.0001, 0.0001});
+  points.push_back({0.9998, 0.9998});
+  auto d = nearest_neighbour_distances(points);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double best = 1.0;
+    for (std::size_t j = 0; j < points.size(); ++j)
+      if (j != i) best = std::min(best, torus_distance(points[i], points[j], Domain{}));
+    EXPECT_NEAR(d[i], best, 1e-15) << "point " << i;  // offsets are rounded differently
+  }
+  EXPECT_NEAR(d[600], 0.001, 1e-12);
+  EXPECT_NEAR(d[602], 0.0003, 1e-12);
+  EXPECT_NEAR(d[604], std::sqrt(2.0) * 0.0003, 1e-12);
+
+  NearestNeighbourStats s = nearest_neighbour_stats(square_lattice(10));
+  EXPECT_NEAR(s.min, 0.1, 1e-15);
+  EXPECT_NEAR(s.max, 0.1, 1e-15);
+  EXPECT_NEAR(s.hexagonal_spacing, std::sqrt(2.0 / (std::sqrt(3.0) * 100.0)), 1e-15);
+}
+
+TEST(Summary, LatticeSitesAreTheirCentroids) {
+  EXPECT_LT(mean_centroid_distance(square_lattice(12, {0.02, 0.05})), 1e-12);
+  // Uniform random sites are far from their centroids: a sizeable fraction of the spacing.
+  auto points = uniform_points(500, 4);
+  EXPECT_GT(mean_centroid_distance(points) / hexagonal_spacing(500.0), 0.1);
+}
+
+TEST(Summary, PrefixesOfALeveledSet) {
+  // Level 0: a 4x4 lattice; level 1: its cell centres (together a lattice turned 45 degrees);
+  // level 2: the edge midpoints (together an 8x8 lattice).
+  std::vector<Point> points = square_lattice(4);
+  std::vector<int> levels(16, 0);
+  for (const Point& p : square_lattice(4, {0.125, 0.125})) points.push_back(p), levels.push_back(1);
+  for (const Point& p : square_lattice(4, {0.125, 0.0})) points.push_back(p), levels.push_back(2);
+  for (const Point& p : square_lattice(4, {0.0, 0.125})) points.push_back(p), levels.push_back(2);
+  SummaryOptions o;
+  auto result = summarize_levels(points, levels, o);
+  ASSERT_EQ(result.size(), 3u);
+  EXPECT_EQ(result[0].summary.count, 16u);
+  EXPECT_EQ(result[1].summary.count, 32u);
+  EXPECT_EQ(result[2].summary.count, 64u);
+  EXPECT_NEAR(result[0].summary.nn.min, 0.25, 1e-15);
+  EXPECT_NEAR(result[1].summary.nn.min, 0.25 / std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(result[2].summary.nn.min, 0.125, 1e-15);
+  // One F for all prefixes: the full set's, 2 floor(5 sqrt(64)) = 80.
+  for (const auto& l : result) EXPECT_EQ(l.summary.periodogram.size, 80);
+  // The 4x4 lattice has its power at multiples of 4 only.
+  EXPECT_NEAR(result[0].summary.periodogram.at(4, 0), 16.0, 1e-9);
+  EXPECT_LT(result[0].summary.periodogram.at(2, 0), 1e-20);
+  // Adding level 1 cancels (4, 0) (a checkerboard) but not (4, 4).
+  EXPECT_LT(result[1].summary.periodogram.at(4, 0), 1e-20);
+  EXPECT_NEAR(result[1].summary.periodogram.at(4, 4), 32.0, 1e-9);
+  EXPECT_THROW(summarize_levels(points, std::vector<int>(3, 0), o), Error);
+}
+
+// --- the command line --------------------------------------------------------------------
+
+std::string write_points(const test::TempDir& dir, const std::string& name, const std::vector<Point>& points) {
+  std::string text;
+  char line[80];
+  for (const Point& p : points) {
+    std::snprintf(line, sizeof line, "%.17g %.17g\n", p.x, p.y);
+    text += line;
+  }
+  return dir.write(name, text);
+}
+
+TEST(AnalyzeCommand, WritesEveryOutput) {
+  test::TempDir dir;
+  std::string input = write_points(dir, "uniform.txt", uniform_points(400, 8));
+  std::string out = dir.file("nested/out");
+  auto r = test::run_bluetile({"analyze", "--input", input, "--output", out});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"stats.json", "radial.csv", "report.txt", "points.png", "spectrum.png", "radial.png"})
+    EXPECT_TRUE(std::filesystem::exists(out + "/" + name)) << name;
+  auto stats = nlohmann::json::parse(test::read_text(out + "/stats.json"));
+  EXPECT_EQ(stats["n"], 400);
+  EXPECT_EQ(stats["periodogram_size"], 200);
+  auto nn = nearest_neighbour_stats(uniform_points(400, 8));
+  EXPECT_DOUBLE_EQ(stats["nn_min"].get<double>(), nn.min);
+  EXPECT_DOUBLE_EQ(stats["nn_max"].get<double>(), nn.max);
+  EXPECT_DOUBLE_EQ(stats["nn_mean"].get<double>(), nn.mean);
+  EXPECT_DOUBLE_EQ(stats["nn_x1000"]["min"].get<double>(), 1000.0 * nn.min);
+  EXPECT_DOUBLE_EQ(stats["nn_relative"]["min"].get<double>(), nn.min / hexagonal_spacing(400.0));
+  EXPECT_GT(stats["mean_centroid_distance"].get<double>(), 0.0);
+  std::string csv = test::read_text(out + "/radial.csv");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "frequency,power,anisotropy_db");
+  EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 100);  // F/2 annuli
+  EXPECT_NE(csv.find("\n0,400,nan\n"), std::string::npos);
+  EXPECT_NE(test::read_text(out + "/report.txt").find("400 points"), std::string::npos);
+}
+
+TEST(AnalyzeCommand, BadInputFailsCleanlyAndWritesNothing) {
+  test::TempDir dir;
+  struct Case {
+    std::string name, text, message;
+  };
+  const Case cases[] = {
+      {"empty.txt", "", "no points"},
+      {"comments.txt", "# nothing here\n", "no points"},
+      {"one.txt", "0.5 0.5\n", "at least 2 points"},
+      {"nan.txt", "0.1 0.2\nnan 0.3\n", "nan.txt:2"},
+      {"text.txt", "0.1 0.2\nhello world\n", "text.txt:2"},
+  };
+  for (const Case& c : cases) {
+    std::string input = dir.write(c.name, c.text);
+    std::string out = dir.file("out-" + c.name);
+    auto r = test::run_bluetile({"analyze", "--input", input, "--output", out});
+    EXPECT_NE(r.exit_code, 0) << c.name;
+    EXPECT_EQ(r.err.rfind("bluetile: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << c.name << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << c.name;
+  }
+  auto r = test::run_bluetile({"analyze", "--input", dir.file("missing.txt"), "--output", dir.file("out")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("missing.txt"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
+TEST(AnalyzeCommand, AverageCompareAndLevels) {
+  test::TempDir dir;
+  std::string a = write_points(dir, "a.txt", uniform_points(300, 1));
+  std::string b = write_points(dir, "b.txt", uniform_points(300, 2));
+  std::string c = write_points(dir, "c.txt", uniform_points(250, 3));
+
+  auto r = test::run_bluetile({"analyze", "-i", a, b, "-o", dir.file("avg"), "--average", "--no-centroids"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto stats = nlohmann::json::parse(test::read_text(dir.file("avg/stats.json")));
+  EXPECT_EQ(stats["sets"], 2);
+  double mean_min = 0.5 * (nearest_neighbour_stats(uniform_points(300, 1)).min +
+                           nearest_neighbour_stats(uniform_points(300, 2)).min);
+  EXPECT_NEAR(stats["nn_min"].get<double>(), mean_min, 1e-15);
+
+  r = test::run_bluetile({"analyze", "-i", a, c, "-o", dir.file("bad"), "--average"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("different sizes"), std::string::npos) << r.err;
+  r = test::run_bluetile({"analyze", "-i", a, b, "-o", dir.file("bad")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("--average"), std::string::npos) << r.err;
+
+  r = test::run_bluetile({"analyze", "-i", a, c, "-o", dir.file("cmp"), "--compare", "--label", "first", "second"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  stats = nlohmann::json::parse(test::read_text(dir.file("cmp/stats.json")));
+  ASSERT_EQ(stats["compare"].size(), 2u);
+  EXPECT_EQ(stats["compare"][1]["label"], "second");
+  EXPECT_EQ(stats["compare"][1]["n"], 250);
+  std::string csv = test::read_text(dir.file("cmp/radial.csv"));
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "frequency,power,anisotropy_db,set");
+  EXPECT_NE(csv.find(",second\n"), std::string::npos);
+
+  // The hand-made leveled file of tests/data: see its header.
+  std::string leveled = BLUETILE_TEST_DATA "/levels_lattice.txt";
+  r = test::run_bluetile({"analyze", "-i", leveled, "-o", dir.file("lev"), "--by-level"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  stats = nlohmann::json::parse(test::read_text(dir.file("lev/stats.json")));
+  ASSERT_EQ(stats["levels"].size(), 3u);
+  EXPECT_EQ(stats["levels"][0]["n"], 16);
+  EXPECT_NEAR(stats["levels"][0]["nn_min"].get<double>(), 0.25, 1e-15);
+  EXPECT_NEAR(stats["levels"][1]["nn_min"].get<double>(), 0.25 / std::sqrt(2.0), 1e-15);
+  EXPECT_NEAR(stats["levels"][2]["nn_min"].get<double>(), 0.125, 1e-15);
+  EXPECT_EQ(stats["n"], 64);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("lev/radial.png")));
+  r = test::run_bluetile({"analyze", "-i", a, "-o", dir.file("nolev"), "--by-level"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("level column"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace bluetile
