@@ -17,8 +17,14 @@ namespace {
 std::string temporary_path_for(const std::string& path) {
   static std::atomic<unsigned> counter{0};
   std::filesystem::path target(path);
-  std::string name = "." + target.stem().string() + ".tmp" + std::to_string(getpid()) + "-" +
-                     std::to_string(counter++) + target.extension().string();
+  // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on a literal + string chain here.
+  std::string name(".");
+  name += target.stem().string();
+  name += ".tmp";
+  name += std::to_string(getpid());
+  name += '-';
+  name += std::to_string(counter++);
+  name += target.extension().string();
   return (target.parent_path() / name).string();
 }
 
