@@ -103,29 +103,28 @@ class CellBuilder {
     double dd = d.x * d.x + d.y * d.y;
     // Every vertex v has v.d <= |v||d| <= |d|^2/2 when |d|^2 >= 4 max|v|^2: nothing to cut.
     if (dd >= 4.0 * max_radius_squared_) return;
-    double c = 0.5 * dd;
-    scratch_.clear();
-    std::size_t n = polygon_.size();
+    const double c = 0.5 * dd;
+    const std::size_t n = polygon_.size();
+    side_.resize(n);
     bool any_outside = false;
     for (std::size_t i = 0; i < n; ++i) {
-      const Vertex& a = polygon_[i];
-      const Vertex& b = polygon_[(i + 1) % n];
-      double da = a.p.x * d.x + a.p.y * d.y - c;
-      double db = b.p.x * d.x + b.p.y * d.y - c;
-      if (da <= 0.0) {
-        scratch_.push_back(a);
-      } else {
-        any_outside = true;
-      }
-      // A crossing strictly from one side to the other; a vertex exactly on the line is kept
-      // as it is, so co-circular ties (lattices) add no duplicate vertices.
-      if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) {
-        double t = da / (da - db);
-        Point x = a.p + t * (b.p - a.p);
-        scratch_.push_back({x, da < 0.0 ? site : a.edge_site});
-      }
+      side_[i] = polygon_[i].p.x * d.x + polygon_[i].p.y * d.y - c;
+      any_outside |= side_[i] > 0.0;
     }
     if (!any_outside) return;
+    scratch_.clear();
+    for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+      // Edge j -> i. A crossing strictly from one side to the other adds a vertex; a vertex
+      // exactly on the line is kept as it is, so co-circular ties (lattices) add no duplicates.
+      const double sj = side_[j], si = side_[i];
+      if ((sj < 0.0 && si > 0.0) || (sj > 0.0 && si < 0.0)) {
+        const Vertex& a = polygon_[j];
+        const Vertex& b = polygon_[i];
+        double t = sj / (sj - si);
+        scratch_.push_back({a.p + t * (b.p - a.p), sj < 0.0 ? site : a.edge_site});
+      }
+      if (si <= 0.0) scratch_.push_back(polygon_[i]);
+    }
     polygon_.swap(scratch_);
     max_radius_squared_ = 0.0;
     for (const Vertex& v : polygon_) max_radius_squared_ = std::max(max_radius_squared_, v.p.x * v.p.x + v.p.y * v.p.y);
@@ -154,6 +153,7 @@ class CellBuilder {
 
  private:
   std::vector<Vertex> polygon_, scratch_;
+  std::vector<double> side_;  // signed distance of each vertex to the clipping line
   double max_radius_squared_ = 0.0;
 };
 
@@ -183,11 +183,14 @@ bool build_cell(const Scene& scene, const PeriodicGrid& grid, std::uint32_t site
     });
   };
   auto clip_nearest_first = [&] {
-    std::sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) {
-      if (a.distance_squared != b.distance_squared) return a.distance_squared < b.distance_squared;
-      if (a.site != b.site) return a.site < b.site;  // deterministic order for ties
-      return a.offset.x != b.offset.x ? a.offset.x < b.offset.x : a.offset.y < b.offset.y;
-    });
+    // Insertion sort: a ring holds a few dozen candidates, and being stable it breaks distance
+    // ties by gathering order, which is fixed, so the clipping order is the same every run.
+    for (std::size_t i = 1; i < candidates.size(); ++i) {
+      Candidate c = candidates[i];
+      std::size_t j = i;
+      for (; j > 0 && candidates[j - 1].distance_squared > c.distance_squared; --j) candidates[j] = candidates[j - 1];
+      candidates[j] = c;
+    }
     for (const Candidate& c : candidates) builder.clip(c.offset, c.site);
     candidates.clear();
   };
