@@ -212,15 +212,24 @@ void prepare(Trial& t, const EngineSpec& spec, const std::vector<Point>& input, 
 #endif
 }
 
-// All engines on one input. Timed repeats are interleaved (round r runs every engine once, the
+// Engines on one input. Timed repeats are interleaved (round r runs every engine once, the
 // order rotating by r) so that load from other processes on a shared machine falls on all
-// engines alike: the ratios stay meaningful even when absolute times drift.
-std::vector<Row> measure_all(const std::vector<const EngineSpec*>& specs, const std::vector<Point>& input,
-                             const std::vector<Cell>& reference, const std::string& start, int warmup, int repeats,
-                             std::size_t default_threads) {
-  std::vector<Trial> trials(specs.size());
-  for (std::size_t k = 0; k < specs.size(); ++k)
-    prepare(trials[k], *specs[k], input, reference, start, warmup, default_threads);
+// engines alike: the ratios stay meaningful even when absolute times drift. An engine that
+// throws (say, a resolution too small for N) is reported on stderr and left out.
+std::vector<Row> measure_interleaved(const std::vector<const EngineSpec*>& specs, const std::vector<Point>& input,
+                                     const std::vector<Cell>& reference, const std::string& start, int warmup,
+                                     int repeats, std::size_t default_threads) {
+  std::vector<Trial> trials;
+  trials.reserve(specs.size());
+  for (const EngineSpec* spec : specs) {
+    trials.emplace_back();
+    try {
+      prepare(trials.back(), *spec, input, reference, start, warmup, default_threads);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "  %-34s failed: %s\n", spec->label().c_str(), e.what());
+      trials.pop_back();
+    }
+  }
   for (int r = 0; r < repeats; ++r)
     for (std::size_t j = 0; j < trials.size(); ++j) {
       Trial& t = trials[(j + static_cast<std::size_t>(r)) % trials.size()];
@@ -239,6 +248,43 @@ std::vector<Row> measure_all(const std::vector<const EngineSpec*>& specs, const 
   return rows;
 }
 
+// CPU engines are timed interleaved; each raster configuration is timed on its own right after
+// (one Vulkan device and its driver threads alive at a time, not sixteen).
+std::vector<Row> measure_all(const std::vector<const EngineSpec*>& specs, const std::vector<Point>& input,
+                             const std::vector<Cell>& reference, const std::string& start, int warmup, int repeats,
+                             std::size_t default_threads) {
+  std::vector<const EngineSpec*> cpu;
+  std::vector<Row> rows;
+  for (const EngineSpec* s : specs)
+    if (s->engine != "raster") cpu.push_back(s);
+  rows = measure_interleaved(cpu, input, reference, start, warmup, repeats, default_threads);
+  for (const EngineSpec* s : specs)
+    if (s->engine == "raster")
+      // At most 5 timed repeats: sixteen configurations at up to 2048^2 on a software rasterizer.
+      for (const Row& r : measure_interleaved({s}, input, reference, start, warmup, std::min(repeats, 5), default_threads))
+        rows.push_back(r);
+  return rows;
+}
+
+#ifdef BLUETILE_BENCH_RASTER
+// The raster engine in every coverage and cone variant over the resolutions asked for. The
+// paper-workload rows use 1024 pixels, the resolution DESIGN section 3 measured.
+void add_raster_specs(const Options& o, std::vector<EngineSpec>& specs) {
+  for (Coverage coverage : {Coverage::point, Coverage::area})
+    for (ConeShape cone : {ConeShape::quad, ConeShape::fan})
+      for (int resolution : o.raster_resolutions) {
+        RasterOptions options;
+        options.resolution = resolution;
+        options.coverage = coverage;
+        options.cone = cone;
+        std::string mode = std::string(coverage == Coverage::point ? "point" : "area") + " " +
+                           (cone == ConeShape::quad ? "quad" : "fan");
+        specs.push_back({"raster", mode, resolution, o.max_raster, 0, resolution == 1024,
+                         [options] { return std::make_unique<RasterEngine>(options); }});
+      }
+}
+#endif
+
 std::vector<EngineSpec> engine_specs(const Options& o) {
   std::vector<EngineSpec> specs;
   auto exact = [] { return std::make_unique<ExactEngine>(); };
@@ -249,7 +295,6 @@ std::vector<EngineSpec> engine_specs(const Options& o) {
   specs.push_back({"cgal-band", "", 0, o.max_cgal_band, 1, true, [] { return std::make_unique<CgalBandEngine>(); }});
 #endif
 #ifdef BLUETILE_BENCH_RASTER
-  // RASTER HOOK: filled in once src/voronoi/raster_engine.{h,cpp} lands (see add_raster_specs).
   add_raster_specs(o, specs);
 #endif
   if (!o.engines.empty()) {
@@ -490,7 +535,7 @@ int run(int argc, char** argv) {
     o.raster_resolutions.clear();
     for (const std::string& s : split(resolutions_text)) o.raster_resolutions.push_back(std::stoi(s));
   } else if (o.quick) {
-    o.raster_resolutions = {256, 512};
+    o.raster_resolutions = {256};
   }
   if (o.relax_iterations == 0) o.relax_iterations = o.quick ? 5 : 30;
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
@@ -546,12 +591,18 @@ int run(int argc, char** argv) {
     for (const EngineSpec& spec : specs) {
       if (!spec.in_paper_row || spec.max_n < 1000) continue;
       apply_threads(spec, default_threads);
-      std::unique_ptr<CentroidEngine> engine = spec.make();
       Scene scene = make_scene(start);
       LloydOptions lloyd;
       lloyd.iterations = 80;
+      LloydResult result;
       auto t0 = Clock::now();
-      LloydResult result = relax_lloyd(*engine, scene, lloyd);
+      try {
+        std::unique_ptr<CentroidEngine> engine = spec.make();  // raster: device set-up counted
+        result = relax_lloyd(*engine, scene, lloyd);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "  %-34s failed: %s\n", spec.label().c_str(), e.what());
+        continue;
+      }
       PaperRow p;
       p.total_s = std::chrono::duration<double>(Clock::now() - t0).count();
       p.label = spec.label();

@@ -1,5 +1,6 @@
 #include "machine.h"
 
+#include <cstdio>
 #include <fstream>
 #include <thread>
 
@@ -57,6 +58,19 @@ std::string vulkan_devices() {
   return out.empty() ? "none" : out;
 }
 
+// The source tree's commit, "-dirty" when it has uncommitted changes (read at run time, so a
+// stale configure cannot mislabel results).
+std::string source_revision() {
+  std::string command = std::string("git -C '") + BLUETILE_SOURCE_DIR + "' describe --always --dirty 2>/dev/null";
+  std::FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return "unknown";
+  char buf[128] = {};
+  std::string out = std::fgets(buf, sizeof buf, pipe) ? buf : "";
+  pclose(pipe);
+  while (!out.empty() && (out.back() == '\n' || out.back() == ' ')) out.pop_back();
+  return out.empty() ? "unknown" : out;
+}
+
 }  // namespace
 
 std::vector<std::pair<std::string, std::string>> machine_facts() {
@@ -72,6 +86,7 @@ std::vector<std::pair<std::string, std::string>> machine_facts() {
   facts.emplace_back("compiler", std::string("g++ ") + __VERSION__);
 #endif
   facts.emplace_back("build type", BLUETILE_BUILD_TYPE);
+  facts.emplace_back("source revision", source_revision());
 #ifdef BLUETILE_HAVE_CGAL
   facts.emplace_back("CGAL", cgal_version() + " (Epick kernel)");
 #else
