@@ -2,6 +2,7 @@
 // stats.json, radial.csv, report.txt, points.png, spectrum.png, radial.png in the output folder.
 // One set; the mean over several (--average); several series side by side (--compare); or every
 // prefix of a hierarchical set (--by-level).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +36,7 @@ struct AnalyzeOptions {
   std::string from;
   bool centroids = true;
   int threads = 0;
+  int image_size = 800;
 };
 
 // One curve of the analysis: a set, a mean over sets, or a prefix.
@@ -47,6 +49,8 @@ struct Series {
 };
 
 std::vector<PointSet> read_sets(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a point file");
   std::vector<PointSet> sets = read_point_sets(path);
   if (sets.empty()) throw Error(path + ": no points");
   for (const PointSet& s : sets) {
@@ -147,6 +151,9 @@ void report_series(std::ostringstream& out, const Series& series) {
     out << "  periodogram F = " << s.periodogram.size << ": peak radial power " << fixed(s.radial[peak].power, 3)
         << " at |k| = " << csv_number(s.radial[peak].frequency) << " (hexagonal lattice frequency "
         << fixed(std::sqrt(2.0 * static_cast<double>(s.count) / std::sqrt(3.0)), 1) << ")\n";
+  if (s.sets > 1)
+    out << "  (anisotropy of a mean of " << s.sets << " periodograms: white noise sits at "
+        << fixed(-10.0 * std::log10(static_cast<double>(s.sets)), 1) << " dB, not 0)\n";
 }
 
 void run_analyze(const AnalyzeOptions& o) {
@@ -236,7 +243,7 @@ void run_analyze(const AnalyzeOptions& o) {
     }
     figure.cells = o.cells;
     const bool several = series.size() > 1;
-    point_images.push_back(draw_points(figure, several ? 520 : 800));
+    point_images.push_back(draw_points(figure, several ? o.image_size * 2 / 3 : o.image_size));
     spectrum_images.push_back(draw_spectrum(s.summary.periodogram, several ? 512 : 1024, several ? 384 : 512));
     captions.push_back(s.label);
   }
@@ -249,7 +256,11 @@ void run_analyze(const AnalyzeOptions& o) {
   if (series.size() == 1 && series[0].summary.sets > 1)
     title = "mean over " + std::to_string(series[0].summary.sets) + " sets of " +
             std::to_string(series[0].summary.count) + " points";
-  Canvas radial_png = draw_radial(curves, title);
+  // White noise averaged over M sets: anisotropy about -10 log10(M) dB (Lagae & Dutré 2008).
+  double reference = 0.0;
+  if (std::all_of(series.begin(), series.end(), [&](const Series& s) { return s.summary.sets == series[0].summary.sets; }))
+    reference = -10.0 * std::log10(static_cast<double>(series[0].summary.sets));
+  Canvas radial_png = draw_radial(curves, title, reference);
 
   nlohmann::json stats = summary_json(whole);
   stats["mode"] = o.compare ? "compare" : o.by_level ? "by-level" : o.average ? "average" : "single";
@@ -316,6 +327,9 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--cells", o->cells, "Draw the periodic Voronoi cells in points.png");
   cmd->add_option("--from", o->from, "Draw each point's move from its position in this file (same count and order)");
   cmd->add_flag("!--no-centroids", o->centroids, "Skip the mean distance to the cell centroids");
+  cmd->add_option("--image-size", o->image_size, "Side of points.png in pixels (two thirds of it per set side by side)")
+      ->check(CLI::Range(64, 8192))
+      ->capture_default_str();
   cmd->add_option("--threads", o->threads, "CPU threads (default: all cores); output does not depend on it")
       ->check(CLI::Range(1, 1024));
   cmd->callback([o] { run_analyze(*o); });

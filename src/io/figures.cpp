@@ -94,7 +94,8 @@ Canvas draw_spectrum(const Periodogram& periodogram, int max_size, int min_size)
   return canvas;
 }
 
-Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title, int width, int height) {
+Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title, double anisotropy_reference,
+                   int width, int height) {
   Plot plot;
   plot.title = title;
   plot.x_label = "frequency |k| (integer frequencies on the unit torus)";
@@ -103,8 +104,8 @@ Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title
   power.reference = 1.0;
   power.y_min = 0.0;
   anisotropy.y_label = "anisotropy (dB)";
-  anisotropy.reference = 0.0;
-  double power_max = 2.0, ani_lo = -5.0, ani_hi = 5.0, x_max = 1.0;
+  anisotropy.reference = anisotropy_reference;
+  double power_max = 2.0, ani_lo = std::min(-5.0, anisotropy_reference - 5.0), ani_hi = 5.0, x_max = 1.0;
   for (std::size_t c = 0; c < curves.size(); ++c) {
     PlotSeries p{curves[c].label, {}, {}, series_colour(c), 2.0};
     PlotSeries a{"", {}, {}, series_colour(c), 2.0};

@@ -37,9 +37,11 @@ struct RadialCurve {
 };
 
 // Radial power (top) and anisotropy in dB (bottom) against frequency, one line per curve, with
-// the white-noise levels dashed. Annulus 0 (k = 0, P = N) is left out.
-Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title, int width = 900,
-                   int height = 760);
+// the white-noise levels dashed: power 1, and anisotropy `anisotropy_reference` dB (0 for one
+// set; -10 log10(M) for the mean periodogram of M sets, whose variance is M times smaller).
+// Annulus 0 (k = 0, P = N) is left out.
+Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title,
+                   double anisotropy_reference = 0.0, int width = 900, int height = 760);
 
 // Images side by side on white, each with its caption above.
 Canvas montage(std::span<const Canvas> images, std::span<const std::string> captions);

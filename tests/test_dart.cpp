@@ -1,0 +1,84 @@
+// Dart throwing: the minimum distance holds on the torus, the count is exact, seeds reproduce.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "analysis/nearest_neighbour.h"
+#include "core/error.h"
+#include "core/point_file.h"
+#include "sampling/dart_throwing.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+TEST(DartThrowing, NoTwoPointsCloserThanTheFinalRadius) {
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    DartOptions o;
+    o.count = 1500;
+    o.seed = seed;
+    DartResult r = throw_darts(o);
+    ASSERT_EQ(r.points.size(), 1500u);
+    double closest = 1.0;
+    for (std::size_t i = 0; i < r.points.size(); ++i)
+      for (std::size_t j = i + 1; j < r.points.size(); ++j)
+        closest = std::min(closest, torus_distance(r.points[i], r.points[j], Domain{}));
+    EXPECT_GE(closest, r.final_radius) << "seed " << seed;
+    // The radius shrank from the hexagonal spacing to what random throwing can fill
+    // (random sequential adsorption jams near 0.75 of it; radius reduction stops earlier).
+    EXPECT_DOUBLE_EQ(r.initial_radius, hexagonal_spacing(1500.0));
+    EXPECT_LT(r.final_radius, 0.85 * r.initial_radius);
+    EXPECT_GT(r.final_radius, 0.5 * r.initial_radius);
+    for (const Point& p : r.points) {
+      ASSERT_GE(p.x, 0.0);
+      ASSERT_LT(p.x, 1.0);
+      ASSERT_GE(p.y, 0.0);
+      ASSERT_LT(p.y, 1.0);
+    }
+  }
+}
+
+TEST(DartThrowing, ExactCountAndSameSeedSamePoints) {
+  DartOptions o;
+  o.count = 777;
+  o.seed = 42;
+  DartResult a = throw_darts(o), b = throw_darts(o);
+  EXPECT_EQ(a.points.size(), 777u);
+  EXPECT_TRUE(a.points == b.points);
+  o.seed = 43;
+  EXPECT_FALSE(throw_darts(o).points == a.points);
+  o.count = 1;
+  EXPECT_EQ(throw_darts(o).points.size(), 1u);
+  o.count = 2;
+  EXPECT_EQ(throw_darts(o).points.size(), 2u);
+}
+
+TEST(DartThrowing, RejectsBadOptions) {
+  DartOptions o;
+  EXPECT_THROW(throw_darts(o), Error);  // count 0
+  o.count = 10;
+  o.shrink = 1.0;
+  EXPECT_THROW(throw_darts(o), Error);
+  o.shrink = 0.9;
+  o.max_failures = 0;
+  EXPECT_THROW(throw_darts(o), Error);
+}
+
+TEST(DartCommand, SameSeedSameFile) {
+  test::TempDir dir;
+  auto r1 = test::run_bluetile({"dart", "--count", "500", "--seed", "7", "--output", dir.file("a.txt")});
+  auto r2 = test::run_bluetile({"dart", "--count", "500", "--seed", "7", "--output", dir.file("b.txt")});
+  ASSERT_EQ(r1.exit_code, 0) << r1.err;
+  ASSERT_EQ(r2.exit_code, 0) << r2.err;
+  std::string a = test::read_text(dir.file("a.txt"));
+  EXPECT_EQ(a, test::read_text(dir.file("b.txt")));
+  PointSet set = read_point_file(dir.file("a.txt"));
+  EXPECT_EQ(set.points.size(), 500u);
+  auto bad = test::run_bluetile({"dart", "--count", "0", "--output", dir.file("c.txt")});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c.txt")));
+}
+
+}  // namespace
+}  // namespace bluetile

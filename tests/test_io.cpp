@@ -1,0 +1,128 @@
+// Images, the bitmap font and plots: pixels where they must be, PNGs that read back.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "io/figures.h"
+#include "io/font.h"
+#include "io/image.h"
+#include "io/plot.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+bool is_dark(Colour c) { return c.r + c.g + c.b < 1.5f; }
+
+TEST(Font, GlyphsAreTheDrawnShapes) {
+  // 'H': two uprights joined in the middle row.
+  const auto& h = glyph('H');
+  EXPECT_EQ(h[0], 0x11);
+  EXPECT_EQ(h[3], 0x1F);
+  EXPECT_EQ(glyph(' ')[3], 0);
+  EXPECT_EQ(glyph('\x01'), glyph('?'));
+  // Every printable glyph but space draws something.
+  for (char c = '!'; c <= '~'; ++c) {
+    int bits = 0;
+    for (auto row : glyph(c)) bits += row;
+    EXPECT_GT(bits, 0) << c;
+  }
+}
+
+TEST(Canvas, TextLandsInItsBox) {
+  Canvas canvas(100, 40);
+  canvas.text(10, 5, "H", colours::black, 2);
+  // 'H' at scale 2: left column x in [10, 12), rows y in [5, 19); the middle row y in [11, 13).
+  EXPECT_TRUE(is_dark(canvas.pixel(10, 5)));
+  EXPECT_TRUE(is_dark(canvas.pixel(11, 18)));
+  EXPECT_FALSE(is_dark(canvas.pixel(14, 5)));  // gap between the uprights
+  EXPECT_TRUE(is_dark(canvas.pixel(14, 11)));  // the crossbar
+  EXPECT_FALSE(is_dark(canvas.pixel(9, 5)));
+  EXPECT_EQ(Canvas::text_width("ab", 2), 22);
+  // Turned text: the box is 16 wide and 10 tall (one glyph), bottom-up.
+  Canvas turned(40, 40);
+  turned.text(0, 0, "H", colours::black, 2, Align::start, Align::start, true);
+  EXPECT_TRUE(is_dark(turned.pixel(0, 9)));    // first column of 'H' becomes the bottom row
+  EXPECT_FALSE(is_dark(turned.pixel(0, 12)));
+}
+
+TEST(Canvas, LinesAndDiscsCoverWhatTheyShould) {
+  Canvas canvas(50, 50);
+  canvas.line({5, 25}, {45, 25}, colours::black, 3.0);
+  EXPECT_TRUE(is_dark(canvas.pixel(20, 24)));
+  EXPECT_FLOAT_EQ(canvas.pixel(20, 24).r, 0.0f);  // fully covered centre pixel
+  EXPECT_FLOAT_EQ(canvas.pixel(20, 30).r, 1.0f);  // untouched
+  canvas.disc({10, 10}, 4.0, colours::black);
+  EXPECT_FLOAT_EQ(canvas.pixel(9, 9).r, 0.0f);
+  EXPECT_FLOAT_EQ(canvas.pixel(16, 10).r, 1.0f);
+  // Drawing outside the canvas is clipped, not a crash.
+  canvas.line({-100, -100}, {200, 300}, colours::black, 2.0);
+  canvas.text(-20, 48, "clipped text", colours::black, 3);
+}
+
+TEST(Image, PngRoundTripsAndFailureLeavesNothing) {
+  test::TempDir dir;
+  Canvas canvas(7, 5, Colour{0.2f, 0.4f, 0.6f});
+  canvas.set(3, 2, colours::black);
+  write_image(dir.file("x.png"), canvas);
+  Canvas back = read_image(dir.file("x.png"));
+  ASSERT_EQ(back.width(), 7);
+  ASSERT_EQ(back.height(), 5);
+  EXPECT_NEAR(back.pixel(0, 0).g, 0.4f, 0.5f / 255.0f);
+  EXPECT_FLOAT_EQ(back.pixel(3, 2).r, 0.0f);
+  EXPECT_EQ(dir.list().size(), 1u);
+  EXPECT_THROW(write_image(dir.file("no/such/folder/y.png"), canvas), Error);
+  EXPECT_THROW(read_image(dir.file("missing.png")), Error);
+}
+
+TEST(Plot, NiceTicks) {
+  auto t = nice_ticks(0.0, 158.0, 8);
+  ASSERT_FALSE(t.empty());
+  EXPECT_DOUBLE_EQ(t.front(), 0.0);
+  EXPECT_DOUBLE_EQ(t[1] - t[0], 20.0);
+  t = nice_ticks(-4.3, 2.2, 5);
+  EXPECT_DOUBLE_EQ(t.front(), -4.0);
+  EXPECT_DOUBLE_EQ(t[1] - t[0], 2.0);
+  EXPECT_THROW(nice_ticks(1.0, 1.0, 5), Error);
+}
+
+TEST(Plot, DrawsSeriesInsideTheFrame) {
+  Plot plot;
+  plot.x_label = "x";
+  PlotPanel panel;
+  panel.y_label = "y";
+  panel.y_min = 0.0;
+  panel.y_max = 1.0;
+  // A horizontal line at y = 0.5 across the whole range, and a value far out of range.
+  panel.series.push_back({"half", {0.0, 10.0}, {0.5, 0.5}, Colour{1.0f, 0.0f, 0.0f}, 2.0});
+  panel.series.push_back({"", {0.0, 10.0}, {5.0, 5.0}, Colour{0.0f, 0.0f, 1.0f}, 2.0});
+  plot.panels.push_back(panel);
+  Canvas c = render_plot(plot, 400, 300);
+  int red = 0, blue = 0;
+  for (int y = 0; y < c.height(); ++y) {
+    for (int x = 0; x < c.width(); ++x) {
+      Colour p = c.pixel(x, y);
+      if (p.r > 0.9f && p.g < 0.2f && p.b < 0.2f) ++red;
+      if (p.b > 0.9f && p.r < 0.2f && p.g < 0.2f) ++blue;
+    }
+  }
+  EXPECT_GT(red, 200);  // the line (and its legend sample)
+  EXPECT_EQ(blue, 0);   // clipped away entirely
+}
+
+TEST(Figures, SpectrumToneMapAndOrientation) {
+  Periodogram p;
+  p.size = 4;
+  p.power.assign(16, 1.0);
+  p.power[static_cast<std::size_t>((1 + 2) * 4 + (0 + 2))] = 0.0;  // k = (0, 1): black, above the centre
+  Canvas c = draw_spectrum(p, 1024, 4);
+  ASSERT_EQ(c.width(), 4);
+  // P = 1 maps to log2(2) / log2(3).
+  EXPECT_NEAR(c.pixel(0, 0).r, 1.0 / std::log2(3.0), 1e-6);
+  // Row ky = 1 is the second row from the top when ky points up (rows ky = 1, 0, -1, -2).
+  EXPECT_FLOAT_EQ(c.pixel(2, 0).r, 0.0f);
+}
+
+}  // namespace
+}  // namespace bluetile
