@@ -37,6 +37,7 @@ struct AnalyzeOptions {
   bool centroids = true;
   int threads = 0;
   int image_size = 800;
+  std::string title;
 };
 
 // One curve of the analysis: a set, a mean over sets, or a prefix.
@@ -131,13 +132,17 @@ void report_series(std::ostringstream& out, const Series& series) {
   out << series.label << ": " << s.count << " points";
   if (s.sets > 1) out << ", mean over " << s.sets << " sets";
   out << "\n";
-  out << "  nearest-neighbour distance on the torus   min        max        mean\n";
-  out << "    raw                                      " << fixed(s.nn.min, 6) << "   " << fixed(s.nn.max, 6) << "   "
-      << fixed(s.nn.mean, 6) << "\n";
-  out << "    x1000 (the paper's table)                " << fixed(1000 * s.nn.min, 2) << "      "
-      << fixed(1000 * s.nn.max, 2) << "      " << fixed(1000 * s.nn.mean, 2) << "\n";
-  out << "    / hexagonal spacing " << fixed(h, 6) << "           " << fixed(s.nn.min / h, 4) << "     "
-      << fixed(s.nn.max / h, 4) << "     " << fixed(s.nn.mean / h, 4) << "\n";
+  char row[160];
+  auto line = [&](const std::string& name, double scale, int decimals) {
+    std::snprintf(row, sizeof row, "    %-36s %10.*f %10.*f %10.*f\n", name.c_str(), decimals, s.nn.min * scale, decimals,
+                  s.nn.max * scale, decimals, s.nn.mean * scale);
+    out << row;
+  };
+  std::snprintf(row, sizeof row, "  %-38s %10s %10s %10s\n", "nearest-neighbour distance (torus)", "min", "max", "mean");
+  out << row;
+  line("raw", 1.0, 6);
+  line("x1000 (the paper's table)", 1000.0, 2);
+  line("/ hexagonal spacing " + fixed(h, 6), 1.0 / h, 4);
   if (s.sets > 1)
     out << "    per-set minimum ranges " << fixed(1000 * s.nn_min_lowest, 2) << " to "
         << fixed(1000 * s.nn_min_highest, 2) << " (x1000)\n";
@@ -253,7 +258,9 @@ void run_analyze(const AnalyzeOptions& o) {
   for (const Series& s : series) curves.push_back({s.label, s.summary.radial});
   std::string title = series.size() == 1 ? series[0].label + ": " + std::to_string(series[0].summary.count) + " points"
                                          : (o.by_level ? "prefixes of " + label_of(0) : "comparison");
-  if (series.size() == 1 && series[0].summary.sets > 1)
+  if (!o.title.empty())
+    title = o.title;
+  else if (series.size() == 1 && series[0].summary.sets > 1)
     title = "mean over " + std::to_string(series[0].summary.sets) + " sets of " +
             std::to_string(series[0].summary.count) + " points";
   // White noise averaged over M sets: anisotropy about -10 log10(M) dB (Lagae & Dutré 2008).
@@ -327,6 +334,7 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--cells", o->cells, "Draw the periodic Voronoi cells in points.png");
   cmd->add_option("--from", o->from, "Draw each point's move from its position in this file (same count and order)");
   cmd->add_flag("!--no-centroids", o->centroids, "Skip the mean distance to the cell centroids");
+  cmd->add_option("--title", o->title, "Title of radial.png");
   cmd->add_option("--image-size", o->image_size, "Side of points.png in pixels (two thirds of it per set side by side)")
       ->check(CLI::Range(64, 8192))
       ->capture_default_str();

@@ -144,11 +144,17 @@ void write_image(const std::string& path, const Canvas& canvas) {
   write_atomically(path, [&](const std::string& temporary) {
     auto out = OIIO::ImageOutput::create(temporary);
     if (!out) throw Error(path + ": cannot write image: " + OIIO::geterror());
-    OIIO::ImageSpec spec(canvas.width(), canvas.height(), 3, OIIO::TypeDesc::UINT8);
-    std::vector<unsigned char> bytes(canvas.rgb().size());
+    // Grey images (spectra) are written with one channel: a third of the size.
+    const std::vector<float>& rgb = canvas.rgb();
+    bool grey = true;
+    for (std::size_t i = 0; i < rgb.size() && grey; i += 3) grey = rgb[i] == rgb[i + 1] && rgb[i] == rgb[i + 2];
+    const int channels = grey ? 1 : 3;
+    OIIO::ImageSpec spec(canvas.width(), canvas.height(), channels, OIIO::TypeDesc::UINT8);
+    spec.attribute("png:compressionLevel", 9);
+    std::vector<unsigned char> bytes(rgb.size() / 3 * static_cast<std::size_t>(channels));
     for (std::size_t i = 0; i < bytes.size(); ++i) {
-      // sRGB-ish output: values are display values already.
-      bytes[i] = static_cast<unsigned char>(std::lround(std::clamp(canvas.rgb()[i], 0.0f, 1.0f) * 255.0f));
+      const float v = rgb[grey ? 3 * i : i];
+      bytes[i] = static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
     }
     if (!out->open(temporary, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
       throw Error(path + ": cannot write image: " + out->geterror());
