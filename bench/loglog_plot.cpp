@@ -20,7 +20,7 @@ using Colour = std::array<float, 3>;
 // Colour-blind-friendly palette (Okabe-Ito), then darker variants.
 constexpr Colour kPalette[] = {
     {0.00f, 0.45f, 0.70f}, {0.90f, 0.62f, 0.00f}, {0.00f, 0.62f, 0.45f}, {0.80f, 0.40f, 0.00f},
-    {0.34f, 0.71f, 0.91f}, {0.80f, 0.47f, 0.65f}, {0.95f, 0.90f, 0.25f}, {0.00f, 0.00f, 0.00f},
+    {0.34f, 0.71f, 0.91f}, {0.80f, 0.47f, 0.65f}, {0.55f, 0.45f, 0.05f}, {0.00f, 0.00f, 0.00f},
     {0.40f, 0.20f, 0.60f}, {0.50f, 0.50f, 0.50f}, {0.60f, 0.10f, 0.10f}, {0.10f, 0.40f, 0.10f},
 };
 
