@@ -25,8 +25,8 @@ namespace {
 
 // Tile of frequencies one task accumulates: kx along the vector lanes.
 constexpr int tile_x = 128;
-constexpr int tile_y = 64;
-// Points per block: the block's exponentials (about 800 KB) stay in the L2 cache.
+constexpr int tile_y = 128;
+// Points per block: the block's exponentials (1 MB) and the tile (256 KB) stay in the L2 cache.
 constexpr int block_points = 256;
 constexpr int lanes = 8;  // kx per vector (one AVX-512 register; split on smaller targets)
 constexpr int rows = 4;   // ky per register tile
@@ -52,10 +52,10 @@ void accumulate_block(int count, const double* a_re, const double* a_im, const d
       }
       for (int j = 0; j < count; ++j) {
         Lane ar, ai;
-        __builtin_memcpy(&ar, a_re + j * tile_x + x0, sizeof(Lane));
-        __builtin_memcpy(&ai, a_im + j * tile_x + x0, sizeof(Lane));
-        const double* br = b_re + j * tile_y + y0;
-        const double* bi = b_im + j * tile_y + y0;
+        __builtin_memcpy(&ar, a_re + (x0 / lanes * block_points + j) * lanes, sizeof(Lane));
+        __builtin_memcpy(&ai, a_im + (x0 / lanes * block_points + j) * lanes, sizeof(Lane));
+        const double* br = b_re + (y0 / rows * block_points + j) * rows;
+        const double* bi = b_im + (y0 / rows * block_points + j) * rows;
         for (int r = 0; r < rows; ++r) {
           rr[r] += ar * br[r];
           ii[r] += ai * bi[r];
@@ -72,23 +72,41 @@ void accumulate_block(int count, const double* a_re, const double* a_im, const d
   }
 }
 
-// exp(-2 pi i k c) for k = first .. first + count - 1, written with stride `stride`.
-// The start comes from sin/cos of the reduced phase; k = 0 is set exactly to 1 so that
-// P(0) = N holds exactly; the recurrence in between loses about one ulp per step.
-void fill_exponentials(double c, int first, int count, double* re, double* im, int stride) {
-  double phase = static_cast<double>(first) * c;
-  phase -= std::nearbyint(phase);
-  double angle = -2.0 * std::numbers::pi * phase;
-  double step_angle = -2.0 * std::numbers::pi * c;
-  double cr = std::cos(angle), ci = std::sin(angle);
-  const double sr = std::cos(step_angle), si = std::sin(step_angle);
-  for (int t = 0; t < count; ++t) {
-    if (first + t == 0) cr = 1.0, ci = 0.0;
-    re[t * stride] = cr;
-    im[t * stride] = ci;
-    double nr = cr * sr - ci * si;
-    ci = cr * si + ci * sr;
-    cr = nr;
+// exp(-2 pi i k c) for k = first .. first + count - 1 (count a multiple of G), packed as the
+// kernel reads them: group g of G consecutive k goes to re + g * group_stride. The first group
+// comes from sin/cos and a short recurrence, later groups from it times exp(-2 pi i G c), G
+// independent recurrences of count / G steps each (about one ulp lost per step). k = 0 is then
+// set exactly to 1 so that P(0) = N holds exactly.
+template <int G>
+void fill_exponentials(double c, int first, int count, double* re, double* im, int group_stride) {
+  auto unit = [&](long long k, double& r, double& i) {
+    double phase = static_cast<double>(k) * c;
+    phase -= std::nearbyint(phase);
+    const double angle = -2.0 * std::numbers::pi * phase;
+    r = std::cos(angle), i = std::sin(angle);
+  };
+  double gr[G], gi[G], sr, si, step_r, step_i;
+  unit(first, gr[0], gi[0]);
+  unit(1, sr, si);
+  for (int t = 1; t < G; ++t) {
+    gr[t] = gr[t - 1] * sr - gi[t - 1] * si;
+    gi[t] = gr[t - 1] * si + gi[t - 1] * sr;
+  }
+  unit(G, step_r, step_i);
+  for (int g = 0; g < count / G; ++g) {
+    for (int t = 0; t < G; ++t) {
+      re[g * group_stride + t] = gr[t];
+      im[g * group_stride + t] = gi[t];
+    }
+    for (int t = 0; t < G; ++t) {
+      const double nr = gr[t] * step_r - gi[t] * step_i;
+      gi[t] = gr[t] * step_i + gi[t] * step_r;
+      gr[t] = nr;
+    }
+  }
+  if (first <= 0 && 0 < first + count) {
+    const int at = -first / G * group_stride + -first % G;
+    re[at] = 1.0, im[at] = 0.0;
   }
 }
 
@@ -127,10 +145,10 @@ Periodogram compute_periodogram(std::span<const Point> points, int size,
         const int count = static_cast<int>(std::min<std::size_t>(block_points, n - j0));
         for (int j = 0; j < count; ++j) {
           const Point& p = points[j0 + static_cast<std::size_t>(j)];
-          fill_exponentials(p.x, kx0, tile_x, &a_re[static_cast<std::size_t>(j * tile_x)],
-                            &a_im[static_cast<std::size_t>(j * tile_x)], 1);
-          fill_exponentials(p.y, ky0, tile_y, &b_re[static_cast<std::size_t>(j * tile_y)],
-                            &b_im[static_cast<std::size_t>(j * tile_y)], 1);
+          fill_exponentials<lanes>(p.x, kx0, tile_x, &a_re[static_cast<std::size_t>(j * lanes)],
+                                   &a_im[static_cast<std::size_t>(j * lanes)], block_points * lanes);
+          fill_exponentials<rows>(p.y, ky0, tile_y, &b_re[static_cast<std::size_t>(j * rows)],
+                                  &b_im[static_cast<std::size_t>(j * rows)], block_points * rows);
         }
         accumulate_block(count, a_re.data(), a_im.data(), b_re.data(), b_im.data(), acc_re.data(), acc_im.data());
       }
