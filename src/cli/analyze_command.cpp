@@ -34,7 +34,7 @@ struct AnalyzeOptions {
   std::vector<std::string> labels;
   bool cells = false;
   std::string from;
-  bool centroids = true;
+  bool no_centroids = false;
   int threads = 0;
   int image_size = 800;
   std::string title;
@@ -194,7 +194,7 @@ void run_analyze(const AnalyzeOptions& o) {
   SummaryOptions options;
   options.size = o.size;
   options.bin_width = o.bin_width;
-  options.centroids = o.centroids;
+  options.centroids = !o.no_centroids;
   std::unique_ptr<Progress> bar;
   options.progress = [&](std::size_t done, std::size_t total) {
     if (!bar) bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
@@ -333,7 +333,7 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--label", o->labels, "Legend label per input (default: file names)");
   cmd->add_flag("--cells", o->cells, "Draw the periodic Voronoi cells in points.png");
   cmd->add_option("--from", o->from, "Draw each point's move from its position in this file (same count and order)");
-  cmd->add_flag("!--no-centroids", o->centroids, "Skip the mean distance to the cell centroids");
+  cmd->add_flag("--no-centroids", o->no_centroids, "Skip the mean distance of the sites to their exact cell centroids");
   cmd->add_option("--title", o->title, "Title of radial.png");
   cmd->add_option("--image-size", o->image_size, "Side of points.png in pixels (two thirds of it per set side by side)")
       ->check(CLI::Range(64, 8192))

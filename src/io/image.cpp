@@ -150,7 +150,6 @@ void write_image(const std::string& path, const Canvas& canvas) {
     for (std::size_t i = 0; i < rgb.size() && grey; i += 3) grey = rgb[i] == rgb[i + 1] && rgb[i] == rgb[i + 2];
     const int channels = grey ? 1 : 3;
     OIIO::ImageSpec spec(canvas.width(), canvas.height(), channels, OIIO::TypeDesc::UINT8);
-    spec.attribute("png:compressionLevel", 9);
     std::vector<unsigned char> bytes(rgb.size() / 3 * static_cast<std::size_t>(channels));
     for (std::size_t i = 0; i < bytes.size(); ++i) {
       const float v = rgb[grey ? 3 * i : i];
