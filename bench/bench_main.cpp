@@ -56,6 +56,7 @@ struct Options {
   std::size_t max_raster = 100000;
   std::vector<int> raster_resolutions{256, 512, 1024, 2048};
   bool paper = true;
+  bool check = false;
   std::uint64_t seed = 1;
   int threads = 0;
   std::string csv, markdown, plot_dir;
@@ -238,6 +239,18 @@ std::vector<Row> measure_interleaved(const std::vector<const EngineSpec*>& specs
     }
   std::vector<Row> rows;
   for (Trial& t : trials) {
+#ifdef BLUETILE_BENCH_RASTER
+    // Where a raster iteration's time goes (over warm-ups and repeats), to guide its tuning.
+    if (auto* raster = dynamic_cast<RasterEngine*>(t.engine.get())) {
+      const RasterStats& st = raster->stats();
+      const double calls = static_cast<double>(std::max<std::uint64_t>(st.computes, 1));
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "per call: gpu %.1f ms + host %.1f ms; %.2f passes; %.0f boundary px",
+                    st.gpu_seconds * 1e3 / calls, st.host_seconds * 1e3 / calls,
+                    static_cast<double>(st.scene_passes) / calls, static_cast<double>(st.boundary_pixels) / calls);
+      t.row.note = buf;
+    }
+#endif
     t.row.repeats = repeats;
     t.row.median_ms = median(t.wall_ms);
     t.row.min_ms = *std::min_element(t.wall_ms.begin(), t.wall_ms.end());
@@ -461,7 +474,7 @@ void write_error_plot(const std::string& path, const std::vector<Row>& rows, std
   write_loglog_png(path, plot);
 }
 
-// Time per iteration against N, one curve per engine/mode (raster: one resolution per curve).
+// Time per iteration against N, one curve per engine/mode (raster: at 1024^2 only, to stay legible).
 void write_scaling_plot(const std::string& path, const std::vector<Row>& rows, const std::string& start) {
   LogLogPlot plot;
   plot.title = "time per Lloyd iteration vs N, " + start + " start";
@@ -470,7 +483,7 @@ void write_scaling_plot(const std::string& path, const std::vector<Row>& rows, c
   plot.y_floor = 1e-6;
   std::map<std::string, std::size_t> index;
   for (const Row& r : rows) {
-    if (r.start != start) continue;
+    if (r.start != start || (r.resolution != 0 && r.resolution != 1024)) continue;  // raster: one resolution
     std::string label = r.engine + (r.mode.empty() ? "" : " " + r.mode) +
                         (r.resolution ? " " + std::to_string(r.resolution) : "");
     if (!index.count(label)) {
@@ -497,6 +510,7 @@ int run(int argc, char** argv) {
   app.add_option("--max-cgal-band", o.max_cgal_band, "largest N for the CGAL band reference");
   app.add_option("--max-raster", o.max_raster, "largest N for the raster engine");
   app.add_option("--raster-resolutions", resolutions_text, "comma-separated ID-buffer sides (default 256,512,1024,2048)");
+  app.add_flag("--check", o.check, "fail unless the exact engine matches itself across thread counts and CGAL within 1e-9 (on with --quick)");
   app.add_flag("!--no-paper", o.paper, "skip the paper's workload (1000 sites, 80 iterations)");
   app.add_option("--seed", o.seed, "seed of the random starts");
   app.add_option("--threads", o.threads, "threads for the exact engine (default: all cores)");
@@ -538,6 +552,7 @@ int run(int argc, char** argv) {
     o.raster_resolutions = {256};
   }
   if (o.relax_iterations == 0) o.relax_iterations = o.quick ? 5 : 30;
+  if (o.quick) o.check = true;
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   const std::size_t default_threads = thread_count();
 
@@ -629,6 +644,22 @@ int run(int argc, char** argv) {
     for (const std::string& start : o.starts) write_scaling_plot(o.plot_dir + "/bench_time_vs_n_" + start + ".png", rows, start);
   }
   if (o.csv.empty() && o.markdown.empty()) std::cout << md;
+
+  // Correctness, never speed: the exact engine must give the same bits on one thread as on
+  // all, and the CGAL cells (computed independently, as Delaunay duals) must agree with it.
+  if (o.check) {
+    int failures = 0;
+    for (const Row& r : rows) {
+      const double limit = r.engine == "exact" ? 0.0 : r.engine.rfind("cgal", 0) == 0 ? 1e-9 : -1.0;
+      if (limit >= 0.0 && r.err_max > limit) {
+        std::fprintf(stderr, "check failed: %s %s N=%zu %s start: max centroid difference %.3e > %.0e\n",
+                     r.engine.c_str(), r.mode.c_str(), r.n, r.start.c_str(), r.err_max, limit);
+        ++failures;
+      }
+    }
+    if (failures) return 1;
+    std::cerr << "check passed: exact engine bit-identical across thread counts; CGAL agrees within 1e-9\n";
+  }
   return 0;
 }
 
