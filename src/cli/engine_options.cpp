@@ -3,19 +3,38 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "voronoi/exact_engine.h"
+#include "voronoi/raster_engine.h"
 
 namespace bluetile::cli {
+namespace {
+
+RasterOptions raster_options(const EngineOptions& options) {
+  RasterOptions r;
+  r.resolution = options.resolution;
+  r.coverage = options.coverage == "point" ? Coverage::point : Coverage::area;
+  r.cone = options.cone == "fan" ? ConeShape::fan : ConeShape::quad;
+  r.device = options.device;
+  return r;
+}
+
+}  // namespace
 
 void add_engine_options(CLI::App* command, EngineOptions& options) {
   command->add_option("--engine", options.engine, "Centroid engine: raster (Vulkan) or exact (CPU)")
       ->check(CLI::IsMember({"raster", "exact"}))
       ->capture_default_str();
-  command->add_option("--resolution", options.resolution, "Raster engine: ID buffer side in pixels")
+  command->add_option("--resolution", options.resolution,
+                      "Raster engine: ID buffer side in pixels (default: from N, about 16 pixels per cell for area "
+                      "coverage, 1000 for point)")
       ->check(CLI::Range(16, 65536));
-  command->add_option("--coverage", options.coverage, "Raster engine: pixel coverage, point or area")
+  command->add_option("--coverage", options.coverage,
+                      "Raster engine: point (pixel centres) or area (boundary pixels split exactly)")
       ->check(CLI::IsMember({"point", "area"}))
       ->capture_default_str();
-  command->add_option("--device", options.device, "Raster engine: Vulkan device name or index");
+  command->add_option("--cone", options.cone, "Raster engine: quad (exact depth) or fan (tessellated, biased)")
+      ->check(CLI::IsMember({"quad", "fan"}))
+      ->capture_default_str();
+  command->add_option("--device", options.device, "Raster engine: Vulkan device name or index (see 'bluetile devices')");
   command->add_option("--threads", options.threads, "CPU threads (default: all cores); output does not depend on it")
       ->check(CLI::Range(1, 1024));
 }
@@ -23,7 +42,16 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
 std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {
   if (options.threads > 0) set_thread_count(static_cast<std::size_t>(options.threads));
   if (options.engine == "exact") return std::make_unique<ExactEngine>();
-  throw Error("--engine raster is not available yet (the Vulkan engine is under construction); use --engine exact");
+  return std::make_unique<RasterEngine>(raster_options(options));
+}
+
+void write_id_image(const EngineOptions& options, CentroidEngine& engine, const Scene& scene, const std::string& path) {
+  RasterOptions r = raster_options(options);
+  if (auto* raster = dynamic_cast<RasterEngine*>(&engine)) r = raster->options();
+  r.keep_id_images = true;
+  RasterEngine drawer(r);
+  drawer.compute(scene);
+  write_id_image(drawer.id_image(0), scene, path);
 }
 
 }  // namespace bluetile::cli

@@ -11,16 +11,21 @@
 namespace bluetile::cli {
 
 struct EngineOptions {
-  std::string engine = "exact";
-  int resolution = 0;            // raster: ID-buffer side in pixels; 0 picks one from N
+  std::string engine = "raster";
+  int resolution = 0;             // raster: ID-buffer side in pixels; 0 picks one from N
   std::string coverage = "area";  // raster: point | area
-  std::string device;            // raster: Vulkan device name or index
-  int threads = 0;               // CPU threads; 0 = all cores
+  std::string cone = "quad";      // raster: quad | fan
+  std::string device;             // raster: Vulkan device name or index
+  int threads = 0;                // CPU threads; 0 = all cores
 };
 
 void add_engine_options(CLI::App* command, EngineOptions& options);
 
 // The engine the options ask for; throws Error when it cannot be had.
 std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options);
+
+// Writes the raster ID buffer of `scene` as an image (cells coloured, sites drawn). Uses
+// `engine` when it is the raster engine, else a raster engine made from `options`.
+void write_id_image(const EngineOptions& options, CentroidEngine& engine, const Scene& scene, const std::string& path);
 
 }  // namespace bluetile::cli

@@ -15,6 +15,7 @@ int main(int argc, char** argv) {
   bluetile::cli::add_analyze_command(app);
   bluetile::cli::add_dart_command(app);
   bluetile::cli::add_progressive_command(app);
+  bluetile::cli::add_devices_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -25,6 +25,7 @@ struct RelaxOptions {
   long long sets = 1;
   std::string output;
   std::string log;
+  std::string id_image;
   bool verbose = false;
   EngineOptions engine;
 };
@@ -117,6 +118,7 @@ void run_relax(const RelaxOptions& o) {
     write_text_atomically(o.output, text);
   }
   if (!o.log.empty()) write_text_atomically(o.log, log_csv.str());
+  if (!o.id_image.empty()) write_id_image(o.engine, *engine, scenes[0], o.id_image);
 
   const LloydIteration* last = result.history.empty() ? nullptr : &result.history.back();
   if (last && last->coincident) {
@@ -147,6 +149,7 @@ void add_relax_command(CLI::App& app) {
   sets->needs(count);
   cmd->add_option("-o,--output", o->output, "Output point file")->required();
   cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
+  cmd->add_option("--id-image", o->id_image, "Write the raster ID buffer of the result as an image (cells coloured, sites drawn)");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
   add_engine_options(cmd, o->engine);
   cmd->callback([o] {

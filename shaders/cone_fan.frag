@@ -1,0 +1,7 @@
+// cone_fan.frag: writes the site ID; depth comes from the interpolated fan.
+#version 450
+
+layout(location = 0) flat in uint in_id;
+layout(location = 0) out uint out_id;
+
+void main() { out_id = in_id; }
