@@ -16,8 +16,8 @@ class PeriodicGrid {
  public:
   explicit PeriodicGrid(const Scene& scene) : domain_(scene.domain) {
     const std::size_t n = scene.sites.size();
-    // About two sites per bucket: rings then hold few sites, and ring 1 usually completes a cell.
-    double bucket_side = std::sqrt(2.0 * domain_.area() / static_cast<double>(std::max<std::size_t>(n, 1)));
+    double bucket_side =
+        std::sqrt(kSitesPerBucket * domain_.area() / static_cast<double>(std::max<std::size_t>(n, 1)));
     columns_ = std::clamp<long>(std::lround(domain_.size.x / bucket_side), 1, 1 << 14);
     rows_ = std::clamp<long>(std::lround(domain_.size.y / bucket_side), 1, 1 << 14);
     cell_size_ = {domain_.size.x / static_cast<double>(columns_), domain_.size.y / static_cast<double>(rows_)};
@@ -38,7 +38,17 @@ class PeriodicGrid {
       points_[slot] = scene.sites[i];
       index_[slot] = static_cast<std::uint32_t>(i);
     }
+    build_search_order();
   }
+
+  // A bucket offset and the least distance from any point of bucket (0,0) to bucket (dx,dy).
+  struct SearchStep {
+    long dx, dy;
+    double lower_bound_squared;
+  };
+  // Every offset within kSearchRadius buckets whose lower bound is below kSearchRadius buckets,
+  // nearest first: a cell is complete once the next step's bound reaches twice its radius.
+  const std::vector<SearchStep>& search_order() const { return search_order_; }
 
   std::pair<long, long> bucket_coordinates(Point p) const {
     long cx = std::clamp<long>(static_cast<long>(p.x / cell_size_.x), 0, columns_ - 1);
@@ -55,7 +65,7 @@ class PeriodicGrid {
   // bucket (cx, cy), where cx, cy may lie outside the grid: they then name a periodic copy.
   template <typename Visit>
   void for_each_in_bucket(long cx, long cy, Point origin, Visit visit) const {
-    long wx = floor_div(cx, columns_), wy = floor_div(cy, rows_);
+    long wx = wrap_count(cx, columns_), wy = wrap_count(cy, rows_);
     std::size_t b = static_cast<std::size_t>((cy - wy * rows_) * columns_ + (cx - wx * columns_));
     Point shift{static_cast<double>(wx) * domain_.size.x - origin.x,
                 static_cast<double>(wy) * domain_.size.y - origin.y};
@@ -69,7 +79,38 @@ class PeriodicGrid {
   }
 
  private:
-  static long floor_div(long a, long b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }
+  // How many periods bucket index a lies away from [0, n): floor(a / n), without a division in
+  // the common case of a neighbour at most one period away (divisions dominated the search).
+  static long wrap_count(long a, long n) {
+    if (a >= 0) return a < n ? 0 : a < 2 * n ? 1 : a / n;
+    return a >= -n ? -1 : -((-a + n - 1) / n);
+  }
+
+  void build_search_order() {
+    // Offsets beyond the radius have a bound of at least this; keeping only steps below it makes
+    // the list complete up to it, whatever the bucket shape.
+    const double limit = static_cast<double>(kSearchRadius) * std::min(cell_size_.x, cell_size_.y);
+    for (long dy = -kSearchRadius; dy <= kSearchRadius; ++dy) {
+      for (long dx = -kSearchRadius; dx <= kSearchRadius; ++dx) {
+        double gx = static_cast<double>(std::max(0L, std::labs(dx) - 1)) * cell_size_.x;
+        double gy = static_cast<double>(std::max(0L, std::labs(dy) - 1)) * cell_size_.y;
+        double bound = gx * gx + gy * gy;
+        if (bound < limit * limit) search_order_.push_back({dx, dy, bound});
+      }
+    }
+    // Nearest first; among equal bounds the nearer bucket centre first, then a fixed order.
+    std::stable_sort(search_order_.begin(), search_order_.end(), [](const SearchStep& a, const SearchStep& b) {
+      if (a.lower_bound_squared != b.lower_bound_squared) return a.lower_bound_squared < b.lower_bound_squared;
+      return a.dx * a.dx + a.dy * a.dy < b.dx * b.dx + b.dy * b.dy;
+    });
+  }
+
+  // About one site per bucket: the buckets a relaxed cell needs are then the 21 of a 5x5 block
+  // without its corners, and each holds few sites the cell does not need.
+  static constexpr double kSitesPerBucket = 1.0;
+  // Steps precomputed per grid (13 x 13 buckets); larger cells (rare: big empty regions, tiny N)
+  // fall back to the ring search.
+  static constexpr long kSearchRadius = 6;
 
   Domain domain_;
   long columns_ = 1, rows_ = 1;
@@ -77,6 +118,7 @@ class PeriodicGrid {
   std::vector<std::uint32_t> start_;
   std::vector<Point> points_;
   std::vector<std::uint32_t> index_;
+  std::vector<SearchStep> search_order_;
 };
 
 constexpr std::uint32_t kOwnCopy = std::numeric_limits<std::uint32_t>::max();
@@ -89,56 +131,66 @@ struct Vertex {
 // Builds one cell: clips a convex polygon (relative to the site) by bisectors.
 class CellBuilder {
  public:
+  CellBuilder() : polygon_(kInitialCapacity), scratch_(kInitialCapacity), side_(kInitialCapacity) {}
+
   void reset(Point half_size) {
-    polygon_.clear();
-    polygon_.push_back({{-half_size.x, -half_size.y}, kOwnCopy});
-    polygon_.push_back({{half_size.x, -half_size.y}, kOwnCopy});
-    polygon_.push_back({{half_size.x, half_size.y}, kOwnCopy});
-    polygon_.push_back({{-half_size.x, half_size.y}, kOwnCopy});
+    polygon_[0] = {{-half_size.x, -half_size.y}, kOwnCopy};
+    polygon_[1] = {{half_size.x, -half_size.y}, kOwnCopy};
+    polygon_[2] = {{half_size.x, half_size.y}, kOwnCopy};
+    polygon_[3] = {{-half_size.x, half_size.y}, kOwnCopy};
+    size_ = 4;
     max_radius_squared_ = half_size.x * half_size.x + half_size.y * half_size.y;
   }
 
   // Keeps the part of the cell closer to the site (origin) than to d: x.d <= |d|^2 / 2.
   void clip(Point d, std::uint32_t site) {
-    double dd = d.x * d.x + d.y * d.y;
+    const double dd = d.x * d.x + d.y * d.y;
     // Every vertex v has v.d <= |v||d| <= |d|^2/2 when |d|^2 >= 4 max|v|^2: nothing to cut.
     if (dd >= 4.0 * max_radius_squared_) return;
     const double c = 0.5 * dd;
-    const std::size_t n = polygon_.size();
-    side_.resize(n);
+    const std::size_t n = size_;
+    const Vertex* in = polygon_.data();
+    double* side = side_.data();
     bool any_outside = false;
     for (std::size_t i = 0; i < n; ++i) {
-      side_[i] = polygon_[i].p.x * d.x + polygon_[i].p.y * d.y - c;
-      any_outside |= side_[i] > 0.0;
+      side[i] = in[i].p.x * d.x + in[i].p.y * d.y - c;
+      any_outside |= side[i] > 0.0;
     }
     if (!any_outside) return;
-    scratch_.clear();
+    // A convex polygon cut by a line gains at most one vertex.
+    if (scratch_.size() < n + 1) grow(2 * (n + 1));
+    in = polygon_.data();
+    Vertex* out = scratch_.data();
+    std::size_t m = 0;
+    double radius_squared = 0.0;
     for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
       // Edge j -> i. A crossing strictly from one side to the other adds a vertex; a vertex
       // exactly on the line is kept as it is, so co-circular ties (lattices) add no duplicates.
-      const double sj = side_[j], si = side_[i];
+      const double sj = side[j], si = side[i];
       if ((sj < 0.0 && si > 0.0) || (sj > 0.0 && si < 0.0)) {
-        const Vertex& a = polygon_[j];
-        const Vertex& b = polygon_[i];
-        double t = sj / (sj - si);
-        scratch_.push_back({a.p + t * (b.p - a.p), sj < 0.0 ? site : a.edge_site});
+        const double t = sj / (sj - si);
+        const Point x = in[j].p + t * (in[i].p - in[j].p);
+        out[m++] = {x, sj < 0.0 ? site : in[j].edge_site};
+        radius_squared = std::max(radius_squared, x.x * x.x + x.y * x.y);
       }
-      if (si <= 0.0) scratch_.push_back(polygon_[i]);
+      if (si <= 0.0) {
+        out[m++] = in[i];
+        radius_squared = std::max(radius_squared, in[i].p.x * in[i].p.x + in[i].p.y * in[i].p.y);
+      }
     }
     polygon_.swap(scratch_);
-    max_radius_squared_ = 0.0;
-    for (const Vertex& v : polygon_) max_radius_squared_ = std::max(max_radius_squared_, v.p.x * v.p.x + v.p.y * v.p.y);
+    size_ = m;
+    max_radius_squared_ = radius_squared;
   }
 
   double max_radius_squared() const { return max_radius_squared_; }
-  const std::vector<Vertex>& polygon() const { return polygon_; }
+  std::span<const Vertex> polygon() const { return {polygon_.data(), size_}; }
 
   // Area, centroid offset and second moment about the origin (the site).
   void measure(double& area, Point& centroid, double& second_moment) const {
     double a2 = 0.0, cx = 0.0, cy = 0.0, ixx = 0.0, iyy = 0.0;
-    std::size_t n = polygon_.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      Point p = polygon_[i].p, q = polygon_[(i + 1) % n].p;
+    for (std::size_t i = 0, j = size_ - 1; i < size_; j = i++) {
+      Point p = polygon_[j].p, q = polygon_[i].p;
       double cross = p.x * q.y - q.x * p.y;
       a2 += cross;
       cx += (p.x + q.x) * cross;
@@ -152,8 +204,19 @@ class CellBuilder {
   }
 
  private:
+  // Cells rarely have more than a dozen vertices; the buffers grow for pathological ties.
+  static constexpr std::size_t kInitialCapacity = 64;
+
+  void grow(std::size_t capacity) {
+    polygon_.resize(capacity);
+    scratch_.resize(capacity);
+    side_.resize(capacity);
+  }
+
+  // Vertices [0, size_) of polygon_ are the cell; scratch_ receives the next one.
   std::vector<Vertex> polygon_, scratch_;
   std::vector<double> side_;  // signed distance of each vertex to the clipping line
+  std::size_t size_ = 0;
   double max_radius_squared_ = 0.0;
 };
 
@@ -163,9 +226,9 @@ struct Candidate {
   std::uint32_t site;
 };
 
-// Computes the cell of `site` into `builder`. Returns false when the site coincides with a
-// site of lower index (which owns the cell).
-bool build_cell(const Scene& scene, const PeriodicGrid& grid, std::uint32_t site, CellBuilder& builder,
+// The fallback search: square rings of buckets around the site's bucket until the ring's inner
+// distance reaches twice the cell radius. Returns false for a coincident site.
+bool build_cell_by_rings(const Scene& scene, const PeriodicGrid& grid, std::uint32_t site, CellBuilder& builder,
                 std::vector<Candidate>& candidates) {
   const Point origin = scene.sites[site];
   const Point cell = grid.cell_size();
@@ -224,6 +287,41 @@ bool build_cell(const Scene& scene, const PeriodicGrid& grid, std::uint32_t site
     assert(next <= 4 * (grid.columns() + grid.rows()) + 8);
   }
   return true;
+}
+
+// Computes the cell of `site` into `builder`. Returns false when the site coincides with a
+// site of lower index (which owns the cell).
+bool build_cell(const Scene& scene, const PeriodicGrid& grid, std::uint32_t site, CellBuilder& builder,
+                std::vector<Candidate>& candidates) {
+  const Point origin = scene.sites[site];
+  const Point cell = grid.cell_size();
+  builder.reset(0.5 * scene.domain.size);
+  auto [cx, cy] = grid.bucket_coordinates(origin);
+  // The site's place inside its bucket, for the exact distance to each bucket visited.
+  const Point local{origin.x - static_cast<double>(cx) * cell.x, origin.y - static_cast<double>(cy) * cell.y};
+  bool coincident = false;
+  auto visit = [&](std::uint32_t other, Point d) {
+    if (d.x == 0.0 && d.y == 0.0) {
+      coincident |= other < site;
+      return;  // the site itself, or a copy of it at the same place
+    }
+    builder.clip(d, other);
+  };
+  for (const auto& step : grid.search_order()) {
+    const double reach_squared = 4.0 * builder.max_radius_squared();
+    if (step.lower_bound_squared >= reach_squared) return !coincident;
+    // The exact distance from the site to bucket (dx, dy) skips buckets the bound let through.
+    const double gx = step.dx > 0   ? static_cast<double>(step.dx) * cell.x - local.x
+                      : step.dx < 0 ? local.x - static_cast<double>(step.dx + 1) * cell.x
+                                    : 0.0;
+    const double gy = step.dy > 0   ? static_cast<double>(step.dy) * cell.y - local.y
+                      : step.dy < 0 ? local.y - static_cast<double>(step.dy + 1) * cell.y
+                                    : 0.0;
+    if (gx * gx + gy * gy >= reach_squared) continue;
+    grid.for_each_in_bucket(cx + step.dx, cy + step.dy, origin, visit);
+    if (coincident) return false;
+  }
+  return build_cell_by_rings(scene, grid, site, builder, candidates);
 }
 
 Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const CellBuilder& builder) {
