@@ -1,10 +1,10 @@
 #include "io/image.h"
+#include "io/image_file.h"
 
 #include <algorithm>
 #include <cmath>
 #include <memory>
 
-#include <OpenImageIO/imageio.h>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -141,40 +141,28 @@ void Canvas::paste(const Canvas& other, int x, int y) {
 }
 
 void write_image(const std::string& path, const Canvas& canvas) {
-  write_atomically(path, [&](const std::string& temporary) {
-    auto out = OIIO::ImageOutput::create(temporary);
-    if (!out) throw Error(path + ": cannot write image: " + OIIO::geterror());
-    // Grey images (spectra) are written with one channel: a third of the size.
-    const std::vector<float>& rgb = canvas.rgb();
-    bool grey = true;
-    for (std::size_t i = 0; i < rgb.size() && grey; i += 3) grey = rgb[i] == rgb[i + 1] && rgb[i] == rgb[i + 2];
-    const int channels = grey ? 1 : 3;
-    OIIO::ImageSpec spec(canvas.width(), canvas.height(), channels, OIIO::TypeDesc::UINT8);
-    std::vector<unsigned char> bytes(rgb.size() / 3 * static_cast<std::size_t>(channels));
-    for (std::size_t i = 0; i < bytes.size(); ++i) {
-      const float v = rgb[grey ? 3 * i : i];
-      bytes[i] = static_cast<unsigned char>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-    }
-    if (!out->open(temporary, spec) || !out->write_image(OIIO::TypeDesc::UINT8, bytes.data()) || !out->close())
-      throw Error(path + ": cannot write image: " + out->geterror());
-  });
+  // Grey images (spectra) are written with one channel: a third of the size.
+  const std::vector<float>& rgb = canvas.rgb();
+  bool grey = true;
+  for (std::size_t i = 0; i < rgb.size() && grey; i += 3) grey = rgb[i] == rgb[i + 1] && rgb[i] == rgb[i + 2];
+  const int channels = grey ? 1 : 3;
+  std::vector<std::uint8_t> bytes(rgb.size() / 3 * static_cast<std::size_t>(channels));
+  for (std::size_t i = 0; i < bytes.size(); ++i) {
+    const float v = rgb[grey ? 3 * i : i];
+    bytes[i] = static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+  }
+  write_image_file(path, canvas.width(), canvas.height(), channels, bytes);
 }
 
 Canvas read_image(const std::string& path) {
-  auto in = OIIO::ImageInput::open(path);
-  if (!in) throw Error(path + ": cannot read image: " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  std::vector<float> values(static_cast<std::size_t>(spec.width) * static_cast<std::size_t>(spec.height) *
-                            static_cast<std::size_t>(spec.nchannels));
-  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, values.data()))
-    throw Error(path + ": cannot read image: " + in->geterror());
-  Canvas canvas(spec.width, spec.height);
-  for (int y = 0; y < spec.height; ++y) {
-    for (int x = 0; x < spec.width; ++x) {
-      std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(spec.width) + static_cast<std::size_t>(x)) *
-                      static_cast<std::size_t>(spec.nchannels);
-      Colour c{values[i], values[i + (spec.nchannels > 1 ? 1 : 0)], values[i + (spec.nchannels > 2 ? 2 : 0)]};
-      canvas.set(x, y, c);
+  ImageFile image = read_image_file(path);
+  const std::size_t channels = static_cast<std::size_t>(image.channels);
+  Canvas canvas(image.width, image.height);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      std::size_t i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) + static_cast<std::size_t>(x)) * channels;
+      const auto& v = image.values;
+      canvas.set(x, y, Colour{v[i], v[i + (channels > 1 ? 1 : 0)], v[i + (channels > 2 ? 2 : 0)]});
     }
   }
   return canvas;

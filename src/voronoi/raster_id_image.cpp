@@ -1,10 +1,8 @@
 // The ID buffer as a picture (the paper's Figure 1): one colour per cell, sites as dots.
 #include <cmath>
 
-#include <OpenImageIO/imageio.h>
-
-#include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/image_file.h"
 #include "voronoi/raster_engine.h"
 
 namespace bluetile {
@@ -28,7 +26,7 @@ void cell_colour(std::int32_t id, unsigned char rgb[3]) {
 void write_id_image(const IdImage& image, const Scene& scene, const std::string& path) {
   if (image.width <= 0 || image.height <= 0) throw Error("no ID image to write");
   const int w = image.width, h = image.height;
-  std::vector<unsigned char> pixels(static_cast<std::size_t>(w) * h * 3);
+  std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w) * h * 3);
   // Row 0 of the file is the top of the picture: y grows upwards in the domain.
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i)
@@ -43,17 +41,11 @@ void write_id_image(const IdImage& image, const Scene& scene, const std::string&
         if (ddx * ddx + ddy * ddy > radius * radius) continue;
         i = (i % w + w) % w;
         j = (j % h + h) % h;
-        unsigned char* p = &pixels[(static_cast<std::size_t>(h - 1 - j) * w + i) * 3];
+        std::uint8_t* p = &pixels[(static_cast<std::size_t>(h - 1 - j) * w + i) * 3];
         p[0] = p[1] = p[2] = 0;
       }
   }
-  write_atomically(path, [&](const std::string& temporary) {
-    auto out = OIIO::ImageOutput::create(temporary);
-    if (!out) throw Error(path + ": cannot write this image format: " + OIIO::geterror());
-    OIIO::ImageSpec spec(w, h, 3, OIIO::TypeDesc::UINT8);
-    if (!out->open(temporary, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels.data()) || !out->close())
-      throw Error(path + ": " + out->geterror());
-  });
+  write_image_file(path, w, h, 3, pixels);
 }
 
 }  // namespace bluetile

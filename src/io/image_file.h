@@ -1,0 +1,29 @@
+// Image files through OpenImageIO, loaded on first use.
+//
+// Debian's OpenImageIO pulls in some 250 shared libraries (OpenCV, FFmpeg, GStreamer, ...),
+// whose relocation cost about 0.3 s of CPU at every start of a program linked to it. The
+// library therefore reaches OpenImageIO only through a small plugin module
+// (libbluetile_oiio.so, built from oiio_plugin.cpp), which is opened the first time an image is
+// written or read: commands that write no image start in milliseconds.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace bluetile {
+
+// Writes 8-bit pixels (row 0 at the top, `channels` interleaved) in the format named by the
+// path's extension (PNG usually), atomically. Throws Error naming the path on failure.
+void write_image_file(const std::string& path, int width, int height, int channels,
+                      const std::vector<std::uint8_t>& pixels);
+
+struct ImageFile {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> values;  // in [0, 1], `channels` interleaved, row 0 at the top
+};
+
+// Reads any image OpenImageIO knows. Throws Error naming the path on failure.
+ImageFile read_image_file(const std::string& path);
+
+}  // namespace bluetile

@@ -1,0 +1,17 @@
+// The C interface between the library and its OpenImageIO plugin module (see image_file.h).
+// Plain C types only, so the module and the library need not agree on any C++ ABI detail.
+#pragma once
+
+#include <stddef.h>
+
+extern "C" {
+
+// Each returns 0 on success, or non-zero with a message in `error` (always terminated).
+typedef int (*bluetile_oiio_write_fn)(const char* path, int width, int height, int channels,
+                                      const unsigned char* pixels, char* error, size_t error_size);
+// Allocates *values with malloc; the caller frees it.
+typedef int (*bluetile_oiio_read_fn)(const char* path, int* width, int* height, int* channels, float** values,
+                                     char* error, size_t error_size);
+}
+
+#define BLUETILE_OIIO_PLUGIN_NAME "libbluetile_oiio.so"
