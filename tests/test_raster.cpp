@@ -47,8 +47,23 @@ std::string vulkan_missing_reason() {
   } while (false)
 
 // Engines are costly to make (context, shader JIT), so tests share them by options.
+using EngineCache = std::vector<std::pair<std::tuple<int, Coverage, ConeShape>, std::unique_ptr<RasterEngine>>>;
+EngineCache& shared_engines() {
+  static EngineCache engines;
+  return engines;
+}
+
+// Destroys the shared engines when the tests end: as static objects they would outlive the
+// Vulkan driver's and validation layer's own exit-time teardown and crash the process.
+class ReleaseSharedEngines : public ::testing::Environment {
+ public:
+  void TearDown() override { shared_engines().clear(); }
+};
+[[maybe_unused]] ::testing::Environment* const release_shared_engines =
+    ::testing::AddGlobalTestEnvironment(new ReleaseSharedEngines);
+
 RasterEngine& engine(int resolution, Coverage coverage, ConeShape cone = ConeShape::quad) {
-  static std::vector<std::pair<std::tuple<int, Coverage, ConeShape>, std::unique_ptr<RasterEngine>>> engines;
+  EngineCache& engines = shared_engines();
   auto key = std::make_tuple(resolution, coverage, cone);
   for (auto& [k, e] : engines)
     if (k == key) return *e;
