@@ -360,12 +360,13 @@ const Row* find_row(const std::vector<Row>& rows, std::size_t n, const std::stri
   return nullptr;
 }
 
-std::string markdown_text(const Options& o, const std::string& command, const std::vector<Row>& rows,
+std::string markdown_text(const Options& o, const std::string& command,
+                          const std::vector<std::pair<std::string, std::string>>& facts, const std::vector<Row>& rows,
                           const std::vector<PaperRow>& paper, std::size_t default_threads) {
   std::ostringstream md;
   md << "Command: `" << command << "`\n\n";
   md << "| machine | |\n|---|---|\n";
-  for (auto& [k, v] : machine_facts()) md << "| " << k << " | " << v << " |\n";
+  for (auto& [k, v] : facts) md << "| " << k << " | " << v << " |\n";
   md << "\nTimes are per Lloyd iteration (engine call plus moving the sites), median of the repeats after "
      << o.warmup << " warm-up, every repeat from the same sites. Error: torus distance between the engine's "
         "centroid and the exact engine's, mean and max over sites. Heap: peak bytes allocated through "
@@ -559,8 +560,10 @@ int run(int argc, char** argv) {
   std::string command = "bluetile_bench";
   for (int i = 1; i < argc; ++i) command += std::string(" ") + argv[i];
 
+  // Read once, before the run: the source revision must be the one that was built and run.
+  const auto facts = machine_facts();
   std::cerr << "bluetile_bench\n";
-  for (auto& [k, v] : machine_facts()) std::cerr << "  " << k << ": " << v << "\n";
+  for (auto& [k, v] : facts) std::cerr << "  " << k << ": " << v << "\n";
 #ifndef BLUETILE_HAVE_CGAL
   std::cerr << "CGAL is missing (not found when configuring): the CGAL reference rows are skipped.\n";
 #endif
@@ -632,7 +635,7 @@ int run(int argc, char** argv) {
   }
   set_thread_count(default_threads);
 
-  const std::string md = markdown_text(o, command, rows, paper, default_threads);
+  const std::string md = markdown_text(o, command, facts, rows, paper, default_threads);
   if (!o.csv.empty()) write_text_atomically(o.csv, csv_text(rows, paper));
   if (!o.markdown.empty()) write_text_atomically(o.markdown, md);
   if (!o.plot_dir.empty()) {
