@@ -378,12 +378,17 @@ Scene make_scene(std::vector<Point> sites, Domain domain) {
 
 void ExactEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
   assert(scenes.size() == out.size());
-  // Small scenes run one per thread; large ones are split across threads themselves.
+  // Small scenes run one per thread when there are enough of them to keep every thread busy;
+  // otherwise (one scene, or large ones) each scene is split across the threads itself.
   constexpr std::size_t kSmallScene = 4096;
   std::vector<std::size_t> small;
-  for (std::size_t i = 0; i < scenes.size(); ++i) {
-    if (scenes[i].sites.size() <= kSmallScene) {
-      small.push_back(i);
+  for (std::size_t i = 0; i < scenes.size(); ++i)
+    if (scenes[i].sites.size() <= kSmallScene) small.push_back(i);
+  const bool across_scenes = small.size() >= 2 * thread_count();
+  if (!across_scenes) small.clear();
+  for (std::size_t i = 0, k = 0; i < scenes.size(); ++i) {
+    if (k < small.size() && small[k] == i) {
+      ++k;
     } else {
       compute_scene(scenes[i], out[i], true);
     }
