@@ -22,20 +22,20 @@
 #include <time.h>
 
 #include "alloc_tracker.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/parallel.h"
-#include "core/rng.h"
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/rng.h"
 #include "loglog_plot.h"
 #include "machine.h"
-#include "relax/lloyd.h"
-#include "voronoi/exact_engine.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/voronoi/exact_engine.h"
 
 #ifdef BLUETILE_HAVE_CGAL
 #include "cgal_reference.h"
 #endif
 #ifdef BLUETILE_BENCH_RASTER
-#include "voronoi/raster_engine.h"
+#include "bluetile/voronoi/raster_engine.h"
 #endif
 
 namespace bluetile::bench {

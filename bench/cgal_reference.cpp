@@ -16,7 +16,7 @@
 #include <CGAL/spatial_sort.h>
 #include <CGAL/version.h>
 
-#include "core/error.h"
+#include "bluetile/core/error.h"
 
 namespace bluetile::bench {
 namespace {

@@ -19,7 +19,7 @@
 
 #include <string>
 
-#include "voronoi/engine.h"
+#include "bluetile/voronoi/engine.h"
 
 namespace bluetile::bench {
 

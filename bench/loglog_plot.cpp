@@ -8,8 +8,8 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "core/atomic_file.h"
-#include "core/error.h"
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
 
 namespace bluetile::bench {
 namespace {

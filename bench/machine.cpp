@@ -7,7 +7,7 @@
 #include <sys/utsname.h>
 #include <vulkan/vulkan.h>
 
-#include "core/parallel.h"
+#include "bluetile/core/parallel.h"
 
 #ifdef BLUETILE_HAVE_CGAL
 #include "cgal_reference.h"

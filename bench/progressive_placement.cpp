@@ -6,10 +6,10 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "analysis/nearest_neighbour.h"
-#include "core/rng.h"
-#include "relax/progressive.h"
-#include "voronoi/exact_engine.h"
+#include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/progressive.h"
+#include "bluetile/voronoi/exact_engine.h"
 
 using namespace bluetile;
 

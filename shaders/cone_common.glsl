@@ -1,6 +1,6 @@
-// cone_common.glsl: bindings shared by the cone shaders (see src/gpu/raster_layout.h).
+// cone_common.glsl: bindings shared by the cone shaders (see src/bluetile/gpu/raster_layout.h).
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
-#include "gpu/raster_layout.h"
+#include "bluetile/gpu/raster_layout.h"
 
 layout(std430, binding = BLUETILE_BINDING_INSTANCES) readonly buffer Instances { ConeInstance instances[]; };
 layout(std430, binding = BLUETILE_BINDING_SCENES) readonly buffer Scenes { SceneInfo scenes[]; };

@@ -12,7 +12,7 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
-#include "gpu/raster_layout.h"
+#include "bluetile/gpu/raster_layout.h"
 
 layout(local_size_x = BLUETILE_REDUCE_GROUP_X, local_size_y = BLUETILE_REDUCE_GROUP_Y) in;
 

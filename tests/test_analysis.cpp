@@ -11,12 +11,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analysis/nearest_neighbour.h"
-#include "analysis/periodogram.h"
-#include "analysis/radial_power.h"
-#include "analysis/summary.h"
-#include "core/error.h"
-#include "core/parallel.h"
+#include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/analysis/periodogram.h"
+#include "bluetile/analysis/radial_power.h"
+#include "bluetile/analysis/summary.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
 #include "test_support.h"
 
 namespace bluetile {

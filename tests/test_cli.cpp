@@ -1,7 +1,7 @@
 // The command line as a user runs it: outputs, determinism, and bad input.
 #include <gtest/gtest.h>
 
-#include "core/point_file.h"
+#include "bluetile/core/point_file.h"
 #include "test_support.h"
 
 namespace bluetile {

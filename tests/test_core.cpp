@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/rng.h"
-#include "core/torus.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/core/torus.h"
 
 namespace bluetile {
 namespace {

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <filesystem>
 
-#include "analysis/nearest_neighbour.h"
-#include "core/error.h"
-#include "core/point_file.h"
-#include "sampling/dart_throwing.h"
+#include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/sampling/dart_throwing.h"
 #include "test_support.h"
 
 namespace bluetile {

@@ -6,10 +6,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/parallel.h"
-#include "core/rng.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/rng.h"
 #include "test_support.h"
-#include "voronoi/exact_engine.h"
+#include "bluetile/voronoi/exact_engine.h"
 
 namespace bluetile {
 namespace {

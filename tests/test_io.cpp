@@ -3,11 +3,11 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "io/figures.h"
-#include "io/font.h"
-#include "io/image.h"
-#include "io/plot.h"
+#include "bluetile/core/error.h"
+#include "bluetile/io/figures.h"
+#include "bluetile/io/font.h"
+#include "bluetile/io/image.h"
+#include "bluetile/io/plot.h"
 #include "test_support.h"
 
 namespace bluetile {

@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "relax/lloyd.h"
+#include "bluetile/relax/lloyd.h"
 #include "test_support.h"
-#include "voronoi/exact_engine.h"
+#include "bluetile/voronoi/exact_engine.h"
 
 namespace bluetile {
 namespace {

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "core/error.h"
-#include "core/point_file.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_file.h"
 #include "test_support.h"
 
 namespace bluetile {

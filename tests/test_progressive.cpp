@@ -2,12 +2,12 @@
 
 #include <algorithm>
 
-#include "analysis/nearest_neighbour.h"
-#include "core/error.h"
-#include "core/rng.h"
-#include "relax/progressive.h"
+#include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/progressive.h"
 #include "test_support.h"
-#include "voronoi/exact_engine.h"
+#include "bluetile/voronoi/exact_engine.h"
 
 namespace bluetile {
 namespace {

@@ -8,14 +8,14 @@
 #include <filesystem>
 #include <memory>
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "core/rng.h"
-#include "gpu/context.h"
-#include "relax/lloyd.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/gpu/context.h"
+#include "bluetile/relax/lloyd.h"
 #include "test_support.h"
-#include "voronoi/exact_engine.h"
-#include "voronoi/raster_engine.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/voronoi/raster_engine.h"
 
 namespace bluetile {
 namespace {

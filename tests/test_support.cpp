@@ -8,7 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "core/rng.h"
+#include "bluetile/core/rng.h"
 
 namespace bluetile::test {
 

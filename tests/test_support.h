@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/torus.h"
+#include "bluetile/core/torus.h"
 
 namespace bluetile::test {
 

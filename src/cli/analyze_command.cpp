@@ -11,14 +11,14 @@
 
 #include <nlohmann/json.hpp>
 
-#include "analysis/summary.h"
+#include "bluetile/analysis/summary.h"
 #include "cli/commands.h"
 #include "cli/progress.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/parallel.h"
-#include "core/point_file.h"
-#include "io/figures.h"
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/io/figures.h"
 
 namespace bluetile::cli {
 namespace {

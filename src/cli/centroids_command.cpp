@@ -4,9 +4,9 @@
 
 #include "cli/commands.h"
 #include "cli/engine_options.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/point_file.h"
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_file.h"
 
 namespace bluetile::cli {
 namespace {

@@ -3,9 +3,9 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "core/error.h"
-#include "core/point_file.h"
-#include "sampling/dart_throwing.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/sampling/dart_throwing.h"
 
 namespace bluetile::cli {
 

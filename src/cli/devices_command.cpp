@@ -3,7 +3,7 @@
 #include <cstdio>
 
 #include "cli/commands.h"
-#include "gpu/context.h"
+#include "bluetile/gpu/context.h"
 
 namespace bluetile::cli {
 namespace {

@@ -1,9 +1,9 @@
 #include "cli/engine_options.h"
 
-#include "core/error.h"
-#include "core/parallel.h"
-#include "voronoi/exact_engine.h"
-#include "voronoi/raster_engine.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/voronoi/raster_engine.h"
 
 namespace bluetile::cli {
 namespace {

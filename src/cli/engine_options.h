@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "voronoi/engine.h"
+#include "bluetile/voronoi/engine.h"
 
 namespace bluetile::cli {
 

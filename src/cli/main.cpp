@@ -4,7 +4,7 @@
 #include <new>
 
 #include "cli/commands.h"
-#include "core/error.h"
+#include "bluetile/core/error.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"bluetile: blue-noise sample points by Lloyd relaxation on the unit torus"};

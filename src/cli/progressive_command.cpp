@@ -6,10 +6,10 @@
 #include "cli/commands.h"
 #include "cli/engine_options.h"
 #include "cli/progress.h"
-#include "core/error.h"
-#include "core/point_file.h"
-#include "core/rng.h"
-#include "relax/progressive.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/progressive.h"
 
 namespace bluetile::cli {
 namespace {

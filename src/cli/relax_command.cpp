@@ -6,11 +6,11 @@
 #include "cli/commands.h"
 #include "cli/engine_options.h"
 #include "cli/progress.h"
-#include "core/atomic_file.h"
-#include "core/error.h"
-#include "core/point_file.h"
-#include "core/rng.h"
-#include "relax/lloyd.h"
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/lloyd.h"
 
 namespace bluetile::cli {
 namespace {

@@ -1,0 +1,26 @@
+// Mean radial power and anisotropy per annulus (the paper, section 1.2; DESIGN section 5, psa's
+// convention). Annulus i holds the integer frequencies k with floor(|k| / w) = i; only annuli
+// lying wholly inside the periodogram's square are kept (|k| < F/2). P_i is the mean of P over
+// the annulus; the anisotropy A_i = s_i^2 / P_i^2 with s_i^2 the sample variance (n - 1), given
+// as 10 log10(A_i) dB (white noise: about 0 dB).
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "bluetile/analysis/periodogram.h"
+
+namespace bluetile {
+
+struct Annulus {
+  double frequency = 0.0;  // inner radius i * w, in integer-frequency units (psa's abscissa)
+  double power = 0.0;      // P_i
+  // 10 log10(A_i); NaN when the annulus holds fewer than two frequencies or P_i = 0.
+  double anisotropy_db = 0.0;
+  std::size_t count = 0;   // frequencies in the annulus
+};
+
+// Throws Error when bin_width <= 0 or not finite, or the periodogram is empty.
+std::vector<Annulus> radial_power(const Periodogram& periodogram, double bin_width = 1.0);
+
+}  // namespace bluetile

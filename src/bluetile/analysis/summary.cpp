@@ -1,0 +1,91 @@
+// Point-set summaries for `bluetile analyze` (the paper, sections 1.2 and 2; DESIGN section 5).
+#include "bluetile/analysis/summary.h"
+
+#include <algorithm>
+#include <string>
+
+#include "bluetile/core/error.h"
+#include "bluetile/voronoi/exact_engine.h"
+
+namespace bluetile {
+
+double mean_centroid_distance(std::span<const Point> points) {
+  Scene scene = make_scene(std::vector<Point>(points.begin(), points.end()));
+  SceneCells cells = ExactEngine().compute(scene);
+  double sum = 0.0;
+  for (std::size_t i = 0; i < cells.cells.size(); ++i)
+    sum += torus_distance(scene.sites[i], cells.cells[i].centroid, scene.domain);
+  return sum / static_cast<double>(points.size());
+}
+
+Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions& options) {
+  if (sets.empty()) throw Error("no point sets to analyse");
+  const std::size_t n = sets[0].size();
+  for (const auto& set : sets) {
+    if (set.size() < 2)
+      throw Error("a point set needs at least 2 points to analyse, got " + std::to_string(set.size()));
+    if (set.size() != n)
+      throw Error("cannot average sets of different sizes (" + std::to_string(n) + " and " +
+                  std::to_string(set.size()) + " points)");
+  }
+  Summary s;
+  s.count = n;
+  s.sets = sets.size();
+  const int size = options.size > 0 ? options.size : default_periodogram_size(n);
+  std::vector<Periodogram> periodograms;
+  const std::size_t total_work = sets.size();
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    NearestNeighbourStats nn = nearest_neighbour_stats(sets[k]);
+    if (k == 0) {
+      s.nn = nn;
+      s.nn_min_lowest = s.nn_min_highest = nn.min;
+    } else {
+      s.nn.min += nn.min;
+      s.nn.max += nn.max;
+      s.nn.mean += nn.mean;
+      s.nn_min_lowest = std::min(s.nn_min_lowest, nn.min);
+      s.nn_min_highest = std::max(s.nn_min_highest, nn.min);
+    }
+    if (options.centroids) s.centroid_distance += mean_centroid_distance(sets[k]);
+    std::function<void(std::size_t, std::size_t)> progress;
+    if (options.progress) {
+      progress = [&](std::size_t done, std::size_t total) {
+        options.progress(k * total + done, total_work * total);
+      };
+    }
+    periodograms.push_back(compute_periodogram(sets[k], size, progress));
+  }
+  const double count = static_cast<double>(sets.size());
+  s.nn.min /= count;
+  s.nn.max /= count;
+  s.nn.mean /= count;
+  s.has_centroid_distance = options.centroids;
+  s.centroid_distance /= count;
+  s.periodogram = sets.size() == 1 ? std::move(periodograms[0]) : average_periodograms(periodograms);
+  s.radial = radial_power(s.periodogram, options.bin_width);
+  return s;
+}
+
+std::vector<LevelSummary> summarize_levels(std::span<const Point> points, std::span<const int> levels,
+                                           const SummaryOptions& options) {
+  if (levels.size() != points.size()) throw Error("--by-level needs a level column (x y level) on every point");
+  std::vector<int> distinct(levels.begin(), levels.end());
+  std::sort(distinct.begin(), distinct.end());
+  distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+  std::vector<LevelSummary> result;
+  for (int level : distinct) {
+    std::vector<std::vector<Point>> prefix(1);
+    for (std::size_t i = 0; i < points.size(); ++i)
+      if (levels[i] <= level) prefix[0].push_back(points[i]);
+    if (prefix[0].size() < 2)
+      throw Error("levels 0.." + std::to_string(level) + " hold " + std::to_string(prefix[0].size()) +
+                  " point; a prefix needs at least 2 to analyse");
+    // One F for every prefix, the full set's: the curves share an abscissa and range.
+    SummaryOptions o = options;
+    if (o.size <= 0) o.size = default_periodogram_size(points.size());
+    result.push_back({level, summarize(prefix, o)});
+  }
+  return result;
+}
+
+}  // namespace bluetile

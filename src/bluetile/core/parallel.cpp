@@ -1,0 +1,150 @@
+#include "bluetile/core/parallel.h"
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <cstdlib>
+#include <exception>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace bluetile {
+namespace {
+
+std::size_t default_thread_count() {
+  if (const char* env = std::getenv("BLUETILE_THREADS")) {
+    long n = std::strtol(env, nullptr, 10);
+    if (n >= 1 && n <= 1024) return static_cast<std::size_t>(n);
+  }
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
+std::atomic<std::size_t> configured_threads{0};
+thread_local bool inside_parallel_for = false;
+
+// One loop at a time; workers sleep between loops.
+class Pool {
+ public:
+  static Pool& instance() {
+    static Pool pool;
+    return pool;
+  }
+
+  void run(std::size_t workers_wanted, std::size_t chunks,
+           const std::function<void(std::size_t)>& chunk_body) {
+    std::lock_guard<std::mutex> one_loop(run_mutex_);
+    grow(workers_wanted);
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      body_ = &chunk_body;
+      chunk_count_ = chunks;
+      next_chunk_ = 0;
+      active_workers_ = std::min(workers_wanted, workers_.size());
+      busy_ = active_workers_;
+      error_ = nullptr;
+      ++generation_;
+    }
+    wake_.notify_all();
+    work();
+    std::unique_lock<std::mutex> lock(mutex_);
+    done_.wait(lock, [&] { return busy_ == 0; });
+    body_ = nullptr;
+    if (error_) std::rethrow_exception(error_);
+  }
+
+  ~Pool() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stopping_ = true;
+      ++generation_;
+    }
+    wake_.notify_all();
+    for (auto& t : workers_) t.join();
+  }
+
+ private:
+  void grow(std::size_t count) {
+    while (workers_.size() < count) {
+      std::size_t id = workers_.size();
+      workers_.emplace_back([this, id] { worker_loop(id); });
+    }
+  }
+
+  void worker_loop(std::size_t id) {
+    inside_parallel_for = true;
+    std::uint64_t seen = 0;
+    for (;;) {
+      {
+        std::unique_lock<std::mutex> lock(mutex_);
+        wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+        if (stopping_) return;
+        seen = generation_;
+        if (id >= active_workers_) continue;
+      }
+      work();
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (--busy_ == 0) done_.notify_all();
+    }
+  }
+
+  void work() {
+    bool was_inside = inside_parallel_for;
+    inside_parallel_for = true;
+    for (;;) {
+      std::size_t chunk = next_chunk_.fetch_add(1);
+      if (chunk >= chunk_count_) break;
+      try {
+        (*body_)(chunk);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        if (!error_) error_ = std::current_exception();
+        next_chunk_ = chunk_count_;  // stop handing out work
+      }
+    }
+    inside_parallel_for = was_inside;
+  }
+
+  std::mutex run_mutex_;
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::condition_variable done_;
+  std::vector<std::thread> workers_;
+  const std::function<void(std::size_t)>* body_ = nullptr;
+  std::size_t chunk_count_ = 0;
+  std::atomic<std::size_t> next_chunk_{0};
+  std::size_t active_workers_ = 0;
+  std::size_t busy_ = 0;
+  std::uint64_t generation_ = 0;
+  bool stopping_ = false;
+  std::exception_ptr error_;
+};
+
+}  // namespace
+
+std::size_t thread_count() {
+  std::size_t n = configured_threads.load();
+  return n ? n : default_thread_count();
+}
+
+void set_thread_count(std::size_t count) { configured_threads = std::max<std::size_t>(1, count); }
+
+void parallel_for(std::size_t count, std::size_t grain,
+                  const std::function<void(std::size_t, std::size_t)>& body) {
+  if (count == 0) return;
+  grain = std::max<std::size_t>(1, grain);
+  std::size_t chunks = (count + grain - 1) / grain;
+  std::size_t threads = std::min(thread_count(), chunks);
+  if (threads <= 1 || inside_parallel_for) {
+    body(0, count);
+    return;
+  }
+  std::function<void(std::size_t)> chunk_body = [&](std::size_t chunk) {
+    std::size_t begin = chunk * grain;
+    body(begin, std::min(count, begin + grain));
+  };
+  // The calling thread works too, so threads - 1 pool workers are enough.
+  Pool::instance().run(threads - 1, chunks, chunk_body);
+}
+
+}  // namespace bluetile

@@ -1,0 +1,32 @@
+// A seeded random number generator whose output is the same on every platform and compiler.
+// std:: distributions are implementation-defined, so all sampling goes through these few
+// functions instead. Engine: xoshiro256** (Blackman & Vigna), seeded by SplitMix64.
+#pragma once
+
+#include <cstdint>
+
+#include "bluetile/core/torus.h"
+
+namespace bluetile {
+
+class Rng {
+ public:
+  explicit Rng(std::uint64_t seed);
+
+  std::uint64_t next_u64();
+  // Uniform in [0, 1) with 53 random bits.
+  double uniform();
+  // Uniform integer in [0, bound), bound > 0, without modulo bias.
+  std::uint64_t below(std::uint64_t bound);
+  // Uniform point in the domain.
+  Point point(const Domain& domain);
+
+ private:
+  std::uint64_t state_[4];
+};
+
+// A seed for stream `index` derived from a user seed, so that set k of a batch does not
+// depend on how many sets come before it.
+std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t index);
+
+}  // namespace bluetile

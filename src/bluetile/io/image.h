@@ -1,0 +1,76 @@
+// A small RGB raster canvas for the analysis images: anti-aliased lines, discs and crosses,
+// text in the built-in bitmap font, and PNG output through OpenImageIO (written atomically).
+// Coordinates are pixels, x to the right and y down, pixel centres at half-integers.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "bluetile/core/torus.h"
+
+namespace bluetile {
+
+struct Colour {
+  float r = 0.0f, g = 0.0f, b = 0.0f;
+};
+
+namespace colours {
+inline constexpr Colour white{1.0f, 1.0f, 1.0f};
+inline constexpr Colour black{0.0f, 0.0f, 0.0f};
+inline constexpr Colour grey{0.55f, 0.55f, 0.55f};
+inline constexpr Colour light_grey{0.86f, 0.86f, 0.86f};
+}  // namespace colours
+
+// The i-th colour of a palette that stays distinguishable in print and for colour-blind readers
+// (Okabe & Ito), for plot series and levels.
+Colour series_colour(std::size_t i);
+
+enum class Align { start, centre, end };
+
+class Canvas {
+ public:
+  Canvas() = default;
+  Canvas(int width, int height, Colour background = colours::white);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  Colour pixel(int x, int y) const;
+  void set(int x, int y, Colour c);
+  // Mixes c into the pixel with weight alpha in [0, 1]; outside pixels are ignored.
+  void blend(int x, int y, Colour c, double alpha);
+
+  void fill_rect(double x0, double y0, double x1, double y1, Colour c);
+  // A segment of the given width with anti-aliased edges.
+  void line(Point a, Point b, Colour c, double width = 1.0);
+  void dashed_line(Point a, Point b, Colour c, double width, double dash, double gap);
+  void disc(Point centre, double radius, Colour c);
+  void cross(Point centre, double half_size, Colour c, double width = 1.0);
+  // Text in the bitmap font at integer `scale`, aligned at (x, y) horizontally by `h` and
+  // vertically by `v` (start = top). `vertical` turns it 90 degrees counter-clockwise (for a
+  // y-axis label); alignment then applies to the turned box.
+  void text(double x, double y, std::string_view s, Colour c, int scale = 2, Align h = Align::start,
+            Align v = Align::start, bool vertical = false);
+  static int text_width(std::string_view s, int scale) {
+    return s.empty() ? 0 : (static_cast<int>(s.size()) * 6 - 1) * scale;
+  }
+  static int text_height(int scale) { return 8 * scale; }
+
+  // Copies `other` with its top-left corner at (x, y).
+  void paste(const Canvas& other, int x, int y);
+
+  const std::vector<float>& rgb() const { return pixels_; }
+
+ private:
+  int width_ = 0, height_ = 0;
+  std::vector<float> pixels_;  // RGB, row by row
+};
+
+// Writes an 8-bit RGB PNG (or any format OpenImageIO knows by the extension), atomically.
+// Throws Error naming the path on failure.
+void write_image(const std::string& path, const Canvas& canvas);
+
+// Reads an image back as a canvas (tests). Throws Error on failure.
+Canvas read_image(const std::string& path);
+
+}  // namespace bluetile

@@ -1,0 +1,87 @@
+#include "bluetile/io/image_file.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+
+#include <dlfcn.h>
+
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
+#include "bluetile/io/oiio_plugin.h"
+
+namespace bluetile {
+namespace {
+
+struct Plugin {
+  bluetile_oiio_write_fn write = nullptr;
+  bluetile_oiio_read_fn read = nullptr;
+};
+
+// Where the module may be: BLUETILE_OIIO_PLUGIN, beside the running program (the build folder,
+// or an install's bin/), its ../lib, then the loader's own search path.
+std::vector<std::string> plugin_candidates() {
+  std::vector<std::string> paths;
+  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) paths.push_back(env);
+  std::error_code ec;
+  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (!ec) {
+    paths.push_back((exe.parent_path() / BLUETILE_OIIO_PLUGIN_NAME).string());
+    paths.push_back((exe.parent_path().parent_path() / "lib" / BLUETILE_OIIO_PLUGIN_NAME).string());
+  }
+  paths.push_back(BLUETILE_OIIO_PLUGIN_NAME);
+  return paths;
+}
+
+const Plugin& plugin() {
+  static Plugin loaded;
+  static std::string failure;
+  static std::once_flag once;
+  std::call_once(once, [] {
+    std::string tried;
+    for (const std::string& path : plugin_candidates()) {
+      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+      if (!handle) {
+        tried += "\n  " + std::string(dlerror());
+        continue;
+      }
+      loaded.write = reinterpret_cast<bluetile_oiio_write_fn>(dlsym(handle, "bluetile_oiio_write"));
+      loaded.read = reinterpret_cast<bluetile_oiio_read_fn>(dlsym(handle, "bluetile_oiio_read"));
+      if (loaded.write && loaded.read) return;
+      tried += "\n  " + path + ": not a bluetile OpenImageIO plugin";
+    }
+    failure = "cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME
+              " (it is built beside the bluetile binary; BLUETILE_OIIO_PLUGIN names another):" + tried;
+  });
+  if (!loaded.write) throw Error(failure);
+  return loaded;
+}
+
+}  // namespace
+
+void write_image_file(const std::string& path, int width, int height, int channels,
+                      const std::vector<std::uint8_t>& pixels) {
+  if (pixels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels))
+    throw Error(path + ": image size does not match its pixels");
+  const Plugin& p = plugin();
+  write_atomically(path, [&](const std::string& temporary) {
+    char error[512];
+    if (p.write(temporary.c_str(), width, height, channels, pixels.data(), error, sizeof error) != 0)
+      throw Error(path + ": cannot write image: " + error);
+  });
+}
+
+ImageFile read_image_file(const std::string& path) {
+  const Plugin& p = plugin();
+  ImageFile image;
+  float* values = nullptr;
+  char error[512];
+  if (p.read(path.c_str(), &image.width, &image.height, &image.channels, &values, error, sizeof error) != 0)
+    throw Error(path + ": cannot read image: " + error);
+  image.values.assign(values, values + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
+                                           static_cast<std::size_t>(image.channels));
+  std::free(values);
+  return image;
+}
+
+}  // namespace bluetile

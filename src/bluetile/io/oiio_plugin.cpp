@@ -1,0 +1,49 @@
+// The OpenImageIO plugin module: the only code that links OpenImageIO (see image_file.h).
+#include "bluetile/io/oiio_plugin.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+
+#include <OpenImageIO/imageio.h>
+
+namespace {
+
+int fail(const std::string& message, char* error, size_t error_size) {
+  std::snprintf(error, error_size, "%s", message.empty() ? "unknown OpenImageIO error" : message.c_str());
+  return 1;
+}
+
+}  // namespace
+
+extern "C" __attribute__((visibility("default"))) int bluetile_oiio_write(const char* path, int width, int height,
+                                                                          int channels, const unsigned char* pixels,
+                                                                          char* error, size_t error_size) {
+  auto out = OIIO::ImageOutput::create(path);
+  if (!out) return fail(OIIO::geterror(), error, error_size);
+  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels) || !out->close())
+    return fail(out->geterror(), error, error_size);
+  return 0;
+}
+
+extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const char* path, int* width, int* height,
+                                                                         int* channels, float** values, char* error,
+                                                                         size_t error_size) {
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) return fail(OIIO::geterror(), error, error_size);
+  const OIIO::ImageSpec& spec = in->spec();
+  size_t count = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) * static_cast<size_t>(spec.nchannels);
+  auto* data = static_cast<float*>(std::malloc(count * sizeof(float)));
+  if (!data) return fail("out of memory", error, error_size);
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data)) {
+    std::free(data);
+    return fail(in->geterror(), error, error_size);
+  }
+  *width = spec.width;
+  *height = spec.height;
+  *channels = spec.nchannels;
+  *values = data;
+  return 0;
+}

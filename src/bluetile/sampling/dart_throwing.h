@@ -1,0 +1,40 @@
+// Dart throwing on the unit torus with radius reduction, in the spirit of McCool and Fiume 1992
+// (the paper's reference [8] and section 1.1; its baseline in Figure 3 and the table of
+// section 2). A candidate is accepted when no accepted point lies closer than the current
+// radius (torus distance); after `max_failures` rejections in a row the radius shrinks by
+// `shrink`. The radius starts at the hexagonal spacing sqrt(2 / (sqrt(3) N)), which no random
+// process reaches, so it always shrinks to what the process can fill.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "bluetile/core/torus.h"
+
+namespace bluetile {
+
+struct DartOptions {
+  std::size_t count = 0;
+  std::uint64_t seed = 1;
+  // Consecutive rejections before the radius shrinks.
+  std::size_t max_failures = 1000;
+  // Factor applied to the radius at each reduction, in (0, 1).
+  double shrink = 0.99;
+  // Starting radius as a multiple of the hexagonal spacing.
+  double start = 1.0;
+};
+
+struct DartResult {
+  std::vector<Point> points;  // exactly `count`, in acceptance order
+  double initial_radius = 0.0;
+  double final_radius = 0.0;  // no two points are closer than this (torus distance)
+  std::size_t trials = 0;     // candidates drawn
+  std::size_t reductions = 0; // times the radius shrank
+};
+
+// Deterministic for given options on every platform (core/rng.h). Throws Error for count 0 or
+// options out of range.
+DartResult throw_darts(const DartOptions& options);
+
+}  // namespace bluetile

@@ -1,0 +1,30 @@
+// The exact CPU centroid engine: periodic Voronoi cells as exact polygons in double precision.
+//
+// Each wanted site's cell starts as the W x H rectangle centred on the site (on a torus no
+// point is farther than half a period from the nearest copy of the site along either axis)
+// and is clipped by the bisectors of the other sites and their periodic images, visited ring
+// by ring through a uniform grid, nearest first. The search stops once no unvisited site can
+// be closer than twice the cell's farthest vertex: such a site's bisector misses the cell.
+// All geometry is relative to the site, so precision does not depend on where the site is.
+#pragma once
+
+#include "bluetile/voronoi/engine.h"
+
+namespace bluetile {
+
+class ExactEngine final : public CentroidEngine {
+ public:
+  std::string_view name() const override { return "exact"; }
+  using CentroidEngine::compute;
+  void compute(std::span<const Scene> scenes, std::span<SceneCells> out) override;
+};
+
+// The cell polygon of one site, vertices counter-clockwise relative to the site (for drawing
+// and tests). Empty for a coincident site.
+std::vector<Point> exact_cell_polygon(const Scene& scene, std::size_t site);
+
+// Indices of the sites whose cells share an edge with `site`'s cell (periodic images folded
+// onto their site index; `site` itself when the cell touches its own copy).
+std::vector<std::size_t> exact_cell_neighbours(const Scene& scene, std::size_t site);
+
+}  // namespace bluetile
