@@ -5,32 +5,37 @@
 
 namespace bluetile {
 
+LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneCells> cells) {
+  LloydIteration log;
+  std::size_t moving = 0;
+  double displacement_sum = 0.0;
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    Scene& scene = scenes[k];
+    moving += scene.wanted_count();
+    log.coincident += cells[k].coincident_count;
+    log.fallbacks += cells[k].fallback_count;
+    for (std::size_t i = 0; i < scene.wanted_count(); ++i) {
+      const Cell& cell = cells[k].cells[i];
+      Point& site = scene.sites[scene.wanted_begin + i];
+      Point d = lloyd_displacement(site, cell, scene.domain);
+      double moved = std::sqrt(d.x * d.x + d.y * d.y);
+      log.energy += cell.second_moment;
+      log.max_displacement = std::max(log.max_displacement, moved);
+      displacement_sum += moved;
+      site = cell.centroid;
+    }
+  }
+  log.mean_displacement = moving ? displacement_sum / static_cast<double>(moving) : 0.0;
+  return log;
+}
+
 LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, const LloydOptions& options) {
   LloydResult result;
   std::vector<SceneCells> cells(scenes.size());
-  std::size_t moving = 0;
-  for (const Scene& s : scenes) moving += s.wanted_count();
-
   for (int it = 1; it <= options.iterations; ++it) {
     engine.compute(scenes, cells);
-    LloydIteration log;
+    LloydIteration log = move_to_centroids(scenes, cells);
     log.iteration = it;
-    double displacement_sum = 0.0;
-    for (std::size_t k = 0; k < scenes.size(); ++k) {
-      Scene& scene = scenes[k];
-      log.coincident += cells[k].coincident_count;
-      log.fallbacks += cells[k].fallback_count;
-      for (std::size_t i = 0; i < scene.wanted_count(); ++i) {
-        const Cell& cell = cells[k].cells[i];
-        Point& site = scene.sites[scene.wanted_begin + i];
-        double moved = torus_distance(site, cell.centroid, scene.domain);
-        log.energy += cell.second_moment;
-        log.max_displacement = std::max(log.max_displacement, moved);
-        displacement_sum += moved;
-        site = cell.centroid;
-      }
-    }
-    log.mean_displacement = moving ? displacement_sum / static_cast<double>(moving) : 0.0;
     result.history.push_back(log);
     if (options.on_iteration) options.on_iteration(log);
     if (options.tolerance > 0.0 && log.max_displacement < options.tolerance) {
