@@ -43,6 +43,10 @@ struct Cell {
   Point centroid;            // inside the domain, wrapped
   double area = 0.0;         // cell area
   double second_moment = 0.0;  // integral of |x - site|^2 over the cell (its Lloyd energy)
+  // Distance from the site to the cell's farthest vertex; 0 when the engine does not know it.
+  // No site farther than 2 radius from the site can touch the cell, which is how a cropped
+  // scene proves a cell complete.
+  double radius = 0.0;
   CellStatus status = CellStatus::ok;
 };
 

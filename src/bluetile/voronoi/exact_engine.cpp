@@ -334,6 +334,7 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   }
   Point offset;
   builder.measure(cell.area, offset, cell.second_moment);
+  cell.radius = std::sqrt(builder.max_radius_squared());
   cell.centroid = wrap_point(origin + offset, scene.domain);
   return cell;
 }
