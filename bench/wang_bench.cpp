@@ -1,0 +1,348 @@
+// bluetile_wang_bench: build time and quality of Wang-tile sample sets (issue 9; the paper,
+// section 3), over seeds, for the figures table in docs/RESULTS.md.
+//
+//   quality: for every kind, points per tile, strategy and seed, builds a set and reports the
+//            seam check (seamX, X/W) and the metrics of seeded torus tilings of each period
+//            (rho, LF, C_LF, C_mid, diffuse anisotropy), each seed's row, then worst and mean;
+//            with --untiled, the same plane metrics of untiled Lloyd sets of the same N.
+//   time:    the time to build a set with each engine, interleaved repeats side by side.
+//   levels:  a hierarchical set: level boundaries and prefixes between them on the plane.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bluetile/analysis/tiling_metrics.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/relax/wang_relax.h"
+#include "bluetile/tiling/seam_check.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "machine.h"
+
+#ifdef BLUETILE_BENCH_RASTER
+#include "bluetile/voronoi/raster_engine.h"
+#endif
+
+namespace bluetile::bench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Options {
+  std::string mode = "quality";
+  std::vector<std::string> kinds{"wang8"};
+  std::vector<std::size_t> points{52};
+  std::vector<std::string> strategies{"exact"};
+  std::vector<int> periods{16};
+  int seeds = 4;
+  std::uint64_t first_seed = 1;
+  int iterations = 25;
+  int warm = 10;
+  double margin = 0.0;
+  int levels = 1;
+  double ratio = 2.0;
+  int prefixes = 8;   // levels mode: prefixes measured between two level boundaries
+  int repeats = 3;    // time mode
+  std::vector<std::string> engines{"exact"};
+  bool untiled = false;
+  bool diagnose = false;
+  int untiled_iterations = 80;
+  int threads = 0;
+};
+
+WangStrategy strategy_of(const std::string& name) {
+  if (name == "instances") return WangStrategy::instances;
+  if (name == "rounds") return WangStrategy::rounds;
+  return WangStrategy::exact;
+}
+
+std::unique_ptr<CentroidEngine> make_engine(const std::string& name) {
+  if (name == "exact") return std::make_unique<ExactEngine>();
+#ifdef BLUETILE_BENCH_RASTER
+  if (name == "raster") return std::make_unique<RasterEngine>();
+#endif
+  throw Error("engine " + name + " not available in this build");
+}
+
+WangOptions wang_options(const Options& o, const std::string& kind, std::size_t n, const std::string& strategy,
+                         std::uint64_t seed) {
+  WangOptions w;
+  w.kind = *parse_tile_set_kind(kind);
+  w.points = n;
+  w.levels = o.levels;
+  w.ratio = o.ratio;
+  w.seed = seed;
+  w.level.iterations = o.iterations;
+  w.level.warm_iterations = o.warm;
+  w.level.strategy = strategy_of(strategy);
+  w.level.edge_margin = o.margin;
+  return w;
+}
+
+// Metrics of the period x period torus tiling `seed` of the first `prefix` ranks of every tile.
+TilingMetrics plane_metrics(const TileSet& set, int period, std::uint64_t seed,
+                            std::uint32_t prefix = std::numeric_limits<std::uint32_t>::max()) {
+  TiledPlane plane = torus_tiling(set, period, seed, prefix);
+  std::vector<std::vector<Point>> tiles;
+  for (const Tile& tile : set.tiles) {
+    std::vector<Point> points;
+    for (std::size_t k = 0; k < tile.points.size(); ++k)
+      if (tile.ranks[k] < prefix) points.push_back(tile.points[k]);
+    tiles.push_back(points);
+  }
+  Periodogram p = tiled_periodogram(tiles, plane.cell_tiles, period, tiling_periodogram_size(plane.points.size(), period));
+  return measure_tiling(plane.points, p, period, static_cast<int>(set.tiles.size()));
+}
+
+// Diagnostic: the largest coherent |sum_t F_t(m)|^2 / (T n) and incoherent sum_t |F_t(m)|^2 / (T n)
+// over integer m with 0.5 sqrt(n) <= |m| < 1.5 sqrt(n): how much of C_mid is tile crystallinity
+// and how much coherence between tiles.
+std::pair<double, double> coherence_split(const TileSet& set, int& mx_out, int& my_out) {
+  const double n = static_cast<double>(set.tiles[0].points.size());
+  const double t = static_cast<double>(set.tiles.size());
+  const int limit = static_cast<int>(std::ceil(1.5 * std::sqrt(n)));
+  double best_coherent = 0.0, best_incoherent = 0.0;
+  for (int my = -limit; my <= limit; ++my) {
+    for (int mx = -limit; mx <= limit; ++mx) {
+      const double m2 = static_cast<double>(mx * mx + my * my);
+      if (m2 < 0.25 * n || m2 >= 2.25 * n) continue;
+      double sr = 0.0, si = 0.0, incoherent = 0.0;
+      for (const Tile& tile : set.tiles) {
+        double tr = 0.0, ti = 0.0;
+        for (Point p : tile.points) {
+          const double a = -2.0 * 3.14159265358979323846 * (mx * p.x + my * p.y);
+          tr += std::cos(a);
+          ti += std::sin(a);
+        }
+        sr += tr, si += ti;
+        incoherent += tr * tr + ti * ti;
+      }
+      const double coherent = (sr * sr + si * si) / (t * n);
+      if (coherent > best_coherent) {
+        best_coherent = coherent;
+        mx_out = mx, my_out = my;
+      }
+      best_incoherent = std::max(best_incoherent, incoherent / (t * n));
+    }
+  }
+  return {best_coherent, best_incoherent};
+}
+
+struct Stat {
+  std::vector<double> values;
+  void add(double v) { values.push_back(v); }
+  double worst_low() const { return *std::min_element(values.begin(), values.end()); }
+  double worst_high() const { return *std::max_element(values.begin(), values.end()); }
+  double mean() const {
+    double s = 0.0;
+    for (double v : values) s += v;
+    return s / static_cast<double>(values.size());
+  }
+};
+
+void quality(const Options& o) {
+  ExactEngine engine;
+  std::printf("| set | n | strategy | M | seed | seamX | X/W | W | rho | LF | C_LF | C_mid | aniso dB | build s |\n");
+  std::printf("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& kind : o.kinds) {
+    for (std::size_t n : o.points) {
+      for (const std::string& strategy : o.strategies) {
+        std::map<int, std::map<std::string, Stat>> stats;
+        for (int s = 0; s < o.seeds; ++s) {
+          const std::uint64_t seed = o.first_seed + static_cast<std::uint64_t>(s);
+          auto start = Clock::now();
+          TileSet set = relax_wang_tiles(engine, wang_options(o, kind, n, strategy, seed));
+          double build = std::chrono::duration<double>(Clock::now() - start).count();
+          SeamCheck seams = check_seams(set);
+          const SeamLevel& top = seams.levels.back();
+          if (o.diagnose) {
+            int mx = 0, my = 0;
+            auto [coherent, incoherent] = coherence_split(set, mx, my);
+            std::printf("  diagnose seed %llu: coherent max %.1f at m = (%d, %d), incoherent max %.1f\n",
+                        static_cast<unsigned long long>(seed), coherent, mx, my, incoherent);
+          }
+          for (int period : o.periods) {
+            TilingMetrics m = plane_metrics(set, period, derive_seed(seed, 1000));
+            auto& st = stats[period];
+            st["seamX"].add(top.cross_relative());
+            st["X/W"].add(top.ratio());
+            st["W"].add(top.within_relative());
+            st["rho"].add(m.rho);
+            st["LF"].add(m.low_frequency);
+            st["C_LF"].add(m.coherence_low);
+            st["C_mid"].add(m.coherence_mid);
+            st["aniso"].add(m.diffuse_anisotropy_db);
+            st["build"].add(build);
+            std::printf("| %s | %zu | %s | %d | %llu | %.3f | %.3f | %.3f | %.3f | %.4f | %.4f | %.1f | %.2f | %.2f |\n",
+                        kind.c_str(), n, strategy.c_str(), period, static_cast<unsigned long long>(seed),
+                        top.cross_relative(), top.ratio(), top.within_relative(), m.rho, m.low_frequency,
+                        m.coherence_low, m.coherence_mid, m.diffuse_anisotropy_db, build);
+            std::fflush(stdout);
+          }
+        }
+        for (auto& [period, st] : stats) {
+          std::printf("| **%s** | **%zu** | **%s** | **%d** | worst | %.3f | %.3f | %.3f | %.3f | %.4f | %.4f | %.1f | %.2f | %.2f |\n",
+                      kind.c_str(), n, strategy.c_str(), period, st["seamX"].worst_low(), st["X/W"].worst_low(),
+                      st["W"].worst_low(), st["rho"].worst_low(), st["LF"].worst_high(), st["C_LF"].worst_high(),
+                      st["C_mid"].worst_high(), st["aniso"].worst_high(), st["build"].worst_high());
+          std::printf("| **%s** | **%zu** | **%s** | **%d** | mean | %.3f | %.3f | %.3f | %.3f | %.4f | %.4f | %.1f | %.2f | %.2f |\n",
+                      kind.c_str(), n, strategy.c_str(), period, st["seamX"].mean(), st["X/W"].mean(), st["W"].mean(),
+                      st["rho"].mean(), st["LF"].mean(), st["C_LF"].mean(), st["C_mid"].mean(), st["aniso"].mean(),
+                      st["build"].mean());
+        }
+        std::fflush(stdout);
+      }
+    }
+  }
+  if (!o.untiled) return;
+  // Untiled Lloyd at the N of each tiled plane.
+  std::printf("\n| untiled Lloyd | N | iterations | seed | rho | LF | aniso dB |\n|---|---|---|---|---|---|---|\n");
+  for (const std::string& kind : o.kinds) {
+    const std::size_t tiles = static_cast<std::size_t>(TileRules(*parse_tile_set_kind(kind)).tile_count());
+    (void)tiles;
+    for (std::size_t n : o.points) {
+      for (int period : o.periods) {
+        const std::size_t count = n * static_cast<std::size_t>(period * period);
+        Stat rho, lf, an;
+        for (int s = 0; s < o.seeds; ++s) {
+          Rng rng(derive_seed(o.first_seed + static_cast<std::uint64_t>(s), 77));
+          std::vector<Point> sites(count);
+          for (Point& p : sites) p = rng.point(Domain{});
+          Scene scene = make_scene(sites);
+          LloydOptions lloyd;
+          lloyd.iterations = o.untiled_iterations;
+          relax_lloyd(engine, scene, lloyd);
+          TilingMetrics m = measure_tiling(scene.sites, 0, 1);
+          rho.add(m.rho);
+          lf.add(m.low_frequency);
+          an.add(m.diffuse_anisotropy_db);
+          std::printf("| | %zu | %d | %d | %.3f | %.4f | %.2f |\n", count, o.untiled_iterations, s, m.rho,
+                      m.low_frequency, m.diffuse_anisotropy_db);
+        }
+        std::printf("| mean | %zu | %d | | %.3f | %.4f | %.2f |\n", count, o.untiled_iterations, rho.mean(), lf.mean(),
+                    an.mean());
+      }
+      break;  // N depends on n and the period only
+    }
+    break;
+  }
+}
+
+void timing(const Options& o) {
+  std::vector<std::unique_ptr<CentroidEngine>> engines;
+  for (const std::string& e : o.engines) engines.push_back(make_engine(e));
+  std::printf("| engine | set | n | strategy | levels | warm | iterations | repeat | seconds |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::map<std::string, Stat> totals;
+  for (int r = 0; r < o.repeats; ++r) {
+    for (std::size_t e = 0; e < engines.size(); ++e) {  // interleaved: engines side by side
+      for (const std::string& kind : o.kinds) {
+        for (std::size_t n : o.points) {
+          for (const std::string& strategy : o.strategies) {
+            auto start = Clock::now();
+            WangOptions w = wang_options(o, kind, n, strategy, o.first_seed);
+            relax_wang_tiles(*engines[e], w);
+            double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+            std::string key = o.engines[e] + " " + kind + " " + std::to_string(n) + " " + strategy;
+            totals[key].add(seconds);
+            std::printf("| %s | %s | %zu | %s | %d | %d | %d | %d | %.3f |\n", o.engines[e].c_str(), kind.c_str(), n,
+                        strategy.c_str(), o.levels, o.warm, o.iterations, r, seconds);
+            std::fflush(stdout);
+          }
+        }
+      }
+    }
+  }
+  std::printf("\n| configuration | min s | median s | max s |\n|---|---|---|---|\n");
+  for (auto& [key, st] : totals) {
+    std::vector<double> v = st.values;
+    std::sort(v.begin(), v.end());
+    std::printf("| %s | %.3f | %.3f | %.3f |\n", key.c_str(), v.front(), v[v.size() / 2], v.back());
+  }
+}
+
+void levels(const Options& o) {
+  ExactEngine engine;
+  std::printf("| set | n0 | levels | seed | prefix per tile | level boundary | rho | LF | seamX |\n|---|---|---|---|---|---|---|---|---|\n");
+  for (const std::string& kind : o.kinds) {
+    for (std::size_t n : o.points) {
+      for (const std::string& strategy : o.strategies) {
+        for (int s = 0; s < o.seeds; ++s) {
+          const std::uint64_t seed = o.first_seed + static_cast<std::uint64_t>(s);
+          TileSet set = relax_wang_tiles(engine, wang_options(o, kind, n, strategy, seed));
+          SeamCheck seams = check_seams(set);
+          // Level boundaries and `prefixes` evenly spaced counts between them.
+          std::vector<std::pair<std::size_t, int>> counts;  // (prefix, level or -1)
+          std::size_t previous = 0;
+          for (const SeamLevel& level : seams.levels) {
+            std::size_t boundary = level.points_per_tile;
+            if (previous > 0)
+              for (int i = 1; i < o.prefixes; ++i)
+                counts.push_back({previous + (boundary - previous) * static_cast<std::size_t>(i) /
+                                                 static_cast<std::size_t>(o.prefixes), -1});
+            counts.push_back({boundary, level.level});
+            previous = boundary;
+          }
+          for (const auto& [prefix, level] : counts) {
+            TilingMetrics m = plane_metrics(set, o.periods[0], derive_seed(seed, 1000), static_cast<std::uint32_t>(prefix));
+            double seam = level >= 0 ? seams.levels[static_cast<std::size_t>(level)].cross_relative() : 0.0;
+            std::printf("| %s | %zu | %d | %llu | %zu | %s | %.3f | %.4f | %s |\n", kind.c_str(), n, o.levels,
+                        static_cast<unsigned long long>(seed), prefix, level >= 0 ? std::to_string(level).c_str() : "",
+                        m.rho, m.low_frequency, level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "");
+            std::fflush(stdout);
+          }
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bluetile::bench
+
+int main(int argc, char** argv) {
+  using namespace bluetile::bench;
+  Options o;
+  CLI::App app{"bluetile_wang_bench: build time and quality of Wang-tile sample sets"};
+  app.add_option("mode", o.mode, "quality | time | levels")->check(CLI::IsMember({"quality", "time", "levels"}));
+  app.add_option("--set", o.kinds, "Tile set kinds")->check(CLI::IsMember({"wang8", "wang16", "corner16"}));
+  app.add_option("--points", o.points, "Points per tile (level 0)");
+  app.add_option("--strategy", o.strategies, "Strategies")->check(CLI::IsMember({"exact", "instances", "rounds"}));
+  app.add_option("--period", o.periods, "Torus tiling sizes M for the plane metrics");
+  app.add_option("--seeds", o.seeds, "Seeds per configuration");
+  app.add_option("--first-seed", o.first_seed, "First seed");
+  app.add_option("--iterations", o.iterations, "Constrained iterations per level");
+  app.add_option("--warm", o.warm, "Warm-start iterations per level");
+  app.add_option("--margin", o.margin, "Edge margin (tile units)");
+  app.add_option("--levels", o.levels, "Levels");
+  app.add_option("--ratio", o.ratio, "Level ratio");
+  app.add_option("--prefixes", o.prefixes, "levels mode: prefixes per level");
+  app.add_option("--repeats", o.repeats, "time mode: interleaved repeats");
+  app.add_option("--engine", o.engines, "time mode: engines side by side")->check(CLI::IsMember({"exact", "raster"}));
+  app.add_flag("--diagnose", o.diagnose, "quality mode: split C_mid into tile crystallinity and coherence");
+  app.add_flag("--untiled", o.untiled, "quality mode: also untiled Lloyd at the same N");
+  app.add_option("--untiled-iterations", o.untiled_iterations, "Iterations of the untiled reference");
+  app.add_option("--threads", o.threads, "Threads (default: all cores)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (o.threads > 0) bluetile::set_thread_count(static_cast<std::size_t>(o.threads));
+    for (const auto& [name, value] : machine_facts()) std::printf("%s: %s\n", name.c_str(), value.c_str());
+    std::printf("\n");
+    if (o.mode == "quality") quality(o);
+    if (o.mode == "time") timing(o);
+    if (o.mode == "levels") levels(o);
+  } catch (const bluetile::Error& e) {
+    std::fprintf(stderr, "bluetile_wang_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,59 @@
+// Figures of merit of a tiled plane, defined so that they compare with the literature (the
+// Wang-tile issue's definitions; periodogram conventions of psa, DESIGN section 5). For N points
+// on the unit torus:
+//  - rho: the global minimum nearest-neighbour distance over the hexagonal spacing
+//    sqrt(2 / (sqrt(3) N)) (Lagae and Dutré's relative radius, psa's global mindist);
+//  - LF: the mean periodogram over integer k with 0 < |k| < 0.5 sqrt(N) (white noise 1);
+//  - lattice coherence of an M x M tiling of a T-tile set, at the tile lattice frequencies
+//    k = M m: C_LF = max over 0 < |m|^2 <= 5 of P(M m) / (M^2 / T), and C_mid = max of the same
+//    over 0.5 sqrt(N) <= |k| < 1.5 sqrt(N) (P(M m) M^2 / T is |sum over the T tiles' points of
+//    exp(-2 pi i m.x)|^2 / (T n) when every tile occurs equally often);
+//  - diffuse anisotropy: the mean over width-1 annuli with 0.5 sqrt(N) <= |k| < 1.6 sqrt(N) of the
+//    annulus anisotropy in dB, the lattice frequencies left out.
+#pragma once
+
+#include <cstddef>
+#include <span>
+
+#include "bluetile/analysis/periodogram.h"
+#include "bluetile/core/torus.h"
+
+namespace bluetile {
+
+struct TilingMetrics {
+  std::size_t count = 0;  // N
+  double rho = 0.0;
+  double low_frequency = 0.0;       // LF
+  double coherence_low = 0.0;       // C_LF (0 for an untiled set)
+  double coherence_mid = 0.0;       // C_mid (0 for an untiled set)
+  double diffuse_anisotropy_db = 0.0;
+};
+
+// The periodogram (periodogram.h's conventions) of a period x period torus tiling scaled to the
+// unit torus: cell (i, j) holds tile cell_tiles[j * period + i], whose points tile_points[t] are
+// tile-local in [0,1)^2. Computed per tile, S(k) = sum over tiles t of F_t(k / M) G_t(k), with
+// F_t(q) = sum over the tile's points of exp(-2 pi i q.x) and G_t(k) = sum over the cells holding
+// t of exp(-2 pi i k.c / M): about T n F^2 operations instead of M^2 n F^2 for the direct sum,
+// the same values to rounding. Throws Error on bad arguments.
+Periodogram tiled_periodogram(std::span<const std::vector<Point>> tile_points, std::span<const int> cell_tiles,
+                              int period, int size);
+
+// The smallest periodogram size that holds every frequency the metrics use.
+int tiling_metrics_periodogram_size(std::size_t count);
+
+// Metrics of `points` (N >= 2, unit torus) from their periodogram (at least
+// tiling_metrics_periodogram_size(N) wide). `period` M and `tile_count` T describe the tiling;
+// period 0 means an untiled set (no lattice frequencies, C_LF = C_mid = 0). Throws Error when the
+// periodogram is too small.
+TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& periodogram, int period, int tile_count);
+
+// The same, computing the periodogram: by the direct sum for an untiled set (period 0).
+TilingMetrics measure_tiling(std::span<const Point> points, int period, int tile_count);
+
+// The periodogram size measure_tiling uses for N points and a period M.
+int tiling_periodogram_size(std::size_t count, int period);
+
+// rho alone (minimum nearest-neighbour distance on the torus / hexagonal spacing).
+double relative_min_distance(std::span<const Point> points);
+
+}  // namespace bluetile

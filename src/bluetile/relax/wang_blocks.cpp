@@ -1,0 +1,217 @@
+// Neighbour configurations of a tile (see wang_blocks.h for the method).
+#include "bluetile/relax/wang_blocks.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstdlib>
+#include <functional>
+#include <string>
+
+#include "bluetile/core/error.h"
+
+namespace bluetile {
+namespace {
+
+// The eight positions around the centre in cycle order (SW, S, SE, E, NE, N, NW, W): each is
+// edge-adjacent to the next.
+constexpr std::array<int, 8> kRing{0, 1, 2, 5, 8, 7, 6, 3};
+constexpr std::array<int, 4> kEdgePositions{7, 5, 1, 3};  // N, E, S, W
+
+bool edge_adjacent(int pa, int pb) {
+  return std::abs(block_dx(pa) - block_dx(pb)) + std::abs(block_dy(pa) - block_dy(pb)) == 1;
+}
+
+// A projection's enumeration stops with an error beyond this many configurations: the exact
+// strategy then builds one scene per configuration, and so many mean cells as wide as a tile.
+constexpr std::size_t kMaxProjections = std::size_t{1} << 16;
+
+}  // namespace
+
+BlockConfigurations::BlockConfigurations(const TileRules& rules) : rules_(rules) {
+  const int count = rules.tile_count();
+  candidates_.resize(static_cast<std::size_t>(count));
+  for (int c = 0; c < count; ++c) {
+    for (int p = 0; p < kBlockPositions; ++p) {
+      auto& list = candidates_[static_cast<std::size_t>(c)][static_cast<std::size_t>(p)];
+      if (p == kBlockCentre) {
+        list.push_back(c);
+        continue;
+      }
+      for (int t = 0; t < count; ++t)
+        if (!edge_adjacent(p, kBlockCentre) || fit(kBlockCentre, c, p, t)) list.push_back(t);
+    }
+  }
+  for (int c = 0; c < count; ++c) {
+    std::array<std::int16_t, kBlockPositions> tiles;
+    tiles.fill(-1);
+    tiles[kBlockCentre] = static_cast<std::int16_t>(c);
+    block_counts_.push_back(completions(tiles));
+  }
+}
+
+bool BlockConfigurations::fit(int pa, int a, int pb, int b) const {
+  const int dx = block_dx(pb) - block_dx(pa), dy = block_dy(pb) - block_dy(pa);
+  assert(std::abs(dx) + std::abs(dy) == 1);
+  if (dx == 1) return rules_.fits_east(a, b);
+  if (dx == -1) return rules_.fits_east(b, a);
+  if (dy == 1) return rules_.fits_north(a, b);
+  return rules_.fits_north(b, a);
+}
+
+double BlockConfigurations::block_count(int centre) const { return block_counts_[static_cast<std::size_t>(centre)]; }
+
+double BlockConfigurations::completions(const std::array<std::int16_t, kBlockPositions>& tiles) const {
+  const int centre = tiles[kBlockCentre];
+  assert(centre >= 0);
+  const std::size_t count = static_cast<std::size_t>(rules_.tile_count());
+  auto allowed = [&](int position) -> std::vector<int> {
+    if (tiles[static_cast<std::size_t>(position)] >= 0) {
+      int t = tiles[static_cast<std::size_t>(position)];
+      const auto& c = candidates(centre, position);
+      return std::find(c.begin(), c.end(), t) != c.end() ? std::vector<int>{t} : std::vector<int>{};
+    }
+    return candidates(centre, position);
+  };
+  // Walk the cycle from a known position when there is one (a single start tile), else sum
+  // the closed walks over every start tile.
+  std::size_t start = 0;
+  for (std::size_t i = 0; i < kRing.size(); ++i)
+    if (tiles[static_cast<std::size_t>(kRing[i])] >= 0) {
+      start = i;
+      break;
+    }
+  std::vector<std::vector<int>> options(kRing.size());
+  for (std::size_t i = 0; i < kRing.size(); ++i) options[i] = allowed(kRing[(start + i) % kRing.size()]);
+  double total = 0.0;
+  std::vector<double> walks(count), next(count);
+  for (int first : options[0]) {
+    std::fill(walks.begin(), walks.end(), 0.0);
+    walks[static_cast<std::size_t>(first)] = 1.0;
+    int previous = kRing[start];
+    for (std::size_t i = 1; i <= kRing.size(); ++i) {
+      const int position = kRing[(start + i) % kRing.size()];
+      std::fill(next.begin(), next.end(), 0.0);
+      const std::vector<int> here = i == kRing.size() ? std::vector<int>{first} : options[i];
+      for (int b : here) {
+        double sum = 0.0;
+        for (std::size_t a = 0; a < count; ++a)
+          if (walks[a] != 0.0 && fit(previous, static_cast<int>(a), position, b)) sum += walks[a];
+        next[static_cast<std::size_t>(b)] = sum;
+      }
+      walks.swap(next);
+      previous = position;
+    }
+    total += walks[static_cast<std::size_t>(first)];
+  }
+  return total;
+}
+
+const std::vector<BlockConfiguration>& BlockConfigurations::projections(int centre, PositionMask mask) {
+  mask |= kCentreOnly;
+  auto key = std::make_pair(centre, mask);
+  auto found = cache_.find(key);
+  if (found != cache_.end()) return found->second;
+
+  std::vector<BlockConfiguration> result;
+  BlockConfiguration partial;
+  partial.tiles.fill(-1);
+  partial.tiles[kBlockCentre] = static_cast<std::int16_t>(centre);
+  std::vector<int> known;
+  for (int p : kRing)
+    if (mask & (PositionMask{1} << p)) known.push_back(p);
+  // Depth-first over the known positions in cycle order, each tile checked against the
+  // positions already set beside it; the count along the cycle drops the rest.
+  std::function<void(std::size_t)> assign = [&](std::size_t depth) {
+    if (depth == known.size()) {
+      double weight = completions(partial.tiles);
+      if (weight > 0.0) {
+        if (result.size() >= kMaxProjections) {
+          throw Error("exact strategy: more than " + std::to_string(kMaxProjections) +
+                      " neighbour configurations for one group of points (cells nearly as wide as a tile); use "
+                      "more points per tile or --strategy instances");
+        }
+        partial.weight = weight;
+        result.push_back(partial);
+      }
+      return;
+    }
+    const int position = known[depth];
+    for (int t : candidates(centre, position)) {
+      bool fits = true;
+      for (std::size_t d = 0; d < depth && fits; ++d) {
+        const int other = known[d];
+        if (edge_adjacent(position, other)) fits = fit(other, partial.tiles[static_cast<std::size_t>(other)], position, t);
+      }
+      if (!fits) continue;
+      partial.tiles[static_cast<std::size_t>(position)] = static_cast<std::int16_t>(t);
+      assign(depth + 1);
+    }
+    partial.tiles[static_cast<std::size_t>(position)] = -1;
+  };
+  assign(0);
+  return cache_.emplace(key, std::move(result)).first->second;
+}
+
+std::vector<BlockConfiguration> BlockConfigurations::covering_blocks(int centre, Rng& rng) const {
+  // Enough rounds for the edge with the most fitting tiles; a few random restarts look for a
+  // cover in that many, else the best attempt gets rounds added until every neighbour appears.
+  constexpr int kAttempts = 16;  // covers of wang8, wang16 and corner16 are found in 1-3
+  std::size_t rounds = 0;
+  for (int p : kEdgePositions) rounds = std::max(rounds, candidates(centre, p).size());
+
+  std::vector<BlockConfiguration> best;
+  for (int attempt = 0; attempt < kAttempts; ++attempt) {
+    std::vector<BlockConfiguration> blocks;
+    // uses[edge][tile]: how often the tile sat at that edge position so far.
+    std::array<std::vector<int>, 4> uses;
+    for (auto& u : uses) u.assign(static_cast<std::size_t>(rules_.tile_count()), 0);
+    auto uncovered = [&] {
+      for (std::size_t e = 0; e < 4; ++e)
+        for (int t : candidates(centre, kEdgePositions[e]))
+          if (uses[e][static_cast<std::size_t>(t)] == 0) return true;
+      return false;
+    };
+    while (blocks.size() < rounds || (uncovered() && blocks.size() < 4 * rounds)) {
+      BlockConfiguration block;
+      block.tiles.fill(-1);
+      block.tiles[kBlockCentre] = static_cast<std::int16_t>(centre);
+      block.weight = 1.0;
+      // Edges first, each the least used fitting tile (ties at random), then the corners.
+      for (std::size_t e = 0; e < 4; ++e) {
+        const int position = kEdgePositions[e];
+        std::vector<int> choices;
+        int least = -1;
+        for (int t : candidates(centre, position)) {
+          block.tiles[static_cast<std::size_t>(position)] = static_cast<std::int16_t>(t);
+          if (completions(block.tiles) == 0.0) continue;
+          int u = uses[e][static_cast<std::size_t>(t)];
+          if (least < 0 || u < least) {
+            least = u;
+            choices.clear();
+          }
+          if (u == least) choices.push_back(t);
+        }
+        assert(!choices.empty());  // the block so far extends to some admissible block
+        block.tiles[static_cast<std::size_t>(position)] =
+            static_cast<std::int16_t>(choices[static_cast<std::size_t>(rng.below(choices.size()))]);
+        ++uses[e][static_cast<std::size_t>(block.tiles[static_cast<std::size_t>(position)])];
+      }
+      for (int position : {0, 2, 6, 8}) {
+        std::vector<int> choices;
+        for (int t : candidates(centre, position)) {
+          block.tiles[static_cast<std::size_t>(position)] = static_cast<std::int16_t>(t);
+          if (completions(block.tiles) > 0.0) choices.push_back(t);
+        }
+        assert(!choices.empty());
+        block.tiles[static_cast<std::size_t>(position)] =
+            static_cast<std::int16_t>(choices[static_cast<std::size_t>(rng.below(choices.size()))]);
+      }
+      blocks.push_back(block);
+    }
+    if (best.empty() || blocks.size() < best.size()) best = std::move(blocks);
+    if (best.size() == rounds) break;
+  }
+  return best;
+}
+
+}  // namespace bluetile

@@ -1,0 +1,160 @@
+// Wang-tile sample sets (see wang_relax.h; the paper, section 3).
+#include "bluetile/relax/wang_relax.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bluetile/core/error.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/relax/progressive.h"
+#include "bluetile/relax/wang_ranks.h"
+
+namespace bluetile {
+namespace {
+
+// The largest double below 1: tile-local coordinates live in [0, 1).
+const double kBelowOne = std::nextafter(1.0, 0.0);
+
+double clamp_coordinate(double x, double margin) {
+  return std::clamp(x, margin, std::min(1.0 - margin, kBelowOne));
+}
+
+int next_level(const TileSet& set) {
+  int level = 0;
+  for (const Tile& tile : set.tiles)
+    for (int l : tile.levels) level = std::max(level, l + 1);
+  return level;
+}
+
+// Periodic relaxation of every tile alone (its square as a torus), the earlier levels fixed.
+void warm_start(CentroidEngine& engine, WangPoints& points, int level, const WangLevelOptions& options) {
+  std::vector<Scene> scenes;
+  for (const std::vector<Point>& tile : points.tiles) {
+    Scene scene = make_scene(tile);
+    scene.wanted_begin = points.moving_begin;
+    scenes.push_back(std::move(scene));
+  }
+  LloydOptions lloyd;
+  lloyd.iterations = options.warm_iterations;
+  lloyd.on_iteration = [&](const LloydIteration& it) {
+    if (!options.on_iteration) return;
+    WangIteration w;
+    w.level = level;
+    w.iteration = it.iteration;
+    w.warm = true;
+    w.max_displacement = it.max_displacement;
+    w.mean_displacement = it.mean_displacement;
+    w.energy = it.energy;
+    w.scenes = scenes.size();
+    w.cells = scenes.size() * points.moving_count();
+    options.on_iteration(w);
+  };
+  relax_lloyd(engine, scenes, lloyd);
+  for (std::size_t t = 0; t < scenes.size(); ++t) points.tiles[t] = std::move(scenes[t].sites);
+}
+
+}  // namespace
+
+TileSet empty_tile_set(TileSetKind kind) {
+  TileRules rules(kind);
+  TileSet set;
+  set.kind = kind;
+  for (int t = 0; t < rules.tile_count(); ++t) {
+    Tile tile;
+    tile.colours = rules.colours(t);
+    set.tiles.push_back(tile);
+  }
+  return set;
+}
+
+void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions& options) {
+  if (options.add == 0) throw Error("a level must add at least one point per tile");
+  if (options.edge_margin < 0.0 || options.edge_margin >= 0.5)
+    throw Error("edge margin " + std::to_string(options.edge_margin) + " outside [0, 0.5)");
+  const TileRules rules(set.kind);
+  if (set.tiles.size() != static_cast<std::size_t>(rules.tile_count()))
+    throw Error("a " + std::string(tile_set_kind_name(set.kind)) + " set has " + std::to_string(rules.tile_count()) +
+                " tiles, not " + std::to_string(set.tiles.size()));
+  const std::size_t existing = set.tiles[0].points.size();
+  for (const Tile& tile : set.tiles)
+    if (tile.points.size() != existing) throw Error("every tile must hold the same number of points to add a level");
+  BlockConfigurations configurations(rules);
+  const int level = next_level(set);
+
+  WangPoints points;
+  points.moving_begin = existing;
+  for (std::size_t t = 0; t < set.tiles.size(); ++t) {
+    std::vector<Point> tile = set.tiles[t].points;
+    std::vector<Point> added = place_new_points(tile, options.add, Placement::gaps, derive_seed(options.seed, t));
+    for (Point& p : added) p = {clamp_coordinate(p.x, options.edge_margin), clamp_coordinate(p.y, options.edge_margin)};
+    tile.insert(tile.end(), added.begin(), added.end());
+    points.tiles.push_back(std::move(tile));
+  }
+  if (options.warm_iterations > 0) warm_start(engine, points, level, options);
+
+  WangReach reach;
+  const std::size_t moving = points.moving_count();
+  for (int it = 1; it <= options.iterations; ++it) {
+    WangStepOptions step_options;
+    step_options.strategy = options.strategy;
+    step_options.period = options.period;
+    step_options.seed = derive_seed(options.seed, static_cast<std::uint64_t>(set.tiles.size() + static_cast<std::size_t>(it)));
+    WangStep step = measure_wang_step(engine, configurations, points, step_options, reach);
+    WangIteration log;
+    log.level = level;
+    log.iteration = it;
+    log.energy = step.energy;
+    log.scenes = step.scenes;
+    log.cells = step.cells;
+    log.regrown = step.regrown;
+    double moved_sum = 0.0;
+    for (std::size_t t = 0; t < points.tiles.size(); ++t) {
+      for (std::size_t m = 0; m < moving; ++m) {
+        Point& p = points.tiles[t][existing + m];
+        const Point target = p + step.displacement[t][m];
+        const Point moved{clamp_coordinate(target.x, options.edge_margin), clamp_coordinate(target.y, options.edge_margin)};
+        const Point d = moved - p;
+        const double distance = std::sqrt(d.x * d.x + d.y * d.y);
+        log.max_displacement = std::max(log.max_displacement, distance);
+        moved_sum += distance;
+        p = moved;
+      }
+    }
+    log.mean_displacement = moved_sum / static_cast<double>(moving * points.tiles.size());
+    if (options.on_iteration) options.on_iteration(log);
+  }
+
+  const std::vector<std::vector<std::uint32_t>> order = rank_level(configurations, points.tiles, existing);
+  for (std::size_t t = 0; t < set.tiles.size(); ++t) {
+    Tile& tile = set.tiles[t];
+    for (std::uint32_t k : order[t]) {
+      tile.ranks.push_back(static_cast<std::uint32_t>(tile.points.size()));
+      tile.points.push_back(points.tiles[t][k]);
+      tile.levels.push_back(level);
+    }
+  }
+}
+
+TileSet relax_wang_tiles(CentroidEngine& engine, const WangOptions& options) {
+  if (options.points == 0) throw Error("a tile needs at least one point");
+  if (options.levels < 1) throw Error("a set needs at least one level");
+  if (options.levels > 1 && !(options.ratio > 1.0))
+    throw Error("--ratio must be above 1, got " + std::to_string(options.ratio));
+  TileSet set = empty_tile_set(options.kind);
+  std::size_t total = 0;
+  for (int l = 0; l < options.levels; ++l) {
+    WangLevelOptions level = options.level;
+    level.add = l == 0 ? options.points : level_size(total, 0, options.ratio);
+    if (level.add == 0)
+      throw Error("--ratio " + std::to_string(options.ratio) + " adds no point to tiles of " + std::to_string(total) +
+                  " (level " + std::to_string(l) + ")");
+    level.seed = derive_seed(options.seed, static_cast<std::uint64_t>(l));
+    add_wang_level(engine, set, level);
+    total += level.add;
+  }
+  return set;
+}
+
+}  // namespace bluetile

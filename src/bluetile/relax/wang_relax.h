@@ -1,0 +1,65 @@
+// Wang-tile sample sets: Lloyd relaxation with multiple edge constraints (Hiller, Deussen, Keller
+// 2001, section 3). Every tile of a set holds a point set; the sets are relaxed together, each
+// point moving by the mean of its Lloyd displacements over the configurations of neighbouring
+// tiles its tile can be placed in (wang_step.h), so that any two tiles whose edges fit sit side by
+// side without a seam. Jacobi steps; a point never leaves its own tile square.
+//
+// Levels (hierarchical sets that tile): level 0 is relaxed as above; each further level adds
+// points to every tile, relaxed around the fixed earlier levels of its own tile and of its
+// neighbours, under the same constraints. Every point gets a level and a rank, its place in the
+// tile's progressive order (wang_ranks.h). Points are stored in rank order.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+
+#include "bluetile/relax/wang_step.h"
+#include "bluetile/tiling/tile_set.h"
+
+namespace bluetile {
+
+struct WangIteration {
+  int level = 0;
+  int iteration = 0;       // 1-based; warm-start iterations come first, counted in `warm`
+  bool warm = false;       // a periodic iteration of each tile alone
+  double max_displacement = 0.0;   // tile units
+  double mean_displacement = 0.0;
+  double energy = 0.0;     // sum of mean cell second moments (constrained) or of second moments (warm)
+  std::size_t scenes = 0, cells = 0, regrown = 0;
+};
+
+struct WangLevelOptions {
+  std::size_t add = 0;        // points each tile gains in this level (>= 1)
+  int iterations = 25;        // constrained iterations
+  int warm_iterations = 10;   // periodic iterations of each tile alone before them (0: none)
+  WangStrategy strategy = WangStrategy::exact;
+  int period = 16;            // instances: torus tiling size
+  std::uint64_t seed = 1;     // this level's seed (placement, instances, rounds)
+  // Points are kept this far inside their tile square (tile units; 0: anywhere in [0,1)).
+  double edge_margin = 0.0;
+  std::function<void(const WangIteration&)> on_iteration;
+};
+
+// An empty set of `kind`: every tile with its colours and no points.
+TileSet empty_tile_set(TileSetKind kind);
+
+// Adds one level to every tile of `set` (all tiles must have the same number of points): places
+// options.add new points per tile, relaxes them, ranks them after the existing points, and appends
+// them in rank order. Existing points, levels and ranks stay bit for bit.
+void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions& options);
+
+struct WangOptions {
+  TileSetKind kind = TileSetKind::wang8;
+  std::size_t points = 52;  // points per tile in level 0
+  int levels = 1;
+  double ratio = 2.0;       // each further level brings a tile's count to round(ratio * count)
+  std::uint64_t seed = 1;
+  // Iterations, strategy, margin and callback of every level (add and seed are set per level).
+  WangLevelOptions level;
+};
+
+// A whole set: level 0, then levels 1 .. levels-1. The seed of level l is derive_seed(seed, l), so
+// a set with more levels starts with the same points as one with fewer.
+TileSet relax_wang_tiles(CentroidEngine& engine, const WangOptions& options);
+
+}  // namespace bluetile
