@@ -40,6 +40,7 @@ struct WangCommandOptions {
   std::uint64_t seed = 1;
   std::string output;
   bool check = false;
+  bool verbose = false;
   EngineOptions engine;
 };
 
@@ -119,6 +120,12 @@ void run_wang(const WangCommandOptions& o) {
   Progress progress("wang", static_cast<long long>(o.levels) * (o.warm + o.iterations));
   w.level.on_iteration = [&](const WangIteration& it) {
     long long done = static_cast<long long>(it.level) * (o.warm + o.iterations) + (it.warm ? 0 : o.warm) + it.iteration;
+    if (o.verbose) {
+      progress.finish();
+      std::fprintf(stderr, "level %d %s %d: max displacement %.3e, mean %.3e, energy %.9e, %zu scenes, %zu cells, %zu regrown\n",
+                   it.level, it.warm ? "warm iteration" : "iteration", it.iteration, it.max_displacement,
+                   it.mean_displacement, it.energy, it.scenes, it.cells, it.regrown);
+    }
     progress.update(done, "level " + std::to_string(it.level) + (it.warm ? " warm start" : "") + ", max displacement " +
                               fixed(it.max_displacement, 6));
   };
@@ -291,6 +298,7 @@ void add_wang_command(CLI::App& app) {
   cmd->add_option("-s,--seed", o->seed, "Seed")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "Output tile-set file")->required();
   cmd->add_flag("--check", o->check, "Print the seam check of the result");
+  cmd->add_flag("-v,--verbose", o->verbose, "Print displacement, energy and scene counts of every iteration on stderr");
   add_engine_options(cmd, o->engine);
   cmd->callback([o] { run_wang(*o); });
 

@@ -16,10 +16,12 @@
 namespace bluetile {
 namespace {
 
-// A first reach, before any cell was measured: a little above twice the cell radius of a
-// fairly irregular set (the hexagonal cell's radius is 0.58 spacings); cells that need more are
-// regrown.
-constexpr double kFirstReachSpacings = 2.5;
+// A first reach, before any cell was measured in a block: twice the radius of the point's cell
+// in its tile alone (the tile as a torus), with this much room for the larger cells some
+// configurations give near edges; cells that need more are regrown.
+constexpr double kFirstReachMargin = 1.25;
+// No reach below this many hexagonal spacings: a coincident site reports no cell radius.
+constexpr double kMinReachSpacings = 0.5;
 // The next step's reach: twice the largest cell radius seen, with this much room for cells
 // that grow as their neighbours move, plus twice the point's own move.
 constexpr double kReachMargin = 1.1;
@@ -167,10 +169,12 @@ void measure_cropped(CentroidEngine& engine, BlockConfigurations& configurations
       }
     }
   }
+  const double min_reach = kMinReachSpacings * hexagonal_spacing(static_cast<double>(points.tiles[0].size()));
   for (std::size_t t = 0; t < tile_count; ++t) {
     for (std::size_t m = 0; m < moving; ++m) {
       const Point d = step.displacement[t][m];
-      reach.reach[t][m] = 2.0 * step.cell_radius[t][m] * kReachMargin + 2.0 * std::sqrt(d.x * d.x + d.y * d.y);
+      reach.reach[t][m] =
+          std::max(min_reach, 2.0 * step.cell_radius[t][m] * kReachMargin + 2.0 * std::sqrt(d.x * d.x + d.y * d.y));
     }
   }
 }
@@ -248,8 +252,22 @@ WangStep measure_wang_step(CentroidEngine& engine, BlockConfigurations& configur
   }
   const std::size_t moving = points.moving_count();
   if (reach.reach.size() != points.tiles.size() || reach.reach[0].size() != moving) {
-    const double first = kFirstReachSpacings * hexagonal_spacing(static_cast<double>(points.tiles[0].size()));
-    reach.reach.assign(points.tiles.size(), std::vector<double>(moving, first));
+    const double min_reach = kMinReachSpacings * hexagonal_spacing(static_cast<double>(points.tiles[0].size()));
+    std::vector<Scene> alone;
+    for (const std::vector<Point>& tile : points.tiles) {
+      Scene scene = make_scene(tile);
+      scene.wanted_begin = points.moving_begin;
+      alone.push_back(std::move(scene));
+    }
+    std::vector<SceneCells> cells(alone.size());
+    engine.compute(alone, cells);
+    reach.reach.assign(points.tiles.size(), std::vector<double>(moving, 0.0));
+    for (std::size_t t = 0; t < alone.size(); ++t) {
+      for (std::size_t m = 0; m < moving; ++m) {
+        check_cell(cells[t].cells[m], engine);
+        reach.reach[t][m] = std::max(min_reach, 2.0 * kFirstReachMargin * cells[t].cells[m].radius);
+      }
+    }
   }
   measure_cropped(engine, configurations, points, options, reach, step);
   return step;
