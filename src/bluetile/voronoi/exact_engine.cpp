@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "bluetile/core/parallel.h"
+#include "bluetile/voronoi/density_moments.h"
 
 namespace bluetile {
 namespace {
@@ -133,13 +134,18 @@ class CellBuilder {
  public:
   CellBuilder() : polygon_(kInitialCapacity), scratch_(kInitialCapacity), side_(kInitialCapacity) {}
 
-  void reset(Point half_size) {
-    polygon_[0] = {{-half_size.x, -half_size.y}, kOwnCopy};
-    polygon_[1] = {{half_size.x, -half_size.y}, kOwnCopy};
-    polygon_[2] = {{half_size.x, half_size.y}, kOwnCopy};
-    polygon_[3] = {{-half_size.x, half_size.y}, kOwnCopy};
+  // Starts from the rectangle [low, high] (relative to the site, which it contains).
+  void reset(Point low, Point high) {
+    polygon_[0] = {{low.x, low.y}, kOwnCopy};
+    polygon_[1] = {{high.x, low.y}, kOwnCopy};
+    polygon_[2] = {{high.x, high.y}, kOwnCopy};
+    polygon_[3] = {{low.x, high.y}, kOwnCopy};
     size_ = 4;
-    max_radius_squared_ = half_size.x * half_size.x + half_size.y * half_size.y;
+    max_radius_squared_ = 0.0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      const Point p = polygon_[i].p;
+      max_radius_squared_ = std::max(max_radius_squared_, p.x * p.x + p.y * p.y);
+    }
   }
 
   // Keeps the part of the cell closer to the site (origin) than to d: x.d <= |d|^2 / 2.
@@ -226,17 +232,33 @@ struct Candidate {
   std::uint32_t site;
 };
 
+bool inside_grid(const PeriodicGrid& grid, long bx, long by) {
+  return bx >= 0 && by >= 0 && bx < grid.columns() && by < grid.rows();
+}
+
+// The first polygon of a cell, relative to its site: on a torus the W x H rectangle centred on
+// the site (no point is farther than half a period from the nearest copy of the site along
+// either axis); in a bounded domain the domain itself.
+void start_cell(const Scene& scene, Point origin, CellBuilder& builder) {
+  if (scene.periodic()) {
+    builder.reset(-0.5 * scene.domain.size, 0.5 * scene.domain.size);
+  } else {
+    builder.reset(-origin, scene.domain.size - origin);
+  }
+}
+
 // The fallback search: square rings of buckets around the site's bucket until the ring's inner
 // distance reaches twice the cell radius. Returns false for a coincident site.
 bool build_cell_by_rings(const Scene& scene, const PeriodicGrid& grid, std::uint32_t site, CellBuilder& builder,
                 std::vector<Candidate>& candidates) {
   const Point origin = scene.sites[site];
   const Point cell = grid.cell_size();
-  builder.reset(0.5 * scene.domain.size);
+  start_cell(scene, origin, builder);
   auto [cx, cy] = grid.bucket_coordinates(origin);
   bool coincident = false;
 
   auto gather = [&](long bx, long by) {
+    if (!scene.periodic() && !inside_grid(grid, bx, by)) return;  // no copies beyond a bounded domain
     grid.for_each_in_bucket(bx, by, origin, [&](std::uint32_t other, Point d) {
       if (d.x == 0.0 && d.y == 0.0) {
         if (other < site) coincident = true;
@@ -272,6 +294,10 @@ bool build_cell_by_rings(const Scene& scene, const PeriodicGrid& grid, std::uint
                              origin.y - static_cast<double>(cy - ring) * cell.y,
                              static_cast<double>(cy + ring + 1) * cell.y - origin.y});
     if (reach > 0.0 && reach * reach >= 4.0 * builder.max_radius_squared()) break;
+    // A bounded domain has nothing beyond the grid: once the ring holds all of it, every site was seen.
+    if (!scene.periodic() && cx - ring <= 0 && cy - ring <= 0 && cx + ring >= grid.columns() - 1 &&
+        cy + ring >= grid.rows() - 1)
+      break;
     long next = ring + 1;
     for (long dx = -next; dx <= next; ++dx) {
       gather(cx + dx, cy - next);
@@ -295,7 +321,7 @@ bool build_cell(const Scene& scene, const PeriodicGrid& grid, std::uint32_t site
                 std::vector<Candidate>& candidates) {
   const Point origin = scene.sites[site];
   const Point cell = grid.cell_size();
-  builder.reset(0.5 * scene.domain.size);
+  start_cell(scene, origin, builder);
   auto [cx, cy] = grid.bucket_coordinates(origin);
   // The site's place inside its bucket, for the exact distance to each bucket visited.
   const Point local{origin.x - static_cast<double>(cx) * cell.x, origin.y - static_cast<double>(cy) * cell.y};
@@ -318,13 +344,31 @@ bool build_cell(const Scene& scene, const PeriodicGrid& grid, std::uint32_t site
                       : step.dy < 0 ? local.y - static_cast<double>(step.dy + 1) * cell.y
                                     : 0.0;
     if (gx * gx + gy * gy >= reach_squared) continue;
+    if (!scene.periodic() && !inside_grid(grid, cx + step.dx, cy + step.dy)) continue;
     grid.for_each_in_bucket(cx + step.dx, cy + step.dy, origin, visit);
     if (coincident) return false;
   }
   return build_cell_by_rings(scene, grid, site, builder, candidates);
 }
 
-Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const CellBuilder& builder) {
+// How a scene's density weights its cells: not at all (no density, or a constant one, whose
+// weights cancel in the centroid), or texel by texel.
+struct Weighting {
+  const DensityGrid* texels = nullptr;  // non-null: a varying density
+  double constant = 1.0;                // otherwise: the density everywhere
+
+  explicit Weighting(const Scene& scene) {
+    if (!scene.density) return;
+    if (is_uniform(*scene.density)) {
+      constant = scene.density->texels.front();
+    } else {
+      texels = scene.density.get();
+    }
+  }
+};
+
+Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const CellBuilder& builder,
+                  const Weighting& weighting) {
   Cell cell;
   const Point origin = scene.sites[site];
   if (coincident) {
@@ -334,7 +378,27 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   }
   Point offset;
   builder.measure(cell.area, offset, cell.second_moment);
-  cell.centroid = wrap_point(origin + offset, scene.domain);
+  cell.mass = cell.area;
+  if (weighting.texels) {
+    thread_local std::vector<Point> polygon;
+    polygon.clear();
+    for (const Vertex& v : builder.polygon()) polygon.push_back(v.p);
+    WeightedMoments m = density_moments(polygon, origin, *weighting.texels, scene.domain.size, scene.periodic());
+    cell.mass = m.mass;
+    cell.second_moment = m.second;
+    offset = m.mass > 0.0 ? m.first / m.mass : Point{0.0, 0.0};
+  } else if (weighting.constant != 1.0) {
+    cell.mass = weighting.constant * cell.area;
+    cell.second_moment *= weighting.constant;
+  }
+  if (!(cell.mass > 0.0) && cell.area > 0.0) {
+    // No density anywhere in the cell: nothing pulls the site, it stays.
+    cell.mass = 0.0;
+    cell.centroid = origin;
+    cell.status = CellStatus::zero_density;
+    return cell;
+  }
+  cell.centroid = scene_point(scene, origin + offset);
   return cell;
 }
 
@@ -343,8 +407,11 @@ void compute_scene(const Scene& scene, SceneCells& out, bool parallel_inside) {
   out.cells.assign(scene.wanted_count(), Cell{});
   out.coincident_count = 0;
   out.fallback_count = 0;
+  out.zero_density_count = 0;
   if (scene.wanted_count() == 0) return;
+  check_density(scene);
   PeriodicGrid grid(scene);
+  const Weighting weighting(scene);
 
   auto run_buckets = [&](std::size_t begin, std::size_t end) {
     CellBuilder builder;
@@ -354,7 +421,7 @@ void compute_scene(const Scene& scene, SceneCells& out, bool parallel_inside) {
       for (std::uint32_t site : grid.sites_in_bucket(b)) {
         if (site < scene.wanted_begin || site >= scene.wanted_end) continue;
         bool complete = build_cell(scene, grid, site, builder, candidates);
-        out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, builder);
+        out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, builder, weighting);
       }
     }
   };
@@ -363,10 +430,19 @@ void compute_scene(const Scene& scene, SceneCells& out, bool parallel_inside) {
   } else {
     run_buckets(0, grid.bucket_count());
   }
-  for (const Cell& c : out.cells) out.coincident_count += c.status == CellStatus::coincident;
+  for (const Cell& c : out.cells) {
+    out.coincident_count += c.status == CellStatus::coincident;
+    out.zero_density_count += c.status == CellStatus::zero_density;
+  }
 }
 
 }  // namespace
+
+Point scene_point(const Scene& scene, Point p) {
+  if (scene.periodic()) return wrap_point(p, scene.domain);
+  auto inside = [](double x, double size) { return std::clamp(x, 0.0, std::nextafter(size, 0.0)); };
+  return {inside(p.x, scene.domain.size.x), inside(p.y, scene.domain.size.y)};
+}
 
 Scene make_scene(std::vector<Point> sites, Domain domain) {
   Scene scene;
@@ -419,6 +495,7 @@ std::vector<std::size_t> exact_cell_neighbours(const Scene& scene, std::size_t s
     const Vertex& v = polygon[i];
     const Vertex& w = polygon[(i + 1) % polygon.size()];
     if (v.p == w.p) continue;  // degenerate edge left by a tie
+    if (v.edge_site == kOwnCopy && !scene.periodic()) continue;  // the domain's border
     neighbours.push_back(v.edge_site == kOwnCopy ? site : v.edge_site);
   }
   std::sort(neighbours.begin(), neighbours.end());
