@@ -15,6 +15,7 @@
 #include "bluetile/sampling/density_sampling.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "test_support.h"
+#include "xml_support.h"
 
 namespace bluetile {
 namespace {
@@ -72,9 +73,18 @@ TEST(Stipple, DrawsThePictureIntoPointsSvgAndPng) {
     }
   EXPECT_NEAR(static_cast<double>(left), 400 * mass_left / mass, 12.0);
   EXPECT_NEAR(static_cast<double>(in_square), 400 * mass_square / mass, 8.0);
-  const std::string svg = read_text(dir.file("dots.svg"));
-  EXPECT_EQ(static_cast<std::size_t>(std::count(svg.begin(), svg.end(), '\n')), 400u + 5u);
-  EXPECT_NE(svg.find("viewBox=\"0 0 1 0.75\""), std::string::npos);
+  // The SVG: one disc per dot, y flipped to SVG's down (read back with expat).
+  std::string error;
+  auto svg = test::parse_xml(read_text(dir.file("dots.svg")), &error);
+  ASSERT_TRUE(svg) << error;
+  EXPECT_EQ(svg->attributes.at("viewBox"), "0 0 1 0.75");
+  const auto circles = svg->find_all("circle");
+  ASSERT_EQ(circles.size(), 400u);
+  const auto group = svg->find_all("g");
+  ASSERT_EQ(group.size(), 1u);
+  EXPECT_EQ(group[0]->attributes.at("transform"), "matrix(1 0 0 -1 0 0.75)");
+  EXPECT_NEAR(circles[7]->number("cx"), dots.points[7].x, 1e-6);
+  EXPECT_NEAR(circles[7]->number("cy"), dots.points[7].y, 1e-6);
   const Canvas png = read_image(dir.file("dots.png"));
   EXPECT_EQ(png.width(), 256);
   EXPECT_EQ(png.height(), 192);

@@ -7,17 +7,16 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
-#include <sstream>
 
 #include "cli/commands.h"
 #include "cli/density_options.h"
 #include "cli/engine_options.h"
 #include "cli/relax_log.h"
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/io/image.h"
+#include "bluetile/io/svg.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/sampling/density_sampling.h"
 
@@ -56,17 +55,16 @@ double default_dot_radius(const DensityGrid& map, const Domain& domain, std::siz
   return 0.5 * hexagonal_spacing(static_cast<double>(count) * peak / map.mean(), domain.area());
 }
 
-std::string svg_of_dots(const std::vector<Point>& points, const Domain& domain, double radius) {
-  std::ostringstream svg;
-  svg.precision(9);
-  // Domain units, y flipped: SVG's y points down, the plane's up.
-  svg << "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 " << domain.size.x << ' ' << domain.size.y
-      << "\" width=\"" << 1000.0 * domain.size.x << "\" height=\"" << 1000.0 * domain.size.y << "\">\n"
-      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n<g fill=\"black\">\n";
-  for (const Point& p : points)
-    svg << "<circle cx=\"" << p.x << "\" cy=\"" << domain.size.y - p.y << "\" r=\"" << radius << "\"/>\n";
-  svg << "</g>\n</svg>\n";
-  return svg.str();
+// The drawing in domain units, y up, one black disc per dot on white.
+void write_svg(const std::string& path, const std::vector<Point>& points, const Domain& domain, double radius) {
+  const Point size = domain.size;
+  SvgDocument svg(0.0, 0.0, size.x, size.y, 1000.0 * size.x, 1000.0 * size.y, "px");
+  svg.set_title("bluetile stipple");
+  svg.rect(0.0, 0.0, size.x, size.y, SvgStyle::filled(colours::white));
+  svg.begin_group(SvgStyle::filled(colours::black), SvgTransform::fit_y_up(0.0, 0.0, size.x, size.y, 0.0, 0.0, size.x, size.y));
+  for (const Point& p : points) svg.circle(p, radius);
+  svg.end_group();
+  svg.write(path);
 }
 
 void write_render(const std::string& path, const std::vector<Point>& points, const Domain& domain, double radius,
@@ -104,7 +102,7 @@ void run_stipple(const StippleOptions& o) {
           o.image,
       std::string("domain ") + size + (o.periodic ? ", periodic" : ", bounded") + " (y up: image row 0 at the top)"};
   write_point_file(o.output, PointSet{scene.sites, {}}, header);
-  if (!o.svg.empty()) write_text_atomically(o.svg, svg_of_dots(scene.sites, domain, radius));
+  if (!o.svg.empty()) write_svg(o.svg, scene.sites, domain, radius);
   if (!o.png.empty()) write_render(o.png, scene.sites, domain, radius, o.png_width);
   log.finish(result, o.log, o.tolerance, o.iterations);
 }
