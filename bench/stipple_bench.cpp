@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdio>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -17,7 +18,9 @@
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/sampling/density_sampling.h"
 #include "bluetile/voronoi/exact_engine.h"
+#if BLUETILE_BENCH_RASTER
 #include "bluetile/voronoi/raster_engine.h"
+#endif
 
 using namespace bluetile;
 
@@ -48,7 +51,13 @@ DensityGrid bench_density(const std::string& image, int texels) {
 }
 
 std::unique_ptr<CentroidEngine> make(const std::string& name) {
-  if (name == "raster") return std::make_unique<RasterEngine>(RasterOptions{});
+  if (name == "raster") {
+#if BLUETILE_BENCH_RASTER
+    return std::make_unique<RasterEngine>(RasterOptions{});
+#else
+    throw std::runtime_error("this build has no raster engine");
+#endif
+  }
   return std::make_unique<ExactEngine>();
 }
 
