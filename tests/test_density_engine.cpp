@@ -20,6 +20,8 @@
 namespace bluetile {
 namespace {
 
+using test::error_of;
+
 std::shared_ptr<DensityGrid> random_density(int width, int height, std::uint64_t seed, double zero_fraction = 0.0) {
   Rng rng(seed);
   auto grid = std::make_shared<DensityGrid>(width, height);
@@ -50,15 +52,6 @@ double max_centroid_error(const Scene& scene, const SceneCells& cells) {
     worst = std::max(worst, scene_distance(scene, ref, cells.cells[i].centroid));
   }
   return worst;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(DensityMoments, PolygonsAgainstClippingByEveryTexel) {

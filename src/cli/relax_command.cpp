@@ -90,11 +90,7 @@ void run_relax(const RelaxOptions& o) {
 
   auto engine = make_engine(o.engine);
   RelaxLog log("relax", o.iterations, o.verbose);
-  LloydOptions lloyd;
-  lloyd.iterations = o.iterations;
-  lloyd.tolerance = o.tolerance;
-  lloyd.on_iteration = [&](const LloydIteration& it) { log.record(it); };
-  LloydResult result = relax_lloyd(*engine, scenes, lloyd);
+  LloydResult result = relax_lloyd(*engine, scenes, log.lloyd_options(o.iterations, o.tolerance));
 
   std::vector<std::string> header = {
       "bluetile relax: " + std::to_string(n) + " points, " + std::to_string(result.history.size()) +

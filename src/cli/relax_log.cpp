@@ -12,6 +12,14 @@ RelaxLog::RelaxLog(std::string label, int iterations, bool verbose)
   csv_.precision(17);
 }
 
+LloydOptions RelaxLog::lloyd_options(int iterations, double tolerance) {
+  LloydOptions options;
+  options.iterations = iterations;
+  options.tolerance = tolerance;
+  options.on_iteration = [this](const LloydIteration& it) { record(it); };
+  return options;
+}
+
 void RelaxLog::record(const LloydIteration& it) {
   csv_ << it.iteration << ',' << it.energy << ',' << it.max_displacement << ',' << it.mean_displacement << ','
        << it.coincident << ',' << it.fallbacks << ',' << it.zero_density << '\n';

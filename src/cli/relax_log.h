@@ -14,7 +14,8 @@ class RelaxLog {
  public:
   RelaxLog(std::string label, int iterations, bool verbose);
 
-  // For LloydOptions::on_iteration.
+  // Lloyd options that record every iteration here.
+  LloydOptions lloyd_options(int iterations, double tolerance);
   void record(const LloydIteration& it);
   // Ends the progress line; writes the CSV to `path` unless it is empty; warns on stderr about
   // sites that did not move (coincident, no density) and a tolerance not reached.

@@ -87,11 +87,7 @@ void run_stipple(const StippleOptions& o) {
 
   auto engine = make_engine(o.engine);
   RelaxLog log("stipple", o.iterations, o.verbose);
-  LloydOptions lloyd;
-  lloyd.iterations = o.iterations;
-  lloyd.tolerance = o.tolerance;
-  lloyd.on_iteration = [&](const LloydIteration& it) { log.record(it); };
-  LloydResult result = relax_lloyd(*engine, scene, lloyd);
+  LloydResult result = relax_lloyd(*engine, scene, log.lloyd_options(o.iterations, o.tolerance));
 
   const double radius = o.dot_radius > 0.0 ? o.dot_radius : default_dot_radius(*map, domain, count);
   char size[64];
