@@ -161,7 +161,7 @@ std::vector<std::vector<Point>> brute_force(const TileRules& rules, const WangPo
     for (std::size_t s = 0; s < scenes.size(); ++s) {
       for (std::size_t m = 0; m < moving; ++m)
         sum[static_cast<std::size_t>(centre)][m] +=
-            lloyd_displacement(scenes[s].sites[m], cells[s].cells[m], scenes[s].domain);
+            lloyd_displacement(scenes[s], scenes[s].sites[m], cells[s].cells[m]);
       count[static_cast<std::size_t>(centre)] += 1.0;
     }
   }

@@ -5,6 +5,13 @@
 
 namespace bluetile {
 
+DensityGrid weight_for_point_density(const DensityGrid& target, double exponent) {
+  DensityGrid weight = target;
+  if (exponent == 1.0) return weight;
+  for (float& t : weight.texels) t = exponent == 2.0 ? t * t : static_cast<float>(std::pow(static_cast<double>(t), exponent));
+  return weight;
+}
+
 LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneCells> cells) {
   LloydIteration log;
   std::size_t moving = 0;
@@ -14,10 +21,11 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
     moving += scene.wanted_count();
     log.coincident += cells[k].coincident_count;
     log.fallbacks += cells[k].fallback_count;
+    log.zero_density += cells[k].zero_density_count;
     for (std::size_t i = 0; i < scene.wanted_count(); ++i) {
       const Cell& cell = cells[k].cells[i];
       Point& site = scene.sites[scene.wanted_begin + i];
-      Point d = lloyd_displacement(site, cell, scene.domain);
+      Point d = lloyd_displacement(scene, site, cell);
       double moved = std::sqrt(d.x * d.x + d.y * d.y);
       log.energy += cell.second_moment;
       log.max_displacement = std::max(log.max_displacement, moved);

@@ -145,7 +145,7 @@ void measure_cropped(CentroidEngine& engine, BlockConfigurations& configurations
             sums[i].needed_reach = std::max(sums[i].needed_reach, 2.0 * cell.radius * kReachMargin);
             continue;
           }
-          sums[i].add(lloyd_displacement(scene.sites[i], cell, scene.domain), cell, w);
+          sums[i].add(lloyd_displacement(scene, scene.sites[i], cell), cell, w);
         }
       }
       for (std::size_t i = 0; i < sums.size(); ++i) {
@@ -215,7 +215,7 @@ void measure_instances(CentroidEngine& engine, const BlockConfigurations& config
     const std::size_t t = static_cast<std::size_t>(cell_tile[c]);
     for (std::size_t m = 0; m < moving; ++m) {
       const std::size_t i = c * moving + m;
-      sums[t][m].add(lloyd_displacement(scene.sites[i], cells.cells[i], scene.domain), cells.cells[i], 1.0);
+      sums[t][m].add(lloyd_displacement(scene, scene.sites[i], cells.cells[i]), cells.cells[i], 1.0);
     }
   }
   for (std::size_t t = 0; t < points.tiles.size(); ++t) {
