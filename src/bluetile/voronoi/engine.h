@@ -43,6 +43,9 @@ struct Cell {
   Point centroid;            // inside the domain, wrapped
   double area = 0.0;         // cell area
   double second_moment = 0.0;  // integral of |x - site|^2 over the cell (its Lloyd energy)
+  // Distance from the site to the farthest point of its cell (exact engine: exactly; raster
+  // engine: its farthest owned sample plus a pixel diagonal). Loops may pass it on as a hint.
+  double radius = 0.0;
   CellStatus status = CellStatus::ok;
 };
 

@@ -136,6 +136,7 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   cell.area = moments.area();
   cell.second_moment = moments.second_moment();
   cell.centroid = wrap_point(origin + moments.centroid(), scene.domain);
+  cell.radius = std::sqrt(cell_polygon.max_radius_squared());
   return cell;
 }
 
