@@ -66,6 +66,7 @@ void assemble_cells(const RasterScene& scene, std::span<const gpu::SiteSums> sum
       ++out.fallback_count;
     }
     cell.area = area;
+    cell.mass = area;
     cell.second_moment = m2;
     cell.centroid = area > 0.0 ? wrap_point(site + Point{mx / area, my / area}, s.domain) : site;
   }
