@@ -79,9 +79,10 @@ struct Cell {
   double area = 0.0;           // cell area (geometric, whatever the density)
   double mass = 0.0;           // integral of rho over the cell (the area when there is no density)
   double second_moment = 0.0;  // integral of rho |x - site|^2 over the cell (its Lloyd energy)
-  // Distance from the site to the cell's farthest vertex; 0 when the engine does not know it.
-  // No site farther than 2 radius from the site can touch the cell, which is how a cropped
-  // scene proves a cell complete.
+  // Distance from the site to the farthest point of its cell (exact engine: exactly; raster
+  // engine: its farthest owned sample plus a pixel diagonal); 0 when unknown. No site farther
+  // than 2 radius from the site can touch the cell, which is how a cropped scene proves a cell
+  // complete (Wang-tile loop); loops may also pass it on as a hint.
   double radius = 0.0;
   CellStatus status = CellStatus::ok;
 };
