@@ -176,7 +176,6 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   cell.mass = cell.area;
   cell.radius = std::sqrt(cell_polygon.max_radius_squared());
   cell.second_moment = moments.second_moment();
-  cell.radius = std::sqrt(cell_polygon.max_radius_squared());
   Point offset = moments.centroid();
   if (weighting.texels) {
     thread_local std::vector<Point> polygon;
