@@ -235,8 +235,13 @@ TEST(Summary, PrefixesOfALeveledSet) {
   EXPECT_NEAR(result[0].summary.nn.min, 0.25, 1e-15);
   EXPECT_NEAR(result[1].summary.nn.min, 0.25 / std::sqrt(2.0), 1e-15);
   EXPECT_NEAR(result[2].summary.nn.min, 0.125, 1e-15);
-  // One F for all prefixes: the full set's, 2 floor(5 sqrt(64)) = 80.
-  for (const auto& l : result) EXPECT_EQ(l.summary.periodogram.size, 80);
+  // Each prefix at its natural F = 2 floor(5 sqrt(N)): 40, 56, 80; or one F when asked.
+  EXPECT_EQ(result[0].summary.periodogram.size, 40);
+  EXPECT_EQ(result[1].summary.periodogram.size, 56);
+  EXPECT_EQ(result[2].summary.periodogram.size, 80);
+  o.size = 80;
+  for (const auto& l : summarize_levels(points, levels, o)) EXPECT_EQ(l.summary.periodogram.size, 80);
+  o.size = 0;
   // The 4x4 lattice has its power at multiples of 4 only.
   EXPECT_NEAR(result[0].summary.periodogram.at(4, 0), 16.0, 1e-9);
   EXPECT_LT(result[0].summary.periodogram.at(2, 0), 1e-20);

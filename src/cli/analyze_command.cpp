@@ -89,6 +89,11 @@ nlohmann::json summary_json(const Summary& s) {
     j["mean_centroid_distance"] = s.centroid_distance;
     j["mean_centroid_distance_relative"] = s.centroid_distance / h;
   }
+  j["rho"] = s.nn.rho();
+  j["average_min_distance"] = s.nn.rho_mean();
+  j["nu_eff"] = s.measures.nu_eff;
+  j["omega"] = s.measures.omega;
+  if (s.has_bond_order) j["bond_order"] = {{"local", s.bond_order.local}, {"global", s.bond_order.global}};
   j["periodogram_size"] = s.periodogram.size;
   nlohmann::json f = nlohmann::json::array(), p = nlohmann::json::array(), a = nlohmann::json::array(),
                  c = nlohmann::json::array();

@@ -12,6 +12,10 @@ namespace bluetile {
 
 using Point = glm::dvec2;
 
+// How a point set's distances are measured: on the torus (the default: sets made with periodic
+// boundaries tile), or in the plain unit square with edges (a set made in a bounded square).
+enum class Boundary { periodic, bounded };
+
 // A periodic rectangle [0, size.x) x [0, size.y).
 struct Domain {
   Point size{1.0, 1.0};

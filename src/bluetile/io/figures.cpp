@@ -29,10 +29,10 @@ Canvas draw_points(const PointsFigure& figure, int size) {
   };
 
   if (figure.cells && n > 0) {
-    Scene scene = make_scene(figure.points);
+    const std::vector<std::vector<Point>> polygons = exact_cell_polygons(make_scene(figure.points));
     const Colour cell_colour{0.55f, 0.65f, 0.80f};
     for (std::size_t i = 0; i < n; ++i) {
-      std::vector<Point> polygon = exact_cell_polygon(scene, i);
+      const std::vector<Point>& polygon = polygons[i];
       double reach = 0.0;
       for (const Point& v : polygon) reach = std::max(reach, std::max(std::abs(v.x), std::abs(v.y)));
       for_copies(figure.points[i], reach, [&](Point site) {
