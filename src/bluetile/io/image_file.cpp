@@ -1,7 +1,6 @@
 #include "bluetile/io/image_file.h"
 
 #include <cstdlib>
-#include <filesystem>
 #include <mutex>
 
 #include <dlfcn.h>
@@ -18,17 +17,13 @@ struct Plugin {
   bluetile_oiio_read_fn read = nullptr;
 };
 
-// Where the module may be: BLUETILE_OIIO_PLUGIN, beside the running program (the build folder,
-// or an install's bin/), its ../lib, then the loader's own search path.
+// Where the module may be: BLUETILE_OIIO_PLUGIN, else by bare name, which the dynamic loader
+// looks up in the RUNPATH of the object holding this code: the program when the library is
+// linked statically, libbluetile_images.so when shared. Linking bluetile::images (CMake, in a
+// build tree or installed) or bluetile-images (pkg-config) puts the plugin's folder there.
 std::vector<std::string> plugin_candidates() {
   std::vector<std::string> paths;
   if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) paths.push_back(env);
-  std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    paths.push_back((exe.parent_path() / BLUETILE_OIIO_PLUGIN_NAME).string());
-    paths.push_back((exe.parent_path().parent_path() / "lib" / BLUETILE_OIIO_PLUGIN_NAME).string());
-  }
   paths.push_back(BLUETILE_OIIO_PLUGIN_NAME);
   return paths;
 }
@@ -51,7 +46,8 @@ const Plugin& plugin() {
       tried += "\n  " + path + ": not a bluetile OpenImageIO plugin";
     }
     failure = "cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME
-              " (it is built beside the bluetile binary; BLUETILE_OIIO_PLUGIN names another):" + tried;
+              " (a program linked to bluetile::images finds it through its RUNPATH;"
+              " BLUETILE_OIIO_PLUGIN names the file):" + tried;
   });
   if (!loaded.write) throw Error(failure);
   return loaded;
