@@ -210,14 +210,14 @@ std::vector<Point> exact_cell_polygon(const Scene& scene, std::size_t site) {
 }
 
 std::vector<std::vector<Point>> exact_cell_polygons(const Scene& scene) {
-  PeriodicGrid grid(scene);
+  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
   std::vector<std::vector<Point>> polygons(scene.sites.size());
   parallel_for(polygons.size(), 256, [&](std::size_t begin, std::size_t end) {
-    CellBuilder builder;
+    ConvexPolygon cell_polygon;
     std::vector<Candidate> candidates;
     for (std::size_t site = begin; site < end; ++site) {
-      if (!build_cell(scene, grid, static_cast<std::uint32_t>(site), builder, candidates)) continue;
-      for (const Vertex& v : builder.polygon()) polygons[site].push_back(v.p);
+      if (!build_cell(scene, grid, static_cast<std::uint32_t>(site), cell_polygon, candidates)) continue;
+      for (const PolygonVertex& v : cell_polygon.vertices()) polygons[site].push_back(v.p);
     }
   });
   return polygons;
