@@ -10,6 +10,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/voronoi/site_grid.h"
 
 namespace bluetile {
 namespace {
@@ -47,21 +48,11 @@ RadialDistribution radial_distribution(std::span<const Point> points, const RdfO
   if (bins > 1000000) throw Error("too many RDF bins (at most 1000000)");
   rdf.bin_width = range / static_cast<double>(bins);
 
-  // Buckets at least `range` wide: every pair closer than the range lies in neighbouring ones.
-  const long columns = std::clamp<long>(static_cast<long>(width / range), 1, 4096);
-  const long rows = std::clamp<long>(static_cast<long>(height / range), 1, 4096);
-  // On a torus narrower than 3 buckets the neighbours of a bucket repeat: visit every bucket.
-  const bool all_buckets = periodic && (columns < 3 || rows < 3);
-  const Point bucket_size{width / static_cast<double>(columns), height / static_cast<double>(rows)};
-  auto bucket_x = [&](double x) { return std::clamp<long>(static_cast<long>(x / bucket_size.x), 0, columns - 1); };
-  auto bucket_y = [&](double y) { return std::clamp<long>(static_cast<long>(y / bucket_size.y), 0, rows - 1); };
-  std::vector<std::uint32_t> start(static_cast<std::size_t>(columns * rows) + 1, 0), order(n);
-  for (const Point& p : points) ++start[static_cast<std::size_t>(bucket_y(p.y) * columns + bucket_x(p.x)) + 1];
-  for (std::size_t b = 1; b < start.size(); ++b) start[b] += start[b - 1];
-  std::vector<std::uint32_t> fill(start.begin(), start.end() - 1);
-  for (std::size_t i = 0; i < n; ++i)
-    order[fill[static_cast<std::size_t>(bucket_y(points[i].y) * columns + bucket_x(points[i].x))]++] =
-        static_cast<std::uint32_t>(i);
+  // Buckets about `range` wide: the pairs within the range of a point lie in its neighbours.
+  std::vector<Point> inside(points.begin(), points.end());
+  for (Point& p : inside) p = wrap_point(p, domain);  // bounded ones were checked above
+  const double per_bucket = std::max(1.0, static_cast<double>(n) * range * range / rdf.area);
+  const SiteGrid grid(inside, domain, per_bucket);
 
   const std::size_t block_points = std::max(kBlockPoints, (n + kMaxBlocks - 1) / kMaxBlocks);
   const std::size_t blocks = (n + block_points - 1) / block_points;
@@ -72,36 +63,18 @@ RadialDistribution radial_distribution(std::span<const Point> points, const RdfO
       std::vector<double>& histogram = partial[block];
       const std::size_t first = block * block_points, last = std::min(n, first + block_points);
       for (std::size_t i = first; i < last; ++i) {
-        const Point p = points[i];
-        auto visit_bucket = [&](std::size_t b) {
-          for (std::uint32_t s = start[b]; s < start[b + 1]; ++s) {
-            const std::uint32_t j = order[s];
-            if (j == i) continue;
-            Point d = periodic ? torus_offset(p, points[j], domain) : points[j] - p;
-            const double r2 = d.x * d.x + d.y * d.y;
-            if (r2 >= range_squared) continue;
-            auto bin = static_cast<std::size_t>(std::sqrt(r2) / rdf.bin_width);
-            if (bin >= bins) continue;  // r just below the range, rounded up
-            histogram[bin] += periodic ? 1.0 : (width * height) / ((width - std::abs(d.x)) * (height - std::abs(d.y)));
-          }
-        };
-        if (all_buckets) {
-          for (std::size_t b = 0; b + 1 < start.size(); ++b) visit_bucket(b);
-          continue;
-        }
-        const long cx = bucket_x(p.x), cy = bucket_y(p.y);
-        for (long dy = -1; dy <= 1; ++dy) {
-          for (long dx = -1; dx <= 1; ++dx) {
-            long bx = cx + dx, by = cy + dy;
-            if (periodic) {
-              bx = (bx + columns) % columns;
-              by = (by + rows) % rows;
-            } else if (bx < 0 || by < 0 || bx >= columns || by >= rows) {
-              continue;
-            }
-            visit_bucket(static_cast<std::size_t>(by * columns + bx));
-          }
-        }
+        const Point p = inside[i];
+        // On the torus the grid visits every copy once; a bounded set ignores the wrap-around
+        // buckets it also visits, by measuring plain distances.
+        grid.for_each_near(p, range, [&](std::uint32_t j) {
+          if (j == i) return;
+          const Point d = periodic ? torus_offset(p, inside[j], domain) : inside[j] - p;
+          const double r2 = d.x * d.x + d.y * d.y;
+          if (r2 >= range_squared) return;
+          const auto bin = static_cast<std::size_t>(std::sqrt(r2) / rdf.bin_width);
+          if (bin >= bins) return;  // r just below the range, rounded up
+          histogram[bin] += periodic ? 1.0 : (width * height) / ((width - std::abs(d.x)) * (height - std::abs(d.y)));
+        });
       }
     }
   });
