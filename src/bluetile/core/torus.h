@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include <glm/vec2.hpp>
 
@@ -12,9 +13,14 @@ namespace bluetile {
 
 using Point = glm::dvec2;
 
-// How a point set's distances are measured: on the torus (the default: sets made with periodic
-// boundaries tile), or in the plain unit square with edges (a set made in a bounded square).
-enum class Boundary { periodic, bounded };
+// The domain's boundary, for cells and for distances: periodic (opposite sides identified, the
+// paper's setting: cells wrap around, distances are taken on the torus, sets tile), or bounded
+// (the closed rectangle: cells are clipped by its border, distances are plain Euclidean ones,
+// no periodic images; a set made in a bounded square).
+enum class Boundary : std::uint8_t {
+  periodic,
+  bounded,
+};
 
 // A periodic rectangle [0, size.x) x [0, size.y).
 struct Domain {
