@@ -5,6 +5,7 @@
 //        [--iterations 50] [--repeats 3] [--engines exact,raster]
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
@@ -61,17 +62,30 @@ std::unique_ptr<CentroidEngine> make(const std::string& name) {
   return std::make_unique<ExactEngine>();
 }
 
-double seconds_for(CentroidEngine& engine, Scene scene, int iterations) {
+// Wall-clock and CPU seconds (all threads) of one run. On a shared machine the CPU time is the
+// steadier figure; both are reported.
+struct Timing {
+  double wall = 0.0, cpu = 0.0;
+};
+
+Timing time_run(CentroidEngine& engine, Scene scene, int iterations) {
   LloydOptions options;
   options.iterations = iterations;
   const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
   relax_lloyd(engine, scene, options);
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+          static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC};
 }
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
+Timing median(std::vector<Timing> v) {
+  auto middle = [&](auto field) {
+    std::vector<double> x;
+    for (const Timing& t : v) x.push_back(t.*field);
+    std::sort(x.begin(), x.end());
+    return x[x.size() / 2];
+  };
+  return {middle(&Timing::wall), middle(&Timing::cpu)};
 }
 
 }  // namespace
@@ -93,7 +107,8 @@ int main(int argc, char** argv) {
   auto density = std::make_shared<DensityGrid>(bench_density(image, texels));
   std::printf("density %d x %d texels from %s, %d iterations, median of %d interleaved repeats\n\n", texels, texels,
               image.empty() ? "a procedural picture" : image.c_str(), iterations, repeats);
-  std::printf("| engine | N | stipple (weighted, bounded) s | unweighted bounded s | unweighted periodic s | "
+  std::printf("Seconds for the whole run, wall clock (CPU time of all threads in brackets).\n\n");
+  std::printf("| engine | N | stipple (weighted, bounded) | unweighted bounded | unweighted periodic | "
               "stipple / unweighted bounded | stipple / unweighted periodic |\n|---|---|---|---|---|---|---|\n");
   for (const std::string& name : engines) {
     for (long long n : counts) {
@@ -109,20 +124,22 @@ int main(int argc, char** argv) {
       Scene bounded = make_scene(uniform);
       bounded.boundary = Boundary::bounded;
       Scene periodic = make_scene(uniform);
-      std::vector<double> t_stipple, t_bounded, t_periodic;
+      std::vector<Timing> t_stipple, t_bounded, t_periodic;
       try {
         auto engine = make(name);
         for (int r = 0; r < repeats; ++r) {
-          t_stipple.push_back(seconds_for(*engine, stipple, iterations));
-          t_bounded.push_back(seconds_for(*engine, bounded, iterations));
-          t_periodic.push_back(seconds_for(*engine, periodic, iterations));
+          t_stipple.push_back(time_run(*engine, stipple, iterations));
+          t_bounded.push_back(time_run(*engine, bounded, iterations));
+          t_periodic.push_back(time_run(*engine, periodic, iterations));
         }
       } catch (const std::exception& e) {
         std::printf("| %s | %lld | %s | | | | |\n", name.c_str(), n, e.what());
         continue;
       }
-      const double s = median(t_stipple), b = median(t_bounded), p = median(t_periodic);
-      std::printf("| %s | %lld | %.3f | %.3f | %.3f | %.2f | %.2f |\n", name.c_str(), n, s, b, p, s / b, s / p);
+      const Timing s = median(t_stipple), b = median(t_bounded), p = median(t_periodic);
+      std::printf("| %s | %lld | %.3f (%.3f) | %.3f (%.3f) | %.3f (%.3f) | %.2f (%.2f) | %.2f (%.2f) |\n", name.c_str(), n,
+                  s.wall, s.cpu, b.wall, b.cpu, p.wall, p.cpu, s.wall / b.wall, s.cpu / b.cpu, s.wall / p.wall,
+                  s.cpu / p.cpu);
       std::fflush(stdout);
     }
   }

@@ -30,35 +30,52 @@ struct Sums {
   double s0 = 0.0, sx = 0.0, sy = 0.0, s2 = 0.0;
 };
 
-// One texel column of the polygon's bounding box while its edges are integrated.
+// What one row of texels of the polygon's bounding box contributes, the same for every column:
+// its bottom line V (relative to the origin), where its texels start in the grid, and the
+// integrals over its height h of 1, v and v^2 (h, h (V0 + V1) / 2, h (V0^2 + V0 V1 + V1^2) / 3).
+struct Row {
+  double line;
+  std::size_t offset;
+  double k0, k1, k2;
+};
+
+// The texel columns of the polygon's bounding box while its edges are integrated.
 class ColumnIntegrator {
  public:
-  ColumnIntegrator(const DensityGrid& density, Point origin, Point texel, long row_begin, long row_end, bool periodic)
+  ColumnIntegrator(const DensityGrid& density, Point origin, Point texel, long row_begin, long row_end, bool periodic,
+                   std::vector<Row>& rows, std::vector<double>& below)
       : density_(density), origin_(origin), texel_(texel), row_begin_(row_begin), row_end_(row_end),
-        periodic_(periodic) {}
-
-  double row_line(long r) const { return static_cast<double>(r) * texel_.y - origin_.y; }
+        periodic_(periodic), rows_(rows), below_(below) {
+    const std::size_t count = static_cast<std::size_t>(row_end - row_begin + 1);
+    rows_.resize(count + 1);
+    for (std::size_t r = 0; r <= count; ++r) {
+      const long row = row_begin + static_cast<long>(r);
+      rows_[r].line = static_cast<double>(row) * texel.y - origin.y;
+      rows_[r].offset = static_cast<std::size_t>(index(row, density.height)) * static_cast<std::size_t>(density.width);
+    }
+    for (std::size_t r = 0; r < count; ++r) {
+      const double v0 = rows_[r].line, v1 = rows_[r + 1].line, h = v1 - v0;
+      rows_[r].k0 = h;
+      rows_[r].k1 = h * 0.5 * (v0 + v1);
+      rows_[r].k2 = h * (v0 * v0 + v0 * v1 + v1 * v1) * kThird;
+    }
+    below_.resize(3 * count);
+  }
 
   // Prepares the full-texel sums of column i below each row of the box.
-  void start_column(long i, std::vector<double>& below) {
-    column_ = index(i, density_.width);
-    const std::size_t rows = static_cast<std::size_t>(row_end_ - row_begin_ + 1);
-    below.resize(3 * rows);
+  void start_column(long i) {
+    column_ = density_.texels.data() + index(i, density_.width);
     double k0 = 0.0, k1 = 0.0, k2 = 0.0;
-    double v0 = row_line(row_begin_);
-    for (std::size_t r = 0; r < rows; ++r) {
+    double* below = below_.data();
+    for (std::size_t r = 0; r + 1 < rows_.size(); ++r) {
       below[3 * r] = k0;
       below[3 * r + 1] = k1;
       below[3 * r + 2] = k2;
-      const double v1 = row_line(row_begin_ + static_cast<long>(r) + 1);
-      const double rho = density_.at(column_, index(row_begin_ + static_cast<long>(r), density_.height));
-      const double h = v1 - v0;
-      k0 += rho * h;
-      k1 += rho * h * 0.5 * (v0 + v1);
-      k2 += rho * h * (v0 * v0 + v0 * v1 + v1 * v1) / 3.0;
-      v0 = v1;
+      const double rho = column_[rows_[r].offset];
+      k0 += rho * rows_[r].k0;
+      k1 += rho * rows_[r].k1;
+      k2 += rho * rows_[r].k2;
     }
-    below_ = below.data();
   }
 
   // Adds the integral of G du along the segment (u1, v1) -> (u2, v2), which lies in the column.
@@ -72,7 +89,7 @@ class ColumnIntegrator {
     const double du_dv = (u2 - u1) / (v2 - v1);
     double pu = u1, pv = v1;
     for (long r = r1; r != r2; r += step) {
-      const double line = row_line(step > 0 ? r + 1 : r);
+      const double line = rows_[static_cast<std::size_t>(step > 0 ? r + 1 : r)].line;
       const double qu = u1 + (line - v1) * du_dv;
       piece(pu, pv, qu, line, r, sums);
       pu = qu;
@@ -82,30 +99,35 @@ class ColumnIntegrator {
   }
 
  private:
-  // A texel index of the grid: wrapped on a torus, clamped (against rounding) in a rectangle.
+  static constexpr double kThird = 1.0 / 3.0;
+
+  // A texel index of the grid: wrapped on a torus (the box reaches at most one period beyond
+  // it), clamped (against rounding) in a rectangle.
   int index(long i, int size) const {
     if (!periodic_) return static_cast<int>(std::clamp<long>(i, 0, size - 1));
     long m = i % size;
     return static_cast<int>(m < 0 ? m + size : m);
   }
 
+  // The row of the box (0-based) holding height v.
   long row_of(double v) const {
     const long r = static_cast<long>(std::floor((origin_.y + v) / texel_.y));
-    return std::clamp(r, row_begin_, row_end_);
+    return std::clamp(r, row_begin_, row_end_) - row_begin_;
   }
 
-  // Simpson's rule on a piece inside texel row r: exact for G's cubic along a straight piece.
+  // Simpson's rule on a piece inside the box's texel row r: exact for G's cubic along a straight piece.
   void piece(double pu, double pv, double qu, double qv, long r, Sums& sums) const {
-    const double rho = density_.at(column_, index(r, density_.height));
-    const double base = row_line(r);
-    const double* k = below_ + 3 * (r - row_begin_);
+    const Row& row = rows_[static_cast<std::size_t>(r)];
+    const double rho = column_[row.offset];
+    const double base = row.line;
+    const double* k = below_.data() + 3 * r;
     auto add = [&](double u, double v, double weight) {
       const double d = v - base;
       const double g0 = k[0] + rho * d;
       sums.s0 += weight * g0;
       sums.sx += weight * u * g0;
       sums.sy += weight * (k[1] + rho * d * 0.5 * (v + base));
-      sums.s2 += weight * (u * u * g0 + k[2] + rho * d * (v * v + v * base + base * base) / 3.0);
+      sums.s2 += weight * (u * u * g0 + k[2] + rho * d * (v * v + v * base + base * base) * kThird);
     };
     const double w = (qu - pu) / 6.0;
     add(pu, pv, w);
@@ -117,8 +139,9 @@ class ColumnIntegrator {
   Point origin_, texel_;
   long row_begin_, row_end_;
   bool periodic_;
-  int column_ = 0;
-  const double* below_ = nullptr;
+  std::vector<Row>& rows_;      // the box's rows and the line above its last
+  std::vector<double>& below_;  // per row of the current column: the sums of its full texels below
+  const float* column_ = nullptr;
 };
 
 }  // namespace
@@ -138,8 +161,9 @@ WeightedMoments density_moments(std::span<const Point> polygon, Point origin, co
   const long column_begin = texel_of(origin.x + lo.x, texel.x), column_end = texel_of(origin.x + hi.x, texel.x);
   const long row_begin = texel_of(origin.y + lo.y, texel.y), row_end = texel_of(origin.y + hi.y, texel.y);
 
+  thread_local std::vector<Row> rows;
   thread_local std::vector<double> below;
-  ColumnIntegrator integrator(density, origin, texel, row_begin, row_end, periodic);
+  ColumnIntegrator integrator(density, origin, texel, row_begin, row_end, periodic, rows, below);
   Sums sums;
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   for (long i = column_begin; i <= column_end; ++i) {
@@ -153,7 +177,7 @@ WeightedMoments density_moments(std::span<const Point> polygon, Point origin, co
       const double from = std::max(std::min(a.x, b.x), left), to = std::min(std::max(a.x, b.x), right);
       if (!(from < to)) continue;
       if (!started) {
-        integrator.start_column(i, below);
+        integrator.start_column(i);
         started = true;
       }
       const bool rightwards = a.x < b.x;
