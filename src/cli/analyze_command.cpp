@@ -18,6 +18,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/tiling/tiled_output.h"
 #include "bluetile/io/figures.h"
 
 namespace bluetile::cli {
@@ -48,6 +49,23 @@ struct Series {
   PointSet first;  // drawn in points.png
   Summary summary;
 };
+
+// The tile boundaries inside the unit square, for points written by `bluetile tile --normalize`.
+void tile_grid_lines(const TileGrid& grid, PointsFigure& figure) {
+  // More lines than this would grey the picture out; a tiling that fine shows no tiles anyway.
+  constexpr double kMaxLines = 256.0;
+  if (1.0 / grid.spacing.x > kMaxLines || 1.0 / grid.spacing.y > kMaxLines) return;
+  for (double k = std::ceil(-grid.origin.x / grid.spacing.x);; k += 1.0) {
+    double x = grid.origin.x + k * grid.spacing.x;
+    if (x > 1.0) break;
+    figure.grid_x.push_back(x);
+  }
+  for (double k = std::ceil(-grid.origin.y / grid.spacing.y);; k += 1.0) {
+    double y = grid.origin.y + k * grid.spacing.y;
+    if (y > 1.0) break;
+    figure.grid_y.push_back(y);
+  }
+}
 
 std::vector<PointSet> read_sets(const std::string& path) {
   std::error_code ec;
@@ -247,6 +265,7 @@ void run_analyze(const AnalyzeOptions& o) {
       figure.from = from;
     }
     figure.cells = o.cells;
+    if (std::optional<TileGrid> grid = read_tile_grid(s.input)) tile_grid_lines(*grid, figure);
     const bool several = series.size() > 1;
     point_images.push_back(draw_points(figure, several ? o.image_size * 2 / 3 : o.image_size));
     spectrum_images.push_back(draw_spectrum(s.summary.periodogram, several ? 512 : 1024, several ? 384 : 512));

@@ -19,6 +19,9 @@ struct PointsFigure {
   std::vector<int> levels;    // empty, or one per point: level 0 as dots, later levels as crosses
   bool cells = false;         // draw each site's periodic Voronoi cell
   std::vector<Point> from;    // empty, or one per point: draw the move from there (on the torus)
+  // Tile boundaries (points from `bluetile tile`), drawn as thin lines: x and y of the lines
+  // inside the unit square.
+  std::vector<double> grid_x, grid_y;
 };
 
 // A square image of `size` pixels, y up, the unit square framed.
