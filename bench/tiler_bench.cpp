@@ -22,6 +22,7 @@
 #include "bluetile/core/parallel.h"
 #include "bluetile/tiling/default_tile_set.h"
 #include "bluetile/tiling/density_thinning.h"
+#include "bluetile/tiling/tiled_drawing.h"
 #include "bluetile/tiling/tiler.h"
 
 namespace bluetile {
@@ -278,6 +279,48 @@ void ramp(const TileSet& set, double count, std::uint64_t seed) {
               static_cast<double>(rho.size()) / static_cast<double>(points.size()));
 }
 
+// Dynamic range: density from 1 down to 1/range across the window's width, log-linear; count
+// error over 16 strips (each a factor range^(1/16) apart) and, with `image`, a render.
+void dynamic_range(const TileSet& set, double range, const std::string& image) {
+  const int texels = 2048;
+  std::vector<float> ramp_texels(static_cast<std::size_t>(texels) * 2);
+  for (int r = 0; r < 2; ++r)
+    for (int c = 0; c < texels; ++c)
+      ramp_texels[static_cast<std::size_t>(r * texels + c)] = static_cast<float>(std::pow(range, -(c + 0.5) / texels));
+  double n = 0.0;
+  for (const Tile& t : set.tiles) n += static_cast<double>(t.points.size());
+  n /= static_cast<double>(set.tiles.size());
+  const Window w{0.0, 0.0, 64.0, 8.0};
+  Tiler tiler(set, 1, 4.0);
+  Thinning map = Thinning::from_map(texels, 2, ramp_texels, w, 1.0);
+  std::vector<Point> points;
+  tiler.append_points(w, &map, points);
+  const double max_density = tiler.full_density();
+  // The map's density at x (bilinear between texel centres: log-linear is approximated by linear
+  // pieces one texel wide), integrated per strip by Simpson's rule on texel-wide steps.
+  auto density = [&](double x) { return max_density * map.fraction_at({x, 4.0}); };
+  const int strips = 16;
+  std::vector<double> counted(strips, 0.0);
+  for (Point p : points) counted[std::min(strips - 1, static_cast<int>(p.x / w.width() * strips))] += 1.0;
+  std::printf("\nDynamic range %.0f:1 (density max %.4g to %.4g per unit area over [0, 64) x [0, 8), tile size 4, "
+              "%.0f points per tile): %zu points\n\n| strip | density (start) | expected | counted | error |\n"
+              "|---|---|---|---|---|\n",
+              range, max_density, max_density / range, n, points.size());
+  for (int s = 0; s < strips; ++s) {
+    double a = w.width() * s / strips, b = w.width() * (s + 1) / strips;
+    const int steps = 4096;
+    double h = (b - a) / steps, sum = density(a) + density(b);
+    for (int k = 1; k < steps; ++k) sum += density(a + k * h) * (k % 2 == 1 ? 4.0 : 2.0);
+    double expected = sum * h / 3.0 * w.height();
+    std::printf("| %d | %.4g | %.1f | %.0f | %+.2f %% |\n", s, density(a), expected, counted[s],
+                100.0 * (counted[s] - expected) / expected);
+  }
+  if (!image.empty()) {
+    DotStyle style{1.5 * default_dot_radius(max_density), false};
+    write_image(image, render_dots(tiler, w, &map, style, 2048));
+  }
+}
+
 }  // namespace
 }  // namespace bluetile
 
@@ -288,6 +331,10 @@ int main(int argc, char** argv) {
   std::vector<double> counts = {1e4, 1e5, 1e6};
   std::vector<std::uint64_t> seeds = {1, 2, 3, 4};
   bool run_throughput = false, run_ramp = false;
+  double range = 0.0;
+  std::string range_image;
+  app.add_option("--range", range, "Dynamic range check: density from 1 down to 1/R across a window");
+  app.add_option("--range-image", range_image, "With --range: a PNG render of it");
   app.add_option("--tiles", tiles, "Tile-set file (default: the built-in set)");
   app.add_option("--repeats", repeats, "Interleaved timed repeats")->capture_default_str();
   app.add_option("--counts", counts, "Ramp: expected point counts")->capture_default_str();
@@ -295,9 +342,10 @@ int main(int argc, char** argv) {
   app.add_flag("--throughput", run_throughput, "Points per second and density tests per second");
   app.add_flag("--ramp", run_ramp, "Density control on a linear ramp");
   CLI11_PARSE(app, argc, argv);
-  if (!run_throughput && !run_ramp) run_throughput = run_ramp = true;
+  if (!run_throughput && !run_ramp && range == 0.0) run_throughput = run_ramp = true;
   bluetile::TileSet set = tiles.empty() ? bluetile::default_tile_set() : bluetile::read_tile_set(tiles);
   if (run_throughput) bluetile::throughput(set, repeats);
+  if (range > 0.0) bluetile::dynamic_range(set, range, range_image);
   if (run_ramp) {
     std::printf("\nLinear ramp, density = x over the unit square, 1024-texel map; 16 strips; local rho with borders "
                 "(2 d_hex) excluded\n\n");
