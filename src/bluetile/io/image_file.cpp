@@ -1,5 +1,7 @@
 #include "bluetile/io/image_file.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <mutex>
 
@@ -53,27 +55,53 @@ const Plugin& plugin() {
   return loaded;
 }
 
-}  // namespace
-
-void write_image_file(const std::string& path, int width, int height, int channels,
-                      const std::vector<std::uint8_t>& pixels) {
-  if (pixels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels))
+void write_samples(const std::string& path, int width, int height, int channels, int bits, const void* samples,
+                   std::size_t count) {
+  if (count != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels))
     throw Error(path + ": image size does not match its pixels");
   const Plugin& p = plugin();
   write_atomically(path, [&](const std::string& temporary) {
     char error[512];
-    if (p.write(temporary.c_str(), width, height, channels, pixels.data(), error, sizeof error) != 0)
+    if (p.write(temporary.c_str(), width, height, channels, bits, samples, error, sizeof error) != 0)
       throw Error(path + ": cannot write image: " + error);
   });
+}
+
+}  // namespace
+
+void write_image_file(const std::string& path, int width, int height, int channels,
+                      const std::vector<std::uint8_t>& pixels) {
+  write_samples(path, width, height, channels, 8, pixels.data(), pixels.size());
+}
+
+void write_image_file(const std::string& path, int width, int height, int channels, const std::vector<float>& values,
+                      SampleFormat format) {
+  if (format == SampleFormat::float32) {
+    write_samples(path, width, height, channels, 32, values.data(), values.size());
+    return;
+  }
+  const double top = format == SampleFormat::uint16 ? 65535.0 : 255.0;
+  auto quantise = [top](float v) { return std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * top); };
+  if (format == SampleFormat::uint16) {
+    std::vector<std::uint16_t> samples(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) samples[i] = static_cast<std::uint16_t>(quantise(values[i]));
+    write_samples(path, width, height, channels, 16, samples.data(), samples.size());
+  } else {
+    std::vector<std::uint8_t> samples(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) samples[i] = static_cast<std::uint8_t>(quantise(values[i]));
+    write_samples(path, width, height, channels, 8, samples.data(), samples.size());
+  }
 }
 
 ImageFile read_image_file(const std::string& path) {
   const Plugin& p = plugin();
   ImageFile image;
   float* values = nullptr;
+  int is_float = 0;
   char error[512];
-  if (p.read(path.c_str(), &image.width, &image.height, &image.channels, &values, error, sizeof error) != 0)
+  if (p.read(path.c_str(), &image.width, &image.height, &image.channels, &is_float, &values, error, sizeof error) != 0)
     throw Error(path + ": cannot read image: " + error);
+  image.floating_point = is_float != 0;
   image.values.assign(values, values + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
                                            static_cast<std::size_t>(image.channels));
   std::free(values);

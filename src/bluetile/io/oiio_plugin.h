@@ -7,11 +7,14 @@
 extern "C" {
 
 // Each returns 0 on success, or non-zero with a message in `error` (always terminated).
-typedef int (*bluetile_oiio_write_fn)(const char* path, int width, int height, int channels,
-                                      const unsigned char* pixels, char* error, size_t error_size);
-// Allocates *values with malloc; the caller frees it.
-typedef int (*bluetile_oiio_read_fn)(const char* path, int* width, int* height, int* channels, float** values,
-                                     char* error, size_t error_size);
+// `bits` names the sample type of `pixels` and of the file: 8 (unsigned char), 16 (unsigned
+// short) or 32 (float).
+typedef int (*bluetile_oiio_write_fn)(const char* path, int width, int height, int channels, int bits,
+                                      const void* pixels, char* error, size_t error_size);
+// Allocates *values with malloc; the caller frees it. *is_float tells whether the file stores
+// floating-point samples (EXR, HDR, float TIFF): integer samples come scaled to [0, 1].
+typedef int (*bluetile_oiio_read_fn)(const char* path, int* width, int* height, int* channels, int* is_float,
+                                     float** values, char* error, size_t error_size);
 }
 
 #define BLUETILE_OIIO_PLUGIN_NAME "libbluetile_oiio.so"
