@@ -4,12 +4,14 @@
 #
 #   ./setup.sh demo [DIR]   build, then relax 1000 points (80 iterations) and write the points,
 #                           images and a report to DIR (default: out/)
-#   ./setup.sh test         build, then run the whole test suite (ctest), then build it with
-#                           address + undefined sanitizers (in build-sanitize/) and run it again
+#   ./setup.sh test         build, then run the whole test suite (ctest); build the Python module
+#                           with pip into a virtual environment (build/python-venv) and run its
+#                           tests (pytest); then build the suite with address + undefined
+#                           sanitizers (in build-sanitize/) and run it again
 #   ./setup.sh build        install and build only
 #
 # Environment: BLUETILE_BUILD_DIR (default build), BLUETILE_BUILD_TYPE (default Release),
-# BLUETILE_SANITIZE=OFF skips the sanitizer pass of `test`.
+# BLUETILE_SANITIZE=OFF skips the sanitizer pass of `test`, BLUETILE_PYTHON=OFF its Python pass.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -24,6 +26,7 @@ packages=(
   libglm-dev libopenimageio-dev libcli11-dev nlohmann-json3-dev libgtest-dev
   libcairo2-dev libexpat1-dev poppler-utils
   libcgal-dev
+  python3-venv python3-dev python3-numpy python3-pytest
 )
 
 install_missing() {
@@ -59,6 +62,18 @@ run_tests() {
   ctest --test-dir "$dir" --output-on-failure -j 2
 }
 
+# The Python module the README's way (pip install . in a virtual environment), then its tests.
+# Debian's Python with its numpy and pytest (a venv that sees the system packages); the build
+# backend and the binding library come from the package index, as Debian 12 has neither.
+python_tests() {
+  local venv="$build_dir/python-venv"
+  [ -x "$venv/bin/python" ] || /usr/bin/python3 -m venv --system-site-packages "$venv"
+  "$venv/bin/pip" install -q --disable-pip-version-check "scikit-build-core>=0.10" "nanobind>=2.4"
+  # No build isolation: the build folder (build/python-*) and its objects are kept between runs.
+  "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation "$here"
+  BLUETILE_BINARY="$(cd "$build_dir" && pwd)/bluetile" "$venv/bin/python" -m pytest -q -p no:cacheprovider "$here/python/tests"
+}
+
 demo() {
   local out=${1:-out}
   mkdir -p "$out"
@@ -84,6 +99,10 @@ case "$what" in
     install_missing
     build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
     run_tests "$build_dir"
+    if [ "${BLUETILE_PYTHON:-ON}" = ON ]; then
+      echo "setup: the Python module (pip install . into $build_dir/python-venv) and its tests" >&2
+      python_tests
+    fi
     # The same tests once more with address + undefined-behaviour sanitizers.
     if [ "${BLUETILE_SANITIZE:-ON}" = ON ]; then
       echo "setup: tests under address + undefined sanitizers" >&2
