@@ -12,6 +12,8 @@
 namespace bluetile {
 namespace {
 
+using test::error_of;
+
 ImageFile grey_image(int width, int height, std::vector<float> values, bool floating_point = false) {
   ImageFile image;
   image.width = width;
@@ -20,15 +22,6 @@ ImageFile grey_image(int width, int height, std::vector<float> values, bool floa
   image.values = std::move(values);
   image.floating_point = floating_point;
   return image;
-}
-
-std::string error_of(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
 }
 
 TEST(DensityMap, SrgbCurveAtKnownValues) {

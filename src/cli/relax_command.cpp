@@ -1,16 +1,16 @@
 // bluetile relax: Lloyd relaxation of a random or given point set.
-#include <cstdio>
 #include <memory>
-#include <sstream>
 
 #include "cli/commands.h"
+#include "cli/density_options.h"
 #include "cli/engine_options.h"
-#include "cli/progress.h"
+#include "cli/relax_log.h"
 #include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
+#include "bluetile/sampling/density_sampling.h"
 
 namespace bluetile::cli {
 namespace {
@@ -27,12 +27,18 @@ struct RelaxOptions {
   std::string log;
   std::string id_image;
   bool verbose = false;
+  std::string density_map;
+  bool bounded = false;
+  DensityMapOptions transfer;
+  double weight_exponent = 2.0;
   EngineOptions engine;
 };
 
 // Set k of a batch: its own seed, so set 0 of any batch equals the single set of that seed.
-std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_t count) {
+// Uniform, or drawn in proportion to the density when there is one.
+std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_t count, const DensityGrid* density) {
   Rng rng(derive_seed(seed, set));
+  if (density) return sample_density(*density, Domain{}, count, rng);
   std::vector<Point> points(count);
   for (Point& p : points) p = rng.point(Domain{});
   return points;
@@ -48,13 +54,22 @@ std::string set_file_name(const std::string& pattern, std::size_t set, std::size
 }
 
 void run_relax(const RelaxOptions& o) {
+  // The map is stretched over the unit square, whatever its aspect ratio. Random starts follow
+  // it; the cells are weighted so that the relaxed set keeps following it.
+  std::shared_ptr<const DensityGrid> density, weight;
+  if (!o.density_map.empty()) {
+    density = std::make_shared<DensityGrid>(load_density_map(o.density_map, density_transfer(o.transfer)));
+    weight = std::make_shared<DensityGrid>(weight_for_point_density(*density, o.weight_exponent));
+  }
   std::vector<PointSet> inputs;
   if (!o.input.empty()) {
     inputs.push_back(read_point_file(o.input));
     if (inputs[0].points.empty()) throw Error(o.input + ": no points");
   } else {
     for (long long k = 0; k < o.sets; ++k)
-      inputs.push_back({random_points(o.seed, static_cast<std::size_t>(k), static_cast<std::size_t>(o.count)), {}});
+      inputs.push_back({random_points(o.seed, static_cast<std::size_t>(k), static_cast<std::size_t>(o.count),
+                                      density.get()),
+                        {}});
   }
   const std::size_t n = inputs[0].points.size();
   if (static_cast<std::size_t>(o.fixed) > n) {
@@ -68,38 +83,21 @@ void run_relax(const RelaxOptions& o) {
   for (PointSet& set : inputs) {
     Scene scene = make_scene(set.points);
     scene.wanted_begin = static_cast<std::size_t>(o.fixed);
+    scene.boundary = o.bounded ? Boundary::bounded : Boundary::periodic;
+    scene.density = weight;
     scenes.push_back(std::move(scene));
   }
 
   auto engine = make_engine(o.engine);
-  std::ostringstream log_csv;
-  log_csv << "iteration,energy,max_displacement,mean_displacement,coincident,fallbacks\n";
-  log_csv.precision(17);
-  Progress progress("relax", o.iterations);
-  LloydOptions lloyd;
-  lloyd.iterations = o.iterations;
-  lloyd.tolerance = o.tolerance;
-  lloyd.on_iteration = [&](const LloydIteration& it) {
-    log_csv << it.iteration << ',' << it.energy << ',' << it.max_displacement << ',' << it.mean_displacement
-            << ',' << it.coincident << ',' << it.fallbacks << '\n';
-    if (o.verbose) {
-      progress.finish();
-      std::fprintf(stderr, "iteration %d: energy %.9e, max displacement %.3e, mean %.3e%s\n", it.iteration,
-                   it.energy, it.max_displacement, it.mean_displacement,
-                   it.coincident ? (", " + std::to_string(it.coincident) + " coincident").c_str() : "");
-    }
-    char detail[64];
-    std::snprintf(detail, sizeof detail, "max displacement %.2e", it.max_displacement);
-    progress.update(it.iteration, detail);
-  };
-  LloydResult result = relax_lloyd(*engine, scenes, lloyd);
-  progress.finish();
+  RelaxLog log("relax", o.iterations, o.verbose);
+  LloydResult result = relax_lloyd(*engine, scenes, log.lloyd_options(o.iterations, o.tolerance));
 
   std::vector<std::string> header = {
       "bluetile relax: " + std::to_string(n) + " points, " + std::to_string(result.history.size()) +
       " iterations, engine " + std::string(engine->name()) +
       (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + o.input) +
-      (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "")};
+      (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "") +
+      (o.density_map.empty() ? "" : ", density map " + o.density_map) + (o.bounded ? ", bounded" : "")};
   if (o.sets == 1) {
     inputs[0].points = scenes[0].sites;
     write_point_file(o.output, inputs[0], header);
@@ -117,18 +115,8 @@ void run_relax(const RelaxOptions& o) {
     }
     write_text_atomically(o.output, text);
   }
-  if (!o.log.empty()) write_text_atomically(o.log, log_csv.str());
   if (!o.id_image.empty()) write_id_image(o.engine, *engine, scenes[0], o.id_image);
-
-  const LloydIteration* last = result.history.empty() ? nullptr : &result.history.back();
-  if (last && last->coincident) {
-    std::fprintf(stderr, "bluetile: warning: %zu sites coincide with another site and were not moved\n",
-                 last->coincident);
-  }
-  if (o.tolerance > 0.0 && !result.converged) {
-    std::fprintf(stderr, "bluetile: note: max displacement %.3e still above --tolerance %.3e after %d iterations\n",
-                 last ? last->max_displacement : 0.0, o.tolerance, o.iterations);
-  }
+  log.finish(result, o.log, o.tolerance, o.iterations);
 }
 
 }  // namespace
@@ -151,6 +139,13 @@ void add_relax_command(CLI::App& app) {
   cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
   cmd->add_option("--id-image", o->id_image, "Write the raster ID buffer of the result as an image (cells coloured, sites drawn)");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
+  cmd->add_option("--density-map", o->density_map,
+                  "Relax toward this image's density (bright means dense unless --invert), stretched over the unit "
+                  "square; random starts are drawn from it")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--bounded", o->bounded, "Cells end at the unit square's border instead of wrapping around");
+  add_density_transfer_options(cmd, o->transfer);
+  add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
   cmd->callback([o] {
     if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");
