@@ -21,6 +21,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/tiling/tiled_output.h"
 #include "bluetile/io/figures.h"
 #include "bluetile/io/pdf.h"
 
@@ -59,6 +60,23 @@ struct Series {
   std::size_t sets = 1;   // sets in the input (points.png shows the first)
   Summary summary;
 };
+
+// The tile boundaries inside the unit square, for points written by `bluetile tile --normalize`.
+void tile_grid_lines(const TileGrid& grid, PointsFigure& figure) {
+  // More lines than this would grey the picture out; a tiling that fine shows no tiles anyway.
+  constexpr double kMaxLines = 256.0;
+  if (1.0 / grid.spacing.x > kMaxLines || 1.0 / grid.spacing.y > kMaxLines) return;
+  for (double k = std::ceil(-grid.origin.x / grid.spacing.x);; k += 1.0) {
+    double x = grid.origin.x + k * grid.spacing.x;
+    if (x > 1.0) break;
+    figure.grid_x.push_back(x);
+  }
+  for (double k = std::ceil(-grid.origin.y / grid.spacing.y);; k += 1.0) {
+    double y = grid.origin.y + k * grid.spacing.y;
+    if (y > 1.0) break;
+    figure.grid_y.push_back(y);
+  }
+}
 
 std::string append_wrap_hint(const std::string& message) {
   if (message.find("is outside [0, 1)") == std::string::npos) return message;
@@ -393,6 +411,7 @@ void run_analyze(const AnalyzeOptions& o) {
     }
     if (s.sets > 1) figure.note = "set 1 of " + std::to_string(s.sets) + " (the analysis covers all " + std::to_string(s.sets) + ")";
     figure.cells = o.cells;
+    if (std::optional<TileGrid> grid = read_tile_grid(s.input)) tile_grid_lines(*grid, figure);
     const int size = several ? o.image_size * 2 / 3 : o.image_size;
     point_images.push_back(draw_points(figure, size));
     point_svgs.push_back(points_svg(figure, size));

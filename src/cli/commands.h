@@ -12,6 +12,7 @@ void add_dart_command(CLI::App& app);
 void add_progressive_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
 void add_wang_command(CLI::App& app);  // wang and wang-check
+void add_tile_command(CLI::App& app);
 void add_stipple_command(CLI::App& app);
 
 }  // namespace bluetile::cli

@@ -17,6 +17,7 @@ int main(int argc, char** argv) {
   bluetile::cli::add_progressive_command(app);
   bluetile::cli::add_devices_command(app);
   bluetile::cli::add_wang_command(app);
+  bluetile::cli::add_tile_command(app);
   bluetile::cli::add_stipple_command(app);
   try {
     app.parse(argc, argv);

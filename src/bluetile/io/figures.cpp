@@ -66,6 +66,9 @@ void paint_points(const PointsFigure& figure, Painter& painter, double x, double
       });
     }
   }
+  const Colour grid_colour{0.80f, 0.45f, 0.45f};
+  for (double x : figure.grid_x) painter.line(to_px({x, 0.0}), to_px({x, 1.0}), grid_colour, 1.0);
+  for (double y : figure.grid_y) painter.line(to_px({0.0, y}), to_px({1.0, y}), grid_colour, 1.0);
   // Frame of the unit square (one period).
   const Point corners[4] = {to_px({0, 0}), to_px({1, 0}), to_px({1, 1}), to_px({0, 1})};
   for (int k = 0; k < 4; ++k) painter.line(corners[k], corners[(k + 1) % 4], colours::grey, 1.0);

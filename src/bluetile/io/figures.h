@@ -27,6 +27,9 @@ struct PointsFigure {
   std::vector<Point> from;    // empty, or one per point: draw the move from there (on the torus)
   bool periodic = true;       // draw copies of marks near an edge on the opposite side too
   std::string note;           // a line under the square (what the figure shows), or empty
+  // Tile boundaries (points from `bluetile tile`), drawn as thin lines: x and y of the lines
+  // inside the unit square.
+  std::vector<double> grid_x, grid_y;
 };
 
 // The figure in the square [x, x + size] x [y, y + size] of the painter (the note below it),

@@ -1,0 +1,115 @@
+#include "bluetile/tiling/density_thinning.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bluetile/core/error.h"
+#include "bluetile/core/rng.h"
+
+namespace bluetile {
+namespace {
+
+// Keeps dithers of different cells and seeds independent of the tile-set bits (another stream).
+constexpr std::uint64_t kDitherStream = 0x6469746865720001ull;
+
+std::string number(double v) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+void check_fraction(double fraction, const char* what) {
+  if (!(fraction > 0.0 && fraction <= 1.0))
+    throw Error(std::string(what) + " must lie in (0, 1], got " + number(fraction));
+}
+
+}  // namespace
+
+Thinning Thinning::uniform(double fraction) {
+  check_fraction(fraction, "thinning fraction");
+  Thinning t;
+  t.fraction_ = fraction;
+  return t;
+}
+
+Thinning Thinning::from_map(int width, int height, std::span<const float> texels, const Window& rectangle,
+                            double max_fraction) {
+  check_fraction(max_fraction, "maximum density fraction");
+  if (width < 1 || height < 1 || texels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+    throw Error("density map: " + std::to_string(width) + " x " + std::to_string(height) + " texels but " +
+                std::to_string(texels.size()) + " values");
+  if (!(std::isfinite(rectangle.x0) && std::isfinite(rectangle.y0) && std::isfinite(rectangle.x1) &&
+        std::isfinite(rectangle.y1) && rectangle.x1 > rectangle.x0 && rectangle.y1 > rectangle.y0))
+    throw Error("density map rectangle must be finite with x1 > x0 and y1 > y0");
+  float largest = 0.0f;
+  for (std::size_t k = 0; k < texels.size(); ++k) {
+    float v = texels[k];
+    if (!(std::isfinite(v) && v >= 0.0f))
+      throw Error("density map: texel " + std::to_string(k % static_cast<std::size_t>(width)) + ", " +
+                  std::to_string(k / static_cast<std::size_t>(width)) + " is " + number(v) +
+                  " (must be finite and >= 0)");
+    largest = std::max(largest, v);
+  }
+  if (largest <= 0.0f) throw Error("density map is zero everywhere");
+  Thinning t;
+  t.fraction_ = max_fraction;
+  t.width_ = width;
+  t.height_ = height;
+  t.rectangle_ = rectangle;
+  t.grid_.resize(texels.size());
+  double scale = max_fraction / largest;
+  for (std::size_t k = 0; k < texels.size(); ++k) t.grid_[k] = static_cast<float>(texels[k] * scale);
+  // Rounding the scaled texels to float may push the largest a hair above max_fraction.
+  for (float& v : t.grid_) v = std::min(v, static_cast<float>(max_fraction));
+  return t;
+}
+
+Thinning::Map Thinning::map() const {
+  Map m;
+  m.width = width_;
+  m.height = height_;
+  m.values = grid_.data();
+  // Relative coordinate (x - x0) / w times width, minus a half: texel centres at integers.
+  m.scale_x = width_ / rectangle_.width();
+  m.offset_x = -rectangle_.x0 * m.scale_x - 0.5;
+  m.scale_y = height_ / rectangle_.height();
+  m.offset_y = -rectangle_.y0 * m.scale_y - 0.5;
+  return m;
+}
+
+double Thinning::fraction_at(Point p) const {
+  if (constant()) return fraction_;
+  return sample_map(map(), p);
+}
+
+Thinning::Bounds Thinning::fraction_bounds(const Window& box) const {
+  if (constant()) return {fraction_, fraction_};
+  Map m = map();
+  // Bilinear values between texel columns c and c+1 stay between those texels: take every column
+  // from the one left of the box's left edge to the one right of its right edge (clamped).
+  auto span = [](double lo, double hi, int count) {
+    lo = std::clamp(lo, 0.0, static_cast<double>(count - 1));
+    hi = std::clamp(hi, 0.0, static_cast<double>(count - 1));
+    int first = static_cast<int>(std::floor(lo));
+    int last = std::min(count - 1, static_cast<int>(std::floor(hi)) + 1);
+    return std::pair<int, int>(first, last);
+  };
+  auto [c0, c1] = span(box.x0 * m.scale_x + m.offset_x, box.x1 * m.scale_x + m.offset_x, width_);
+  auto [r0, r1] = span(box.y0 * m.scale_y + m.offset_y, box.y1 * m.scale_y + m.offset_y, height_);
+  float smallest = grid_[static_cast<std::size_t>(r0) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(c0)];
+  float largest = smallest;
+  for (int r = r0; r <= r1; ++r) {
+    const float* row = grid_.data() + static_cast<std::ptrdiff_t>(r) * width_;
+    for (int c = c0; c <= c1; ++c) smallest = std::min(smallest, row[c]), largest = std::max(largest, row[c]);
+  }
+  return {smallest, largest};
+}
+
+double Thinning::dither(std::int64_t i, std::int64_t j, std::uint64_t seed) {
+  std::uint64_t h = derive_seed(derive_seed(seed ^ kDitherStream, static_cast<std::uint64_t>(i)),
+                                static_cast<std::uint64_t>(j));
+  return static_cast<double>(h >> 11) * 0x1.0p-53;
+}
+
+}  // namespace bluetile

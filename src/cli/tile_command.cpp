@@ -1,0 +1,275 @@
+// bluetile tile: the points of any window of an aperiodic tiling of the plane by a tile set
+// (Hiller, Deussen, Keller 2001, section 3), at a uniform density or following a density map
+// (thinning by rank, tiling/density_thinning.h). Point files are streamed; drawings are an SVG
+// of dots and a PNG render.
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+
+#include "cli/commands.h"
+#include "cli/density_options.h"
+#include "cli/progress.h"
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/io/density_map.h"
+#include "bluetile/io/image.h"
+#include "bluetile/tiling/default_tile_set.h"
+#include "bluetile/tiling/tiled_drawing.h"
+#include "bluetile/tiling/tiled_output.h"
+#include "bluetile/tiling/tiler.h"
+
+namespace bluetile::cli {
+namespace {
+
+// Stipples a density map gets when nothing sets the density: a drawing a person recognises,
+// small enough for an SVG viewer.
+constexpr double kDefaultStippleCount = 30000.0;
+
+struct TileOptions {
+  std::string tiles;
+  std::vector<double> region;
+  double tile_size = 0.0;
+  double density = 0.0;
+  double max_density = 0.0;
+  double count = 0.0;
+  std::uint64_t seed = 1;
+  std::vector<std::string> outputs;
+  std::string columns = "x,y";
+  bool normalize = false;
+  std::string density_map;
+  DensityMapOptions transfer;
+  double dot_radius = 0.0;
+  bool dots_follow_density = false;
+  int image_size = 1024;
+  int threads = 0;
+  bool verbose = false;
+};
+
+enum class OutputKind { text, binary, svg, image };
+
+OutputKind output_kind(const std::string& path) {
+  if (path == "-") return OutputKind::text;
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (ext == ".svg") return OutputKind::svg;
+  if (ext == ".bin") return OutputKind::binary;
+  if (ext == ".png" || ext == ".tif" || ext == ".tiff" || ext == ".jpg" || ext == ".jpeg" || ext == ".exr" ||
+      ext == ".bmp")
+    return OutputKind::image;
+  return OutputKind::text;
+}
+
+std::string number(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+// CLI11's PositiveNumber names the largest double in its message; this names the rule.
+const CLI::Validator kPositive(
+    [](const std::string& text) -> std::string {
+      try {
+        std::size_t used = 0;
+        double v = std::stod(text, &used);
+        if (used == text.size() && std::isfinite(v) && v > 0.0) return {};
+      } catch (const std::exception&) {
+      }
+      return "must be a positive finite number, got '" + text + "'";
+    },
+    "POSITIVE");
+
+// The tiling, thinning and window the options describe.
+struct Plan {
+  std::unique_ptr<Tiler> tiler;
+  std::unique_ptr<Thinning> thinning;  // null: every point of every tile
+  Window window;
+  double max_density = 0.0;  // points per unit area where the density is highest
+  std::string tiles_name;
+};
+
+Plan make_plan(const TileOptions& o) {
+  Plan plan;
+  plan.window = {o.region[0], o.region[1], o.region[2], o.region[3]};
+  for (double v : o.region)
+    if (!std::isfinite(v)) throw Error("--region: coordinates must be finite, got " + number(v));
+  if (!(plan.window.x1 > plan.window.x0))
+    throw Error("--region: X1 must be greater than X0, got X0 " + number(plan.window.x0) + ", X1 " + number(plan.window.x1));
+  if (!(plan.window.y1 > plan.window.y0))
+    throw Error("--region: Y1 must be greater than Y0, got Y0 " + number(plan.window.y0) + ", Y1 " + number(plan.window.y1));
+  TileSet set = o.tiles.empty() ? default_tile_set() : read_tile_set(o.tiles);
+  plan.tiles_name = o.tiles.empty() ? std::string("default (") + kDefaultTileSetName + ")" : o.tiles;
+  double points_per_tile = 0.0;
+  for (const Tile& t : set.tiles) points_per_tile += static_cast<double>(t.points.size());
+  points_per_tile /= static_cast<double>(std::max<std::size_t>(1, set.tiles.size()));
+
+  const bool map = !o.density_map.empty();
+  if (map && o.density > 0.0) throw Error("--density is for uniform tilings; with --density-map use --max-density or --count");
+  if (!map && (o.max_density > 0.0 || o.count > 0.0)) throw Error("--max-density and --count need --density-map");
+  if (o.count > 0.0 && o.max_density > 0.0) throw Error("--count and --max-density exclude each other");
+
+  DensityGrid grid;
+  if (map) grid = load_density_map(o.density_map, density_transfer(o.transfer));
+
+  // The density where it is highest: given, from --count, or the full tiling's.
+  double tile_size = o.tile_size;
+  double target = map ? o.max_density : o.density;
+  if (map && (o.count > 0.0 || (target == 0.0 && tile_size == 0.0))) {
+    double largest = 0.0, mean = 0.0;
+    for (float v : grid.texels) largest = std::max(largest, static_cast<double>(v)), mean += v;
+    mean /= static_cast<double>(grid.texels.size());
+    double count = o.count > 0.0 ? o.count : kDefaultStippleCount;
+    // Bilinear interpolation keeps the mean of the texels up to the half-texel border: close
+    // enough to set a density by.
+    target = count / (plan.window.area() * mean / largest);
+  }
+  if (tile_size == 0.0) tile_size = target > 0.0 ? std::sqrt(points_per_tile / target) : 1.0;
+  plan.tiler = std::make_unique<Tiler>(std::move(set), o.seed, tile_size);
+  const double full = plan.tiler->full_density();
+  if (target == 0.0) target = full;
+  // A hair of rounding (sqrt then square) must not refuse the density it came from.
+  if (target > full * (1.0 + 1e-12))
+    throw Error("density " + number(target) + " is more than tiles of size " + number(tile_size) + " hold (" +
+                number(full) + " points per unit area): use a smaller --tile-size or leave it out");
+  // Within rounding of the full density: every point, no thinning.
+  double fraction = target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
+  plan.max_density = target;
+  if (map) {
+    plan.thinning = std::make_unique<Thinning>(
+        Thinning::from_map(grid.width, grid.height, grid.texels, plan.window, fraction));
+  } else if (fraction < 1.0) {
+    plan.thinning = std::make_unique<Thinning>(Thinning::uniform(fraction));
+  }
+  return plan;
+}
+
+std::vector<std::string> header_lines(const TileOptions& o, const Plan& plan, const TiledFormat& format) {
+  const Window& w = plan.window;
+  std::vector<std::string> lines;
+  lines.push_back("bluetile tile: tiles " + plan.tiles_name + " (" +
+                  std::string(tile_set_kind_name(plan.tiler->tile_set().kind)) + "), seed " + std::to_string(o.seed) +
+                  ", tile size " + number(plan.tiler->tile_size()) + ", region " + number(w.x0) + " " + number(w.y0) +
+                  " " + number(w.x1) + " " + number(w.y1) + (o.normalize ? " (normalized by its width)" : ""));
+  if (!o.density_map.empty())
+    lines.push_back("density map " + o.density_map + ", max density " + number(plan.max_density) +
+                    " points per unit area");
+  else
+    lines.push_back("density " + number(plan.max_density) + " points per unit area");
+  lines.push_back("columns " + tiled_column_names(format.columns));
+  lines.push_back(tile_grid_comment(*plan.tiler, w, o.normalize));
+  return lines;
+}
+
+void write_points(const std::string& path, const Plan& plan, const TiledFormat& format, bool verbose) {
+  Progress progress("tile", plan.tiler->cells(plan.window).rows());
+  auto on_rows = [&](std::int64_t done, std::int64_t) { progress.update(done); };
+  StreamTimes times;
+  if (path == "-") {
+    times = stream_tiled_points(*plan.tiler, plan.window, plan.thinning.get(), format, stdout, "stdout", on_rows);
+  } else {
+    write_atomically(path, [&](const std::string& temporary) {
+      std::FILE* file = std::fopen(temporary.c_str(), "wb");
+      if (file == nullptr) throw Error(path + ": cannot write: " + std::strerror(errno));
+      try {
+        times = stream_tiled_points(*plan.tiler, plan.window, plan.thinning.get(), format, file, path, on_rows);
+      } catch (...) {
+        std::fclose(file);
+        throw;
+      }
+      if (std::fclose(file) != 0) throw Error(path + ": write failed: " + std::strerror(errno));
+    });
+  }
+  progress.finish();
+  if (verbose)
+    std::fprintf(stderr, "bluetile tile: %s: %zu points, %zu bytes; generate %.3f s, format %.3f s, write %.3f s\n",
+                 path.c_str(), times.points, times.bytes, times.generate, times.format, times.write);
+}
+
+void run_tile(const TileOptions& o) {
+  if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
+  TiledFormat format;
+  format.columns = parse_tiled_columns(o.columns);
+  format.normalize = o.normalize;
+  for (std::size_t a = 0; a < o.outputs.size(); ++a)
+    for (std::size_t b = a + 1; b < o.outputs.size(); ++b)
+      if (o.outputs[a] == o.outputs[b]) throw Error("--output '" + o.outputs[a] + "' given twice");
+  if (o.normalize && o.region[2] - o.region[0] != o.region[3] - o.region[1])
+    throw Error("--normalize maps a square region onto the unit square; this region is " +
+                number(o.region[2] - o.region[0]) + " x " + number(o.region[3] - o.region[1]));
+  Plan plan = make_plan(o);
+  format.header = header_lines(o, plan, format);
+
+  DotStyle dots;
+  dots.radius = o.dot_radius > 0.0 ? o.dot_radius : default_dot_radius(plan.max_density);
+  dots.follow_density = o.dots_follow_density;
+  for (const std::string& path : o.outputs) {
+    switch (output_kind(path)) {
+      case OutputKind::text:
+      case OutputKind::binary: {
+        TiledFormat f = format;
+        f.binary = output_kind(path) == OutputKind::binary;
+        write_points(path, plan, f, o.verbose);
+        break;
+      }
+      case OutputKind::svg:
+        write_dots_svg(path, *plan.tiler, plan.window, plan.thinning.get(), dots);
+        break;
+      case OutputKind::image:
+        write_image(path, render_dots(*plan.tiler, plan.window, plan.thinning.get(), dots, o.image_size));
+        break;
+    }
+  }
+}
+
+}  // namespace
+
+void add_tile_command(CLI::App& app) {
+  auto o = std::make_shared<TileOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "tile", "Points of any window of an aperiodic tiling of the plane, uniform or following a density map");
+  cmd->add_option("--tiles", o->tiles,
+                  "Tile-set file (bluetile wang --output); default: the set built into the tool");
+  cmd->add_option("--region", o->region, "The window X0 Y0 X1 Y1 in plane units ([X0, X1) x [Y0, Y1), y up)")
+      ->expected(4)
+      ->required()
+      ->allow_extra_args(false);
+  cmd->add_option("--tile-size", o->tile_size, "Plane units per tile (default 1, or from the density)")
+      ->check(kPositive);
+  cmd->add_option("--density", o->density,
+                  "Points per unit area of a uniform tiling (with --tile-size: thinned to it by rank)")
+      ->check(kPositive);
+  cmd->add_option("--density-map", o->density_map,
+                  "Image whose values set the density (any format OpenImageIO reads), stretched over the region");
+  add_density_transfer_options(cmd, o->transfer, "Dark means dense (stippling): density 1 - luminance");
+  cmd->add_option("--max-density", o->max_density, "With --density-map: points per unit area at the densest texel")
+      ->check(kPositive);
+  cmd->add_option("--count", o->count,
+                  "With --density-map: about this many points in the region (default 30000 when neither this, "
+                  "--max-density nor --tile-size is given)")
+      ->check(kPositive);
+  cmd->add_option("-s,--seed", o->seed, "Seed of the tiling")->capture_default_str();
+  cmd->add_option("-o,--output", o->outputs,
+                  "Output, by extension: .svg dots, .png (.tif .exr ...) a render, .bin raw float64 columns, "
+                  "anything else (or - for stdout) a point file; repeat for several")
+      ->required();
+  cmd->add_option("--columns", o->columns, "Point-file columns, from x,y,i,j,tile,level,rank (i j: the cell)")
+      ->capture_default_str();
+  cmd->add_flag("--normalize", o->normalize,
+                "Write coordinates relative to the (square) region, scaled onto [0,1)^2, for `bluetile analyze`");
+  cmd->add_option("--dot-radius", o->dot_radius,
+                  "Dot radius in plane units for .svg and .png (default: dots cover 35 % where densest)")
+      ->check(kPositive);
+  cmd->add_flag("--dots-follow-density", o->dots_follow_density,
+                "Dot area proportional to the local density (radius r sqrt(density / max density))");
+  cmd->add_option("--image-size", o->image_size, "Width of .png renders in pixels")
+      ->check(CLI::Range(16, 16384))
+      ->capture_default_str();
+  cmd->add_option("--threads", o->threads, "CPU threads (default: all cores); output does not depend on it")
+      ->check(CLI::Range(1, 1024));
+  cmd->add_flag("-v,--verbose", o->verbose, "Print counts and the time split (generate, format, write) on stderr");
+  cmd->callback([o] { run_tile(*o); });
+}
+
+}  // namespace bluetile::cli

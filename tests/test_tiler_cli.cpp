@@ -1,0 +1,220 @@
+// `bluetile tile` as a user runs it: outputs against the library, determinism, density maps from
+// images, drawings, and bad input.
+#include <gtest/gtest.h>
+
+#include <charconv>
+#include <cstring>
+#include <sstream>
+
+#include "bluetile/core/point_file.h"
+#include "bluetile/io/image.h"
+#include "bluetile/io/image_file.h"
+#include "bluetile/tiling/default_tile_set.h"
+#include "bluetile/tiling/tiler.h"
+#include "test_support.h"
+#include "tiler_support.h"
+#include "xml_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::read_text;
+using test::run_bluetile;
+using test::TempDir;
+
+std::vector<std::vector<double>> data_rows(const std::string& text) {
+  std::vector<std::vector<double>> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<double> row;
+    const char* at = line.data();
+    const char* end = line.data() + line.size();
+    while (at < end) {
+      while (at < end && *at == ' ') ++at;
+      double v = 0.0;
+      auto r = std::from_chars(at, end, v);
+      if (r.ec != std::errc()) break;
+      row.push_back(v);
+      at = r.ptr;
+    }
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+std::string write_test_tiles(const TempDir& dir) {
+  std::string path = dir.file("set.tiles");
+  write_tile_set(path, test::make_test_tile_set(TileSetKind::wang8, 5, 31));
+  return path;
+}
+
+TEST(TileCommand, PointFileMatchesTheLibraryBitForBit) {
+  TempDir dir;
+  std::string tiles = write_test_tiles(dir);
+  auto r = run_bluetile({"tile", "--tiles", tiles, "--region", "-2.5", "-1", "3", "2.25", "--tile-size", "0.75",
+                         "--seed", "5", "--columns", "x,y,i,j,tile,level,rank", "-o", dir.file("out.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Tiler tiler(read_tile_set(tiles), 5, 0.75);
+  std::vector<TiledPoint> expected = tiler.tiled_points({-2.5, -1.0, 3.0, 2.25});
+  std::string text = read_text(dir.file("out.txt"));
+  EXPECT_NE(text.find("# tile grid 0 0 0.75 0.75"), std::string::npos);
+  auto rows = data_rows(text);
+  ASSERT_EQ(rows.size(), expected.size());
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), 7u);
+    const TiledPoint& p = expected[k];
+    EXPECT_EQ(rows[k], (std::vector<double>{p.position.x, p.position.y, static_cast<double>(p.i),
+                                            static_cast<double>(p.j), static_cast<double>(p.tile),
+                                            static_cast<double>(p.level), static_cast<double>(p.rank)}))
+        << "line " << k;
+  }
+}
+
+TEST(TileCommand, SameOutputWhateverTheThreadsAndTheDestination) {
+  TempDir dir;
+  std::vector<std::string> common = {"tile", "--region", "-3", "-3", "3", "3", "--density", "300", "--seed", "8"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = common;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_bluetile(args);
+  };
+  auto a = with({"--threads", "1", "-o", dir.file("a.txt"), "-o", dir.file("a.bin")});
+  auto b = with({"--threads", "2", "-o", dir.file("b.txt")});
+  auto c = with({"-o", "-"});
+  ASSERT_EQ(a.exit_code, 0) << a.err;
+  ASSERT_EQ(b.exit_code, 0) << b.err;
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  std::string text = read_text(dir.file("a.txt"));
+  EXPECT_EQ(text, read_text(dir.file("b.txt")));
+  EXPECT_EQ(text, c.out);
+  // The binary file holds the same values as little-endian float64 pairs.
+  auto rows = data_rows(text);
+  std::string bytes = read_text(dir.file("a.bin"));
+  ASSERT_EQ(bytes.size(), rows.size() * 2 * sizeof(double));
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    double xy[2];
+    std::memcpy(xy, bytes.data() + k * sizeof xy, sizeof xy);
+    EXPECT_EQ(xy[0], rows[k][0]);
+    EXPECT_EQ(xy[1], rows[k][1]);
+  }
+  // 300 points per unit area over 36: within the rank dither's spread.
+  EXPECT_NEAR(static_cast<double>(rows.size()), 300.0 * 36.0, 300.0);
+}
+
+TEST(TileCommand, NormalizedWindowIsAPointFileOnTheUnitSquare) {
+  TempDir dir;
+  auto r = run_bluetile({"tile", "--region", "1000000", "-1000001", "1000004", "-999997", "--density", "64",
+                         "--normalize", "--columns", "x,y,level", "-o", dir.file("unit.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  PointSet set = read_point_file(dir.file("unit.txt"));
+  EXPECT_NEAR(static_cast<double>(set.points.size()), 64.0 * 16.0, 64.0);
+  ASSERT_TRUE(set.has_levels());
+  std::string text = read_text(dir.file("unit.txt"));
+  for (const auto& row : data_rows(text)) {
+    EXPECT_GE(row[0], 0.0);
+    EXPECT_LT(row[0], 1.0);
+    EXPECT_GE(row[1], 0.0);
+    EXPECT_LT(row[1], 1.0);
+  }
+  EXPECT_NE(text.find("# tile grid "), std::string::npos);
+}
+
+TEST(TileCommand, DensityMapFromAnImageSetsTheCountsPerRegion) {
+  // 8 x 2 grey pixels, left half 0 (dense once inverted), right half 191/255 (linear 0.749:
+  // density 0.251 once inverted). Counts per half follow 1 : 0.251 (the bilinear step takes one
+  // texel, an eighth of the width: count only the outer three eighths of each side).
+  TempDir dir;
+  std::vector<std::uint8_t> pixels(16);
+  for (int k = 0; k < 16; ++k) pixels[static_cast<std::size_t>(k)] = k % 8 < 4 ? 0 : 191;
+  write_image_file(dir.file("map.png"), 8, 2, 1, pixels);
+  auto r = run_bluetile({"tile", "--region", "0", "0", "16", "4", "--density-map", dir.file("map.png"), "--invert",
+                         "--transfer", "linear", "--max-density", "200", "-o", dir.file("out.txt"), "-o",
+                         dir.file("out.svg"), "-o", dir.file("out.png"), "--image-size", "256"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = data_rows(read_text(dir.file("out.txt")));
+  double left = 0.0, right = 0.0;
+  for (const auto& row : rows) {
+    if (row[0] < 6.0) left += 1.0;
+    if (row[0] >= 10.0) right += 1.0;
+  }
+  EXPECT_NEAR(left, 200.0 * 24.0, 3.0 * std::sqrt(200.0 * 24.0));
+  EXPECT_NEAR(right / left, 1.0 - 191.0 / 255.0, 0.02);
+  // The drawing: one circle per point, well-formed XML.
+  std::string error;
+  auto svg = test::parse_xml(read_text(dir.file("out.svg")), &error);
+  ASSERT_TRUE(svg) << error;
+  EXPECT_EQ(svg->find_all("circle").size(), rows.size());
+  // The render: 256 x 64 pixels, darker on the dense side.
+  Canvas png = read_image(dir.file("out.png"));
+  ASSERT_EQ(png.width(), 256);
+  ASSERT_EQ(png.height(), 64);
+  double dark_left = 0.0, dark_right = 0.0;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 96; ++x) dark_left += 1.0 - png.pixel(x, y).r, dark_right += 1.0 - png.pixel(255 - x, y).r;
+  EXPECT_GT(dark_left, 2.5 * dark_right);
+}
+
+TEST(TileCommand, DefaultTileSetIsBuiltInAndValid) {
+  TileSet set = default_tile_set();
+  validate_tile_set(set);
+  EXPECT_EQ(set.tiles.size(), 8u);
+  for (const Tile& t : set.tiles) EXPECT_GE(t.points.size(), 1000u);
+  TempDir dir;
+  auto r = run_bluetile({"tile", "--region", "-1", "-1", "1", "1", "-o", dir.file("out.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Tiler tiler(set, 1, 1.0);
+  EXPECT_EQ(data_rows(read_text(dir.file("out.txt"))).size(), tiler.tiled_points({-1.0, -1.0, 1.0, 1.0}).size());
+}
+
+TEST(TileCommand, BadInputFailsWithOneLineAndWritesNothing) {
+  TempDir dir;
+  std::string tiles = write_test_tiles(dir);
+  std::string text = read_text(tiles);
+  // A duplicate rank in the third tile's points: the file fails validation at that line.
+  std::size_t at = text.find("# tile 2");
+  std::size_t line_start = text.find('\n', at) + 1;
+  std::size_t line_end = text.find('\n', line_start);
+  std::string line = text.substr(line_start, line_end - line_start);
+  std::string broken_line = line.substr(0, line.rfind(' ')) + " 0";
+  std::string broken = text.substr(0, line_start) + broken_line + text.substr(line_end);
+  std::string bad_tiles = dir.write("bad.tiles", broken);
+  std::string garbage = dir.write("garbage.png", "not an image");
+  std::string out = dir.file("out.txt");
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  std::vector<Case> cases = {
+      {{"--region", "1", "0", "0", "1"}, "X1 must be greater than X0"},
+      {{"--region", "0", "2", "1", "2"}, "Y1 must be greater than Y0"},
+      {{"--region", "0", "0", "1"}, "region"},
+      {{"--region", "0", "0", "1", "1", "--density", "0"}, "positive"},
+      {{"--region", "0", "0", "1", "1", "--density", "-5"}, "positive"},
+      {{"--region", "0", "0", "1", "1", "--tile-size", "0"}, "positive"},
+      {{"--region", "0", "0", "1", "1", "--density-map", garbage, "--max-density", "0"}, "positive"},
+      {{"--region", "0", "0", "1", "1", "--density-map", dir.file("missing.png")}, "missing.png"},
+      {{"--region", "0", "0", "1", "1", "--density-map", garbage}, "garbage.png"},
+      {{"--region", "0", "0", "1", "1", "--tiles", bad_tiles}, "bad.tiles:"},
+      {{"--region", "0", "0", "1", "1", "--tiles", dir.file("none.tiles")}, "none.tiles"},
+      {{"--region", "0", "0", "1", "1", "--tile-size", "1", "--density", "1e9"}, "more than tiles"},
+      {{"--region", "0", "0", "1", "1", "--columns", "x,y,colour"}, "unknown column 'colour'"},
+      {{"--region", "3e9", "0", "3.1e9", "1"}, "tiles from the origin"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args = {"tile"};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    args.insert(args.end(), {"-o", out});
+    auto r = run_bluetile(args);
+    EXPECT_NE(r.exit_code, 0) << c.message;
+    EXPECT_EQ(r.err.rfind("bluetile: ", 0), 0u) << r.err;
+    EXPECT_NE(r.err.find(c.message), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    auto files = dir.list();
+    EXPECT_EQ(std::find(files.begin(), files.end(), "out.txt"), files.end()) << c.message;
+    EXPECT_EQ(files.size(), 3u) << c.message;  // set.tiles, bad.tiles, garbage.png
+  }
+}
+
+}  // namespace
+}  // namespace bluetile
