@@ -18,6 +18,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/io/figures.h"
 
 namespace bluetile::cli {
@@ -52,7 +53,7 @@ struct Series {
 std::vector<PointSet> read_sets(const std::string& path) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a point file");
-  std::vector<PointSet> sets = read_point_sets(path);
+  std::vector<PointSet> sets = read_point_table(path);
   if (sets.empty()) throw Error(path + ": no points");
   for (const PointSet& s : sets) {
     if (s.points.size() < 2)
@@ -298,7 +299,7 @@ void run_analyze(const AnalyzeOptions& o) {
   if (whole.count == 1000) {
     report << "The paper (section 2, N = 1000, x1000): dart throwing min 21.64 max 33.44, Lloyd 80 iterations\n"
               "min 24.86 max 32.33. Compare minima and the ordering; its max column does not reproduce\n"
-              "(DESIGN section 5: we get about 36).\n\n";
+              "(docs/DESIGN.md, section 5: we get about 36).\n\n";
   }
   report << "written: stats.json radial.csv report.txt points.png spectrum.png radial.png\n";
 
