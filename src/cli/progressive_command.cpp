@@ -34,6 +34,7 @@ struct ProgressiveOptions {
 void run_progressive(const ProgressiveOptions& o) {
   if (!o.input.empty() && o.add == 0 && o.ratio == 0.0)
     throw Error("--input needs --add M or --ratio R: how many points to add");
+  if (o.ratio != 0.0 && o.ratio <= 1.0) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
   // The bases: the input's sets (each gets its own levels), or K empty ones.
   std::vector<PointSet> sets(static_cast<std::size_t>(o.sets));
   if (!o.input.empty()) {
