@@ -55,7 +55,9 @@ bool parse_integer(std::string_view token, long long& value) {
 // Incrementally builds one set, checking each line.
 class SetParser {
  public:
-  explicit SetParser(const std::string& name) : name_(name) {}
+  SetParser(const std::string& name, const ReadOptions& options) : name_(name), options_(options) {}
+
+  void declare(std::optional<Boundary> boundary) { set_.declared_boundary = boundary; }
 
   void data_line(std::string_view line, std::size_t number) {
     LineError fail(name_, number);
@@ -87,6 +89,13 @@ class SetParser {
         fail("level must be a non-negative integer, got '" + std::string(tokens[2]) + "'");
       set_.levels.push_back(static_cast<int>(level));
     }
+    if (!options_.wrap) {
+      for (int axis = 0; axis < 2; ++axis) {
+        if (!(p[axis] >= 0.0 && p[axis] < 1.0))
+          fail(std::string(axis == 0 ? "x" : "y") + " = " + std::string(tokens[static_cast<std::size_t>(axis)]) +
+               " is outside [0, 1)");
+      }
+    }
     set_.points.push_back(wrap_point(p, Domain{}));
   }
 
@@ -98,12 +107,17 @@ class SetParser {
                                     " points but " + std::to_string(set_.points.size()) + " follow");
     }
     PointSet result = std::move(set_);
-    *this = SetParser(name_);
+    set_ = PointSet{};
+    set_.declared_boundary = result.declared_boundary;  // a "# domain" line holds for later sets
+    levels_seen_ = false;
+    declared_count_ = 0;
+    count_line_ = 0;
     return result;
   }
 
  private:
   std::string name_;
+  ReadOptions options_;
   PointSet set_;
   bool levels_seen_ = false;
   std::size_t declared_count_ = 0;
@@ -119,7 +133,17 @@ std::string read_whole_file(const std::string& path) {
   return text.str();
 }
 
-// Calls on_line(content without comment, line number, starts_with_hash) for every line.
+// The boundary a comment declares ("domain periodic" / "domain bounded"), if it is such a line.
+std::optional<Boundary> declared_boundary(std::string_view comment) {
+  auto words = split_whitespace(comment);
+  if (words.size() != 2 || words[0] != "domain") return std::nullopt;
+  if (words[1] == "periodic") return Boundary::periodic;
+  if (words[1] == "bounded") return Boundary::bounded;
+  return std::nullopt;
+}
+
+// Calls on_line(content without comment, line number, starts_with_hash, comment text after '#')
+// for every line.
 template <typename OnLine>
 void for_each_line(const std::string& text, const std::string& name, OnLine on_line) {
   std::size_t number = 0;
@@ -133,30 +157,36 @@ void for_each_line(const std::string& text, const std::string& name, OnLine on_l
       LineError(name, number)("binary data (NUL byte): not a point file");
     std::size_t hash = line.find('#');
     bool comment_line = split_whitespace(line.substr(0, hash)).empty() && hash != std::string_view::npos;
-    on_line(line.substr(0, hash), number, comment_line);
+    on_line(line.substr(0, hash), number, comment_line,
+            hash == std::string_view::npos ? std::string_view() : line.substr(hash + 1));
     start = end + 1;
   }
 }
 
 }  // namespace
 
-PointSet parse_points(const std::string& text, const std::string& name) {
-  SetParser parser(name);
-  for_each_line(text, name, [&](std::string_view line, std::size_t number, bool) {
+PointSet parse_points(const std::string& text, const std::string& name, const ReadOptions& options) {
+  SetParser parser(name, options);
+  for_each_line(text, name, [&](std::string_view line, std::size_t number, bool comment_line, std::string_view comment) {
+    if (comment_line && parser.empty())
+      if (auto boundary = declared_boundary(comment)) parser.declare(boundary);
     parser.data_line(line, number);
   });
   return parser.finish();
 }
 
-PointSet read_point_file(const std::string& path) { return parse_points(read_whole_file(path), path); }
+PointSet read_point_file(const std::string& path, const ReadOptions& options) {
+  return parse_points(read_whole_file(path), path, options);
+}
 
-std::vector<PointSet> read_point_sets(const std::string& path) {
+std::vector<PointSet> read_point_sets(const std::string& path, const ReadOptions& options) {
   std::string text = read_whole_file(path);
   std::vector<PointSet> sets;
-  SetParser parser(path);
-  for_each_line(text, path, [&](std::string_view line, std::size_t number, bool comment_line) {
+  SetParser parser(path, options);
+  for_each_line(text, path, [&](std::string_view line, std::size_t number, bool comment_line, std::string_view comment) {
     if (comment_line) {
       if (!parser.empty()) sets.push_back(parser.finish());
+      if (auto boundary = declared_boundary(comment)) parser.declare(boundary);
       return;
     }
     parser.data_line(line, number);

@@ -282,6 +282,20 @@ std::vector<Point> exact_cell_polygon(const Scene& scene, std::size_t site) {
   return polygon;
 }
 
+std::vector<std::vector<Point>> exact_cell_polygons(const Scene& scene) {
+  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
+  std::vector<std::vector<Point>> polygons(scene.sites.size());
+  parallel_for(polygons.size(), 256, [&](std::size_t begin, std::size_t end) {
+    ConvexPolygon cell_polygon;
+    std::vector<Candidate> candidates;
+    for (std::size_t site = begin; site < end; ++site) {
+      if (!build_cell(scene, grid, static_cast<std::uint32_t>(site), cell_polygon, candidates)) continue;
+      for (const PolygonVertex& v : cell_polygon.vertices()) polygons[site].push_back(v.p);
+    }
+  });
+  return polygons;
+}
+
 std::vector<std::size_t> exact_cell_neighbours(const Scene& scene, std::size_t site) {
   SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
   ConvexPolygon cell_polygon;
