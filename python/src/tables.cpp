@@ -30,23 +30,15 @@ void save_table(const std::string& path, const AnyArray& points, std::optional<A
   }
   nb::gil_scoped_release release;
   const bluetile::TableFormat f = bluetile::table_format_for(path, format);
-  if (f == bluetile::TableFormat::text) {
-    std::string text = bluetile::format_points(bluetile::PointSet{}, comment);
-    for (std::size_t k = 0; k < sets.size(); ++k) {
-      if (sets.size() > 1) text += "# set " + std::to_string(k) + "\n";
-      text += bluetile::format_points(sets[k]);
-    }
-    bluetile::write_text_atomically(path, text);
-    return;
-  }
   bluetile::TableWriteOptions options;
   options.float32 = float32;
   options.name = name;
   options.comment = comment;
   bluetile::write_atomically(path, [&](const std::string& temporary) {
     std::ofstream out(temporary, std::ios::binary);
-    bluetile::write_table(f, bluetile::point_sets_table(sets), options, path,
-                          [&](std::string_view bytes) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
+    bluetile::write_point_table(f, sets, options, path, [&](std::string_view bytes) {
+      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    });
     out.close();
     if (!out) throw bluetile::Error(path + ": cannot write");
   });

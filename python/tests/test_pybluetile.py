@@ -31,6 +31,17 @@ def test_relax_matches_the_tool_bit_for_bit(tool, tmp_path):
     assert np.array_equal(more[:10], start[:10])
 
 
+def test_history_matches_the_log(tool, tmp_path):
+    tool("relax", "--count", 100, "--iterations", 6, "--seed", 2, "--engine", "exact", "--output", tmp_path / "p.txt",
+         "--log", tmp_path / "log.csv")
+    log = np.loadtxt(tmp_path / "log.csv", delimiter=",", skiprows=1)
+    points, history = bt.relax(count=100, iterations=6, seed=2, engine="exact", history=True)
+    assert np.array_equal(points, load_text(tmp_path / "p.txt"))
+    columns = ("iteration", "energy", "max_displacement", "mean_displacement", "coincident", "fallbacks")
+    for c, name in enumerate(columns):
+        assert np.array_equal(history[name], log[:, c]), name
+
+
 def test_raster_engine_matches_the_tool(tool, tmp_path):
     out = tmp_path / "raster.txt"
     tool("relax", "--count", 64, "--iterations", 3, "--seed", 2, "--engine", "raster", "--output", out)
@@ -46,6 +57,10 @@ def test_sets_match_the_tool(tool, tmp_path):
     assert len(from_tool) == 3
     for k in range(3):
         assert np.array_equal(sets[k], from_tool[k])
+    # The tool's .npy is NumPy's own format, the same bits.
+    tool("relax", "--count", 40, "--sets", 3, "--iterations", 5, "--seed", 4, "--engine", "exact",
+         "--output", tmp_path / "sets.npy")
+    assert np.array_equal(np.load(tmp_path / "sets.npy"), sets)
     # Set k does not depend on how many sets there are; an (K, N, 2) input relaxes each set.
     assert np.array_equal(bt.relax(count=40, iterations=5, seed=4, engine="exact"), sets[0])
     again = bt.relax(bt.random_points(40, seed=4, set=2)[None], iterations=5, engine="exact")

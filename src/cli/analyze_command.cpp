@@ -506,7 +506,7 @@ void run_analyze(const AnalyzeOptions& o) {
   if (series.back().summary.count == 1000) {
     report << "The paper (section 2, N = 1000, x1000): dart throwing min 21.64 max 33.44, Lloyd 80 iterations\n"
               "min 24.86 max 32.33. Compare minima and the ordering; its max column does not reproduce\n"
-              "(DESIGN section 5: we get about 36).\n\n";
+              "(docs/DESIGN.md, section 5: we get about 36).\n\n";
   }
   if (!o.by_level && series[0].sets > 1 && !o.compare)
     report << "points.png and points.svg show the first of the " << series[0].sets << " sets.\n";

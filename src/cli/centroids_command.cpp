@@ -1,38 +1,50 @@
-// bluetile centroids: one Lloyd step's measurements, "cx cy area" per input point in order.
+// bluetile centroids: one Lloyd step's measurements, "cx cy area" per input point in order;
+// every set of a multi-set input measured on its own and kept apart in the output.
 #include <cstdio>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/engine_options.h"
-#include "bluetile/core/atomic_file.h"
+#include "cli/point_output.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 
 namespace bluetile::cli {
 namespace {
 
 struct CentroidsOptions {
   std::string input;
-  std::string output;
+  PointOutputOptions output;
   EngineOptions engine;
 };
 
 void run_centroids(const CentroidsOptions& o) {
-  PointSet set = read_point_file(o.input);
-  if (set.points.empty()) throw Error(o.input + ": no points");
-  auto engine = make_engine(o.engine);
-  SceneCells result = engine->compute(make_scene(set.points));
+  std::vector<PointSet> sets = read_point_table(o.input);
+  if (sets.empty()) throw Error(o.input + ": no points");
+  PointOutput output(o.output, sets.size());
 
-  std::string text = "# bluetile centroids of " + o.input + ", engine " + std::string(engine->name()) + ": cx cy area\n";
-  char line[96];
-  for (const Cell& cell : result.cells) {
-    int len = std::snprintf(line, sizeof line, "%.17g %.17g %.17g\n", cell.centroid.x, cell.centroid.y, cell.area);
-    text.append(line, static_cast<std::size_t>(len));
-  }
-  write_text_atomically(o.output, text);
-  if (result.coincident_count) {
+  std::vector<Scene> scenes;
+  for (PointSet& set : sets) scenes.push_back(make_scene(std::move(set.points)));
+  auto engine = make_engine(o.engine);
+  std::vector<SceneCells> results(scenes.size());
+  engine->compute(scenes, results);
+
+  TableView table;
+  table.sets = results.size();
+  table.columns = 3;
+  table.column_names = "cx cy area";
+  table.rows = [&](std::size_t k) { return results[k].cells.size(); };
+  table.value = [&](std::size_t k, std::size_t i, std::size_t c) {
+    const Cell& cell = results[k].cells[i];
+    return c == 0 ? cell.centroid.x : c == 1 ? cell.centroid.y : cell.area;
+  };
+  output.write(table, {"bluetile centroids of " + o.input + ", engine " + std::string(engine->name()) + ": cx cy area"});
+  std::size_t coincident = 0;
+  for (const SceneCells& r : results) coincident += r.coincident_count;
+  if (coincident) {
     std::fprintf(stderr, "bluetile: warning: %zu sites coincide with an earlier site: area 0, centroid = site\n",
-                 result.coincident_count);
+                 coincident);
   }
 }
 
@@ -41,8 +53,11 @@ void run_centroids(const CentroidsOptions& o) {
 void add_centroids_command(CLI::App& app) {
   auto o = std::make_shared<CentroidsOptions>();
   CLI::App* cmd = app.add_subcommand("centroids", "Write the Voronoi cell centroid and area of every point (cx cy area)");
-  cmd->add_option("-i,--input", o->input, "Point file")->required()->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", o->output, "Output file")->required();
+  cmd->add_option("-i,--input", o->input,
+                  "Points: text (each '#'-separated set measured on its own), .npy or .bpt")
+      ->required()
+      ->check(CLI::ExistingFile);
+  add_point_output_options(cmd, o->output, "Output table of cx cy area");
   add_engine_options(cmd, o->engine);
   cmd->callback([o] { run_centroids(*o); });
 }

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/point_output.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/sampling/dart_throwing.h"
@@ -11,11 +12,14 @@ namespace bluetile::cli {
 
 void add_dart_command(CLI::App& app) {
   auto o = std::make_shared<DartOptions>();
-  auto output = std::make_shared<std::string>();
+  auto output = std::make_shared<PointOutputOptions>();
+  auto sets = std::make_shared<long long>(1);
   auto verbose = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("dart", "Dart throwing with radius reduction on the unit torus");
   cmd->add_option("-n,--count", o->count, "Number of points")->required()->check(CLI::Range(1, 100000000));
   cmd->add_option("-s,--seed", o->seed, "Seed")->capture_default_str();
+  cmd->add_option("--sets", *sets, "Throw K independent sets; set k is the set --seed S+k gives alone")
+      ->check(CLI::Range(1LL, 10000000LL));
   cmd->add_option("--max-failures", o->max_failures, "Rejections in a row before the radius shrinks")
       ->check(CLI::Range(1, 1000000000))
       ->capture_default_str();
@@ -25,17 +29,31 @@ void add_dart_command(CLI::App& app) {
   cmd->add_option("--start", o->start, "Starting radius in hexagonal spacings sqrt(2/(sqrt(3) N))")
       ->check(CLI::Range(1e-6, 4.0))
       ->capture_default_str();
-  cmd->add_option("-o,--output", *output, "Output point file")->required();
+  add_point_output_options(cmd, *output, "Output points");
   cmd->add_flag("-v,--verbose", *verbose, "Print the final radius and the number of trials on stderr");
-  cmd->callback([o, output, verbose] {
-    DartResult r = throw_darts(*o);
-    char line[200];
-    std::snprintf(line, sizeof line,
-                  "bluetile dart: %zu points, seed %llu, radius %.6g -> %.6g (%zu reductions, %zu trials)",
-                  r.points.size(), static_cast<unsigned long long>(o->seed), r.initial_radius, r.final_radius,
-                  r.reductions, r.trials);
-    write_point_file(*output, PointSet{r.points, {}}, {line});
-    if (*verbose) std::fprintf(stderr, "%s\n", line);
+  cmd->callback([o, output, sets, verbose] {
+    const auto k_sets = static_cast<std::size_t>(*sets);
+    PointOutput file(*output, k_sets);
+    std::vector<PointSet> results(k_sets);
+    std::vector<std::string> header;
+    for (std::size_t k = 0; k < k_sets; ++k) {
+      DartOptions one = *o;
+      one.seed = o->seed + k;  // wraps past 2^64 - 1, as the seed's own arithmetic does
+      DartResult r = throw_darts(one);
+      char line[200];
+      std::snprintf(line, sizeof line,
+                    "bluetile dart: %zu points, seed %llu, radius %.6g -> %.6g (%zu reductions, %zu trials)",
+                    r.points.size(), static_cast<unsigned long long>(one.seed), r.initial_radius, r.final_radius,
+                    r.reductions, r.trials);
+      if (k_sets == 1) header.push_back(line);
+      if (*verbose) std::fprintf(stderr, "%s\n", line);
+      results[k].points = std::move(r.points);
+    }
+    if (k_sets > 1) {
+      header.push_back("bluetile dart: " + std::to_string(k_sets) + " sets of " + std::to_string(o->count) +
+                       " points, seeds " + std::to_string(o->seed) + " + set index");
+    }
+    file.write(results, header);
   });
 }
 

@@ -5,9 +5,11 @@
 
 #include "cli/commands.h"
 #include "cli/engine_options.h"
+#include "cli/point_output.h"
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/progressive.h"
 
@@ -24,64 +26,72 @@ struct ProgressiveOptions {
   double tolerance = 0.0;
   std::uint64_t seed = 1;
   std::string placement = "gaps";
-  std::string output;
+  long long sets = 1;
+  PointOutputOptions output;
   EngineOptions engine;
 };
 
-// A hierarchy larger than this is almost surely a mistyped option, and would need tens of GiB.
-constexpr std::size_t kMaxPoints = 100'000'000;
-
-int level_count(const PointSet& set) {
-  if (set.points.empty()) return 0;
-  if (!set.has_levels()) return 1;
-  return *std::max_element(set.levels.begin(), set.levels.end()) + 1;
-}
-
 void run_progressive(const ProgressiveOptions& o) {
-  PointSet set;
-  if (!o.input.empty()) {
-    set = read_point_file(o.input);
-    if (o.add == 0 && o.ratio == 0.0) throw Error("--input needs --add M or --ratio R: how many points to add");
-  }
-  const int base_levels = level_count(set);
-  const int target_levels = o.levels ? o.levels : std::max(base_levels + 1, o.input.empty() ? 4 : 1);
-  if (target_levels <= base_levels) {
-    throw Error("--levels " + std::to_string(target_levels) + ": " + (o.input.empty() ? "" : o.input + " ") +
-                "already has " + std::to_string(base_levels) + " level(s); --levels is the total to reach");
-  }
+  if (!o.input.empty() && o.add == 0 && o.ratio == 0.0)
+    throw Error("--input needs --add M or --ratio R: how many points to add");
   if (o.ratio != 0.0 && o.ratio <= 1.0) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
-  const std::size_t per_level = o.add ? static_cast<std::size_t>(o.add) : static_cast<std::size_t>(o.count);
+  // The bases: the input's sets (each gets its own levels), or K empty ones.
+  std::vector<PointSet> sets(static_cast<std::size_t>(o.sets));
+  if (!o.input.empty()) {
+    sets = read_point_table(o.input);
+    if (sets.empty()) throw Error(o.input + ": no points");
+  }
+  PointOutput output(o.output, sets.size());  // names and formats checked before any work
+
+  HierarchyOptions options;
+  options.count = static_cast<std::size_t>(o.count);
+  options.add = static_cast<std::size_t>(o.add);
+  options.ratio = o.ratio;
+  options.levels = o.levels;
+  options.iterations = o.iterations;
+  options.tolerance = o.tolerance;
+  options.placement = o.placement == "random" ? Placement::random : Placement::gaps;
+  // Every set's levels and sizes, checked before any work.
+  int target_levels = 0;
+  for (const PointSet& set : sets) {
+    const int base_levels = count_levels(set);
+    target_levels = o.levels ? o.levels : std::max(base_levels + 1, o.input.empty() ? 4 : 1);
+    if (target_levels <= base_levels) {
+      throw Error("--levels " + std::to_string(target_levels) + ": " + (o.input.empty() ? "" : o.input + " ") +
+                  "already has " + std::to_string(base_levels) + " level(s); --levels is the total to reach");
+    }
+    hierarchy_level_sizes(set, options);
+  }
 
   auto engine = make_engine(o.engine);
-  LevelOptions level;
-  level.iterations = o.iterations;
-  level.tolerance = o.tolerance;
-  level.placement = o.placement == "random" ? Placement::random : Placement::gaps;
-
-  for (int l = base_levels; l < target_levels; ++l) {
-    level.add = o.input.empty() && l == 0 ? static_cast<std::size_t>(o.count)
-                                           : level_size(set.points.size(), per_level, o.ratio);
-    if (level.add == 0) {
-      throw Error("--ratio " + std::to_string(o.ratio) + " adds no point to a set of " +
-                  std::to_string(set.points.size()) + " (level " + std::to_string(l) + ")");
-    }
-    if (set.points.size() + level.add > kMaxPoints) {
-      throw Error("level " + std::to_string(l) + " would bring the set to " +
-                  std::to_string(set.points.size() + level.add) + " points, more than the limit of " +
-                  std::to_string(kMaxPoints));
-    }
-    level.seed = derive_seed(o.seed, static_cast<std::uint64_t>(l));
-    Progress progress("level " + std::to_string(l) + ": relax", o.iterations);
-    level.on_iteration = [&](const LloydIteration& it) { progress.update(it.iteration); };
-    set = add_level(*engine, set, level);
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    // Set k of a batch is the set --seed S+k gives alone (wrapping past 2^64 - 1).
+    options.seed = o.seed + k;
+    std::unique_ptr<Progress> progress;
+    int progress_level = -1;
+    options.on_iteration = [&](int level, const LloydIteration& it) {
+      if (level != progress_level) {
+        progress_level = level;
+        progress = std::make_unique<Progress>((sets.size() > 1 ? "set " + std::to_string(k) + ", " : "") + "level " +
+                                                  std::to_string(level) + ": relax",
+                                              o.iterations);
+      }
+      progress->update(it.iteration);
+    };
+    sets[k] = add_levels(*engine, std::move(sets[k]), options);
   }
   std::string how = o.input.empty() ? "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed)
                                     : "on " + o.input + ", seed " + std::to_string(o.seed);
-  write_point_file(o.output, set,
-                   {"bluetile progressive: " + std::to_string(set.points.size()) + " points in " +
-                        std::to_string(target_levels) + " levels " + how + ", " + std::to_string(o.iterations) +
-                        " iterations per level, engine " + std::string(engine->name()) + ", placement " + o.placement,
-                    "columns: x y level"});
+  if (sets.size() > 1) how += " + set index";
+  const std::string what = sets.size() == 1 ? std::to_string(sets[0].points.size()) + " points"
+                                            : std::to_string(sets.size()) + " sets of " +
+                                                  std::to_string(sets[0].points.size()) + " points";
+  const std::vector<std::string> header = {
+      "bluetile progressive: " + what + " in " + std::to_string(target_levels) + " levels " + how + ", " +
+          std::to_string(o.iterations) + " iterations per level, engine " + std::string(engine->name()) +
+          ", placement " + o.placement,
+      "columns: x y level"};
+  output.write(sets, header);
 }
 
 }  // namespace
@@ -90,7 +100,10 @@ void add_progressive_command(CLI::App& app) {
   auto o = std::make_shared<ProgressiveOptions>();
   CLI::App* cmd = app.add_subcommand(
       "progressive", "Hierarchical point sets: add levels of points relaxed around the fixed earlier levels");
-  auto* input = cmd->add_option("-i,--input", o->input, "Base point file (kept bit for bit)")->check(CLI::ExistingFile);
+  auto* input = cmd->add_option("-i,--input", o->input,
+                                "Base points, kept bit for bit: text (each '#'-separated set gets its own levels), .npy "
+                                "or .bpt")
+                    ->check(CLI::ExistingFile);
   auto* count = cmd->add_option("-n,--count", o->count, "Build from scratch: level 0 has N relaxed random points")
                     ->check(CLI::Range(1LL, 100000000LL));
   input->excludes(count);
@@ -107,7 +120,10 @@ void add_progressive_command(CLI::App& app) {
   cmd->add_option("--placement", o->placement, "Start of new points: gaps (best candidate) or random (the paper)")
       ->check(CLI::IsMember({"gaps", "random"}))
       ->capture_default_str();
-  cmd->add_option("-o,--output", o->output, "Output point file (x y level)")->required();
+  cmd->add_option("--sets", o->sets, "Build K independent hierarchies; set k is the one --seed S+k gives alone")
+      ->check(CLI::Range(1LL, 10000000LL))
+      ->needs(count);
+  add_point_output_options(cmd, o->output, "Output points (x y level)");
   add_engine_options(cmd, o->engine);
   cmd->callback([o] {
     if (o->input.empty() && o->count == 0) throw CLI::RequiredError("--input or --count");

@@ -4,10 +4,12 @@
 #include "cli/commands.h"
 #include "cli/density_options.h"
 #include "cli/engine_options.h"
+#include "cli/point_output.h"
 #include "cli/relax_log.h"
 #include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/sampling/density_sampling.h"
@@ -23,7 +25,7 @@ struct RelaxOptions {
   long long fixed = 0;
   double tolerance = 0.0;
   long long sets = 1;
-  std::string output;
+  PointOutputOptions output;
   std::string log;
   std::string id_image;
   bool verbose = false;
@@ -44,15 +46,6 @@ std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_
   return points;
 }
 
-std::string set_file_name(const std::string& pattern, std::size_t set, std::size_t sets) {
-  std::string index = std::to_string(set);
-  std::string width = std::to_string(sets - 1);
-  index.insert(0, width.size() - index.size(), '0');
-  std::string name = pattern;
-  name.replace(name.find("{}"), 2, index);
-  return name;
-}
-
 void run_relax(const RelaxOptions& o) {
   // The map is stretched over the unit square, whatever its aspect ratio. Random starts follow
   // it; the cells are weighted so that the relaxed set keeps following it.
@@ -61,10 +54,12 @@ void run_relax(const RelaxOptions& o) {
     density = std::make_shared<DensityGrid>(load_density_map(o.density_map, density_transfer(o.transfer)));
     weight = std::make_shared<DensityGrid>(weight_for_point_density(*density, o.weight_exponent));
   }
+  // The input's sets (UTK's '#' lines, .npy, .bpt: each set is relaxed on its own), or the
+  // random starts.
   std::vector<PointSet> inputs;
   if (!o.input.empty()) {
-    inputs.push_back(read_point_file(o.input));
-    if (inputs[0].points.empty()) throw Error(o.input + ": no points");
+    inputs = read_point_table(o.input);
+    if (inputs.empty()) throw Error(o.input + ": no points");
   } else {
     for (long long k = 0; k < o.sets; ++k)
       inputs.push_back({random_points(o.seed, static_cast<std::size_t>(k), static_cast<std::size_t>(o.count),
@@ -72,12 +67,13 @@ void run_relax(const RelaxOptions& o) {
                         {}});
   }
   const std::size_t n = inputs[0].points.size();
-  if (static_cast<std::size_t>(o.fixed) > n) {
-    throw Error("--fixed " + std::to_string(o.fixed) + " is more than the " + std::to_string(n) + " points");
+  for (const PointSet& set : inputs) {
+    if (static_cast<std::size_t>(o.fixed) > set.points.size()) {
+      throw Error("--fixed " + std::to_string(o.fixed) + " is more than the " + std::to_string(set.points.size()) +
+                  " points" + (inputs.size() > 1 ? " of a set" : ""));
+    }
   }
-  if (o.sets > 1 && o.output.find("{}") == std::string::npos && o.output.find('#') != std::string::npos) {
-    throw Error("--output '" + o.output + "': file names with '#' cannot hold several sets");
-  }
+  PointOutput point_output(o.output, inputs.size());  // names and formats checked before any work
 
   std::vector<Scene> scenes;
   for (PointSet& set : inputs) {
@@ -92,29 +88,16 @@ void run_relax(const RelaxOptions& o) {
   RelaxLog log("relax", o.iterations, o.verbose);
   LloydResult result = relax_lloyd(*engine, scenes, log.lloyd_options(o.iterations, o.tolerance));
 
+  const std::string what = inputs.size() == 1 ? std::to_string(n) + " points"
+                                              : std::to_string(inputs.size()) + " sets of " + std::to_string(n) + " points";
   std::vector<std::string> header = {
-      "bluetile relax: " + std::to_string(n) + " points, " + std::to_string(result.history.size()) +
+      "bluetile relax: " + what + ", " + std::to_string(result.history.size()) +
       " iterations, engine " + std::string(engine->name()) +
       (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + o.input) +
       (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "") +
       (o.density_map.empty() ? "" : ", density map " + o.density_map) + (o.bounded ? ", bounded" : "")};
-  if (o.sets == 1) {
-    inputs[0].points = scenes[0].sites;
-    write_point_file(o.output, inputs[0], header);
-  } else if (o.output.find("{}") != std::string::npos) {
-    for (std::size_t k = 0; k < scenes.size(); ++k) {
-      PointSet set{scenes[k].sites, {}};
-      write_point_file(set_file_name(o.output, k, scenes.size()), set, header);
-    }
-  } else {
-    // UTK's convention: one file, a '#' line before each set.
-    std::string text = format_points(PointSet{}, header);
-    for (std::size_t k = 0; k < scenes.size(); ++k) {
-      text += "# set " + std::to_string(k) + "\n";
-      text += format_points(PointSet{scenes[k].sites, {}});
-    }
-    write_text_atomically(o.output, text);
-  }
+  for (std::size_t k = 0; k < scenes.size(); ++k) inputs[k].points = scenes[k].sites;
+  point_output.write(inputs, header);
   if (!o.id_image.empty()) write_id_image(o.engine, *engine, scenes[0], o.id_image);
   log.finish(result, o.log, o.tolerance, o.iterations);
 }
@@ -125,17 +108,19 @@ void add_relax_command(CLI::App& app) {
   auto o = std::make_shared<RelaxOptions>();
   CLI::App* cmd = app.add_subcommand("relax", "Relax a random (--count) or given (--input) point set by Lloyd's method");
   auto* count = cmd->add_option("-n,--count", o->count, "Number of random points to start from")->check(CLI::Range(1LL, 100000000LL));
-  auto* input = cmd->add_option("-i,--input", o->input, "Point file to start from")->check(CLI::ExistingFile);
+  auto* input = cmd->add_option("-i,--input", o->input,
+                                "Points to start from: text (each '#'-separated set relaxed on its own), .npy or .bpt")
+                    ->check(CLI::ExistingFile);
   count->excludes(input);
   input->excludes(count);
   cmd->add_option("-k,--iterations", o->iterations, "Lloyd iterations")->check(CLI::Range(0, 100000000))->capture_default_str();
   cmd->add_option("-s,--seed", o->seed, "Seed of the random start")->capture_default_str();
   cmd->add_option("--fixed", o->fixed, "Keep the first M sites in place (they still shape the cells)")->check(CLI::NonNegativeNumber);
   cmd->add_option("--tolerance", o->tolerance, "Stop early once no site moves more than this (domain units)")->check(CLI::NonNegativeNumber);
-  auto* sets = cmd->add_option("--sets", o->sets, "Relax K independent sets (seeds derived from --seed); --output with {} writes one file each, else one file with '#' lines between sets")
+  auto* sets = cmd->add_option("--sets", o->sets, "Relax K independent sets (seeds derived from --seed); --output with {} writes one file each, else one table (text: '#' lines between sets)")
       ->check(CLI::Range(1LL, 10000000LL));
   sets->needs(count);
-  cmd->add_option("-o,--output", o->output, "Output point file")->required();
+  add_point_output_options(cmd, o->output, "Output points");
   cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
   cmd->add_option("--id-image", o->id_image, "Write the raster ID buffer of the result as an image (cells coloured, sites drawn)");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");

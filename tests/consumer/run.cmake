@@ -25,6 +25,7 @@ function(configure_build_run project argument)
   step("build ${project}" ${CMAKE_COMMAND} --build ${build} -j 2 --target consumer ${EXTRA_TARGETS})
   step("run ${project}" ${build}/consumer ${build}/${argument})
   message(STATUS "${step_output}")
+  set(step_output "${step_output}" PARENT_SCOPE)
 endfunction()
 
 if(MODE STREQUAL "install")
@@ -33,8 +34,17 @@ if(MODE STREQUAL "install")
 elseif(MODE STREQUAL "installed")
   configure_build_run(installed image.png -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug)
 elseif(MODE STREQUAL "core_only")
-  configure_build_run(core_only none -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug
+  configure_build_run(core_only table.h -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug
     -DCMAKE_DISABLE_FIND_PACKAGE_Vulkan=ON -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON)
+  string(REGEX MATCH "table sum [^\n]*" consumer_sum "${step_output}")
+  # The C header it wrote, compiled as C: the same floats.
+  step("compile the C header as C" ${CXX_COMPILER} -x c -std=c99 -I${WORK_DIR}/core_only
+    ${CMAKE_CURRENT_LIST_DIR}/core_only/table_sum.c -o ${WORK_DIR}/core_only/table_sum)
+  step("run the C program" ${WORK_DIR}/core_only/table_sum)
+  string(STRIP "${step_output}" c_sum)
+  if(NOT consumer_sum STREQUAL c_sum)
+    message(FATAL_ERROR "the C header holds other values: '${c_sum}', the consumer wrote '${consumer_sum}'")
+  endif()
   # The same program through pkg-config, as a Makefile user would build it.
   file(GLOB pc_dir ${PREFIX}/lib*/pkgconfig ${PREFIX}/lib/*/pkgconfig)
   step("pkg-config bluetile-core" ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pc_dir}
@@ -43,7 +53,7 @@ elseif(MODE STREQUAL "core_only")
   separate_arguments(flags UNIX_COMMAND "${flags}")
   step("compile with pkg-config" ${CXX_COMPILER} -std=c++20 ${CMAKE_CURRENT_LIST_DIR}/core_only/main.cpp
     -o ${WORK_DIR}/core_only/consumer_pc ${flags})
-  step("run the pkg-config build" ${WORK_DIR}/core_only/consumer_pc)
+  step("run the pkg-config build" ${WORK_DIR}/core_only/consumer_pc ${WORK_DIR}/core_only/table_pc.h)
 elseif(MODE STREQUAL "subdirectory")
   # No build type: the consumer's (empty) one must survive; the shaders are compiled too, since
   # they are what broke in a subdirectory before.

@@ -162,8 +162,8 @@ void write_header(ChunkedWriter& out, const TableView& table, std::size_t rows, 
   std::string name = options.name.empty() ? table_name_for_path(path) : options.name;
   if (!is_identifier(name)) throw Error(path + ": '" + name + "' is not a C identifier (letters, digits, '_')");
   for (const std::string& line : options.comment) out.write("// " + line + "\n");
-  out.write("// " + std::to_string(table.sets) + " set(s) of " + std::to_string(rows) + " points, columns x y" +
-            (table.columns == 3 ? " level" : "") + ", coordinates in [0, 1) (the unit torus).\n");
+  out.write("// " + std::to_string(table.sets) + " set(s) of " + std::to_string(rows) + " points, columns " +
+            table.column_names + "; coordinates on the unit torus, in [0, 1).\n");
   out.write("#pragma once\n\n");
   out.write("static const float " + name + "[" + std::to_string(table.sets) + "][" + std::to_string(rows) + "][" +
             std::to_string(table.columns) + "] = {\n");
@@ -379,12 +379,29 @@ TableView point_sets_table(std::span<const PointSet> sets) {
   TableView view;
   view.sets = sets.size();
   view.columns = levels ? 3 : 2;
+  view.column_names = levels ? "x y level" : "x y";
   view.rows = [sets](std::size_t k) { return sets[k].points.size(); };
   view.value = [sets](std::size_t k, std::size_t i, std::size_t c) {
     const PointSet& set = sets[k];
     return c == 0 ? set.points[i].x : c == 1 ? set.points[i].y : static_cast<double>(set.levels[i]);
   };
   return view;
+}
+
+void write_text_table(const TableView& table, const ByteSink& sink) {
+  ChunkedWriter out(sink);
+  char value[32];
+  for (std::size_t k = 0; k < table.sets; ++k) {
+    if (table.sets > 1) out.write("# set " + std::to_string(k) + "\n");
+    const std::size_t rows = table.rows(k);
+    for (std::size_t i = 0; i < rows; ++i) {
+      for (std::size_t c = 0; c < table.columns; ++c) {
+        int len = std::snprintf(value, sizeof value, c + 1 < table.columns ? "%.17g " : "%.17g\n", table.value(k, i, c));
+        out.write(value, static_cast<std::size_t>(len));
+      }
+    }
+  }
+  out.flush();
 }
 
 void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options, const std::string& path,
@@ -400,6 +417,20 @@ void write_table(TableFormat format, const TableView& table, const TableWriteOpt
     case TableFormat::text: break;
   }
   out.flush();
+}
+
+void write_point_table(TableFormat format, std::span<const PointSet> sets, const TableWriteOptions& options,
+                       const std::string& path, const ByteSink& sink) {
+  if (format != TableFormat::text) {
+    write_table(format, point_sets_table(sets), options, path, sink);
+    return;
+  }
+  if (sets.size() == 1) {
+    sink(format_points(sets[0], options.comment));
+    return;
+  }
+  sink(format_points(PointSet{}, options.comment));
+  for (std::size_t k = 0; k < sets.size(); ++k) sink("# set " + std::to_string(k) + "\n" + format_points(sets[k]));
 }
 
 std::string table_name_for_path(const std::string& path) {

@@ -48,16 +48,25 @@ TableFormat table_format_for(const std::string& path, const std::string& request
 // "text", "npy", "binary", "header".
 std::string_view table_format_name(TableFormat format);
 
+// Receives the bytes of a table in order, in pieces.
+using ByteSink = std::function<void(std::string_view bytes)>;
+
 // What the table writers read: `sets` sets of `rows(k)` rows of `columns` values each.
 struct TableView {
   std::size_t sets = 0;
   std::size_t columns = 2;
+  std::string column_names = "x y";  // for the comment of a C header
   std::function<std::size_t(std::size_t set)> rows;
   std::function<double(std::size_t set, std::size_t row, std::size_t column)> value;
 };
 
 // Columns x y, and level when the sets have levels (all of them or none; Error otherwise).
 TableView point_sets_table(std::span<const PointSet> sets);
+
+// Text of a table: a '# set k' line before each set when there are several (UTK's convention),
+// one row a line, values with 17 significant digits. Point sets have their own writer
+// (write_points, point_file.h); this one is for other tables (centroids: cx cy area).
+void write_text_table(const TableView& table, const ByteSink& sink);
 
 struct TableWriteOptions {
   bool float32 = false;  // npy and binary: 4-byte floats instead of 8 (header: always float)
@@ -67,14 +76,17 @@ struct TableWriteOptions {
   std::vector<std::string> comment;
 };
 
-// Receives the bytes of a table in order, in pieces.
-using ByteSink = std::function<void(std::string_view bytes)>;
-
 // Writes `table` in a binary or code format (npy, binary, header; text goes through
 // point_file.h). Every set must have the same number of rows. `path` names the output in
 // messages and gives the header's default name. Throws Error("<path>: <what>").
 void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options,
                  const std::string& path, const ByteSink& sink);
+
+// Writes point sets in any format: text as point files with a '# set k' line before each set
+// when there are several (UTK's convention), the others by write_table. options.comment: header
+// lines of text and C headers. `path` names the output in messages.
+void write_point_table(TableFormat format, std::span<const PointSet> sets, const TableWriteOptions& options,
+                       const std::string& path, const ByteSink& sink);
 
 // A C identifier from a file name: "tables/blue-noise 64.h" -> "blue_noise_64".
 std::string table_name_for_path(const std::string& path);

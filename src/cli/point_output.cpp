@@ -1,0 +1,103 @@
+#include "cli/point_output.h"
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
+
+namespace bluetile::cli {
+namespace {
+
+bool one_file_each(const std::string& output) { return output.find("{}") != std::string::npos; }
+
+// One set of a table, as its own table.
+TableView single_set(const TableView& table, std::size_t set) {
+  TableView one = table;
+  one.sets = 1;
+  one.rows = [rows = table.rows, set](std::size_t) { return rows(set); };
+  one.value = [value = table.value, set](std::size_t, std::size_t i, std::size_t c) { return value(set, i, c); };
+  return one;
+}
+
+}  // namespace
+
+void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what) {
+  command->add_option("-o,--output", options.output,
+                      what + " (every {} becomes the set index: one file per set)")
+      ->required();
+  command->add_option("--format", options.format,
+                      "text, npy (shape K x N x 2), binary (.bpt, see README) or header (C/C++); "
+                      "default: by the extension (.txt .dat .pts, .npy, .bpt, .h .hpp)")
+      ->check(CLI::IsMember({"text", "npy", "binary", "header"}));
+  command->add_flag("--float32", options.float32, "npy and binary: 4-byte floats instead of 8");
+  command->add_option("--name", options.name, "header: the array's name (default: from the file name)");
+}
+
+std::string set_file_name(const std::string& pattern, std::size_t set, std::size_t sets) {
+  std::string index = std::to_string(set);
+  std::string width = std::to_string(sets - 1);
+  index.insert(0, width.size() - index.size(), '0');
+  std::string name = pattern;
+  for (std::size_t at = name.find("{}"); at != std::string::npos; at = name.find("{}", at + index.size()))
+    name.replace(at, 2, index);
+  return name;
+}
+
+PointOutput::PointOutput(const PointOutputOptions& options, std::size_t sets) : options_(options), sets_(sets) {
+  if (one_file_each(options.output)) {
+    for (std::size_t k = 0; k < sets; ++k) {
+      paths_.push_back(set_file_name(options.output, k, sets));
+      table_format_for(paths_.back(), options.format);  // an unknown extension is refused before any work
+    }
+    return;
+  }
+  TableFormat format = table_format_for(options.output, options.format);
+  if (format == TableFormat::text && sets > 1 && options.output.find('#') != std::string::npos)
+    throw Error("--output '" + options.output + "': file names with '#' cannot hold several sets");
+  paths_.push_back(options.output);
+}
+
+void PointOutput::write(std::span<const PointSet> sets, const std::vector<std::string>& header) {
+  if (sets.size() != sets_) throw Error("internal: " + std::to_string(sets.size()) + " sets for " + std::to_string(sets_) + " outputs");
+  const TableView table = point_sets_table(sets);
+  if (paths_.size() == 1) {
+    write_one(paths_[0], table, sets, header);
+    return;
+  }
+  for (std::size_t k = 0; k < sets.size(); ++k) write_one(paths_[k], single_set(table, k), sets.subspan(k, 1), header);
+}
+
+void PointOutput::write(const TableView& table, const std::vector<std::string>& header) {
+  if (paths_.size() == 1) {
+    write_one(paths_[0], table, {}, header);
+    return;
+  }
+  for (std::size_t k = 0; k < table.sets; ++k) write_one(paths_[k], single_set(table, k), {}, header);
+}
+
+void PointOutput::write_one(const std::string& path, const TableView& table, std::span<const PointSet> point_sets,
+                            const std::vector<std::string>& header) {
+  const TableFormat format = table_format_for(path, options_.format);
+  TableWriteOptions w;
+  w.float32 = options_.float32;
+  w.name = options_.name;
+  w.comment = header;
+  write_atomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    const ByteSink sink = [&out](std::string_view bytes) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); };
+    if (!point_sets.empty()) {
+      write_point_table(format, point_sets, w, path, sink);
+    } else if (format != TableFormat::text) {
+      write_table(format, table, w, path, sink);
+    } else {
+      sink(format_points(PointSet{}, header));
+      write_text_table(table, sink);
+    }
+    out.close();
+    if (!out) throw Error(path + ": cannot write: " + std::strerror(errno));
+  });
+}
+
+}  // namespace bluetile::cli

@@ -1,0 +1,51 @@
+// The point-set output of a command (relax, dart, progressive, centroids): --output (a '{}' in
+// it, every occurrence, is the set index: one file per set), --format, --float32, --name. The
+// names and formats are checked when the output is made, before any work; the format comes from
+// --format or each file's extension (core/point_table.h), never silently text. Each file is
+// written atomically (core/atomic_file.h).
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
+
+namespace bluetile::cli {
+
+struct PointOutputOptions {
+  std::string output;
+  std::string format;  // empty: by extension
+  bool float32 = false;
+  std::string name;  // C header: the array's name
+};
+
+// Adds -o/--output (required), --format, --float32 and --name; `what` says what is written.
+void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what);
+
+// `pattern` with every "{}" replaced by the set's index, zero-padded to the width of the last.
+std::string set_file_name(const std::string& pattern, std::size_t set, std::size_t sets);
+
+class PointOutput {
+ public:
+  // The file, or one file per set when the name holds "{}", for `sets` sets.
+  PointOutput(const PointOutputOptions& options, std::size_t sets);
+
+  // Writes point sets; `header`: comment lines at the top (text and C header).
+  void write(std::span<const PointSet> sets, const std::vector<std::string>& header);
+  // Writes any other table (text: '# set k' lines between sets when one file holds several).
+  void write(const TableView& table, const std::vector<std::string>& header);
+
+ private:
+  void write_one(const std::string& path, const TableView& table, std::span<const PointSet> point_sets,
+                 const std::vector<std::string>& header);
+
+  PointOutputOptions options_;
+  std::size_t sets_;
+  std::vector<std::string> paths_;
+};
+
+}  // namespace bluetile::cli

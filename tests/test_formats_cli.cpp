@@ -1,0 +1,161 @@
+// Sample tables through the tool: --format and extensions, multi-set inputs kept apart,
+// --sets for dart and progressive, '{}' in output names, damaged tables refused.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <filesystem>
+
+#include "bluetile/core/point_table.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::read_text;
+using test::run_bluetile;
+using test::TempDir;
+
+void expect_same_points(const PointSet& a, const PointSet& b) {
+  ASSERT_EQ(a.points.size(), b.points.size());
+  for (std::size_t i = 0; i < a.points.size(); ++i) ASSERT_EQ(a.points[i], b.points[i]) << "point " << i;
+  EXPECT_EQ(a.levels, b.levels);
+}
+
+// The data lines of a text table, one string per '#'-separated block (empty blocks skipped).
+std::vector<std::string> data_blocks(const std::string& text) {
+  std::vector<std::string> blocks(1);
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    std::string line = text.substr(start, end - start);
+    if (line.rfind('#', 0) == 0) {
+      if (!blocks.back().empty()) blocks.emplace_back();
+    } else {
+      blocks.back() += line + "\n";
+    }
+    start = end == std::string::npos ? text.size() : end + 1;
+  }
+  if (blocks.back().empty()) blocks.pop_back();
+  return blocks;
+}
+
+// Runs bluetile and requires success.
+void ok(const std::vector<std::string>& arguments) {
+  auto r = run_bluetile(arguments);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(FormatsCli, EveryFormatHoldsTheSamePoints) {
+  TempDir dir;
+  const std::vector<std::string> relax = {"relax", "-n", "16", "--sets", "6", "-k", "3", "--engine", "exact"};
+  auto run = [&](const std::string& name, std::vector<std::string> more = {}) {
+    std::vector<std::string> args = relax;
+    args.insert(args.end(), {"-o", dir.file(name)});
+    args.insert(args.end(), more.begin(), more.end());
+    ok(args);
+  };
+  run("t.txt");
+  run("t.npy");
+  run("t.bpt");
+  run("t.data", {"--format", "npy"});
+  run("t32.npy", {"--float32"});
+  run("t.h", {"--name", "table"});
+  auto text = read_point_table(dir.file("t.txt"));
+  ASSERT_EQ(text.size(), 6u);
+  for (const char* name : {"t.npy", "t.bpt", "t.data"}) {
+    auto sets = read_point_table(dir.file(name));
+    ASSERT_EQ(sets.size(), 6u) << name;
+    for (std::size_t k = 0; k < 6; ++k) expect_same_points(sets[k], text[k]);
+  }
+  auto f32 = read_point_table(dir.file("t32.npy"));
+  EXPECT_EQ(f32[5].points[15].x, static_cast<double>(static_cast<float>(text[5].points[15].x)));
+  std::string header = read_text(dir.file("t.h"));
+  EXPECT_NE(header.find("static const float table[6][16][2] = {"), std::string::npos);
+  EXPECT_NE(header.find("// bluetile relax: 6 sets of 16 points"), std::string::npos) << header.substr(0, 200);
+}
+
+TEST(FormatsCli, UnknownExtensionsAreRefusedBeforeAnyWork) {
+  TempDir dir;
+  auto r = run_bluetile({"relax", "-n", "10", "--engine", "exact", "-o", dir.file("points.png")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: " + dir.file("points.png") +
+                       ": unknown extension '.png' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header; or say "
+                       "--format)\n");
+  EXPECT_TRUE(dir.list().empty());
+}
+
+TEST(FormatsCli, EveryBraceInAnOutputNameIsTheSetIndex) {
+  TempDir dir;
+  ok({"dart", "-n", "20", "--sets", "11", "-o", dir.file("{}-of-11_{}.npy")});
+  auto names = dir.list();
+  ASSERT_EQ(names.size(), 11u);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("00-of-11_00.npy")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("10-of-11_10.npy")));
+  EXPECT_EQ(read_point_table(dir.file("07-of-11_07.npy")).size(), 1u);
+}
+
+TEST(FormatsCli, MultiSetInputsAreKeptApart) {
+  TempDir dir;
+  // Three sets of different sizes in UTK's text convention.
+  ok({"dart", "-n", "30", "--seed", "1", "-o", dir.file("a.txt")});
+  ok({"dart", "-n", "40", "--seed", "2", "-o", dir.file("b.txt")});
+  ok({"dart", "-n", "50", "--seed", "3", "-o", dir.file("c.txt")});
+  std::string all = "# three sets\n# set 0\n" + read_text(dir.file("a.txt")) + "# set 1\n" + read_text(dir.file("b.txt")) +
+                    "# set 2\n" + read_text(dir.file("c.txt"));
+  std::string multi = dir.write("multi.txt", all);
+  ok({"relax", "-i", multi, "-k", "4", "--engine", "exact", "-o", dir.file("relaxed.txt")});
+  ok({"centroids", "-i", multi, "--engine", "exact", "-o", dir.file("cells.txt")});
+  auto relaxed = read_point_table(dir.file("relaxed.txt"));
+  auto cells = data_blocks(read_text(dir.file("cells.txt")));
+  ASSERT_EQ(relaxed.size(), 3u);
+  ASSERT_EQ(cells.size(), 3u);
+  const char* names[] = {"a.txt", "b.txt", "c.txt"};
+  for (std::size_t k = 0; k < 3; ++k) {
+    // Each set relaxes and measures exactly as it does alone.
+    ok({"relax", "-i", dir.file(names[k]), "-k", "4", "--engine", "exact", "-o", dir.file("alone.txt")});
+    expect_same_points(relaxed[k], read_point_file(dir.file("alone.txt")));
+    ok({"centroids", "-i", dir.file(names[k]), "--engine", "exact", "-o", dir.file("alone-cells.txt")});
+    auto alone = data_blocks(read_text(dir.file("alone-cells.txt")));
+    ASSERT_EQ(alone.size(), 1u);
+    EXPECT_EQ(cells[k], alone[0]) << "set " << k;
+  }
+  // .npy and .bpt inputs too.
+  ok({"relax", "-n", "20", "--sets", "2", "-k", "0", "--engine", "exact", "-o", dir.file("start.bpt")});
+  ok({"relax", "-i", dir.file("start.bpt"), "-k", "3", "--engine", "exact", "-o", dir.file("from-bpt.npy")});
+  ok({"relax", "-n", "20", "--sets", "2", "-k", "3", "--engine", "exact", "-o", dir.file("direct.npy")});
+  auto from_bpt = read_point_table(dir.file("from-bpt.npy"));
+  auto direct = read_point_table(dir.file("direct.npy"));
+  ASSERT_EQ(from_bpt.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) expect_same_points(from_bpt[k], direct[k]);
+}
+
+TEST(FormatsCli, SetsOfDartAndProgressiveAreTheirSeedsAlone) {
+  TempDir dir;
+  ok({"dart", "-n", "25", "--seed", "5", "--sets", "3", "-o", dir.file("darts.txt")});
+  ok({"dart", "-n", "25", "--seed", "7", "-o", dir.file("dart7.txt")});
+  auto darts = read_point_table(dir.file("darts.txt"));
+  ASSERT_EQ(darts.size(), 3u);
+  expect_same_points(darts[2], read_point_file(dir.file("dart7.txt")));
+  ok({"progressive", "-n", "10", "--levels", "2", "-k", "3", "--seed", "5", "--sets", "2", "--engine", "exact", "-o",
+      dir.file("levels.npy")});
+  ok({"progressive", "-n", "10", "--levels", "2", "-k", "3", "--seed", "6", "--engine", "exact", "-o",
+      dir.file("levels6.txt")});
+  auto levels = read_point_table(dir.file("levels.npy"));
+  ASSERT_EQ(levels.size(), 2u);
+  expect_same_points(levels[1], read_point_file(dir.file("levels6.txt")));
+  EXPECT_EQ(levels[1].levels.back(), 1);
+}
+
+TEST(FormatsCli, DamagedTablesAreRefusedWithTheirFileName) {
+  TempDir dir;
+  ok({"relax", "-n", "8", "-k", "0", "--engine", "exact", "-o", dir.file("good.bpt")});
+  std::string bytes = read_text(dir.file("good.bpt"));
+  std::string short_file = dir.write("short.bpt", bytes.substr(0, bytes.size() - 3));
+  auto r = run_bluetile({"relax", "-i", short_file, "--engine", "exact", "-o", dir.file("out.txt")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: " + short_file + ": header says 1 set(s) of 8 points (168 bytes) but the file has 165 bytes\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out.txt")));
+}
+
+}  // namespace
+}  // namespace bluetile
