@@ -119,17 +119,15 @@ void flag_close_sites(RasterScene& job) {
   constexpr double kBandSamples = 1e-5;
   const double h = std::min(job.hx, job.hy);
   auto threshold = [&](double r) { return kRelativeDepthError * r * r / (kBandSamples * h); };  // domain units
-  double r_max = 0.0;
-  for (std::size_t i = 0; i < n; ++i)
-    if (!job.coincident[i]) r_max = std::max(r_max, job.radius[i]);
-  const double reach = threshold(r_max);
+  // A pair is flagged by the threshold of its larger radius, so each site searches as far as its
+  // own radius asks (the pair is found from the side of the larger one).
   const SiteGrid& grid = job.grid();
   for (std::size_t s = 0; s < n; ++s) {
     if (job.coincident[s]) continue;
+    const double reach = threshold(job.radius[s]);
     grid.for_each_near(job.sites[s], reach, [&](std::uint32_t t) {
-      if (t <= s || job.coincident[t]) return;
-      const double e = torus_distance(job.sites[s], job.sites[t], job.scene->domain);
-      if (e <= threshold(std::max(job.radius[s], job.radius[t]))) job.split[s] = job.split[t] = 1;
+      if (t == s || job.coincident[t]) return;
+      if (torus_distance(job.sites[s], job.sites[t], job.scene->domain) <= reach) job.split[s] = job.split[t] = 1;
     });
   }
 }
