@@ -12,11 +12,16 @@ layout(location = 1) flat out ivec4 out_tile;      // tile origin (samples), sit
 layout(location = 2) flat out vec4 out_site;       // site fraction (samples), pixel size
 layout(location = 3) flat out float out_depth_scale;
 
+// Six vertices per cone, two triangles, in one non-instanced draw: lavapipe shades vertices in
+// batches of eight, and per-instance draws left most of each batch empty.
+const int kCorner[6] = int[6](0, 1, 2, 2, 1, 3);
+
 void main() {
-  ConeInstance cone = instances[gl_InstanceIndex];
+  ConeInstance cone = instances[gl_VertexIndex / 6];
   SiteInfo site = sites[cone.id - 1u];
   SceneInfo scene = scenes[site.scene];
-  vec2 corner = vec2(gl_VertexIndex & 1, gl_VertexIndex >> 1);
+  int k = kCorner[gl_VertexIndex % 6];
+  vec2 corner = vec2(k & 1, k >> 1);
   vec2 centre = vec2(cone.pixel) + site.fraction + 0.5;  // framebuffer coordinates within the tile
   vec2 half_side = cone.radius / scene.pixel_size;
   vec2 lo = clamp(centre - half_side, vec2(0.0), vec2(scene.size));

@@ -24,7 +24,7 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
       ->check(CLI::IsMember({"raster", "exact"}))
       ->capture_default_str();
   command->add_option("--resolution", options.resolution,
-                      "Raster engine: ID buffer side in pixels (default: from N, about 16 pixels per cell for area "
+                      "Raster engine: ID buffer side in pixels (default: from N, about 4 pixels per cell for area "
                       "coverage, 1000 for point)")
       ->check(CLI::Range(16, 65536));
   command->add_option("--coverage", options.coverage,

@@ -127,17 +127,23 @@ struct RasterDevice::Impl {
     gpu::GraphicsPipelineDesc cones;
     cones.vertex_shader = settings.fan ? "cone_fan.vert" : "cone_quad.vert";
     cones.fragment_shader = settings.fan ? "cone_fan.frag" : "cone_quad.frag";
-    cones.topology = settings.fan ? VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST : VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+    cones.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     render_pass = gpu::create_render_pass(d, cones);
     cone_pipeline = gpu::create_graphics_pipeline(*gpu, layout, render_pass, cones);
-    classify_pipeline = gpu::create_compute_pipeline(*gpu, layout, "classify.comp");
-    split_pipeline = gpu::create_compute_pipeline(*gpu, layout, float64 ? "split_f64.comp" : "split_f32.comp");
 
     VkCommandBufferAllocateInfo command_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     command_info.commandPool = gpu->command_pool();
     command_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     command_info.commandBufferCount = 1;
     BLUETILE_VK_CHECK(vkAllocateCommandBuffers(d, &command_info, &commands));
+  }
+
+  // The compute pipelines on first use: a run with the per-pixel work on the host never pays
+  // for their compilation (the split's is the largest shader).
+  void create_compute_pipelines() {
+    if (classify_pipeline) return;
+    classify_pipeline = gpu::create_compute_pipeline(*gpu, layout, "classify.comp");
+    split_pipeline = gpu::create_compute_pipeline(*gpu, layout, float64 ? "split_f64.comp" : "split_f32.comp");
   }
 
   // ---- resources -------------------------------------------------------------------------------
@@ -306,6 +312,7 @@ struct RasterDevice::Impl {
 
   void run(std::span<RasterScene* const> group, std::uint32_t width, std::uint32_t height, bool read_ids, bool pixel_work) {
     read_ids = read_ids || !pixel_work;
+    if (pixel_work) create_compute_pipelines();
     auto upload_start = Clock::now();
     group_size = group.size();
     atlas_width = width;
@@ -409,8 +416,12 @@ struct RasterDevice::Impl {
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
     const float atlas_size[2] = {static_cast<float>(width), static_cast<float>(height)};
     vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof atlas_size, atlas_size);
-    const std::uint32_t vertices = settings.fan ? 3 * BLUETILE_FAN_SEGMENTS : 4;
-    if (instance_count) vkCmdDraw(cb, vertices, static_cast<std::uint32_t>(instance_count), 0, 0);
+    if (instance_count == 0) {
+    } else if (settings.fan) {
+      vkCmdDraw(cb, 3 * BLUETILE_FAN_SEGMENTS, static_cast<std::uint32_t>(instance_count), 0, 0);
+    } else {
+      vkCmdDraw(cb, static_cast<std::uint32_t>(6 * instance_count), 1, 0, 0);
+    }
     vkCmdEndRenderPass(cb);
 
     if (pixel_work) {

@@ -84,7 +84,7 @@ struct IdImage {
 };
 
 // A resolution for `sites` sites: in area coverage (where resolution only sets speed) about
-// 16 pixels per cell, in point coverage about 1000 (point error ~ 0.05 pixel).
+// 4 pixels per cell, in point coverage about 1000 (point error ~ 0.05 pixel).
 int default_resolution(std::size_t sites, Coverage coverage);
 
 class RasterEngine final : public CentroidEngine {

@@ -78,6 +78,37 @@ inline double wrap_axis(double d, double period) { return d < -0.5 * period ? d 
 
 inline long floor_division(long a, long n) { return a >= 0 ? (a < n ? 0 : a / n) : (a >= -n ? -1 : -((-a + n - 1) / n)); }
 
+struct WindowSite {
+  std::uint32_t site;
+  int image_x, image_y;
+};
+
+// The sites of a window of grid buckets (periodic images included), coincident ones left out,
+// in row order of buckets, then bucket order: the order the device visits them.
+struct Window {
+  std::uint64_t serial = 0;
+  long lo_x = 0, hi_x = -1, lo_y = 0, hi_y = -1;
+  std::vector<WindowSite> sites;
+
+  void fill(const RasterScene& scene, const SiteGrid& grid, long x0, long x1, long y0, long y1) {
+    serial = scene.serial;
+    lo_x = x0, hi_x = x1, lo_y = y0, hi_y = y1;
+    sites.clear();
+    const long columns = grid.columns(), rows = grid.rows();
+    const auto starts = grid.bucket_starts();
+    const auto indices = grid.site_indices();
+    for (long by = y0; by <= y1; ++by) {
+      const long wy = floor_division(by, rows);
+      for (long bx = x0; bx <= x1; ++bx) {
+        const long wx = floor_division(bx, columns);
+        const std::size_t b = static_cast<std::size_t>((by - wy * rows) * columns + (bx - wx * columns));
+        for (std::uint32_t k = starts[b]; k < starts[b + 1]; ++k)
+          if (!scene.coincident[indices[k]]) sites.push_back({indices[k], static_cast<int>(wx), static_cast<int>(wy)});
+      }
+    }
+  }
+};
+
 }  // namespace raster_detail
 
 template <typename Piece>
@@ -100,27 +131,21 @@ bool split_boundary_pixel(const RasterScene& scene, double nearest, std::uint32_
   const long lo_x = static_cast<long>(std::floor((centre.x - reach) / bucket.x)), hi_x = static_cast<long>(std::floor((centre.x + reach) / bucket.x));
   const long lo_y = static_cast<long>(std::floor((centre.y - reach) / bucket.y)), hi_y = static_cast<long>(std::floor((centre.y + reach) / bucket.y));
   if (device_bounds && (hi_x - lo_x >= BLUETILE_MAX_WINDOW || hi_y - lo_y >= BLUETILE_MAX_WINDOW)) return false;
-  const long columns = grid.columns(), rows = grid.rows();
-  const auto starts = grid.bucket_starts();
-  const auto indices = grid.site_indices();
-  std::vector<Candidate> candidates;  // small: a few per pixel
-  candidates.reserve(BLUETILE_MAX_CANDIDATES);
-  for (long by = lo_y; by <= hi_y; ++by) {
-    const long wy = raster_detail::floor_division(by, rows);
-    for (long bx = lo_x; bx <= hi_x; ++bx) {
-      const long wx = raster_detail::floor_division(bx, columns);
-      const std::size_t b = static_cast<std::size_t>((by - wy * rows) * columns + (bx - wx * columns));
-      for (std::uint32_t k = starts[b]; k < starts[b + 1]; ++k) {
-        const std::uint32_t s = indices[k];
-        if (scene.coincident[s]) continue;
-        const Point from = site_from_sample(s) - half_pixel;
-        const Point o{from.x + static_cast<double>(wx) * domain.x, from.y + static_cast<double>(wy) * domain.y};
-        const double d2 = o.x * o.x + o.y * o.y;
-        if (d2 > reach * reach) continue;
-        if (device_bounds && candidates.size() == BLUETILE_MAX_CANDIDATES) return false;
-        candidates.push_back({s, static_cast<int>(wx), static_cast<int>(wy), o, d2});
-      }
-    }
+  // The sites of the window, in the device's traversal order; neighbouring boundary pixels
+  // mostly share a window, so the last one is kept per thread.
+  thread_local raster_detail::Window window;
+  if (window.serial != scene.serial || window.lo_x != lo_x || window.hi_x != hi_x || window.lo_y != lo_y || window.hi_y != hi_y) {
+    window.fill(scene, grid, lo_x, hi_x, lo_y, hi_y);
+  }
+  thread_local std::vector<Candidate> candidates;  // a few per pixel
+  candidates.clear();
+  for (const raster_detail::WindowSite& w : window.sites) {
+    const Point from = site_from_sample(w.site) - half_pixel;
+    const Point o{from.x + static_cast<double>(w.image_x) * domain.x, from.y + static_cast<double>(w.image_y) * domain.y};
+    const double d2 = o.x * o.x + o.y * o.y;
+    if (d2 > reach * reach) continue;
+    if (device_bounds && candidates.size() == BLUETILE_MAX_CANDIDATES) return false;
+    candidates.push_back({w.site, w.image_x, w.image_y, o, d2});
   }
   double nearest2 = 1e30;
   for (const Candidate& c : candidates) nearest2 = std::min(nearest2, c.distance_squared);

@@ -16,6 +16,7 @@ namespace bluetile {
 
 struct RasterScene {
   const Scene* scene = nullptr;
+  std::uint64_t serial = 0;  // unique per prepared scene (copies share it): keys per-scene caches
   std::size_t index = 0;  // in the batch
   bool area = true;       // area coverage (else point)
   int rx = 0, ry = 0;     // samples along x and y

@@ -1,0 +1,158 @@
+// Where a raster pass spends its time (issue 11): Lloyd loops on the raster engine and on the
+// exact engine, interleaved in one process, with the raster engine's own stage times (upload,
+// device submission and wait, host work), CPU time beside wall time, passes, redos and boundary
+// pixels per iteration. Engine construction (Vulkan device, pipelines) is timed apart.
+//
+//   bluetile_raster_profile [--jobs paper,n1e4,n1e5,sets256,sets4096,point] [--repeats 3]
+//                           [--device-pixels]   (also the per-pixel work on the device)
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cmath>
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/voronoi/raster_engine.h"
+
+namespace bluetile {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+struct Job {
+  std::string name;
+  std::size_t sites = 0, sets = 1;
+  int iterations = 1;
+  Coverage coverage = Coverage::area;
+};
+
+std::vector<Scene> start_scenes(const Job& job) {
+  std::vector<Scene> scenes;
+  for (std::size_t k = 0; k < job.sets; ++k) {
+    Rng rng(1000 + k);
+    std::vector<Point> p(job.sites);
+    for (Point& q : p) q = rng.point(Domain{});
+    scenes.push_back(make_scene(std::move(p)));
+  }
+  return scenes;
+}
+
+struct Timing {
+  std::vector<double> wall, cpu;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+void run_loop(CentroidEngine& engine, const Job& job, Timing& t) {
+  std::vector<Scene> scenes = start_scenes(job);
+  LloydOptions options;
+  options.iterations = job.iterations;
+  const double c0 = cpu_seconds();
+  const auto w0 = Clock::now();
+  relax_lloyd(engine, scenes, options);
+  t.wall.push_back(std::chrono::duration<double>(Clock::now() - w0).count());
+  t.cpu.push_back(cpu_seconds() - c0);
+}
+
+}  // namespace
+}  // namespace bluetile
+
+int main(int argc, char** argv) {
+  using namespace bluetile;
+  CLI::App app{"bluetile_raster_profile: where raster Lloyd iterations spend their time, beside the exact engine"};
+  std::string jobs_text = "paper,n1e4,n1e5,sets256,sets4096,point";
+  int repeats = 3;
+  bool device_pixels = false;
+  double pixels_per_cell = 0.0;
+  app.add_option("--jobs", jobs_text, "comma-separated jobs: paper, n1e4, n1e5, sets256, sets4096, point");
+  app.add_option("--repeats", repeats, "interleaved repeats per job");
+  app.add_flag("--device-pixels", device_pixels, "also run the per-pixel work on the device (PixelWork::device)");
+  app.add_option("--pixels-per-cell", pixels_per_cell, "resolution from this many pixels per cell (default: the engine's)");
+  CLI11_PARSE(app, argc, argv);
+
+  const std::vector<Job> all = {
+      {"paper", 1000, 1, 80, Coverage::area},   {"n1e4", 10000, 1, 10, Coverage::area},
+      {"n1e5", 100000, 1, 3, Coverage::area},   {"sets256", 64, 256, 50, Coverage::area},
+      {"sets4096", 64, 4096, 10, Coverage::area}, {"point", 1000, 1, 80, Coverage::point},
+  };
+  std::printf("| job | engine | iterations | wall ms/it | cpu ms/it | ratio (wall) | passes/it | redone | boundary px/it | host-split px/it | upload ms/it | device ms/it | host ms/it | start-up ms |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const Job& job : all) {
+    if (("," + jobs_text + ",").find("," + job.name + ",") == std::string::npos) continue;
+    std::vector<PixelWork> works = {PixelWork::automatic};
+    if (device_pixels) works.push_back(PixelWork::device);
+    struct Entry {
+      std::string label;
+      std::unique_ptr<CentroidEngine> engine;
+      double startup_ms = 0.0;
+      Timing t;
+    };
+    std::vector<Entry> entries;
+    entries.push_back({"exact", std::make_unique<ExactEngine>(), 0.0, {}});
+    for (PixelWork work : works) {
+      RasterOptions options;
+      options.coverage = job.coverage;
+      options.pixel_work = work;
+      if (pixels_per_cell > 0.0)
+        options.resolution = std::max(16, static_cast<int>(std::lround(std::sqrt(pixels_per_cell * static_cast<double>(job.sites)))));
+      const auto w0 = Clock::now();
+      auto engine = std::make_unique<RasterEngine>(options);
+      const double startup = std::chrono::duration<double>(Clock::now() - w0).count() * 1e3;
+      const std::string label = std::string("raster ") + (engine->pixel_work_on_device() ? "device pixels" : "host pixels");
+      entries.push_back({label, std::move(engine), startup, {}});
+    }
+    // A warm-up loop each (shader JIT, first allocations), then interleaved repeats.
+    for (Entry& e : entries) {
+      Timing ignored;
+      Job warm = job;
+      warm.iterations = 1;
+      run_loop(*e.engine, warm, ignored);
+    }
+    std::vector<RasterStats> before(entries.size());
+    for (std::size_t k = 0; k < entries.size(); ++k)
+      if (auto* r = dynamic_cast<RasterEngine*>(entries[k].engine.get())) before[k] = r->stats();
+    for (int r = 0; r < repeats; ++r)
+      for (std::size_t k = 0; k < entries.size(); ++k) {
+        Entry& e = entries[(k + static_cast<std::size_t>(r)) % entries.size()];
+        run_loop(*e.engine, job, e.t);
+      }
+    const double exact_wall = median(entries[0].t.wall);
+    for (std::size_t k = 0; k < entries.size(); ++k) {
+      Entry& e = entries[k];
+      const double its = static_cast<double>(job.iterations);
+      std::printf("| %s | %s | %d | %.2f | %.2f | %.1fx |", job.name.c_str(), e.label.c_str(), job.iterations,
+                  median(e.t.wall) / its * 1e3, median(e.t.cpu) / its * 1e3, median(e.t.wall) / exact_wall);
+      if (auto* raster = dynamic_cast<RasterEngine*>(e.engine.get())) {
+        const RasterStats& s = raster->stats();
+        const RasterStats& b = before[k];
+        const double n = its * repeats;
+        std::printf(" %.2f | %llu | %.0f | %.0f | %.2f | %.2f | %.2f | %.0f |\n", static_cast<double>(s.submits - b.submits) / n,
+                    static_cast<unsigned long long>(s.redone_scenes - b.redone_scenes),
+                    static_cast<double>(s.boundary_pixels - b.boundary_pixels) / n,
+                    static_cast<double>(s.host_split_pixels - b.host_split_pixels) / n, (s.upload_seconds - b.upload_seconds) / n * 1e3,
+                    (s.device_seconds - b.device_seconds) / n * 1e3, (s.host_seconds - b.host_seconds) / n * 1e3, e.startup_ms);
+      } else {
+        std::printf(" | | | | | | | |\n");
+      }
+      std::fflush(stdout);
+    }
+  }
+  return 0;
+}
