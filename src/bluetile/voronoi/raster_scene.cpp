@@ -184,7 +184,11 @@ const RadiusMemory::Entry* RadiusMemory::find(std::uint64_t key) const {
 }
 
 void RadiusMemory::start_call() {
-  table_.clear();
+  // Sized once for the entries to come (at most half full), reusing the storage: rebuilding it
+  // by doubling cost page faults every call for large batches.
+  std::size_t size = 64;
+  while (size < 2 * pending_.size() + 2) size *= 2;
+  table_.assign(size, Entry{});
   used_ = 0;
   for (const Entry& e : pending_) insert(e);
   pending_.clear();
