@@ -6,7 +6,9 @@
 #include <cmath>
 #include <limits>
 
+#include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/voronoi/scene.h"
 
 namespace bluetile {
 namespace {
@@ -378,27 +380,34 @@ Scene make_scene(std::vector<Point> sites, Domain domain) {
 
 void ExactEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
   assert(scenes.size() == out.size());
+  // The contract, checked once per scene; wrapped copies only of scenes that need them.
+  std::vector<Scene> wrapped(scenes.size());
+  std::vector<const Scene*> checked(scenes.size());
+  for (std::size_t i = 0; i < scenes.size(); ++i) checked[i] = &validated_scene(scenes[i], wrapped[i]);
   // Small scenes run one per thread when there are enough of them to keep every thread busy;
   // otherwise (one scene, or large ones) each scene is split across the threads itself.
   constexpr std::size_t kSmallScene = 4096;
   std::vector<std::size_t> small;
   for (std::size_t i = 0; i < scenes.size(); ++i)
-    if (scenes[i].sites.size() <= kSmallScene) small.push_back(i);
+    if (checked[i]->sites.size() <= kSmallScene) small.push_back(i);
   const bool across_scenes = small.size() >= 2 * thread_count();
   if (!across_scenes) small.clear();
   for (std::size_t i = 0, k = 0; i < scenes.size(); ++i) {
     if (k < small.size() && small[k] == i) {
       ++k;
     } else {
-      compute_scene(scenes[i], out[i], true);
+      compute_scene(*checked[i], out[i], true);
     }
   }
   parallel_for(small.size(), 4, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) compute_scene(scenes[small[k]], out[small[k]], false);
+    for (std::size_t k = begin; k < end; ++k) compute_scene(*checked[small[k]], out[small[k]], false);
   });
 }
 
-std::vector<Point> exact_cell_polygon(const Scene& scene, std::size_t site) {
+std::vector<Point> exact_cell_polygon(const Scene& given, std::size_t site) {
+  Scene wrapped;
+  const Scene& scene = validated_scene(given, wrapped);
+  if (site >= scene.sites.size()) throw Error("exact_cell_polygon: no site " + std::to_string(site));
   PeriodicGrid grid(scene);
   CellBuilder builder;
   std::vector<Candidate> candidates;
@@ -408,7 +417,10 @@ std::vector<Point> exact_cell_polygon(const Scene& scene, std::size_t site) {
   return polygon;
 }
 
-std::vector<std::size_t> exact_cell_neighbours(const Scene& scene, std::size_t site) {
+std::vector<std::size_t> exact_cell_neighbours(const Scene& given, std::size_t site) {
+  Scene wrapped;
+  const Scene& scene = validated_scene(given, wrapped);
+  if (site >= scene.sites.size()) throw Error("exact_cell_neighbours: no site " + std::to_string(site));
   PeriodicGrid grid(scene);
   CellBuilder builder;
   std::vector<Candidate> candidates;
