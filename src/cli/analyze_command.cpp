@@ -13,9 +13,10 @@
 
 #include "bluetile/analysis/summary.h"
 #include "cli/commands.h"
+#include "cli/numeric_options.h"
 #include "cli/progress.h"
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/io/figures.h"
@@ -170,7 +171,20 @@ void run_analyze(const AnalyzeOptions& o) {
   if (!o.labels.empty() && o.labels.size() != o.inputs.size())
     throw Error("--label needs one label per input (" + std::to_string(o.inputs.size()) + ")");
 
-  // Read and check every input before anything is computed or written.
+  // Every output is declared, and so checked, before any work; they appear together at the end.
+  OutputSet outputs;
+  for (const std::string& path : o.inputs) outputs.add_input(path);
+  if (!o.from.empty()) outputs.add_input(o.from);
+  outputs.add_folder(o.output);
+  const std::filesystem::path dir(o.output);
+  OutputFile& stats_file = outputs.add((dir / "stats.json").string());
+  OutputFile& radial_file = outputs.add((dir / "radial.csv").string());
+  OutputFile& points_file = outputs.add((dir / "points.png").string());
+  OutputFile& spectrum_file = outputs.add((dir / "spectrum.png").string());
+  OutputFile& radial_image_file = outputs.add((dir / "radial.png").string());
+  OutputFile& report_file = outputs.add((dir / "report.txt").string());
+
+  // Read and check every input before anything is computed.
   std::vector<std::vector<PointSet>> inputs;
   for (const std::string& path : o.inputs) inputs.push_back(read_sets(path));
   std::size_t total_sets = 0;
@@ -302,18 +316,13 @@ void run_analyze(const AnalyzeOptions& o) {
   }
   report << "written: stats.json radial.csv report.txt points.png spectrum.png radial.png\n";
 
-  // Only now the output folder and the files, each atomically.
-  std::error_code ec;
-  std::filesystem::create_directories(o.output, ec);
-  if (ec || !std::filesystem::is_directory(o.output))
-    throw Error(o.output + ": cannot create output folder" + (ec ? ": " + ec.message() : ""));
-  const std::filesystem::path dir(o.output);
-  write_text_atomically((dir / "stats.json").string(), stats.dump(2) + "\n");
-  write_text_atomically((dir / "radial.csv").string(), radial_csv(o.compare ? series : std::vector<Series>{series.back()}, o.compare));
-  write_image((dir / "points.png").string(), points_png);
-  write_image((dir / "spectrum.png").string(), spectrum_png);
-  write_image((dir / "radial.png").string(), radial_png);
-  write_text_atomically((dir / "report.txt").string(), report.str());
+  stats_file.write(stats.dump(2) + "\n");
+  radial_file.write(radial_csv(o.compare ? series : std::vector<Series>{series.back()}, o.compare));
+  write_image(points_file, points_png);
+  write_image(spectrum_file, spectrum_png);
+  write_image(radial_image_file, radial_png);
+  report_file.write(report.str());
+  outputs.publish();
 }
 
 }  // namespace
@@ -325,8 +334,9 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("-i,--input", o->inputs, "Point file(s); a file may hold several sets separated by '#' lines")
       ->required();
   cmd->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
-  cmd->add_option("--size", o->size, "Periodogram size F (even): frequencies -F/2..F/2-1; default 2 floor(5 sqrt(N))");
-  cmd->add_option("--bin-width", o->bin_width, "Annulus width in integer frequencies")->capture_default_str();
+  add_integer_option(cmd, "--size", o->size, 0, 65536,
+                     "Periodogram size F (even): frequencies -F/2..F/2-1; default (0) 2 floor(5 sqrt(N))");
+  add_real_option(cmd, "--bin-width", o->bin_width, {0.0, 65536.0, true, false}, "Annulus width in integer frequencies");
   cmd->add_flag("--average", o->average, "Analyse the mean over all sets of all inputs (equal sizes)");
   cmd->add_flag("--compare", o->compare, "One series per input file (its sets averaged), plotted together");
   cmd->add_flag("--by-level", o->by_level, "Analyse every prefix (levels 0..l) of a hierarchical set");
@@ -335,11 +345,10 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--from", o->from, "Draw each point's move from its position in this file (same count and order)");
   cmd->add_flag("--no-centroids", o->no_centroids, "Skip the mean distance of the sites to their exact cell centroids");
   cmd->add_option("--title", o->title, "Title of radial.png");
-  cmd->add_option("--image-size", o->image_size, "Side of points.png in pixels (two thirds of it per set side by side)")
-      ->check(CLI::Range(64, 8192))
-      ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "CPU threads (default: all cores); output does not depend on it")
-      ->check(CLI::Range(1, 1024));
+  add_integer_option(cmd, "--image-size", o->image_size, 64, 8192,
+                     "Side of points.png in pixels (two thirds of it per set side by side)");
+  add_integer_option(cmd, "--threads", o->threads, 1, 1024, "CPU threads (default: all cores); output does not depend on it")
+      ->default_str("all cores");
   cmd->callback([o] { run_analyze(*o); });
 }
 

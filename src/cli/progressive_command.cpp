@@ -1,12 +1,16 @@
 // bluetile progressive: hierarchical point sets, new levels relaxed around fixed earlier ones.
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/engine_options.h"
+#include "cli/memory_budget.h"
+#include "cli/numeric_options.h"
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/progressive.h"
@@ -29,7 +33,9 @@ struct ProgressiveOptions {
 };
 
 // A hierarchy larger than this is almost surely a mistyped option, and would need tens of GiB.
-constexpr std::size_t kMaxPoints = 100'000'000;
+constexpr std::size_t kMaxPoints = static_cast<std::size_t>(kMaxCount);
+// Bytes per point of a level's relaxation (see kRelaxBytesPerSite) plus the levels column.
+constexpr double kBytesPerPoint = kRelaxBytesPerSite + 8.0;
 
 int level_count(const PointSet& set) {
   if (set.points.empty()) return 0;
@@ -38,50 +44,69 @@ int level_count(const PointSet& set) {
 }
 
 void run_progressive(const ProgressiveOptions& o) {
+  if (!o.input.empty() && o.add == 0 && o.ratio == 0.0)
+    throw Error("--input needs --add M or --ratio R: how many points to add");
+  OutputSet outputs;
+  if (!o.input.empty()) outputs.add_input(o.input);
+  OutputFile& output = outputs.add(o.output, {.allow_stdout = true});
+
   PointSet set;
   if (!o.input.empty()) {
     set = read_point_file(o.input);
-    if (o.add == 0 && o.ratio == 0.0) throw Error("--input needs --add M or --ratio R: how many points to add");
+    if (set.points.empty()) throw Error(input_name(o.input) + ": no points");
   }
   const int base_levels = level_count(set);
   const int target_levels = o.levels ? o.levels : std::max(base_levels + 1, o.input.empty() ? 4 : 1);
   if (target_levels <= base_levels) {
-    throw Error("--levels " + std::to_string(target_levels) + ": " + (o.input.empty() ? "" : o.input + " ") +
+    throw Error("--levels " + std::to_string(target_levels) + ": " + (o.input.empty() ? "" : input_name(o.input) + " ") +
                 "already has " + std::to_string(base_levels) + " level(s); --levels is the total to reach");
   }
-  if (o.ratio != 0.0 && o.ratio <= 1.0) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
+  if (target_levels - 1 > kMaxLevel) {
+    throw Error(input_name(o.input) + ": already has levels up to " + std::to_string(base_levels - 1) +
+                ", and a point file holds levels up to " + std::to_string(kMaxLevel) + " only");
+  }
   const std::size_t per_level = o.add ? static_cast<std::size_t>(o.add) : static_cast<std::size_t>(o.count);
+
+  // Every level's size, checked before any work.
+  std::vector<std::size_t> sizes;
+  std::size_t total = set.points.size();
+  for (int l = base_levels; l < target_levels; ++l) {
+    std::size_t add = o.input.empty() && l == 0 ? static_cast<std::size_t>(o.count) : level_size(total, per_level, o.ratio);
+    if (add == 0) {
+      throw Error("--ratio " + std::to_string(o.ratio) + " adds no point to a set of " + std::to_string(total) +
+                  " (level " + std::to_string(l) + ")");
+    }
+    if (add > kMaxPoints - total) {
+      throw Error("level " + std::to_string(l) + " would bring the set to " + std::to_string(total + add) +
+                  " points, more than the limit of " + std::to_string(kMaxPoints));
+    }
+    total += add;
+    sizes.push_back(add);
+  }
+  check_memory(static_cast<double>(total) * kBytesPerPoint, std::to_string(total) + " points in " +
+                                                               std::to_string(target_levels) + " levels");
 
   auto engine = make_engine(o.engine);
   LevelOptions level;
   level.iterations = o.iterations;
   level.tolerance = o.tolerance;
   level.placement = o.placement == "random" ? Placement::random : Placement::gaps;
-
   for (int l = base_levels; l < target_levels; ++l) {
-    level.add = o.input.empty() && l == 0 ? static_cast<std::size_t>(o.count)
-                                           : level_size(set.points.size(), per_level, o.ratio);
-    if (level.add == 0) {
-      throw Error("--ratio " + std::to_string(o.ratio) + " adds no point to a set of " +
-                  std::to_string(set.points.size()) + " (level " + std::to_string(l) + ")");
-    }
-    if (set.points.size() + level.add > kMaxPoints) {
-      throw Error("level " + std::to_string(l) + " would bring the set to " +
-                  std::to_string(set.points.size() + level.add) + " points, more than the limit of " +
-                  std::to_string(kMaxPoints));
-    }
+    level.add = sizes[static_cast<std::size_t>(l - base_levels)];
     level.seed = derive_seed(o.seed, static_cast<std::uint64_t>(l));
     Progress progress("level " + std::to_string(l) + ": relax", o.iterations);
     level.on_iteration = [&](const LloydIteration& it) { progress.update(it.iteration); };
     set = add_level(*engine, set, level);
   }
   std::string how = o.input.empty() ? "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed)
-                                    : "on " + o.input + ", seed " + std::to_string(o.seed);
-  write_point_file(o.output, set,
-                   {"bluetile progressive: " + std::to_string(set.points.size()) + " points in " +
-                        std::to_string(target_levels) + " levels " + how + ", " + std::to_string(o.iterations) +
-                        " iterations per level, engine " + std::string(engine->name()) + ", placement " + o.placement,
-                    "columns: x y level"});
+                                    : "on " + input_name(o.input) + ", seed " + std::to_string(o.seed);
+  const std::vector<std::string> header = {
+      "bluetile progressive: " + std::to_string(set.points.size()) + " points in " + std::to_string(target_levels) +
+          " levels " + how + ", " + std::to_string(o.iterations) + " iterations per level, engine " +
+          std::string(engine->name()) + ", placement " + o.placement,
+      "columns: x y level"};
+  output.write([&](OutputStream& out) { write_points(out, set, header); });
+  outputs.publish();
 }
 
 }  // namespace
@@ -90,24 +115,26 @@ void add_progressive_command(CLI::App& app) {
   auto o = std::make_shared<ProgressiveOptions>();
   CLI::App* cmd = app.add_subcommand(
       "progressive", "Hierarchical point sets: add levels of points relaxed around the fixed earlier levels");
-  auto* input = cmd->add_option("-i,--input", o->input, "Base point file (kept bit for bit)")->check(CLI::ExistingFile);
-  auto* count = cmd->add_option("-n,--count", o->count, "Build from scratch: level 0 has N relaxed random points")
-                    ->check(CLI::Range(1LL, 100000000LL));
+  auto* input = cmd->add_option("-i,--input", o->input, "Base point file, kept bit for bit ('-': standard input)");
+  auto* count = add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount,
+                                   "Build from scratch: level 0 has N relaxed random points");
   input->excludes(count);
-  auto* add = cmd->add_option("-a,--add", o->add, "Points each new level adds (default with --count: N)")
-                  ->check(CLI::Range(1LL, 100000000LL));
-  auto* ratio = cmd->add_option("--ratio", o->ratio, "Instead of --add: each level multiplies the total by R (> 1)");
+  auto* add = add_integer_option(cmd, "-a,--add", o->add, 1LL, kMaxCount, "Points each new level adds (default with --count: N)");
+  // Above 10^8 every level would pass the point limit at once.
+  auto* ratio = add_real_option(cmd, "--ratio", o->ratio, {1.0, 1e8, true, false},
+                                "Instead of --add: each level multiplies the total by R (> 1)");
   add->excludes(ratio);
-  cmd->add_option("-l,--levels", o->levels,
-                  "Total levels of the result (default: 4 with --count, one more than the input has with --input)")
-      ->check(CLI::Range(1, 64));
-  cmd->add_option("-k,--iterations", o->iterations, "Lloyd iterations per level")->check(CLI::Range(0, 100000000))->capture_default_str();
-  cmd->add_option("--tolerance", o->tolerance, "Stop a level early once no point moves more than this")->check(CLI::NonNegativeNumber);
-  cmd->add_option("-s,--seed", o->seed, "Seed of the random placement")->capture_default_str();
+  add_integer_option(cmd, "-l,--levels", o->levels, 1, 64,
+                     "Total levels of the result (default: 4 with --count, one more than the input has with --input)")
+      ->default_str("");
+  add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations per level");
+  add_real_option(cmd, "--tolerance", o->tolerance, {}, "Stop a level early once no point moves more than this");
+  add_integer_option(cmd, "-s,--seed", o->seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(),
+                     "Seed of the random placement");
   cmd->add_option("--placement", o->placement, "Start of new points: gaps (best candidate) or random (the paper)")
       ->check(CLI::IsMember({"gaps", "random"}))
       ->capture_default_str();
-  cmd->add_option("-o,--output", o->output, "Output point file (x y level)")->required();
+  cmd->add_option("-o,--output", o->output, "Output point file (x y level; '-': standard output)")->required();
   add_engine_options(cmd, o->engine);
   cmd->callback([o] {
     if (o->input.empty() && o->count == 0) throw CLI::RequiredError("--input or --count");

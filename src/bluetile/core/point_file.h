@@ -2,12 +2,20 @@
 // column holding the point's level; '#' starts a comment; a first data line holding a single
 // integer is a point count (psa's convention) and is checked. Coordinates outside [0,1) are
 // wrapped onto the unit torus; NaN, infinity and malformed lines are errors naming the file
-// and line. Written with 17 significant digits so every double round-trips.
+// and line. A UTF-8 byte-order mark at the start is skipped. Written with 17 significant digits
+// so every double round-trips.
+//
+// Reading streams the file in chunks (memory: the points, not the text). Any failure, a
+// malformed line, a read error, running out of memory, is an Error naming the file (and the
+// line where there is one); a file is never silently cut short. Values quoted in messages are
+// cut to a few dozen characters.
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/torus.h"
 
 namespace bluetile {
@@ -20,20 +28,28 @@ struct PointSet {
   bool has_levels() const { return !levels.empty(); }
 };
 
-// Reads one point set. Throws Error("<path>:<line>: <what>") on bad input.
-PointSet read_point_file(const std::string& path);
+// The largest level a point file may hold: writers must not go beyond what readers accept.
+inline constexpr int kMaxLevel = 1000000;
 
-// Parses point-file text; `name` is used in error messages in place of a path.
-PointSet parse_points(const std::string& text, const std::string& name);
+// The name used in messages for a path: "stdin" for "-", else the path.
+std::string input_name(const std::string& path);
+
+// Reads one point set from `path`, or from standard input when path is "-".
+// Throws Error("<path>:<line>: <what>") on bad input, Error("<path>: <what>") on read failure.
+PointSet read_point_file(const std::string& path);
 
 // Several sets in one file, separated by lines starting with '#' (UTK's convention), as
 // `relax --sets` writes them. Empty sets between consecutive '#' lines are skipped.
 std::vector<PointSet> read_point_sets(const std::string& path);
 
-// Text of a point file: optional header comment lines (each gets "# "), then one point a line.
-std::string format_points(const PointSet& set, const std::vector<std::string>& header = {});
+// The same, from text in memory; `name` is used in error messages in place of a path.
+PointSet parse_points(std::string_view text, const std::string& name);
+std::vector<PointSet> parse_point_sets(std::string_view text, const std::string& name);
 
-// Writes atomically (temporary file, then rename).
+// Streams a point file: optional header comment lines (each gets "# "), then one point a line.
+void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header = {});
+
+// Writes a point file through output_file.h ("-" is standard output).
 void write_point_file(const std::string& path, const PointSet& set,
                       const std::vector<std::string>& header = {});
 

@@ -2,11 +2,11 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <mutex>
 
 #include <dlfcn.h>
 
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/io/oiio_plugin.h"
 
@@ -14,15 +14,17 @@ namespace bluetile {
 namespace {
 
 struct Plugin {
+  bluetile_oiio_encode_fn encode = nullptr;
   bluetile_oiio_write_fn write = nullptr;
   bluetile_oiio_read_fn read = nullptr;
 };
 
-// Where the module may be: BLUETILE_OIIO_PLUGIN, beside the running program (the build folder,
-// or an install's bin/), its ../lib, then the loader's own search path.
+// Where the module may be: only BLUETILE_OIIO_PLUGIN when it is set (a wrong value is an error,
+// not a silent fall-back); else beside the running program (the build folder, or an install's
+// bin/), its ../lib, then the loader's own search path.
 std::vector<std::string> plugin_candidates() {
   std::vector<std::string> paths;
-  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) paths.push_back(env);
+  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) return {env};
   std::error_code ec;
   auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
   if (!ec) {
@@ -38,20 +40,29 @@ const Plugin& plugin() {
   static std::string failure;
   static std::once_flag once;
   std::call_once(once, [] {
-    std::string tried;
-    for (const std::string& path : plugin_candidates()) {
-      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!handle) {
-        tried += "\n  " + std::string(dlerror());
-        continue;
+    // One line: the first candidate's reason (the one a user fixes), then what else was tried.
+    std::string first_reason, others;
+    const std::vector<std::string> candidates = plugin_candidates();
+    for (const std::string& path : candidates) {
+      std::string why;
+      if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+        loaded.encode = reinterpret_cast<bluetile_oiio_encode_fn>(dlsym(handle, "bluetile_oiio_encode"));
+        loaded.write = reinterpret_cast<bluetile_oiio_write_fn>(dlsym(handle, "bluetile_oiio_write"));
+        loaded.read = reinterpret_cast<bluetile_oiio_read_fn>(dlsym(handle, "bluetile_oiio_read"));
+        if (loaded.encode && loaded.write && loaded.read) return;
+        loaded = Plugin{};
+        why = path + ": not a bluetile OpenImageIO plugin (or one of another version)";
+      } else {
+        why = dlerror();
       }
-      loaded.write = reinterpret_cast<bluetile_oiio_write_fn>(dlsym(handle, "bluetile_oiio_write"));
-      loaded.read = reinterpret_cast<bluetile_oiio_read_fn>(dlsym(handle, "bluetile_oiio_read"));
-      if (loaded.write && loaded.read) return;
-      tried += "\n  " + path + ": not a bluetile OpenImageIO plugin";
+      if (first_reason.empty()) first_reason = why;
+      else others += (others.empty() ? "" : ", ") + path;
     }
-    failure = "cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME
-              " (it is built beside the bluetile binary; BLUETILE_OIIO_PLUGIN names another):" + tried;
+    failure = std::getenv("BLUETILE_OIIO_PLUGIN")
+                  ? "cannot load the image plugin named by BLUETILE_OIIO_PLUGIN: " + first_reason
+                  : "cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME
+                    " (built beside the bluetile binary; BLUETILE_OIIO_PLUGIN names another): " +
+                        first_reason + (others.empty() ? "" : "; also tried " + others);
   });
   if (!loaded.write) throw Error(failure);
   return loaded;
@@ -59,16 +70,39 @@ const Plugin& plugin() {
 
 }  // namespace
 
-void write_image_file(const std::string& path, int width, int height, int channels,
-                      const std::vector<std::uint8_t>& pixels) {
+void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
+  const std::string& path = out.path();
   if (pixels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels))
     throw Error(path + ": image size does not match its pixels");
   const Plugin& p = plugin();
-  write_atomically(path, [&](const std::string& temporary) {
-    char error[512];
-    if (p.write(temporary.c_str(), width, height, channels, pixels.data(), error, sizeof error) != 0)
-      throw Error(path + ": cannot write image: " + error);
+  // The format follows the extension; PNG for a path without one (/dev/stdout).
+  const std::string name = std::filesystem::path(path).extension().empty() ? path + ".png" : path;
+  char error[512];
+  unsigned char* bytes = nullptr;
+  std::size_t size = 0;
+  int status = p.encode(name.c_str(), width, height, channels, 8, pixels.data(), &bytes, &size, error, sizeof error);
+  if (status == 0) {
+    std::unique_ptr<unsigned char, decltype(&std::free)> owned(bytes, &std::free);
+    out.write(std::string_view(reinterpret_cast<const char*>(bytes), size));
+    return;
+  }
+  if (status != 2) throw Error(path + ": cannot write image: " + error);
+  // A format that OpenImageIO writes only to files: through a file, messages naming the user's path.
+  out.write_through_path([&](const std::string& file) {
+    if (p.write(file.c_str(), width, height, channels, pixels.data(), error, sizeof error) != 0) {
+      std::string message = error;
+      for (std::size_t at = message.find(file); at != std::string::npos; at = message.find(file, at + path.size()))
+        message.replace(at, file.size(), path);
+      throw Error(path + ": cannot write image: " + message);
+    }
   });
+}
+
+void write_image_file(const std::string& path, int width, int height, int channels,
+                      const std::vector<std::uint8_t>& pixels) {
+  OutputSet outputs;
+  write_image_file(outputs.add(path), width, height, channels, pixels);
+  outputs.publish();
 }
 
 ImageFile read_image_file(const std::string& path) {

@@ -31,7 +31,9 @@ LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, cons
       }
     }
     log.mean_displacement = moving ? displacement_sum / static_cast<double>(moving) : 0.0;
-    result.history.push_back(log);
+    result.last = log;
+    result.iterations = it;
+    if (options.keep_history) result.history.push_back(log);
     if (options.on_iteration) options.on_iteration(log);
     if (options.tolerance > 0.0 && log.max_displacement < options.tolerance) {
       result.converged = true;
