@@ -15,12 +15,14 @@ set -euo pipefail
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 cd "$here"
 
-# Packages the library, the tool and its tests need. CGAL is only for the optional
-# reference benchmark (GPL, never linked into the library).
+# Packages the library, the tool and its tests need (cairo: PDF output, through a plugin
+# module; expat and poppler's pdfinfo: the tests read SVG and PDF back). CGAL is only for the
+# optional reference benchmark (GPL, never linked into the library).
 packages=(
   cmake ninja-build g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers glslang-tools
   libglm-dev libopenimageio-dev libcli11-dev nlohmann-json3-dev libgtest-dev
+  libcairo2-dev libexpat1-dev poppler-utils
   libcgal-dev
 )
 

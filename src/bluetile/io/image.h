@@ -14,6 +14,7 @@ namespace bluetile {
 
 struct Colour {
   float r = 0.0f, g = 0.0f, b = 0.0f;
+  bool operator==(const Colour&) const = default;
 };
 
 namespace colours {

@@ -51,6 +51,8 @@
 #include "bluetile/gpu/embedded_shaders.h"
 #include "bluetile/gpu/raster_layout.h"
 #include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/voronoi/polygon.h"
+#include "bluetile/voronoi/site_grid.h"
 
 namespace bluetile {
 namespace {
@@ -71,48 +73,6 @@ struct Piece {
   std::uint32_t site;
   double area, mx, my, m2;
 };
-
-// Moments of a convex polygon given relative to a site: area, first moment, second moment
-// (integral of |x|^2).
-void polygon_moments(const std::vector<Point>& polygon, double& area, double& mx, double& my, double& m2) {
-  double a2 = 0.0, cx = 0.0, cy = 0.0, ixx = 0.0, iyy = 0.0;
-  std::size_t n = polygon.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    Point p = polygon[i], q = polygon[i + 1 == n ? 0 : i + 1];
-    double cross = p.x * q.y - q.x * p.y;
-    a2 += cross;
-    cx += (p.x + q.x) * cross;
-    cy += (p.y + q.y) * cross;
-    ixx += (p.x * p.x + p.x * q.x + q.x * q.x) * cross;
-    iyy += (p.y * p.y + p.y * q.y + q.y * q.y) * cross;
-  }
-  area = 0.5 * a2;
-  mx = cx / 6.0;
-  my = cy / 6.0;
-  m2 = (ixx + iyy) / 12.0;
-}
-
-// Keeps the part of `polygon` with x.d <= |d|^2 / 2 (closer to the origin than to d).
-void clip_polygon(std::vector<Point>& polygon, std::vector<Point>& scratch, Point d) {
-  double c = 0.5 * (d.x * d.x + d.y * d.y);
-  std::size_t n = polygon.size();
-  bool any_outside = false;
-  for (const Point& v : polygon)
-    if (v.x * d.x + v.y * d.y > c) {
-      any_outside = true;
-      break;
-    }
-  if (!any_outside) return;
-  scratch.clear();
-  for (std::size_t i = 0; i < n; ++i) {
-    Point a = polygon[i], b = polygon[i + 1 == n ? 0 : i + 1];
-    double da = a.x * d.x + a.y * d.y - c;
-    double db = b.x * d.x + b.y * d.y - c;
-    if (da <= 0.0) scratch.push_back(a);
-    if ((da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0)) scratch.push_back(a + (da / (da - db)) * (b - a));
-  }
-  polygon.swap(scratch);
-}
 
 // Per scene of a batch during one compute().
 struct Job {
@@ -144,50 +104,6 @@ struct Slot {
   std::vector<double> farthest;
   Point domain;
   int rx = 0;
-};
-
-// A periodic bucket grid over a scene's sites, for the coverage check's neighbour search.
-class SiteGrid {
- public:
-  SiteGrid(const std::vector<Point>& sites, const std::vector<std::uint8_t>& skip, Point size, double bucket) : size_(size) {
-    columns_ = std::clamp(static_cast<int>(size.x / std::max(bucket, 1e-300)), 1, 512);
-    rows_ = std::clamp(static_cast<int>(size.y / std::max(bucket, 1e-300)), 1, 512);
-    start_.assign(static_cast<std::size_t>(columns_ * rows_) + 1, 0);
-    std::vector<std::uint32_t> bucket_of(sites.size());
-    for (std::size_t i = 0; i < sites.size(); ++i) {
-      if (skip[i]) continue;
-      bucket_of[i] = static_cast<std::uint32_t>(row(sites[i].y) * columns_ + column(sites[i].x));
-      ++start_[bucket_of[i] + 1];
-    }
-    for (std::size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
-    items_.resize(start_.back());
-    std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
-    for (std::size_t i = 0; i < sites.size(); ++i)
-      if (!skip[i]) items_[fill[bucket_of[i]]++] = static_cast<std::uint32_t>(i);
-  }
-
-  // Calls visit(t) for every site t in buckets that may hold sites within `reach` of p (each once).
-  template <typename Visit>
-  void near(Point p, double reach, Visit visit) const {
-    int kx = static_cast<int>(std::ceil(reach / (size_.x / columns_)));
-    int ky = static_cast<int>(std::ceil(reach / (size_.y / rows_)));
-    int cx = column(p.x), cy = row(p.y);
-    int x0 = cx - kx, x1 = cx + kx, y0 = cy - ky, y1 = cy + ky;
-    if (2 * kx + 1 >= columns_) x0 = 0, x1 = columns_ - 1;
-    if (2 * ky + 1 >= rows_) y0 = 0, y1 = rows_ - 1;
-    for (int by = y0; by <= y1; ++by)
-      for (int bx = x0; bx <= x1; ++bx) {
-        std::size_t b = static_cast<std::size_t>(((by % rows_ + rows_) % rows_) * columns_ + ((bx % columns_ + columns_) % columns_));
-        for (std::uint32_t s = start_[b]; s < start_[b + 1]; ++s) visit(items_[s]);
-      }
-  }
-
- private:
-  int column(double x) const { return std::clamp(static_cast<int>(x / size_.x * columns_), 0, columns_ - 1); }
-  int row(double y) const { return std::clamp(static_cast<int>(y / size_.y * rows_), 0, rows_ - 1); }
-  Point size_;
-  int columns_ = 1, rows_ = 1;
-  std::vector<std::uint32_t> start_, items_;
 };
 
 }  // namespace
@@ -512,11 +428,11 @@ struct RasterEngine::Impl {
     if (options.coverage == Coverage::area && n > 1) {
       const double extent = std::max(scene.domain.size.x, scene.domain.size.y);
       const double fragile = 16.0 * std::ldexp(1.0, -24) * extent * extent / std::min(job.hx, job.hy);
-      SiteGrid grid(job.sites, job.coincident, scene.domain.size, fragile);
+      SiteGrid grid(job.sites, scene.domain, 1.0);
       for (std::size_t s = 0; s < n; ++s) {
         if (job.coincident[s]) continue;
-        grid.near(job.sites[s], fragile, [&](std::uint32_t t) {
-          if (t <= s || torus_distance(job.sites[s], job.sites[t], scene.domain) > fragile) return;
+        grid.for_each_near(job.sites[s], fragile, [&](std::uint32_t t) {
+          if (t <= s || job.coincident[t] || torus_distance(job.sites[s], job.sites[t], scene.domain) > fragile) return;
           job.split[s] = job.split[t] = 1;
           job.close_pairs.push_back({static_cast<std::uint32_t>(s), t});
         });
@@ -810,14 +726,14 @@ struct RasterEngine::Impl {
     // need[t]: the radius t must reach for this diagram to pass; the next pass starts from it.
     job.need = farthest;
     const bool all_reach = min_radius >= max_farthest;
-    SiteGrid grid(job.sites, job.coincident, job.scene->domain.size, 2.0 * max_farthest);
+    SiteGrid grid(job.sites, job.scene->domain, 1.0);
     bool ok = true;
     std::vector<double> grown = job.radius;
     for (std::size_t s = 0; s < n; ++s) {
       if (job.coincident[s] || farthest[s] == 0.0) continue;
       const double f = farthest[s];
-      grid.near(job.sites[s], 2.0 * f, [&](std::uint32_t t) {
-        if (job.need[t] >= f) return;
+      grid.for_each_near(job.sites[s], 2.0 * f, [&](std::uint32_t t) {
+        if (job.coincident[t] || job.need[t] >= f) return;
         if (torus_distance(job.sites[s], job.sites[t], job.scene->domain) > 2.0 * f) return;
         job.need[t] = f;
         if (all_reach || effective(job.radius[t]) >= f) return;
@@ -909,7 +825,7 @@ struct RasterEngine::Impl {
       std::vector<std::uint32_t> stamp(n, 0u);
       std::uint32_t generation = 0;
       std::vector<Entry> all, near;
-      std::vector<Point> polygon, scratch;
+      ConvexPolygon polygon;
       std::uint32_t last_key[9];
       int last_count = -1;
       for (std::size_t chunk = chunk_begin; chunk < chunk_end; ++chunk) {
@@ -970,19 +886,16 @@ struct RasterEngine::Impl {
               if (owner.site < scene.wanted_begin || owner.site >= scene.wanted_end) continue;
               // The pixel square relative to this image of the site.
               const Point c = -owner.offset;
-              polygon.assign({{c.x - 0.5 * job.hx, c.y - 0.5 * job.hy},
-                              {c.x + 0.5 * job.hx, c.y - 0.5 * job.hy},
-                              {c.x + 0.5 * job.hx, c.y + 0.5 * job.hy},
-                              {c.x - 0.5 * job.hx, c.y + 0.5 * job.hy}});
-              for (std::size_t b = 0; b < near.size() && polygon.size() >= 3; ++b) {
+              polygon.reset_rectangle({c.x - 0.5 * job.hx, c.y - 0.5 * job.hy}, {c.x + 0.5 * job.hx, c.y + 0.5 * job.hy});
+              for (std::size_t b = 0; b < near.size() && !polygon.empty(); ++b) {
                 if (b == a) continue;
                 Point d = near[b].offset - owner.offset;
                 if (d.x == 0.0 && d.y == 0.0) continue;
-                clip_polygon(polygon, scratch, d);
+                polygon.clip_by_bisector(d, near[b].site);
               }
-              if (polygon.size() < 3) continue;
-              Piece piece{owner.site, 0, 0, 0, 0};
-              polygon_moments(polygon, piece.area, piece.mx, piece.my, piece.m2);
+              if (polygon.empty()) continue;
+              const PolygonMoments m = polygon.moments();
+              Piece piece{owner.site, m.area(), m.first_moment().x, m.first_moment().y, m.second_moment()};
               if (piece.area > 0.0) pieces.push_back(piece);
             }
           }
@@ -1037,8 +950,11 @@ struct RasterEngine::Impl {
                                 2.0 * ay * job.hy * sy + count * ay * ay + count * (job.hx * job.hx + job.hy * job.hy) / 12.0) +
                   pieces[i].m2;
       if (pixelless[i] || !(area > 0.0)) {
-        std::vector<Point> polygon = exact_cell_polygon(scene, i);
-        polygon_moments(polygon, area, mx, my, m2);
+        const PolygonMoments m = polygon_moments(exact_cell_polygon(scene, i));
+        area = m.area();
+        mx = m.first_moment().x;
+        my = m.first_moment().y;
+        m2 = m.second_moment();
         cell.status = CellStatus::exact_fallback;
         ++out.fallback_count;
       }

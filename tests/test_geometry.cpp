@@ -1,0 +1,162 @@
+// The shared geometry of the engines: convex polygons (clipping, moments) against hand-computed
+// values, and the periodic site grid against brute force.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "bluetile/core/rng.h"
+#include "bluetile/voronoi/polygon.h"
+#include "bluetile/voronoi/site_grid.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+TEST(Polygon, MomentsOfRectanglesAndTriangles) {
+  // [0,1]^2: area 1, centroid (1/2, 1/2), integral of x^2 + y^2 = 2/3.
+  const std::vector<Point> square = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  PolygonMoments m = polygon_moments(square);
+  EXPECT_DOUBLE_EQ(m.area(), 1.0);
+  EXPECT_DOUBLE_EQ(m.centroid().x, 0.5);
+  EXPECT_DOUBLE_EQ(m.centroid().y, 0.5);
+  EXPECT_DOUBLE_EQ(m.first_moment().x, 0.5);
+  EXPECT_DOUBLE_EQ(m.second_moment(), 2.0 / 3.0);
+  // [-a,a] x [-b,b]: area 4ab, second moment 4ab (a^2 + b^2) / 3.
+  const double a = 0.3, b = 0.7;
+  ConvexPolygon box;
+  box.reset_rectangle({-a, -b}, {a, b});
+  m = box.moments();
+  EXPECT_NEAR(m.area(), 4 * a * b, 1e-15);
+  EXPECT_NEAR(m.second_moment(), 4 * a * b * (a * a + b * b) / 3, 1e-15);
+  EXPECT_NEAR(box.max_radius_squared(), a * a + b * b, 1e-15);
+  // Triangle (0,0), (3,0), (0,3): area 9/2, centroid (1,1), integral of x^2+y^2 = 2 * 27/4.
+  const std::vector<Point> triangle = {{0, 0}, {3, 0}, {0, 3}};
+  m = polygon_moments(triangle);
+  EXPECT_DOUBLE_EQ(m.area(), 4.5);
+  EXPECT_DOUBLE_EQ(m.centroid().x, 1.0);
+  EXPECT_DOUBLE_EQ(m.centroid().y, 1.0);
+  EXPECT_DOUBLE_EQ(m.second_moment(), 13.5);
+  // Clockwise order gives the negative area; no polygon, no area and the origin as centroid.
+  m = polygon_moments(std::vector<Point>{{0, 0}, {0, 3}, {3, 0}});
+  EXPECT_DOUBLE_EQ(m.area(), -4.5);
+  EXPECT_EQ(m.centroid(), Point(0.0, 0.0));
+  EXPECT_EQ(polygon_moments({}).area(), 0.0);
+}
+
+TEST(Polygon, ClipByBisector) {
+  ConvexPolygon p;
+  p.reset_rectangle({-1, -1}, {1, 1}, 7);
+  // The bisector with (1, 0) is x = 1/2: [-1, 1/2] x [-1, 1] is left.
+  p.clip_by_bisector({1.0, 0.0}, 3);
+  ASSERT_EQ(p.size(), 4u);
+  PolygonMoments m = p.moments();
+  EXPECT_DOUBLE_EQ(m.area(), 3.0);
+  EXPECT_DOUBLE_EQ(m.centroid().x, -0.25);
+  EXPECT_DOUBLE_EQ(m.centroid().y, 0.0);
+  EXPECT_DOUBLE_EQ(p.max_radius_squared(), 2.0);
+  int labelled = 0;
+  for (const PolygonVertex& v : p.vertices()) labelled += v.edge_label == 3;
+  EXPECT_EQ(labelled, 1);  // exactly one edge lies on the bisector
+  // A bisector through a vertex cuts nothing and adds no duplicate: d = (1, 2) gives the line
+  // x + 2y = 5/2, through the vertex (1/2, 1).
+  p.clip_by_bisector({1.0, 2.0}, 4);
+  EXPECT_EQ(p.size(), 4u);
+  EXPECT_DOUBLE_EQ(p.moments().area(), 3.0);
+  // A far site cannot reach the polygon (|d|^2 >= 4 r^2): unchanged.
+  p.clip_by_bisector({3.0, 0.0}, 5);
+  EXPECT_EQ(p.size(), 4u);
+  // The four lattice neighbours at distance 1 leave the unit square around the site: second
+  // moment 1/6.
+  ConvexPolygon cell;
+  cell.reset_rectangle({-2, -2}, {2, 2});
+  for (Point d : {Point{1, 0}, Point{-1, 0}, Point{0, 1}, Point{0, -1}}) cell.clip_by_bisector(d, 0);
+  EXPECT_DOUBLE_EQ(cell.moments().area(), 1.0);
+  EXPECT_DOUBLE_EQ(cell.moments().second_moment(), 1.0 / 6.0);
+  EXPECT_DOUBLE_EQ(cell.max_radius_squared(), 0.5);
+  // Everything cut away: empty.
+  cell.clip({1.0, 0.0}, -10.0, 0);
+  EXPECT_TRUE(cell.empty());
+}
+
+TEST(Polygon, HalfPlanesSplitAreaAndMoments) {
+  // Clipping by a line and by its opposite half-plane partitions the polygon: areas and first
+  // moments add up to the whole, over random lines.
+  Rng rng(31);
+  for (int k = 0; k < 200; ++k) {
+    ConvexPolygon whole, left, right;
+    const Point lo{-rng.uniform(), -rng.uniform()}, hi{rng.uniform(), rng.uniform()};
+    for (ConvexPolygon* p : {&whole, &left, &right}) p->reset_rectangle(lo, hi);
+    const double angle = 6.283185307179586 * rng.uniform();
+    const Point n{std::cos(angle), std::sin(angle)};
+    const double offset = rng.uniform() - 0.5;
+    left.clip(n, offset, 1);
+    right.clip(-n, -offset, 2);
+    const PolygonMoments w = whole.moments(), l = left.moments(), r = right.moments();
+    EXPECT_NEAR(l.area() + r.area(), w.area(), 1e-14) << k;
+    EXPECT_NEAR(l.first_moment().x + r.first_moment().x, w.first_moment().x, 1e-14) << k;
+    EXPECT_NEAR(l.first_moment().y + r.first_moment().y, w.first_moment().y, 1e-14) << k;
+    EXPECT_NEAR(l.second_moment() + r.second_moment(), w.second_moment(), 1e-14) << k;
+  }
+}
+
+TEST(SiteGrid, BucketsHoldEverySiteOnceInIndexOrder) {
+  const Domain domain{{2.0, 0.5}};
+  Rng rng(32);
+  std::vector<Point> sites(777);
+  for (Point& p : sites) p = rng.point(domain);
+  SiteGrid grid(sites, domain, 1.0);
+  EXPECT_NEAR(static_cast<double>(grid.columns() * grid.rows()), 777.0, 60.0);
+  std::vector<int> seen(sites.size(), 0);
+  for (std::size_t b = 0; b < grid.bucket_count(); ++b) {
+    auto in = grid.sites_in_bucket(b);
+    EXPECT_TRUE(std::is_sorted(in.begin(), in.end()));
+    for (std::uint32_t s : in) {
+      ++seen[s];
+      auto [cx, cy] = grid.bucket_coordinates(sites[s]);
+      EXPECT_EQ(static_cast<std::size_t>(cy * grid.columns() + cx), b);
+    }
+  }
+  for (int count : seen) EXPECT_EQ(count, 1);
+  // The search order starts at the own bucket and never decreases.
+  const auto& order = grid.search_order();
+  ASSERT_FALSE(order.empty());
+  EXPECT_EQ(order[0].dx, 0);
+  EXPECT_EQ(order[0].dy, 0);
+  for (std::size_t k = 1; k < order.size(); ++k) EXPECT_LE(order[k - 1].lower_bound_squared, order[k].lower_bound_squared);
+  // A bucket named outside the grid is a periodic copy: offsets shift by one period.
+  std::uint32_t first = grid.sites_in_bucket(0).empty() ? 0 : grid.sites_in_bucket(0)[0];
+  grid.for_each_in_bucket(grid.columns(), 0, Point{0.0, 0.0}, [&](std::uint32_t s, Point d) {
+    if (s == first) {
+      EXPECT_EQ(d.x, sites[s].x + domain.size.x);
+      EXPECT_EQ(d.y, sites[s].y);
+    }
+  });
+}
+
+TEST(SiteGrid, NearVisitsASupersetOnce) {
+  const Domain domain{{1.0, 1.0}};
+  Rng rng(33);
+  std::vector<Point> sites(300);
+  for (Point& p : sites) p = rng.point(domain);
+  sites.push_back({0.0, 0.0});
+  sites.push_back({std::nextafter(1.0, 0.0), 0.999});
+  SiteGrid grid(sites, domain, 1.0);
+  for (double reach : {0.01, 0.05, 0.2, 0.7}) {
+    for (int k = 0; k < 50; ++k) {
+      const Point p = k < 2 ? sites[300 + k] : rng.point(domain);
+      std::vector<int> visits(sites.size(), 0);
+      grid.for_each_near(p, reach, [&](std::uint32_t s) { ++visits[s]; });
+      for (std::size_t s = 0; s < sites.size(); ++s) {
+        EXPECT_LE(visits[s], 1) << s;
+        if (torus_distance(p, sites[s], domain) <= reach) {
+          EXPECT_EQ(visits[s], 1) << "reach " << reach << " site " << s;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace bluetile
