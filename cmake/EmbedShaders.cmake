@@ -39,5 +39,7 @@ ${entries}  };
 }  // namespace bluetile
 ")
   target_sources(${target} PRIVATE ${headers} ${registry})
+  # The SPIR-V alone, as a target of its own (the consumer-build test compiles just these).
+  add_custom_target(${target}_shaders DEPENDS ${headers})
   target_include_directories(${target} PRIVATE ${CMAKE_CURRENT_BINARY_DIR})
 endfunction()

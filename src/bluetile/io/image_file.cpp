@@ -20,17 +20,13 @@ struct Plugin {
 };
 
 // Where the module may be: only BLUETILE_OIIO_PLUGIN when it is set (a wrong value is an error,
-// not a silent fall-back); else beside the running program (the build folder, or an install's
-// bin/), its ../lib, then the loader's own search path.
+// not a silent fall-back); else by bare name, which the dynamic loader looks up in the RUNPATH
+// of the object holding this code: the program when the library is linked statically,
+// libbluetile_images.so when shared. Linking bluetile::images (CMake, in a build tree or
+// installed) or bluetile-images (pkg-config) puts the plugin's folder there.
 std::vector<std::string> plugin_candidates() {
   std::vector<std::string> paths;
   if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) return {env};
-  std::error_code ec;
-  auto exe = std::filesystem::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    paths.push_back((exe.parent_path() / BLUETILE_OIIO_PLUGIN_NAME).string());
-    paths.push_back((exe.parent_path().parent_path() / "lib" / BLUETILE_OIIO_PLUGIN_NAME).string());
-  }
   paths.push_back(BLUETILE_OIIO_PLUGIN_NAME);
   return paths;
 }
@@ -61,7 +57,8 @@ const Plugin& plugin() {
     failure = std::getenv("BLUETILE_OIIO_PLUGIN")
                   ? "cannot load the image plugin named by BLUETILE_OIIO_PLUGIN: " + first_reason
                   : "cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME
-                    " (built beside the bluetile binary; BLUETILE_OIIO_PLUGIN names another): " +
+                    " (a program linked to bluetile::images finds it through its RUNPATH;"
+                    " BLUETILE_OIIO_PLUGIN names the file): " +
                         first_reason + (others.empty() ? "" : "; also tried " + others);
   });
   if (!loaded.write) throw Error(failure);
