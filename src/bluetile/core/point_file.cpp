@@ -71,8 +71,8 @@ class LineError {
 double parse_coordinate(std::string_view token, const LineError& fail) {
   double value = 0.0;
   auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+  if (end != token.data() + token.size() || ec == std::errc::invalid_argument) fail("not a number " + quote(token));
   if (ec == std::errc::result_out_of_range) fail("coordinate out of range " + quote(token));
-  if (ec != std::errc() || end != token.data() + token.size()) fail("not a number " + quote(token));
   if (!std::isfinite(value)) fail("not a finite number " + quote(token));
   return value;
 }
@@ -141,11 +141,13 @@ class SetParser {
   std::size_t count_line_ = 0;
 };
 
+}  // namespace
+
 // Splits text fed in arbitrary chunks into lines and hands them to one set parser (or, with
 // `several`, one per '#'-separated set).
-class PointReader {
+class PointTextParser::Impl {
  public:
-  PointReader(const std::string& name, bool several) : name_(name), several_(several), parser_(name) {}
+  Impl(std::string name, bool several) : name_(std::move(name)), several_(several), parser_(name_) {}
 
   void feed(std::string_view chunk) {
     if (at_start_) {
@@ -220,7 +222,7 @@ class PointReader {
     parser_.data_line(data, number_);
   }
 
-  const std::string& name_;
+  std::string name_;
   bool several_;
   SetParser parser_;
   std::vector<PointSet> sets_;
@@ -229,10 +231,20 @@ class PointReader {
   std::size_t number_ = 0;
 };
 
+PointTextParser::PointTextParser(std::string name, bool several_sets)
+    : impl_(std::make_unique<Impl>(std::move(name), several_sets)) {}
+PointTextParser::~PointTextParser() = default;
+void PointTextParser::feed(std::string_view piece) { impl_->feed(piece); }
+std::vector<PointSet> PointTextParser::finish() { return impl_->finish(); }
+std::size_t PointTextParser::lines() const { return impl_->line_number(); }
+std::size_t PointTextParser::points() const { return impl_->points_read(); }
+
+namespace {
+
 std::vector<PointSet> parse(std::string_view text, const std::string& name, bool several) {
-  PointReader reader(name, several);
-  reader.feed(text);
-  return reader.finish();
+  PointTextParser parser(name, several);
+  parser.feed(text);
+  return parser.finish();
 }
 
 std::vector<PointSet> read(const std::string& path, bool several) {
@@ -245,7 +257,7 @@ std::vector<PointSet> read(const std::string& path, bool several) {
       if (fd != STDIN_FILENO) ::close(fd);
     }
   } closer{fd};
-  PointReader reader(name, several);
+  PointTextParser reader(name, several);
   try {
     std::unique_ptr<char[]> chunk(new char[kChunkSize]);
     for (;;) {
@@ -253,7 +265,7 @@ std::vector<PointSet> read(const std::string& path, bool several) {
       if (n < 0 && errno == EINTR) continue;
       if (n < 0) {
         if (errno == EISDIR) throw Error(name + ": is a folder, not a point file");
-        throw Error(name + ": read failed after line " + std::to_string(reader.line_number()) + ": " +
+        throw Error(name + ": read failed after line " + std::to_string(reader.lines()) + ": " +
                     std::strerror(errno));
       }
       if (n == 0) break;
@@ -261,8 +273,8 @@ std::vector<PointSet> read(const std::string& path, bool several) {
     }
     return reader.finish();
   } catch (const std::bad_alloc&) {
-    throw Error(name + ":" + std::to_string(reader.line_number()) + ": out of memory after " +
-                std::to_string(reader.points_read()) + " points");
+    throw Error(name + ":" + std::to_string(reader.lines()) + ": out of memory after " + std::to_string(reader.points()) +
+                " points");
   }
 }
 

@@ -11,6 +11,7 @@
 // cut to a few dozen characters.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -45,6 +46,26 @@ std::vector<PointSet> read_point_sets(const std::string& path);
 // The same, from text in memory; `name` is used in error messages in place of a path.
 PointSet parse_points(std::string_view text, const std::string& name);
 std::vector<PointSet> parse_point_sets(std::string_view text, const std::string& name);
+
+// Point-file text fed in pieces cut anywhere (the readers above feed 64 KiB chunks): the result,
+// or the error, does not depend on where the cuts fall.
+class PointTextParser {
+ public:
+  // `several_sets`: '#' lines separate sets (read_point_sets); else one set (read_point_file).
+  PointTextParser(std::string name, bool several_sets);
+  ~PointTextParser();
+  PointTextParser(const PointTextParser&) = delete;
+  PointTextParser& operator=(const PointTextParser&) = delete;
+
+  void feed(std::string_view piece);  // throws Error on a bad line
+  std::vector<PointSet> finish();     // throws Error; one set unless several_sets
+  std::size_t lines() const;          // complete lines seen so far
+  std::size_t points() const;         // points parsed so far
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
 
 // Streams a point file: optional header comment lines (each gets "# "), then one point a line.
 void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header = {});
