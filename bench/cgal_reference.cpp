@@ -80,6 +80,7 @@ Cell measure_polygon(const std::vector<Point>& polygon, Point site) {
   }
   Cell cell;
   cell.area = 0.5 * a2;
+  cell.mass = cell.area;
   Point offset = a2 > 0.0 ? Point{cx / (3.0 * a2), cy / (3.0 * a2)} : Point{0.0, 0.0};
   cell.centroid = wrap_point(site + offset, Domain{});
   cell.second_moment = moment / 12.0;

@@ -92,6 +92,14 @@ TEST_P(EngineRefusals, BrokenScenesAreRefusedWithTheProjectsError) {
   bad = scene;
   bad.sites[2].x = -std::numeric_limits<double>::infinity();
   EXPECT_EQ(error_of(*engine, bad), "scene: site 2 (-inf, 0.10000000000000001) is not finite");
+  bad = scene;
+  bad.boundary = Boundary::bounded;
+  bad.sites[0].x = 1.0;
+  EXPECT_EQ(error_of(*engine, bad), "scene: site 0 (1, 0.5) lies outside the bounded domain 1 x 1");
+  bad = scene;
+  bad.density = std::make_shared<DensityGrid>(4, 4, 1.0f);
+  std::const_pointer_cast<DensityGrid>(bad.density)->texels.pop_back();
+  EXPECT_EQ(error_of(*engine, bad), "density grid of 4 x 4 texels holds 15 values");
   for (Point size : {Point{0.0, 1.0}, Point{1.0, -1.0}, Point{std::nan(""), 1.0},
                      Point{1.0, std::numeric_limits<double>::infinity()}}) {
     bad = scene;

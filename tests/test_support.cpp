@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "bluetile/core/error.h"
 #include "bluetile/core/rng.h"
 
 namespace bluetile::test {
@@ -31,6 +32,15 @@ std::vector<std::string> TempDir::list() const {
   std::vector<std::string> names;
   for (const auto& entry : std::filesystem::directory_iterator(path_)) names.push_back(entry.path().filename().string());
   return names;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
 }
 
 std::string read_text(const std::string& path) {

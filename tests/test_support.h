@@ -1,6 +1,7 @@
 // Helpers shared by the test files: temporary folders and running the bluetile binary.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,9 @@ struct CommandResult {
 CommandResult run_bluetile(const std::vector<std::string>& arguments);
 
 std::string read_text(const std::string& path);
+
+// The message of the bluetile::Error that f throws, or "" when it throws none.
+std::string error_of(const std::function<void()>& f);
 
 std::vector<Point> uniform_points(std::size_t count, std::uint64_t seed);
 

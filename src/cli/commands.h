@@ -11,5 +11,6 @@ void add_analyze_command(CLI::App& app);
 void add_dart_command(CLI::App& app);
 void add_progressive_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
+void add_stipple_command(CLI::App& app);
 
 }  // namespace bluetile::cli

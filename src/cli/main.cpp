@@ -33,6 +33,7 @@ int main(int argc, char** argv) {
   bluetile::cli::add_dart_command(app);
   bluetile::cli::add_progressive_command(app);
   bluetile::cli::add_devices_command(app);
+  bluetile::cli::add_stipple_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -1,5 +1,4 @@
 // bluetile progressive: hierarchical point sets, new levels relaxed around fixed earlier ones.
-#include <algorithm>
 #include <cstdio>
 #include <limits>
 #include <memory>
@@ -12,7 +11,6 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
-#include "bluetile/core/rng.h"
 #include "bluetile/relax/progressive.h"
 
 namespace bluetile::cli {
@@ -32,16 +30,8 @@ struct ProgressiveOptions {
   EngineOptions engine;
 };
 
-// A hierarchy larger than this is almost surely a mistyped option, and would need tens of GiB.
-constexpr std::size_t kMaxPoints = static_cast<std::size_t>(kMaxCount);
 // Bytes per point of a level's relaxation (see kRelaxBytesPerSite) plus the levels column.
 constexpr double kBytesPerPoint = kRelaxBytesPerSite + 8.0;
-
-int level_count(const PointSet& set) {
-  if (set.points.empty()) return 0;
-  if (!set.has_levels()) return 1;
-  return *std::max_element(set.levels.begin(), set.levels.end()) + 1;
-}
 
 void run_progressive(const ProgressiveOptions& o) {
   if (!o.input.empty() && o.add == 0 && o.ratio == 0.0)
@@ -55,53 +45,44 @@ void run_progressive(const ProgressiveOptions& o) {
     set = read_point_file(o.input);
     if (set.points.empty()) throw Error(input_name(o.input) + ": no points");
   }
-  const int base_levels = level_count(set);
-  const int target_levels = o.levels ? o.levels : std::max(base_levels + 1, o.input.empty() ? 4 : 1);
-  if (target_levels <= base_levels) {
-    throw Error("--levels " + std::to_string(target_levels) + ": " + (o.input.empty() ? "" : input_name(o.input) + " ") +
-                "already has " + std::to_string(base_levels) + " level(s); --levels is the total to reach");
-  }
-  if (target_levels - 1 > kMaxLevel) {
-    throw Error(input_name(o.input) + ": already has levels up to " + std::to_string(base_levels - 1) +
-                ", and a point file holds levels up to " + std::to_string(kMaxLevel) + " only");
-  }
-  const std::size_t per_level = o.add ? static_cast<std::size_t>(o.add) : static_cast<std::size_t>(o.count);
-
+  HierarchyOptions hierarchy;
+  hierarchy.count = static_cast<std::size_t>(o.count);
+  hierarchy.add = static_cast<std::size_t>(o.add);
+  hierarchy.ratio = o.ratio;
+  hierarchy.levels = o.levels;
+  hierarchy.iterations = o.iterations;
+  hierarchy.tolerance = o.tolerance;
+  hierarchy.seed = o.seed;
+  hierarchy.placement = o.placement == "random" ? Placement::random : Placement::gaps;
   // Every level's size, checked before any work.
   std::vector<std::size_t> sizes;
-  std::size_t total = set.points.size();
-  for (int l = base_levels; l < target_levels; ++l) {
-    std::size_t add = o.input.empty() && l == 0 ? static_cast<std::size_t>(o.count) : level_size(total, per_level, o.ratio);
-    if (add == 0) {
-      throw Error("--ratio " + std::to_string(o.ratio) + " adds no point to a set of " + std::to_string(total) +
-                  " (level " + std::to_string(l) + ")");
-    }
-    if (add > kMaxPoints - total) {
-      throw Error("level " + std::to_string(l) + " would bring the set to " + std::to_string(total + add) +
-                  " points, more than the limit of " + std::to_string(kMaxPoints));
-    }
-    total += add;
-    sizes.push_back(add);
+  try {
+    sizes = hierarchy_level_sizes(set, hierarchy);
+  } catch (const Error& e) {
+    throw Error(o.input.empty() ? std::string(e.what()) : input_name(o.input) + ": " + e.what());
   }
-  check_memory(static_cast<double>(total) * kBytesPerPoint, std::to_string(total) + " points in " +
-                                                               std::to_string(target_levels) + " levels");
+  std::size_t total = set.points.size();
+  for (std::size_t add : sizes) total += add;
+  const int levels = count_levels(set) + static_cast<int>(sizes.size());
+  check_memory(static_cast<double>(total) * kBytesPerPoint,
+               std::to_string(total) + " points in " + std::to_string(levels) + " levels");
 
   auto engine = make_engine(o.engine);
-  LevelOptions level;
-  level.iterations = o.iterations;
-  level.tolerance = o.tolerance;
-  level.placement = o.placement == "random" ? Placement::random : Placement::gaps;
-  for (int l = base_levels; l < target_levels; ++l) {
-    level.add = sizes[static_cast<std::size_t>(l - base_levels)];
-    level.seed = derive_seed(o.seed, static_cast<std::uint64_t>(l));
-    Progress progress("level " + std::to_string(l) + ": relax", o.iterations);
-    level.on_iteration = [&](const LloydIteration& it) { progress.update(it.iteration); };
-    set = add_level(*engine, set, level);
-  }
+  std::unique_ptr<Progress> progress;
+  int progress_level = -1;
+  hierarchy.on_iteration = [&](int level, const LloydIteration& it) {
+    if (level != progress_level) {
+      progress = std::make_unique<Progress>("level " + std::to_string(level) + ": relax", o.iterations);
+      progress_level = level;
+    }
+    progress->update(it.iteration);
+  };
+  set = add_levels(*engine, std::move(set), hierarchy);
+  progress.reset();
   std::string how = o.input.empty() ? "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed)
                                     : "on " + input_name(o.input) + ", seed " + std::to_string(o.seed);
   const std::vector<std::string> header = {
-      "bluetile progressive: " + std::to_string(set.points.size()) + " points in " + std::to_string(target_levels) +
+      "bluetile progressive: " + std::to_string(set.points.size()) + " points in " + std::to_string(levels) +
           " levels " + how + ", " + std::to_string(o.iterations) + " iterations per level, engine " +
           std::string(engine->name()) + ", placement " + o.placement,
       "columns: x y level"};

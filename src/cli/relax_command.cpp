@@ -4,15 +4,17 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/density_options.h"
 #include "cli/engine_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
-#include "cli/progress.h"
+#include "cli/relax_log.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
+#include "bluetile/sampling/density_sampling.h"
 
 namespace bluetile::cli {
 namespace {
@@ -29,12 +31,18 @@ struct RelaxOptions {
   std::string log;
   std::string id_image;
   bool verbose = false;
+  std::string density_map;
+  bool bounded = false;
+  DensityMapOptions transfer;
+  double weight_exponent = 2.0;
   EngineOptions engine;
 };
 
 // Set k of a batch: its own seed, so set 0 of any batch equals the single set of that seed.
-std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_t count) {
+// Uniform, or drawn in proportion to the density when there is one.
+std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_t count, const DensityGrid* density) {
   Rng rng(derive_seed(seed, set));
+  if (density) return sample_density(*density, Domain{}, count, rng);
   std::vector<Point> points(count);
   for (Point& p : points) p = rng.point(Domain{});
   return points;
@@ -73,13 +81,22 @@ void run_relax(const RelaxOptions& o) {
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
   OutputFile* id_image = o.id_image.empty() ? nullptr : &outputs.add(o.id_image);
 
+  // The map is stretched over the unit square, whatever its aspect ratio. Random starts follow
+  // it; the cells are weighted so that the relaxed set keeps following it.
+  std::shared_ptr<const DensityGrid> density, weight;
+  if (!o.density_map.empty()) {
+    density = std::make_shared<DensityGrid>(load_density_map(o.density_map, density_transfer(o.transfer)));
+    weight = std::make_shared<DensityGrid>(weight_for_point_density(*density, o.weight_exponent));
+  }
   std::vector<PointSet> inputs;
   if (!o.input.empty()) {
     inputs.push_back(read_point_file(o.input));
     if (inputs[0].points.empty()) throw Error(input_name(o.input) + ": no points");
   } else {
     for (long long k = 0; k < o.sets; ++k)
-      inputs.push_back({random_points(o.seed, static_cast<std::size_t>(k), static_cast<std::size_t>(o.count)), {}});
+      inputs.push_back({random_points(o.seed, static_cast<std::size_t>(k), static_cast<std::size_t>(o.count),
+                                      density.get()),
+                        {}});
   }
   const std::size_t n = inputs[0].points.size();
   if (static_cast<std::size_t>(o.fixed) > n) {
@@ -90,40 +107,23 @@ void run_relax(const RelaxOptions& o) {
   for (PointSet& set : inputs) {
     Scene scene = make_scene(std::move(set.points));
     scene.wanted_begin = static_cast<std::size_t>(o.fixed);
+    scene.boundary = o.bounded ? Boundary::bounded : Boundary::periodic;
+    scene.density = weight;
     scenes.push_back(std::move(scene));
   }
 
   auto engine = make_engine(o.engine);
   // The log is streamed while the run goes: its memory does not grow with the iterations.
-  OutputStream* log = log_file ? &log_file->open() : nullptr;
-  if (log) log->write("iteration,energy,max_displacement,mean_displacement,coincident,fallbacks\n");
-  Progress progress("relax", o.iterations);
-  LloydOptions lloyd;
-  lloyd.iterations = o.iterations;
-  lloyd.tolerance = o.tolerance;
-  lloyd.on_iteration = [&](const LloydIteration& it) {
-    if (log) {
-      log->print("%d,%.17g,%.17g,%.17g,%zu,%zu\n", it.iteration, it.energy, it.max_displacement, it.mean_displacement,
-                 it.coincident, it.fallbacks);
-    }
-    if (o.verbose) {
-      progress.finish();
-      std::fprintf(stderr, "iteration %d: energy %.9e, max displacement %.3e, mean %.3e%s\n", it.iteration,
-                   it.energy, it.max_displacement, it.mean_displacement,
-                   it.coincident ? (", " + std::to_string(it.coincident) + " coincident").c_str() : "");
-    }
-    char detail[64];
-    std::snprintf(detail, sizeof detail, "max displacement %.2e", it.max_displacement);
-    progress.update(it.iteration, detail);
-  };
-  LloydResult result = relax_lloyd(*engine, scenes, lloyd);
-  progress.finish();
+  RelaxLog log("relax", o.iterations, o.verbose, log_file ? &log_file->open() : nullptr);
+  LloydResult result = relax_lloyd(*engine, scenes, log.lloyd_options(o.iterations, o.tolerance));
+  log.finish(result, o.tolerance, o.iterations);
 
   std::vector<std::string> header = {
       "bluetile relax: " + std::to_string(n) + " points, " + std::to_string(result.iterations) +
       " iterations, engine " + std::string(engine->name()) +
       (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + input_name(o.input)) +
-      (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "")};
+      (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "") +
+      (o.density_map.empty() ? "" : ", density map " + o.density_map) + (o.bounded ? ", bounded" : "")};
   if (one_file_each) {
     for (std::size_t k = 0; k < scenes.size(); ++k) {
       point_files[k]->write([&](OutputStream& out) { write_points(out, PointSet{scenes[k].sites, {}}, header); });
@@ -144,15 +144,6 @@ void run_relax(const RelaxOptions& o) {
   if (log_file) log_file->close();
   if (id_image) write_id_image(o.engine, *engine, scenes[0], *id_image);
   outputs.publish();
-
-  if (result.last.coincident) {
-    std::fprintf(stderr, "bluetile: warning: %zu sites coincide with another site and were not moved\n",
-                 result.last.coincident);
-  }
-  if (o.tolerance > 0.0 && !result.converged) {
-    std::fprintf(stderr, "bluetile: note: max displacement %.3e still above --tolerance %.3e after %d iterations\n",
-                 result.last.max_displacement, o.tolerance, o.iterations);
-  }
 }
 
 }  // namespace
@@ -178,6 +169,13 @@ void add_relax_command(CLI::App& app) {
   cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
   cmd->add_option("--id-image", o->id_image, "Write the raster ID buffer of the result as an image (cells coloured, sites drawn)");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
+  cmd->add_option("--density-map", o->density_map,
+                  "Relax toward this image's density (bright means dense unless --invert), stretched over the unit "
+                  "square; random starts are drawn from it")
+      ->check(CLI::ExistingFile);
+  cmd->add_flag("--bounded", o->bounded, "Cells end at the unit square's border instead of wrapping around");
+  add_density_transfer_options(cmd, o->transfer);
+  add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
   cmd->callback([o] {
     if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");

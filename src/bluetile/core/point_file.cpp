@@ -1,22 +1,17 @@
 #include "bluetile/core/point_file.h"
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
+#include <cstdio>
 #include <memory>
 #include <new>
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include "bluetile/core/error.h"
+#include "bluetile/core/input_file.h"
 
 namespace bluetile {
 namespace {
 
-// Read size: large enough that system calls cost nothing next to parsing.
-constexpr std::size_t kChunkSize = 1 << 16;
 // Values quoted in messages are cut to this many bytes: a message stays one readable line.
 constexpr std::size_t kQuoteLength = 40;
 
@@ -249,31 +244,12 @@ std::vector<PointSet> parse(std::string_view text, const std::string& name, bool
 
 std::vector<PointSet> read(const std::string& path, bool several) {
   const std::string name = input_name(path);
-  int fd = path == "-" ? STDIN_FILENO : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw Error(name + ": cannot open: " + std::strerror(errno));
-  struct Closer {
-    int fd;
-    ~Closer() {
-      if (fd != STDIN_FILENO) ::close(fd);
-    }
-  } closer{fd};
-  PointTextParser reader(name, several);
+  PointTextParser parser(name, several);
   try {
-    std::unique_ptr<char[]> chunk(new char[kChunkSize]);
-    for (;;) {
-      ssize_t n = ::read(fd, chunk.get(), kChunkSize);
-      if (n < 0 && errno == EINTR) continue;
-      if (n < 0) {
-        if (errno == EISDIR) throw Error(name + ": is a folder, not a point file");
-        throw Error(name + ": read failed after line " + std::to_string(reader.lines()) + ": " +
-                    std::strerror(errno));
-      }
-      if (n == 0) break;
-      reader.feed(std::string_view(chunk.get(), static_cast<std::size_t>(n)));
-    }
-    return reader.finish();
+    for_each_chunk(path, [&](std::string_view chunk) { parser.feed(chunk); });
+    return parser.finish();
   } catch (const std::bad_alloc&) {
-    throw Error(name + ":" + std::to_string(reader.lines()) + ": out of memory after " + std::to_string(reader.points()) +
+    throw Error(name + ":" + std::to_string(parser.lines()) + ": out of memory after " + std::to_string(parser.points()) +
                 " points");
   }
 }
@@ -308,6 +284,19 @@ void write_points(OutputStream& out, const PointSet& set, const std::vector<std:
       out.print("%.17g %.17g\n", set.points[i].x, set.points[i].y);
     }
   }
+}
+
+std::string format_points(const PointSet& set, const std::vector<std::string>& header) {
+  std::string text;
+  for (const auto& line : header) text += "# " + line + "\n";
+  char buffer[96];
+  for (std::size_t i = 0; i < set.points.size(); ++i) {
+    int n = set.has_levels() ? std::snprintf(buffer, sizeof buffer, "%.17g %.17g %d\n", set.points[i].x, set.points[i].y,
+                                             set.levels[i])
+                             : std::snprintf(buffer, sizeof buffer, "%.17g %.17g\n", set.points[i].x, set.points[i].y);
+    text.append(buffer, static_cast<std::size_t>(n));
+  }
+  return text;
 }
 
 void write_point_file(const std::string& path, const PointSet& set, const std::vector<std::string>& header) {

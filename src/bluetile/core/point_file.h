@@ -70,6 +70,9 @@ class PointTextParser {
 // Streams a point file: optional header comment lines (each gets "# "), then one point a line.
 void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header = {});
 
+// The same text as a string (small sets; large ones stream through write_points).
+std::string format_points(const PointSet& set, const std::vector<std::string>& header = {});
+
 // Writes a point file through output_file.h ("-" is standard output).
 void write_point_file(const std::string& path, const PointSet& set,
                       const std::vector<std::string>& header = {});

@@ -54,4 +54,11 @@ std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t index) {
   return splitmix64(x);
 }
 
+std::vector<Point> uniform_random_points(std::size_t count, std::uint64_t seed, std::uint64_t set) {
+  Rng rng(derive_seed(seed, set));
+  std::vector<Point> points(count);
+  for (Point& p : points) p = rng.point(Domain{});
+  return points;
+}
+
 }  // namespace bluetile

@@ -3,7 +3,9 @@
 // functions instead. Engine: xoshiro256** (Blackman & Vigna), seeded by SplitMix64.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
+#include <vector>
 
 #include "bluetile/core/torus.h"
 
@@ -28,5 +30,10 @@ class Rng {
 // A seed for stream `index` derived from a user seed, so that set k of a batch does not
 // depend on how many sets come before it.
 std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t index);
+
+// The random start of set `set` of `bluetile relax --count N --seed S` (and of the Python
+// module's relax): `count` uniform points on the unit torus from Rng(derive_seed(seed, set)),
+// so set k of a batch does not depend on how many sets the batch has.
+std::vector<Point> uniform_random_points(std::size_t count, std::uint64_t seed, std::uint64_t set = 0);
 
 }  // namespace bluetile

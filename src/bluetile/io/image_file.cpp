@@ -1,5 +1,7 @@
 #include "bluetile/io/image_file.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
@@ -65,11 +67,12 @@ const Plugin& plugin() {
   return loaded;
 }
 
-}  // namespace
-
-void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
+// Encodes in memory and streams through the output's checked writes; formats OpenImageIO writes
+// only to files go through a file, with messages naming the user's path.
+void write_samples(OutputFile& out, int width, int height, int channels, int bits, const void* samples,
+                   std::size_t count) {
   const std::string& path = out.path();
-  if (pixels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels))
+  if (count != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels))
     throw Error(path + ": image size does not match its pixels");
   const Plugin& p = plugin();
   // The format follows the extension; PNG for a path without one (/dev/stdout).
@@ -77,22 +80,27 @@ void write_image_file(OutputFile& out, int width, int height, int channels, cons
   char error[512];
   unsigned char* bytes = nullptr;
   std::size_t size = 0;
-  int status = p.encode(name.c_str(), width, height, channels, 8, pixels.data(), &bytes, &size, error, sizeof error);
+  int status = p.encode(name.c_str(), width, height, channels, bits, samples, &bytes, &size, error, sizeof error);
   if (status == 0) {
     std::unique_ptr<unsigned char, decltype(&std::free)> owned(bytes, &std::free);
     out.write(std::string_view(reinterpret_cast<const char*>(bytes), size));
     return;
   }
   if (status != 2) throw Error(path + ": cannot write image: " + error);
-  // A format that OpenImageIO writes only to files: through a file, messages naming the user's path.
   out.write_through_path([&](const std::string& file) {
-    if (p.write(file.c_str(), width, height, channels, pixels.data(), error, sizeof error) != 0) {
+    if (p.write(file.c_str(), width, height, channels, bits, samples, error, sizeof error) != 0) {
       std::string message = error;
       for (std::size_t at = message.find(file); at != std::string::npos; at = message.find(file, at + path.size()))
         message.replace(at, file.size(), path);
       throw Error(path + ": cannot write image: " + message);
     }
   });
+}
+
+}  // namespace
+
+void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
+  write_samples(out, width, height, channels, 8, pixels.data(), pixels.size());
 }
 
 void write_image_file(const std::string& path, int width, int height, int channels,
@@ -102,13 +110,41 @@ void write_image_file(const std::string& path, int width, int height, int channe
   outputs.publish();
 }
 
+void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<float>& values,
+                      SampleFormat format) {
+  if (format == SampleFormat::float32) {
+    write_samples(out, width, height, channels, 32, values.data(), values.size());
+    return;
+  }
+  const double top = format == SampleFormat::uint16 ? 65535.0 : 255.0;
+  auto quantise = [top](float v) { return std::lround(std::clamp(static_cast<double>(v), 0.0, 1.0) * top); };
+  if (format == SampleFormat::uint16) {
+    std::vector<std::uint16_t> samples(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) samples[i] = static_cast<std::uint16_t>(quantise(values[i]));
+    write_samples(out, width, height, channels, 16, samples.data(), samples.size());
+  } else {
+    std::vector<std::uint8_t> samples(values.size());
+    for (std::size_t i = 0; i < values.size(); ++i) samples[i] = static_cast<std::uint8_t>(quantise(values[i]));
+    write_samples(out, width, height, channels, 8, samples.data(), samples.size());
+  }
+}
+
+void write_image_file(const std::string& path, int width, int height, int channels, const std::vector<float>& values,
+                      SampleFormat format) {
+  OutputSet outputs;
+  write_image_file(outputs.add(path), width, height, channels, values, format);
+  outputs.publish();
+}
+
 ImageFile read_image_file(const std::string& path) {
   const Plugin& p = plugin();
   ImageFile image;
   float* values = nullptr;
+  int is_float = 0;
   char error[512];
-  if (p.read(path.c_str(), &image.width, &image.height, &image.channels, &values, error, sizeof error) != 0)
+  if (p.read(path.c_str(), &image.width, &image.height, &image.channels, &is_float, &values, error, sizeof error) != 0)
     throw Error(path + ": cannot read image: " + error);
+  image.floating_point = is_float != 0;
   image.values.assign(values, values + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
                                            static_cast<std::size_t>(image.channels));
   std::free(values);

@@ -23,9 +23,22 @@ void write_image_file(OutputFile& out, int width, int height, int channels, cons
 void write_image_file(const std::string& path, int width, int height, int channels,
                       const std::vector<std::uint8_t>& pixels);
 
+enum class SampleFormat { uint8, uint16, float32 };
+
+// Writes float samples (row 0 at the top, `channels` interleaved) stored in the file as
+// `format`: integer formats take values in [0, 1] (rounded; others are clamped), float32 keeps
+// them as they are (EXR, TIFF). Streamed through output_file.h like the 8-bit writer.
+void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<float>& values,
+                      SampleFormat format);
+void write_image_file(const std::string& path, int width, int height, int channels, const std::vector<float>& values,
+                      SampleFormat format);
+
 struct ImageFile {
   int width = 0, height = 0, channels = 0;
-  std::vector<float> values;  // in [0, 1], `channels` interleaved, row 0 at the top
+  // `channels` interleaved, row 0 at the top: integer samples scaled to [0, 1], float samples
+  // (EXR, HDR, float TIFF) as stored, which may be anything, NaN included.
+  std::vector<float> values;
+  bool floating_point = false;  // the file stores floating-point samples
 };
 
 // Reads any image OpenImageIO knows. Throws Error naming the path on failure.

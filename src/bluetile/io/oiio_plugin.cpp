@@ -45,19 +45,21 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_encode(const
 }
 
 extern "C" __attribute__((visibility("default"))) int bluetile_oiio_write(const char* path, int width, int height,
-                                                                          int channels, const unsigned char* pixels,
+                                                                          int channels, int bits, const void* pixels,
                                                                           char* error, size_t error_size) {
+  const OIIO::TypeDesc type = bits == 32 ? OIIO::TypeDesc::FLOAT : bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::UINT8;
+  if (bits != 8 && bits != 16 && bits != 32) return fail("unsupported sample size", error, error_size);
   auto out = OIIO::ImageOutput::create(path);
   if (!out) return fail(OIIO::geterror(), error, error_size);
-  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
-  if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::UINT8, pixels) || !out->close())
+  OIIO::ImageSpec spec(width, height, channels, type);
+  if (!out->open(path, spec) || !out->write_image(type, pixels) || !out->close())
     return fail(out->geterror(), error, error_size);
   return 0;
 }
 
 extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const char* path, int* width, int* height,
-                                                                         int* channels, float** values, char* error,
-                                                                         size_t error_size) {
+                                                                         int* channels, int* is_float, float** values,
+                                                                         char* error, size_t error_size) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) return fail(OIIO::geterror(), error, error_size);
   const OIIO::ImageSpec& spec = in->spec();
@@ -71,6 +73,7 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const c
   *width = spec.width;
   *height = spec.height;
   *channels = spec.nchannels;
+  *is_float = spec.format.is_floating_point() ? 1 : 0;
   *values = data;
   return 0;
 }

@@ -5,6 +5,13 @@
 
 namespace bluetile {
 
+DensityGrid weight_for_point_density(const DensityGrid& target, double exponent) {
+  DensityGrid weight = target;
+  if (exponent == 1.0) return weight;
+  for (float& t : weight.texels) t = exponent == 2.0 ? t * t : static_cast<float>(std::pow(static_cast<double>(t), exponent));
+  return weight;
+}
+
 LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, const LloydOptions& options) {
   LloydResult result;
   std::vector<SceneCells> cells(scenes.size());
@@ -20,10 +27,11 @@ LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, cons
       Scene& scene = scenes[k];
       log.coincident += cells[k].coincident_count;
       log.fallbacks += cells[k].fallback_count;
+      log.zero_density += cells[k].zero_density_count;
       for (std::size_t i = 0; i < scene.wanted_count(); ++i) {
         const Cell& cell = cells[k].cells[i];
         Point& site = scene.sites[scene.wanted_begin + i];
-        double moved = torus_distance(site, cell.centroid, scene.domain);
+        double moved = scene_distance(scene, site, cell.centroid);
         log.energy += cell.second_moment;
         log.max_displacement = std::max(log.max_displacement, moved);
         displacement_sum += moved;

@@ -1,12 +1,15 @@
 // Lloyd relaxation (Lloyd 1982; the paper, section 2): every wanted site moves to the centroid
 // of its Voronoi cell, repeatedly. Works on any CentroidEngine. Sites outside the scene's wanted
-// range stay fixed, which is how hierarchical levels are relaxed around earlier ones (2.1).
+// range stay fixed, which is how hierarchical levels are relaxed around earlier ones (2.1). With
+// a density in the scene the centroids are centres of mass under it, which makes this weighted
+// Lloyd (Secord 2002): point density follows the map.
 #pragma once
 
 #include <cstddef>
 #include <functional>
 #include <vector>
 
+#include "bluetile/core/density_grid.h"
 #include "bluetile/voronoi/engine.h"
 
 namespace bluetile {
@@ -14,10 +17,11 @@ namespace bluetile {
 struct LloydIteration {
   int iteration = 0;            // 1-based
   double energy = 0.0;          // sum of cell second moments before the move (CVT energy)
-  double max_displacement = 0.0;   // largest torus distance a site moved
+  double max_displacement = 0.0;   // largest distance a site moved (on the torus when periodic)
   double mean_displacement = 0.0;
   std::size_t coincident = 0;   // sites that shared a position and stayed put
   std::size_t fallbacks = 0;    // cells measured by the exact fallback (raster engine)
+  std::size_t zero_density = 0;  // sites whose cell has no density and that stayed put
 };
 
 struct LloydOptions {
@@ -38,6 +42,13 @@ struct LloydResult {
   int iterations = 0;                   // iterations run
   bool converged = false;               // stopped by the tolerance
 };
+
+// The weight under which Lloyd's sites settle with point density proportional to `target`:
+// target^exponent. A centroidal Voronoi diagram's point density goes as the square root of its
+// weight in the plane (Gersho 1979; Du, Faber, Gunzburger 1999, section 2.3), so exponent 2 keeps
+// a set drawn in proportion to `target` where it is; exponent 1 is Secord 2002's weighting, under
+// which the density ratio between regions drifts toward its square root as the set converges.
+DensityGrid weight_for_point_density(const DensityGrid& target, double exponent = 2.0);
 
 // Relaxes the wanted sites of every scene in place, all scenes in one engine call per
 // iteration. The tolerance applies to the largest displacement over all scenes; the history

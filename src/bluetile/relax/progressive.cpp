@@ -115,4 +115,66 @@ PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOpti
   return result;
 }
 
+int count_levels(const PointSet& set) {
+  if (set.points.empty()) return 0;
+  if (!set.has_levels()) return 1;
+  return *std::max_element(set.levels.begin(), set.levels.end()) + 1;
+}
+
+std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const HierarchyOptions& options) {
+  const bool from_scratch = base.points.empty();
+  if (from_scratch && options.count == 0) throw Error("nothing to build: the first level needs at least 1 point");
+  if (!from_scratch && options.add == 0 && options.ratio == 0.0)
+    throw Error("nothing to add: give the points per level (add) or a ratio");
+  if (options.ratio != 0.0 && !(options.ratio > 1.0))
+    throw Error("the ratio must be above 1, got " + std::to_string(options.ratio));
+  const int base_levels = count_levels(base);
+  const int target_levels = options.levels ? options.levels : std::max(base_levels + 1, from_scratch ? 4 : 1);
+  if (target_levels <= base_levels) {
+    throw Error(std::to_string(target_levels) + " levels: the base already has " + std::to_string(base_levels) +
+                " level(s); the number of levels is the total to reach");
+  }
+  // A level the point-file reader would refuse is not written (issue 13, item 12).
+  if (target_levels - 1 > kMaxLevel) {
+    throw Error("the base already has levels up to " + std::to_string(base_levels - 1) + ", and a point file holds levels up to " +
+                std::to_string(kMaxLevel) + " only");
+  }
+  const std::size_t per_level = options.add ? options.add : options.count;
+  std::vector<std::size_t> sizes;
+  std::size_t total = base.points.size();
+  for (int l = base_levels; l < target_levels; ++l) {
+    std::size_t add = from_scratch && l == 0 ? options.count : level_size(total, per_level, options.ratio);
+    if (add == 0) {
+      throw Error("ratio " + std::to_string(options.ratio) + " adds no point to a set of " + std::to_string(total) +
+                  " (level " + std::to_string(l) + ")");
+    }
+    if (add > kMaxHierarchyPoints - total) {
+      throw Error("level " + std::to_string(l) + " would bring the set to " + std::to_string(total + add) +
+                  " points, more than the limit of " + std::to_string(kMaxHierarchyPoints));
+    }
+    total += add;
+    sizes.push_back(add);
+  }
+  return sizes;
+}
+
+PointSet add_levels(CentroidEngine& engine, PointSet set, const HierarchyOptions& options) {
+  const std::vector<std::size_t> sizes = hierarchy_level_sizes(set, options);
+  const int base_levels = count_levels(set);
+  LevelOptions level;
+  level.iterations = options.iterations;
+  level.tolerance = options.tolerance;
+  level.placement = options.placement;
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const int l = base_levels + static_cast<int>(i);
+    level.add = sizes[i];
+    level.seed = derive_seed(options.seed, static_cast<std::uint64_t>(l));
+    if (options.on_iteration) {
+      level.on_iteration = [&options, l](const LloydIteration& it) { options.on_iteration(l, it); };
+    }
+    set = add_level(engine, set, level);
+  }
+  return set;
+}
+
 }  // namespace bluetile

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "bluetile/core/point_file.h"
 #include "bluetile/relax/lloyd.h"
@@ -35,6 +36,37 @@ PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOpti
 // Initial positions of `count` new points among `existing` ones (unit torus).
 std::vector<Point> place_new_points(const std::vector<Point>& existing, std::size_t count, Placement placement,
                                     std::uint64_t seed);
+
+struct HierarchyOptions {
+  // From scratch (an empty base): level 0 has `count` relaxed random points.
+  std::size_t count = 0;
+  // Points each further level adds (0: `count`), or, with ratio > 1, enough to multiply the
+  // total by `ratio` per level (level_size).
+  std::size_t add = 0;
+  double ratio = 0.0;
+  // Total levels of the result; 0: 4 from scratch, one more than the base has otherwise.
+  int levels = 0;
+  int iterations = 80;
+  double tolerance = 0.0;
+  std::uint64_t seed = 1;  // level l places its points with derive_seed(seed, l)
+  Placement placement = Placement::gaps;
+  std::function<void(int level, const LloydIteration&)> on_iteration;
+};
+
+// A hierarchy as `bluetile progressive` builds it: the base (kept bit for bit), then levels up
+// to options.levels, each added by add_level with seed derive_seed(options.seed, level).
+// Throws Error (before any work) when there is nothing to add, the base already has that many
+// levels, or the total would pass kMaxHierarchyPoints.
+PointSet add_levels(CentroidEngine& engine, PointSet base, const HierarchyOptions& options);
+
+// The number of points each new level of add_levels adds, checked as add_levels checks them.
+std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const HierarchyOptions& options);
+
+// Levels in a set: 0 when empty, 1 without a level column, else the highest level + 1.
+int count_levels(const PointSet& set);
+
+// A hierarchy larger than this is almost surely a mistyped option, and would need tens of GiB.
+inline constexpr std::size_t kMaxHierarchyPoints = 100'000'000;
 
 // How many points level l (>= 1) adds: `add` each (the paper's N per level), or, with a ratio r > 1,
 // enough to bring the total from `total` to round(r * total).

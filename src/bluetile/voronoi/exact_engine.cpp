@@ -5,12 +5,15 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/voronoi/density_moments.h"
 #include "bluetile/voronoi/polygon.h"
 #include "bluetile/voronoi/scene.h"
 #include "bluetile/voronoi/site_grid.h"
+#include "bluetile/voronoi/site_tree.h"
 
 namespace bluetile {
 namespace {
@@ -22,11 +25,53 @@ constexpr double kSitesPerBucket = 1.0;
 // The label of the cell edges that come from the initial rectangle (the site's own copies).
 constexpr std::uint32_t kOwnCopy = kUnlabelled;
 
+// When a site shares its grid bucket with this many others on average (uniform random sites:
+// about 1; a relaxed set: fewer), the sites are far from uniform (on a line, in a cluster): the
+// grid then costs O(N) or O(sqrt N) per cell, and the k-d tree (site_tree.h) searches instead.
+constexpr double kCrowdedBucket = 8.0;
+
 struct Candidate {
   double distance_squared;
   Point offset;
   std::uint32_t site;
 };
+
+// The neighbour search of one scene: the uniform grid, and the tree for far-from-uniform sites.
+struct CellSearch {
+  SiteGrid grid;
+  std::optional<SiteTree> tree;
+
+  explicit CellSearch(const Scene& scene) : grid(scene.sites, scene.domain, kSitesPerBucket) {
+    double sharing = 0.0;  // sum over sites of the other sites in their bucket
+    for (std::size_t b = 0; b < grid.bucket_count(); ++b) {
+      const double c = static_cast<double>(grid.sites_in_bucket(b).size());
+      sharing += c * (c - 1.0);
+    }
+    if (sharing > kCrowdedBucket * static_cast<double>(scene.sites.size()))
+      tree.emplace(scene.sites, scene.domain, scene.periodic());
+  }
+};
+
+// Per-thread buffers of the searches, reused from cell to cell.
+struct SearchScratch {
+  std::vector<Candidate> candidates;
+  SiteTree::Search tree;
+};
+
+bool inside_grid(const SiteGrid& grid, long bx, long by) {
+  return bx >= 0 && by >= 0 && bx < grid.columns() && by < grid.rows();
+}
+
+// The first polygon of a cell, relative to its site: on a torus the W x H rectangle centred on
+// the site (no point is farther than half a period from the nearest copy of the site along
+// either axis); in a bounded domain the domain itself.
+void start_cell(const Scene& scene, Point origin, ConvexPolygon& cell_polygon) {
+  if (scene.periodic()) {
+    cell_polygon.reset_rectangle(-0.5 * scene.domain.size, 0.5 * scene.domain.size, kOwnCopy);
+  } else {
+    cell_polygon.reset_rectangle(-origin, scene.domain.size - origin, kOwnCopy);
+  }
+}
 
 // The fallback search: square rings of buckets around the site's bucket until the ring's inner
 // distance reaches twice the cell radius. Returns false for a coincident site.
@@ -34,11 +79,12 @@ bool build_cell_by_rings(const Scene& scene, const SiteGrid& grid, std::uint32_t
                 std::vector<Candidate>& candidates) {
   const Point origin = scene.sites[site];
   const Point cell = grid.cell_size();
-  cell_polygon.reset_rectangle(-0.5 * scene.domain.size, 0.5 * scene.domain.size, kOwnCopy);
+  start_cell(scene, origin, cell_polygon);
   auto [cx, cy] = grid.bucket_coordinates(origin);
   bool coincident = false;
 
   auto gather = [&](long bx, long by) {
+    if (!scene.periodic() && !inside_grid(grid, bx, by)) return;  // no copies beyond a bounded domain
     grid.for_each_in_bucket(bx, by, origin, [&](std::uint32_t other, Point d) {
       if (d.x == 0.0 && d.y == 0.0) {
         if (other < site) coincident = true;
@@ -74,6 +120,10 @@ bool build_cell_by_rings(const Scene& scene, const SiteGrid& grid, std::uint32_t
                              origin.y - static_cast<double>(cy - ring) * cell.y,
                              static_cast<double>(cy + ring + 1) * cell.y - origin.y});
     if (reach > 0.0 && reach * reach >= 4.0 * cell_polygon.max_radius_squared()) break;
+    // A bounded domain has nothing beyond the grid: once the ring holds all of it, every site was seen.
+    if (!scene.periodic() && cx - ring <= 0 && cy - ring <= 0 && cx + ring >= grid.columns() - 1 &&
+        cy + ring >= grid.rows() - 1)
+      break;
     long next = ring + 1;
     for (long dx = -next; dx <= next; ++dx) {
       gather(cx + dx, cy - next);
@@ -93,11 +143,13 @@ bool build_cell_by_rings(const Scene& scene, const SiteGrid& grid, std::uint32_t
 
 // Computes the cell of `site` into `cell_polygon`. Returns false when the site coincides with a
 // site of lower index (which owns the cell).
-bool build_cell(const Scene& scene, const SiteGrid& grid, std::uint32_t site, ConvexPolygon& cell_polygon,
-                std::vector<Candidate>& candidates) {
+bool build_cell(const Scene& scene, const CellSearch& search, std::uint32_t site, ConvexPolygon& cell_polygon,
+                SearchScratch& scratch) {
   const Point origin = scene.sites[site];
+  start_cell(scene, origin, cell_polygon);
+  if (search.tree) return search.tree->clip_cell(site, origin, cell_polygon, scratch.tree);
+  const SiteGrid& grid = search.grid;
   const Point cell = grid.cell_size();
-  cell_polygon.reset_rectangle(-0.5 * scene.domain.size, 0.5 * scene.domain.size, kOwnCopy);
   auto [cx, cy] = grid.bucket_coordinates(origin);
   // The site's place inside its bucket, for the exact distance to each bucket visited.
   const Point local{origin.x - static_cast<double>(cx) * cell.x, origin.y - static_cast<double>(cy) * cell.y};
@@ -120,13 +172,31 @@ bool build_cell(const Scene& scene, const SiteGrid& grid, std::uint32_t site, Co
                       : step.dy < 0 ? local.y - static_cast<double>(step.dy + 1) * cell.y
                                     : 0.0;
     if (gx * gx + gy * gy >= reach_squared) continue;
+    if (!scene.periodic() && !inside_grid(grid, cx + step.dx, cy + step.dy)) continue;
     grid.for_each_in_bucket(cx + step.dx, cy + step.dy, origin, visit);
     if (coincident) return false;
   }
-  return build_cell_by_rings(scene, grid, site, cell_polygon, candidates);
+  return build_cell_by_rings(scene, grid, site, cell_polygon, scratch.candidates);
 }
 
-Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const ConvexPolygon& cell_polygon) {
+// How a scene's density weights its cells: not at all (no density, or a constant one, whose
+// weights cancel in the centroid), or texel by texel.
+struct Weighting {
+  const DensityGrid* texels = nullptr;  // non-null: a varying density
+  double constant = 1.0;                // otherwise: the density everywhere
+
+  explicit Weighting(const Scene& scene) {
+    if (!scene.density) return;
+    if (is_uniform(*scene.density)) {
+      constant = scene.density->texels.front();
+    } else {
+      texels = scene.density.get();
+    }
+  }
+};
+
+Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const ConvexPolygon& cell_polygon,
+                  const Weighting& weighting) {
   Cell cell;
   const Point origin = scene.sites[site];
   if (coincident) {
@@ -136,8 +206,29 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   }
   const PolygonMoments moments = cell_polygon.moments();
   cell.area = moments.area();
+  cell.mass = cell.area;
   cell.second_moment = moments.second_moment();
-  cell.centroid = wrap_point(origin + moments.centroid(), scene.domain);
+  Point offset = moments.centroid();
+  if (weighting.texels) {
+    thread_local std::vector<Point> polygon;
+    polygon.clear();
+    for (const PolygonVertex& v : cell_polygon.vertices()) polygon.push_back(v.p);
+    const WeightedMoments m = density_moments(polygon, origin, *weighting.texels, scene.domain.size, scene.periodic());
+    cell.mass = m.mass;
+    cell.second_moment = m.second;
+    offset = m.mass > 0.0 ? m.first / m.mass : Point{0.0, 0.0};
+  } else if (weighting.constant != 1.0) {
+    cell.mass = weighting.constant * cell.area;
+    cell.second_moment *= weighting.constant;
+  }
+  if (!(cell.mass > 0.0) && cell.area > 0.0) {
+    // No density anywhere in the cell: nothing pulls the site, it stays.
+    cell.mass = 0.0;
+    cell.centroid = origin;
+    cell.status = CellStatus::zero_density;
+    return cell;
+  }
+  cell.centroid = scene_point(scene, origin + offset);
   return cell;
 }
 
@@ -146,18 +237,21 @@ void compute_scene(const Scene& scene, SceneCells& out, bool parallel_inside) {
   out.cells.assign(scene.wanted_count(), Cell{});
   out.coincident_count = 0;
   out.fallback_count = 0;
+  out.zero_density_count = 0;
   if (scene.wanted_count() == 0) return;
-  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
+  const CellSearch search(scene);
+  const SiteGrid& grid = search.grid;
+  const Weighting weighting(scene);
 
   auto run_buckets = [&](std::size_t begin, std::size_t end) {
     ConvexPolygon cell_polygon;
-    std::vector<Candidate> candidates;
-    candidates.reserve(64);
+    SearchScratch scratch;
+    scratch.candidates.reserve(64);
     for (std::size_t b = begin; b < end; ++b) {
       for (std::uint32_t site : grid.sites_in_bucket(b)) {
         if (site < scene.wanted_begin || site >= scene.wanted_end) continue;
-        bool complete = build_cell(scene, grid, site, cell_polygon, candidates);
-        out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, cell_polygon);
+        bool complete = build_cell(scene, search, site, cell_polygon, scratch);
+        out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, cell_polygon, weighting);
       }
     }
   };
@@ -166,10 +260,19 @@ void compute_scene(const Scene& scene, SceneCells& out, bool parallel_inside) {
   } else {
     run_buckets(0, grid.bucket_count());
   }
-  for (const Cell& c : out.cells) out.coincident_count += c.status == CellStatus::coincident;
+  for (const Cell& c : out.cells) {
+    out.coincident_count += c.status == CellStatus::coincident;
+    out.zero_density_count += c.status == CellStatus::zero_density;
+  }
 }
 
 }  // namespace
+
+Point scene_point(const Scene& scene, Point p) {
+  if (scene.periodic()) return wrap_point(p, scene.domain);
+  auto inside = [](double x, double size) { return std::clamp(x, 0.0, std::nextafter(size, 0.0)); };
+  return {inside(p.x, scene.domain.size.x), inside(p.y, scene.domain.size.y)};
+}
 
 Scene make_scene(std::vector<Point> sites, Domain domain) {
   Scene scene;
@@ -209,10 +312,10 @@ std::vector<Point> exact_cell_polygon(const Scene& given, std::size_t site) {
   Scene wrapped;
   const Scene& scene = validated_scene(given, wrapped);
   if (site >= scene.sites.size()) throw Error("exact_cell_polygon: no site " + std::to_string(site));
-  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
+  const CellSearch search(scene);
   ConvexPolygon cell_polygon;
-  std::vector<Candidate> candidates;
-  if (!build_cell(scene, grid, static_cast<std::uint32_t>(site), cell_polygon, candidates)) return {};
+  SearchScratch scratch;
+  if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) return {};
   std::vector<Point> polygon;
   for (const PolygonVertex& v : cell_polygon.vertices()) polygon.push_back(v.p);
   return polygon;
@@ -222,16 +325,17 @@ std::vector<std::size_t> exact_cell_neighbours(const Scene& given, std::size_t s
   Scene wrapped;
   const Scene& scene = validated_scene(given, wrapped);
   if (site >= scene.sites.size()) throw Error("exact_cell_neighbours: no site " + std::to_string(site));
-  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
+  const CellSearch search(scene);
   ConvexPolygon cell_polygon;
-  std::vector<Candidate> candidates;
+  SearchScratch scratch;
   std::vector<std::size_t> neighbours;
-  if (!build_cell(scene, grid, static_cast<std::uint32_t>(site), cell_polygon, candidates)) return neighbours;
+  if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) return neighbours;
   const auto polygon = cell_polygon.vertices();
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const PolygonVertex& v = polygon[i];
     const PolygonVertex& w = polygon[(i + 1) % polygon.size()];
     if (v.p == w.p) continue;  // degenerate edge left by a tie
+    if (v.edge_label == kOwnCopy && !scene.periodic()) continue;  // the domain's border
     neighbours.push_back(v.edge_label == kOwnCopy ? site : v.edge_label);
   }
   std::sort(neighbours.begin(), neighbours.end());

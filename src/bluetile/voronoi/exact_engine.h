@@ -3,7 +3,9 @@
 // Each wanted site's cell starts as the W x H rectangle centred on the site (on a torus no
 // point is farther than half a period from the nearest copy of the site along either axis)
 // and is clipped by the bisectors of the other sites and their periodic images, visited ring
-// by ring through a uniform grid, nearest first. The search stops once no unvisited site can
+// by ring through a uniform grid, nearest first. In a bounded domain the cell starts as the
+// domain itself and only the sites, no images, clip it. With a density, the finished polygon's
+// weighted moments come from density_moments.h. The search stops once no unvisited site can
 // be closer than twice the cell's farthest vertex: such a site's bisector misses the cell.
 // All geometry is relative to the site, so precision does not depend on where the site is.
 #pragma once
@@ -24,7 +26,8 @@ class ExactEngine final : public CentroidEngine {
 std::vector<Point> exact_cell_polygon(const Scene& scene, std::size_t site);
 
 // Indices of the sites whose cells share an edge with `site`'s cell (periodic images folded
-// onto their site index; `site` itself when the cell touches its own copy).
+// onto their site index; `site` itself when the cell touches its own copy; a bounded domain's
+// border is no neighbour).
 std::vector<std::size_t> exact_cell_neighbours(const Scene& scene, std::size_t site);
 
 }  // namespace bluetile

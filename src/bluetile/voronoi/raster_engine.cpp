@@ -959,6 +959,7 @@ struct RasterEngine::Impl {
         ++out.fallback_count;
       }
       cell.area = area;
+      cell.mass = area;
       cell.second_moment = m2;
       cell.centroid = area > 0.0 ? wrap_point(site + Point{mx / area, my / area}, scene.domain) : site;
     }
@@ -1072,7 +1073,12 @@ struct RasterEngine::Impl {
 RasterEngine::RasterEngine(const RasterOptions& options) : impl_(std::make_unique<Impl>(options)) {}
 RasterEngine::~RasterEngine() = default;
 
-void RasterEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) { impl_->compute(scenes, out); }
+void RasterEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
+  for (const Scene& scene : scenes)
+    if (scene.density || !scene.periodic())
+      throw Error("raster engine: densities and bounded domains are not supported yet (use --engine exact)");
+  impl_->compute(scenes, out);
+}
 const RasterOptions& RasterEngine::options() const { return impl_->options; }
 const RasterStats& RasterEngine::stats() const { return impl_->stats; }
 std::string RasterEngine::device_name() const { return impl_->gpu->info().name; }

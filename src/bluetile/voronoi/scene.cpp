@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bluetile/core/error.h"
+#include "bluetile/voronoi/density_moments.h"
 
 namespace bluetile {
 namespace {
@@ -31,12 +32,17 @@ const Scene& validated_scene(const Scene& scene, Scene& storage) {
   if (scene.sites.size() > kMaxSceneSites)
     throw Error("scene: " + std::to_string(scene.sites.size()) + " sites, more than the " +
                 std::to_string(kMaxSceneSites) + " an engine can index");
+  check_density(scene);
   std::size_t first_outside = scene.sites.size();
   for (std::size_t i = 0; i < scene.sites.size(); ++i) {
     const Point p = scene.sites[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y))
-      throw Error("scene: site " + std::to_string(i) + " (" + number(p.x) + ", " + number(p.y) + ") is not finite");
-    if (first_outside == scene.sites.size() && !inside(p, scene.domain)) first_outside = i;
+    auto site = [&] { return "scene: site " + std::to_string(i) + " (" + number(p.x) + ", " + number(p.y) + ")"; };
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw Error(site() + " is not finite");
+    if (first_outside == scene.sites.size() && !inside(p, scene.domain)) {
+      if (!scene.periodic())
+        throw Error(site() + " lies outside the bounded domain " + number(size.x) + " x " + number(size.y));
+      first_outside = i;
+    }
   }
   if (first_outside == scene.sites.size()) return scene;
   storage = scene;

@@ -1,0 +1,146 @@
+// What weighting costs: a stipple (weighted Lloyd in a bounded domain, density from an image)
+// against unweighted relaxation of the same N on the same engine, K iterations each, repeats
+// interleaved so that the machine's drift hits both alike. Prints a markdown table.
+// Usage: bluetile_stipple_bench [--image PNG] [--texels 1024] [--counts 10000,100000]
+//        [--iterations 50] [--repeats 3] [--engines exact,raster]
+#include <algorithm>
+#include <chrono>
+#include <ctime>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+
+#include "bluetile/core/rng.h"
+#include "bluetile/io/density_map.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/sampling/density_sampling.h"
+#include "bluetile/voronoi/exact_engine.h"
+#if BLUETILE_BENCH_RASTER
+#include "bluetile/voronoi/raster_engine.h"
+#endif
+
+using namespace bluetile;
+
+namespace {
+
+// The picture resampled to texels x texels by bilinear lookup, so every run sees the same grid
+// size whatever the source; without a picture, a procedural one (a dark disc and a ramp).
+DensityGrid bench_density(const std::string& image, int texels) {
+  DensityGrid source;
+  if (!image.empty()) {
+    DensityTransfer dark_is_dense;
+    dark_is_dense.invert = true;
+    source = load_density_map(image, dark_is_dense);
+  }
+  DensityGrid grid(texels, texels);
+  for (int j = 0; j < texels; ++j) {
+    for (int i = 0; i < texels; ++i) {
+      const Point uv{(i + 0.5) / texels, (j + 0.5) / texels};
+      if (!source.empty()) {
+        grid.at(i, j) = static_cast<float>(sample_bilinear(source, uv));
+      } else {
+        const double r = std::hypot(uv.x - 0.4, uv.y - 0.55);
+        grid.at(i, j) = static_cast<float>(r < 0.25 ? 0.9 : 0.05 + 0.5 * uv.x);
+      }
+    }
+  }
+  return grid;
+}
+
+std::unique_ptr<CentroidEngine> make(const std::string& name) {
+  if (name == "raster") {
+#if BLUETILE_BENCH_RASTER
+    return std::make_unique<RasterEngine>(RasterOptions{});
+#else
+    throw std::runtime_error("this build has no raster engine");
+#endif
+  }
+  return std::make_unique<ExactEngine>();
+}
+
+// Wall-clock and CPU seconds (all threads) of one run. On a shared machine the CPU time is the
+// steadier figure; both are reported.
+struct Timing {
+  double wall = 0.0, cpu = 0.0;
+};
+
+Timing time_run(CentroidEngine& engine, Scene scene, int iterations) {
+  LloydOptions options;
+  options.iterations = iterations;
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  relax_lloyd(engine, scene, options);
+  return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+          static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC};
+}
+
+Timing median(std::vector<Timing> v) {
+  auto middle = [&](auto field) {
+    std::vector<double> x;
+    for (const Timing& t : v) x.push_back(t.*field);
+    std::sort(x.begin(), x.end());
+    return x[x.size() / 2];
+  };
+  return {middle(&Timing::wall), middle(&Timing::cpu)};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Weighted (stipple) against unweighted Lloyd, side by side"};
+  std::string image;
+  int texels = 1024, iterations = 50, repeats = 3;
+  std::vector<long long> counts = {10000, 100000};
+  std::vector<std::string> engines = {"exact", "raster"};
+  app.add_option("--image", image, "Picture whose darkness is the density (default: a procedural one)");
+  app.add_option("--texels", texels, "Density grid side after resampling")->capture_default_str();
+  app.add_option("--counts", counts, "Point counts")->delimiter(',');
+  app.add_option("--iterations", iterations, "Lloyd iterations per run")->capture_default_str();
+  app.add_option("--repeats", repeats, "Interleaved repeats (the median is reported)")->capture_default_str();
+  app.add_option("--engines", engines, "Engines")->delimiter(',');
+  CLI11_PARSE(app, argc, argv);
+
+  auto density = std::make_shared<DensityGrid>(bench_density(image, texels));
+  std::printf("density %d x %d texels from %s, %d iterations, median of %d interleaved repeats\n\n", texels, texels,
+              image.empty() ? "a procedural picture" : image.c_str(), iterations, repeats);
+  std::printf("Seconds for the whole run, wall clock (CPU time of all threads in brackets).\n\n");
+  std::printf("| engine | N | stipple (weighted, bounded) | unweighted bounded | unweighted periodic | "
+              "stipple / unweighted bounded | stipple / unweighted periodic |\n|---|---|---|---|---|---|---|\n");
+  for (const std::string& name : engines) {
+    for (long long n : counts) {
+      const auto count = static_cast<std::size_t>(n);
+      // Each run's natural start: density-proportional for the stipple, uniform for the others.
+      Rng stipple_rng(derive_seed(1, 0));
+      Scene stipple = make_scene(sample_density(*density, Domain{}, count, stipple_rng));
+      stipple.boundary = Boundary::bounded;
+      stipple.density = density;
+      Rng plain_rng(derive_seed(1, 0));
+      std::vector<Point> uniform(count);
+      for (Point& p : uniform) p = plain_rng.point(Domain{});
+      Scene bounded = make_scene(uniform);
+      bounded.boundary = Boundary::bounded;
+      Scene periodic = make_scene(uniform);
+      std::vector<Timing> t_stipple, t_bounded, t_periodic;
+      try {
+        auto engine = make(name);
+        for (int r = 0; r < repeats; ++r) {
+          t_stipple.push_back(time_run(*engine, stipple, iterations));
+          t_bounded.push_back(time_run(*engine, bounded, iterations));
+          t_periodic.push_back(time_run(*engine, periodic, iterations));
+        }
+      } catch (const std::exception& e) {
+        std::printf("| %s | %lld | %s | | | | |\n", name.c_str(), n, e.what());
+        continue;
+      }
+      const Timing s = median(t_stipple), b = median(t_bounded), p = median(t_periodic);
+      std::printf("| %s | %lld | %.3f (%.3f) | %.3f (%.3f) | %.3f (%.3f) | %.2f (%.2f) | %.2f (%.2f) |\n", name.c_str(), n,
+                  s.wall, s.cpu, b.wall, b.cpu, p.wall, p.cpu, s.wall / b.wall, s.cpu / b.cpu, s.wall / p.wall,
+                  s.cpu / p.cpu);
+      std::fflush(stdout);
+    }
+  }
+}

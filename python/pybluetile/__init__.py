@@ -1,0 +1,44 @@
+"""Blue-noise sample points by Lloyd relaxation on the unit torus.
+
+After Hiller, Deussen and Keller, *Tiled Blue Noise Samples* (2001). Point sets are NumPy
+arrays of shape (N, 2) (or (K, N, 2) for K sets) of float64 coordinates in [0, 1). Every
+function releases the GIL while it computes; bad input raises ``pybluetile.Error`` (a
+``ValueError``) with the same message the ``bluetile`` tool prints, or a ``TypeError`` /
+``ValueError`` naming the argument.
+"""
+
+from ._core import (
+    Error,
+    analyze,
+    centroids,
+    dart,
+    load_table,
+    nearest_neighbour_distances,
+    periodogram,
+    progressive,
+    radial_power,
+    random_points,
+    relax,
+    save_table,
+    set_thread_count,
+    thread_count,
+)
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "Error",
+    "analyze",
+    "centroids",
+    "dart",
+    "load_table",
+    "nearest_neighbour_distances",
+    "periodogram",
+    "progressive",
+    "radial_power",
+    "random_points",
+    "relax",
+    "save_table",
+    "set_thread_count",
+    "thread_count",
+]

@@ -1,0 +1,175 @@
+// analyze, periodogram, radial_power, nearest_neighbour_distances (psa's conventions:
+// docs/DESIGN.md, section 5).
+#include <cmath>
+
+#include <nanobind/stl/string.h>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "bluetile/analysis/summary.h"
+
+namespace pybluetile {
+
+using namespace nb::literals;
+
+namespace {
+
+void check_spectrum_options(int size, double bin_width) {
+  if (size != 0 && (size < 2 || size % 2 != 0))
+    throw nb::value_error(("size: expected 0 (from N) or an even number >= 2, got " + std::to_string(size)).c_str());
+  if (!(bin_width > 0.0) || !std::isfinite(bin_width))
+    throw nb::value_error(("bin_width: expected a positive number, got " + std::to_string(bin_width)).c_str());
+}
+
+PointSets analysed_sets(const AnyArray& points) {
+  PointSets input = point_sets(points, "points");
+  if (input.sets[0].size() < 2) throw nb::value_error("points: analysis needs at least 2 points per set");
+  return input;
+}
+
+nb::ndarray<nb::numpy, double> periodogram_array(bluetile::Periodogram&& p) {
+  const auto f = static_cast<std::size_t>(p.size);
+  return to_numpy(std::move(p.power), {f, f});
+}
+
+nb::dict radial_dict(const std::vector<bluetile::Annulus>& radial) {
+  std::vector<double> frequency, power, anisotropy;
+  std::vector<std::int64_t> count;
+  for (const bluetile::Annulus& a : radial) {
+    frequency.push_back(a.frequency);
+    power.push_back(a.power);
+    anisotropy.push_back(a.anisotropy_db);
+    count.push_back(static_cast<std::int64_t>(a.count));
+  }
+  const std::size_t n = radial.size();
+  nb::dict d;
+  d["frequency"] = to_numpy(std::move(frequency), {n});
+  d["power"] = to_numpy(std::move(power), {n});
+  d["anisotropy_db"] = to_numpy(std::move(anisotropy), {n});
+  d["count"] = to_numpy(std::move(count), {n});
+  return d;
+}
+
+// The keys and values of `bluetile analyze`'s stats.json for one series (its top level).
+nb::dict summary_dict(bluetile::Summary&& s) {
+  const double h = s.nn.hexagonal_spacing;
+  nb::dict d;
+  d["n"] = s.count;
+  d["sets"] = s.sets;
+  d["nn_min"] = s.nn.min;
+  d["nn_max"] = s.nn.max;
+  d["nn_mean"] = s.nn.mean;
+  nb::dict x1000, relative;
+  x1000["min"] = 1000.0 * s.nn.min;
+  x1000["max"] = 1000.0 * s.nn.max;
+  x1000["mean"] = 1000.0 * s.nn.mean;
+  relative["min"] = s.nn.min / h;
+  relative["max"] = s.nn.max / h;
+  relative["mean"] = s.nn.mean / h;
+  d["nn_x1000"] = x1000;
+  d["nn_relative"] = relative;
+  d["hexagonal_spacing"] = h;
+  if (s.sets > 1) {
+    d["nn_min_lowest"] = s.nn_min_lowest;
+    d["nn_min_highest"] = s.nn_min_highest;
+  }
+  if (s.has_centroid_distance) {
+    d["mean_centroid_distance"] = s.centroid_distance;
+    d["mean_centroid_distance_relative"] = s.centroid_distance / h;
+  }
+  d["periodogram_size"] = s.periodogram.size;
+  d["radial"] = radial_dict(s.radial);
+  d["periodogram"] = periodogram_array(std::move(s.periodogram));
+  return d;
+}
+
+}  // namespace
+
+void bind_analysis(nb::module_& m) {
+  m.def(
+      "analyze",
+      [](const AnyArray& points, int size, double bin_width, bool centroids) {
+        check_spectrum_options(size, bin_width);
+        PointSets input = analysed_sets(points);
+        bluetile::SummaryOptions options;
+        options.size = size;
+        options.bin_width = bin_width;
+        options.centroids = centroids;
+        bluetile::Summary summary;
+        {
+          nb::gil_scoped_release release;
+          summary = bluetile::summarize(input.sets, options);
+        }
+        return summary_dict(std::move(summary));
+      },
+      nb::sig("def analyze(points: NDArray[numpy.float64], *, size: int = 0, bin_width: float = 1.0, centroids: bool = True) "
+              "-> dict[str, typing.Any]"),
+      "points"_a, nb::kw_only(), "size"_a = 0, "bin_width"_a = 1.0, "centroids"_a = true,
+      R"(Statistics of a point set, as ``bluetile analyze`` writes them to stats.json.
+
+``points``: shape (N, 2), or (K, N, 2) for the mean over K sets (``--average``). Returns a dict
+with the same keys as stats.json (n, sets, nn_min, nn_max, nn_mean, nn_x1000, nn_relative,
+hexagonal_spacing, mean_centroid_distance[_relative] unless ``centroids=False``,
+periodogram_size, radial) where radial holds arrays frequency, power, anisotropy_db, count;
+and "periodogram", the (F, F) array of ``periodogram``. size: the periodogram's F (0: 2
+floor(5 sqrt(N))); bin_width: the annulus width.)");
+
+  m.def(
+      "periodogram",
+      [](const AnyArray& points, int size) {
+        check_spectrum_options(size, 1.0);
+        PointSets input = analysed_sets(points);
+        if (input.batched) throw nb::value_error("points: expected shape (N, 2); analyze averages several sets");
+        const int f = size ? size : bluetile::default_periodogram_size(input.sets[0].size());
+        bluetile::Periodogram p;
+        {
+          nb::gil_scoped_release release;
+          p = bluetile::compute_periodogram(input.sets[0], f);
+        }
+        return periodogram_array(std::move(p));
+      },
+      "points"_a, "size"_a = 0,
+      R"(The periodogram P(k) = |sum_j exp(-2 pi i k.x_j)|^2 / N by the direct sum, shape (F, F):
+element [ky + F/2, kx + F/2] is P at integer frequency (kx, ky), for kx, ky in [-F/2, F/2).
+White noise gives about 1; P(0) = N. size: F, even (0: 2 floor(5 sqrt(N))).)");
+
+  m.def(
+      "radial_power",
+      [](const AnyArray& points, int size, double bin_width) {
+        check_spectrum_options(size, bin_width);
+        PointSets input = analysed_sets(points);
+        std::vector<bluetile::Annulus> radial;
+        {
+          nb::gil_scoped_release release;
+          std::vector<bluetile::Periodogram> each;
+          for (const auto& set : input.sets) {
+            const int f = size ? size : bluetile::default_periodogram_size(set.size());
+            each.push_back(bluetile::compute_periodogram(set, f));
+          }
+          radial = bluetile::radial_power(bluetile::average_periodograms(each), bin_width);
+        }
+        return radial_dict(radial);
+      },
+      nb::sig("def radial_power(points: NDArray[numpy.float64], size: int = 0, bin_width: float = 1.0) -> dict[str, NDArray]"),
+      "points"_a, "size"_a = 0, "bin_width"_a = 1.0,
+      R"(Radial power and anisotropy per annulus (psa's conventions), of one set or the mean
+periodogram of K sets: a dict of arrays frequency (the annulus' inner radius), power,
+anisotropy_db (10 log10 of variance / power^2; white noise about 0 dB) and count.)");
+
+  m.def(
+      "nearest_neighbour_distances",
+      [](const AnyArray& points) {
+        PointSets input = point_sets(points, "points");
+        if (input.batched) throw nb::value_error("points: expected shape (N, 2)");
+        std::vector<double> d;
+        {
+          nb::gil_scoped_release release;
+          d = bluetile::nearest_neighbour_distances(input.sets[0]);
+        }
+        const std::size_t n = d.size();
+        return to_numpy(std::move(d), {n});
+      },
+      "points"_a, "Distance of every point to its nearest neighbour on the unit torus, shape (N,).");
+}
+
+}  // namespace pybluetile

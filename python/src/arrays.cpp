@@ -1,0 +1,117 @@
+#include "arrays.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdint>
+
+namespace pybluetile {
+namespace {
+
+std::string shape_text(const AnyArray& array) {
+  std::string text = "(";
+  for (std::size_t d = 0; d < array.ndim(); ++d) text += (d ? ", " : "") + std::to_string(array.shape(d));
+  return text + (array.ndim() == 1 ? ",)" : ")");
+}
+
+template <typename T>
+double element(const AnyArray& array, std::size_t offset) {
+  return static_cast<double>(static_cast<const T*>(array.data())[offset]);
+}
+
+}  // namespace
+
+std::string dtype_name(nb::dlpack::dtype dtype) {
+  const char* kind = "unknown";
+  switch (static_cast<nb::dlpack::dtype_code>(dtype.code)) {
+    case nb::dlpack::dtype_code::Int: kind = "int"; break;
+    case nb::dlpack::dtype_code::UInt: kind = "uint"; break;
+    case nb::dlpack::dtype_code::Float: kind = "float"; break;
+    case nb::dlpack::dtype_code::Bool: return "bool";
+    case nb::dlpack::dtype_code::Complex: kind = "complex"; break;
+    default: break;
+  }
+  return kind + std::to_string(dtype.bits);
+}
+
+PointSets point_sets(const AnyArray& array, const char* name) {
+  const bool is_double = array.dtype() == nb::dtype<double>();
+  if (!is_double && array.dtype() != nb::dtype<float>())
+    throw nb::type_error((std::string(name) + ": expected float64 (or float32) values, got " +
+                          dtype_name(array.dtype()) + "; convert with .astype(numpy.float64)").c_str());
+  const std::size_t ndim = array.ndim();
+  if ((ndim != 2 && ndim != 3) || array.shape(ndim - 1) != 2 || array.shape(ndim - 2) == 0 ||
+      (ndim == 3 && array.shape(0) == 0))
+    throw nb::value_error((std::string(name) + ": expected shape (N, 2) or (K, N, 2) with N >= 1, got " +
+                           shape_text(array)).c_str());
+  PointSets result;
+  result.batched = ndim == 3;
+  const std::size_t sets = result.batched ? array.shape(0) : 1, count = array.shape(ndim - 2);
+  // Strides are in elements; any layout (a transposed or sliced view) is read as it is.
+  const std::int64_t set_stride = result.batched ? array.stride(0) : 0;
+  const std::int64_t row_stride = array.stride(ndim - 2), column_stride = array.stride(ndim - 1);
+  result.sets.resize(sets);
+  for (std::size_t k = 0; k < sets; ++k) {
+    std::vector<bluetile::Point>& points = result.sets[k];
+    points.resize(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      double xy[2];
+      for (std::size_t c = 0; c < 2; ++c) {
+        std::size_t offset = static_cast<std::size_t>(static_cast<std::int64_t>(k) * set_stride +
+                                                      static_cast<std::int64_t>(i) * row_stride +
+                                                      static_cast<std::int64_t>(c) * column_stride);
+        xy[c] = is_double ? element<double>(array, offset) : element<float>(array, offset);
+        if (!std::isfinite(xy[c])) {
+          char value[32];
+          std::snprintf(value, sizeof value, "%g", xy[c]);
+          std::string where = result.batched ? std::to_string(k) + ", " + std::to_string(i) : std::to_string(i);
+          throw nb::value_error((std::string(name) + "[" + where + "]: not a finite number '" + value + "'").c_str());
+        }
+      }
+      points[i] = bluetile::wrap_point({xy[0], xy[1]}, bluetile::Domain{});
+    }
+  }
+  return result;
+}
+
+std::vector<int> levels_array(const AnyArray& array, std::size_t count, const char* name, int max) {
+  const auto code = static_cast<nb::dlpack::dtype_code>(array.dtype().code);
+  if (code != nb::dlpack::dtype_code::Int && code != nb::dlpack::dtype_code::UInt)
+    throw nb::type_error((std::string(name) + ": expected integer values, got " + dtype_name(array.dtype())).c_str());
+  if (array.ndim() != 1 || array.shape(0) != count)
+    throw nb::value_error((std::string(name) + ": expected shape (" + std::to_string(count) + ",), got " +
+                           shape_text(array)).c_str());
+  std::vector<int> levels(count);
+  const unsigned bits = array.dtype().bits;
+  const bool is_signed = code == nb::dlpack::dtype_code::Int;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::size_t offset = static_cast<std::size_t>(static_cast<std::int64_t>(i) * array.stride(0));
+    const void* data = array.data();
+    long long v = 0;
+    switch (bits) {
+      case 8: v = is_signed ? static_cast<const std::int8_t*>(data)[offset] : static_cast<const std::uint8_t*>(data)[offset]; break;
+      case 16: v = is_signed ? static_cast<const std::int16_t*>(data)[offset] : static_cast<const std::uint16_t*>(data)[offset]; break;
+      case 32: v = is_signed ? static_cast<const std::int32_t*>(data)[offset] : static_cast<const std::uint32_t*>(data)[offset]; break;
+      default: {
+        std::uint64_t u = static_cast<const std::uint64_t*>(data)[offset];
+        v = is_signed ? static_cast<long long>(u) : (u > static_cast<std::uint64_t>(max) ? -1 : static_cast<long long>(u));
+      }
+    }
+    if (v < 0 || v > max)
+      throw nb::value_error((std::string(name) + "[" + std::to_string(i) + "]: level must be in [0, " +
+                             std::to_string(max) + "], got " + std::to_string(v)).c_str());
+    levels[i] = static_cast<int>(v);
+  }
+  return levels;
+}
+
+nb::ndarray<nb::numpy, double> points_to_numpy(const std::vector<std::vector<bluetile::Point>>& sets, bool batched) {
+  const std::size_t count = sets.empty() ? 0 : sets[0].size();
+  std::vector<double> values;
+  values.reserve(sets.size() * count * 2);
+  for (const auto& set : sets)
+    for (const bluetile::Point& p : set) values.insert(values.end(), {p.x, p.y});
+  if (batched) return to_numpy(std::move(values), {sets.size(), count, 2});
+  return to_numpy(std::move(values), {count, 2});
+}
+
+}  // namespace pybluetile

@@ -1,0 +1,251 @@
+// relax, centroids and progressive: the loops over either engine.
+#include "engines.h"
+
+#include <optional>
+
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "bluetile/core/point_table.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/relax/progressive.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/voronoi/raster_engine.h"
+
+namespace pybluetile {
+
+using namespace nb::literals;
+
+void check_engine_choice(const EngineChoice& c) {
+  auto one_of = [](const std::string& what, const std::string& value, std::initializer_list<const char*> names) {
+    std::string list;
+    for (const char* n : names) {
+      if (value == n) return;
+      list += (list.empty() ? "'" : ", '") + std::string(n) + "'";
+    }
+    throw nb::value_error((what + ": expected one of " + list + ", got '" + value + "'").c_str());
+  };
+  one_of("engine", c.engine, {"raster", "exact"});
+  one_of("coverage", c.coverage, {"point", "area"});
+  one_of("cone", c.cone, {"quad", "fan"});
+  if (c.resolution != 0 && (c.resolution < 16 || c.resolution > 65536))
+    throw nb::value_error(("resolution: expected 0 (from N) or 16 to 65536, got " + std::to_string(c.resolution)).c_str());
+}
+
+std::unique_ptr<bluetile::CentroidEngine> make_engine(const EngineChoice& c) {
+  if (c.engine == "exact") return std::make_unique<bluetile::ExactEngine>();
+  bluetile::RasterOptions r;
+  r.resolution = c.resolution;
+  r.coverage = c.coverage == "point" ? bluetile::Coverage::point : bluetile::Coverage::area;
+  r.cone = c.cone == "fan" ? bluetile::ConeShape::fan : bluetile::ConeShape::quad;
+  r.device = c.device;
+  return std::make_unique<bluetile::RasterEngine>(r);
+}
+
+namespace {
+
+void check_range(const char* name, long long value, long long low, long long high) {
+  if (value < low || value > high)
+    throw nb::value_error((std::string(name) + ": expected " + std::to_string(low) + " to " + std::to_string(high) +
+                           ", got " + std::to_string(value)).c_str());
+}
+
+void check_non_negative(const char* name, double value) {
+  if (!(value >= 0.0) || !std::isfinite(value))
+    throw nb::value_error((std::string(name) + ": expected a finite number >= 0, got " + std::to_string(value)).c_str());
+}
+
+nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {
+  std::vector<std::int64_t> iteration, coincident, fallbacks;
+  std::vector<double> energy, max_displacement, mean_displacement;
+  for (const auto& it : history) {
+    iteration.push_back(it.iteration);
+    energy.push_back(it.energy);
+    max_displacement.push_back(it.max_displacement);
+    mean_displacement.push_back(it.mean_displacement);
+    coincident.push_back(static_cast<std::int64_t>(it.coincident));
+    fallbacks.push_back(static_cast<std::int64_t>(it.fallbacks));
+  }
+  const std::size_t n = history.size();
+  nb::dict d;
+  d["iteration"] = to_numpy(std::move(iteration), {n});
+  d["energy"] = to_numpy(std::move(energy), {n});
+  d["max_displacement"] = to_numpy(std::move(max_displacement), {n});
+  d["mean_displacement"] = to_numpy(std::move(mean_displacement), {n});
+  d["coincident"] = to_numpy(std::move(coincident), {n});
+  d["fallbacks"] = to_numpy(std::move(fallbacks), {n});
+  return d;
+}
+
+nb::object relax(std::optional<AnyArray> points, long long count, long long sets, int iterations, std::uint64_t seed,
+                 long long fixed, double tolerance, const std::string& engine, int resolution, const std::string& coverage,
+                 const std::string& cone, const std::string& device, bool history) {
+  EngineChoice choice{engine, resolution, coverage, cone, device};
+  check_engine_choice(choice);
+  check_range("iterations", iterations, 0, 100000000);
+  check_non_negative("tolerance", tolerance);
+  if (points.has_value() == (count != 0)) throw nb::value_error("give either points or count");
+  if (sets != 0 && points) throw nb::value_error("sets: only with count (an array of shape (K, N, 2) has its sets)");
+  PointSets input;
+  if (points) {
+    input = point_sets(*points, "points");
+  } else {
+    check_range("count", count, 1, 100000000);
+    check_range("sets", sets, 0, 10000000);
+    input.batched = sets != 0;
+    for (long long k = 0; k < std::max(sets, 1LL); ++k)
+      input.sets.push_back(bluetile::uniform_random_points(static_cast<std::size_t>(count), seed, static_cast<std::uint64_t>(k)));
+  }
+  const std::size_t n = input.sets[0].size();
+  if (fixed < 0 || static_cast<std::size_t>(fixed) > n)
+    throw nb::value_error(("fixed: " + std::to_string(fixed) + " is more than the " + std::to_string(n) + " points").c_str());
+
+  bluetile::LloydResult result;
+  std::vector<bluetile::Scene> scenes;
+  {
+    nb::gil_scoped_release release;
+    for (auto& set : input.sets) {
+      bluetile::Scene scene = bluetile::make_scene(std::move(set));
+      scene.wanted_begin = static_cast<std::size_t>(fixed);
+      scenes.push_back(std::move(scene));
+    }
+    auto e = make_engine(choice);
+    bluetile::LloydOptions options;
+    options.iterations = iterations;
+    options.tolerance = tolerance;
+    options.keep_history = history;
+    result = bluetile::relax_lloyd(*e, scenes, options);
+  }
+  std::vector<std::vector<bluetile::Point>> relaxed;
+  for (auto& scene : scenes) relaxed.push_back(std::move(scene.sites));
+  nb::object array = nb::cast(points_to_numpy(relaxed, input.batched));
+  if (!history) return array;
+  return nb::make_tuple(array, history_dict(result.history));
+}
+
+nb::tuple centroids(const AnyArray& points, const std::string& engine, int resolution, const std::string& coverage,
+                    const std::string& cone, const std::string& device) {
+  EngineChoice choice{engine, resolution, coverage, cone, device};
+  check_engine_choice(choice);
+  PointSets input = point_sets(points, "points");
+  std::vector<bluetile::SceneCells> cells(input.sets.size());
+  {
+    nb::gil_scoped_release release;
+    std::vector<bluetile::Scene> scenes;
+    for (auto& set : input.sets) scenes.push_back(bluetile::make_scene(std::move(set)));
+    make_engine(choice)->compute(scenes, cells);
+  }
+  const std::size_t k = cells.size(), n = cells[0].cells.size();
+  std::vector<double> centre, area;
+  centre.reserve(k * n * 2);
+  area.reserve(k * n);
+  for (const auto& scene : cells)
+    for (const bluetile::Cell& c : scene.cells) {
+      centre.insert(centre.end(), {c.centroid.x, c.centroid.y});
+      area.push_back(c.area);
+    }
+  if (input.batched) return nb::make_tuple(to_numpy(std::move(centre), {k, n, 2}), to_numpy(std::move(area), {k, n}));
+  return nb::make_tuple(to_numpy(std::move(centre), {n, 2}), to_numpy(std::move(area), {n}));
+}
+
+nb::tuple progressive(std::optional<AnyArray> base, std::optional<AnyArray> base_levels, long long count, long long add,
+                      double ratio, int levels, int iterations, double tolerance, std::uint64_t seed,
+                      const std::string& placement, const std::string& engine, int resolution,
+                      const std::string& coverage, const std::string& cone, const std::string& device) {
+  EngineChoice choice{engine, resolution, coverage, cone, device};
+  check_engine_choice(choice);
+  check_range("iterations", iterations, 0, 100000000);
+  check_range("levels", levels, 0, 64);
+  check_non_negative("tolerance", tolerance);
+  check_non_negative("ratio", ratio);
+  if (placement != "gaps" && placement != "random")
+    throw nb::value_error(("placement: expected one of 'gaps', 'random', got '" + placement + "'").c_str());
+  if (base.has_value() == (count != 0)) throw nb::value_error("give either base or count");
+  if (add != 0 && ratio != 0.0) throw nb::value_error("give add or ratio, not both");
+  if (count) check_range("count", count, 1, 100000000);
+  if (add) check_range("add", add, 1, 100000000);
+  bluetile::PointSet set;
+  if (base) {
+    PointSets input = point_sets(*base, "base");
+    if (input.batched) throw nb::value_error("base: expected shape (N, 2): one set");
+    set.points = std::move(input.sets[0]);
+    if (base_levels) set.levels = levels_array(*base_levels, set.points.size(), "base_levels", bluetile::kMaxTableLevel);
+  } else if (base_levels) {
+    throw nb::value_error("base_levels: only with base");
+  }
+  bluetile::HierarchyOptions options;
+  options.count = static_cast<std::size_t>(count);
+  options.add = static_cast<std::size_t>(add);
+  options.ratio = ratio;
+  options.levels = levels;
+  options.iterations = iterations;
+  options.tolerance = tolerance;
+  options.seed = seed;
+  options.placement = placement == "random" ? bluetile::Placement::random : bluetile::Placement::gaps;
+  {
+    nb::gil_scoped_release release;
+    set = bluetile::add_levels(*make_engine(choice), std::move(set), options);
+  }
+  const std::size_t n = set.points.size();
+  std::vector<std::int32_t> level(set.levels.begin(), set.levels.end());
+  return nb::make_tuple(points_to_numpy({set.points}, false), to_numpy(std::move(level), {n}));
+}
+
+}  // namespace
+
+void bind_engines(nb::module_& m) {
+  m.def("relax", &relax,
+        nb::sig("def relax(points: NDArray[numpy.float64] | None = None, *, count: int = 0, sets: int = 0, iterations: int = 80, "
+                "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', "
+                "history: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, NDArray]]"),
+        "points"_a = nb::none(), nb::kw_only(), "count"_a = 0, "sets"_a = 0, "iterations"_a = 80,
+        "seed"_a = 1, "fixed"_a = 0, "tolerance"_a = 0.0, "engine"_a = "raster", "resolution"_a = 0,
+        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "history"_a = false,
+        R"(Lloyd relaxation, as ``bluetile relax``.
+
+Start from ``points`` (shape (N, 2), or (K, N, 2) for K sets relaxed each on its own) or from
+``count`` random points (the same as ``bluetile relax --count N --seed S``; with ``sets=K``, K
+sets of shape (K, N, 2), set k seeded as the tool seeds it). Every wanted site moves to the
+centroid of its periodic Voronoi cell, ``iterations`` times, or until no site moves more than
+``tolerance``. The first ``fixed`` sites shape the cells but stay in place.
+
+engine: "raster" (Vulkan, lavapipe by default) or "exact" (CPU, exact polygons); resolution,
+coverage ("area" | "point"), cone ("quad" | "fan") and device set the raster engine.
+With ``history=True`` returns (points, history) where history holds one array per column of
+``--log``: iteration, energy, max_displacement, mean_displacement, coincident, fallbacks.
+The same seed gives the same bits as the tool. Releases the GIL while it runs.)");
+
+  m.def("centroids", &centroids,
+        nb::sig("def centroids(points: NDArray[numpy.float64], *, engine: str = 'raster', resolution: int = 0, "
+                "coverage: str = 'area', cone: str = 'quad', device: str = '') "
+                "-> tuple[NDArray[numpy.float64], NDArray[numpy.float64]]"),
+        "points"_a, nb::kw_only(), "engine"_a = "raster", "resolution"_a = 0,
+        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "",
+        R"(Cell centroids and areas of every point, as ``bluetile centroids``.
+
+Returns (centroids, areas): shapes (N, 2) and (N,) for points of shape (N, 2), or (K, N, 2) and
+(K, N) for K sets, each set its own diagram. A site that coincides with an earlier one gets area
+0 and its own position as centroid.)");
+
+  m.def("progressive", &progressive,
+        nb::sig("def progressive(base: NDArray[numpy.float64] | None = None, base_levels: NDArray[numpy.integer] | None = None, *, "
+                "count: int = 0, add: int = 0, ratio: float = 0.0, levels: int = 0, iterations: int = 80, "
+                "tolerance: float = 0.0, seed: int = 1, placement: str = 'gaps', engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '') "
+                "-> tuple[NDArray[numpy.float64], NDArray[numpy.int32]]"),
+        "base"_a = nb::none(), "base_levels"_a = nb::none(), nb::kw_only(),
+        "count"_a = 0, "add"_a = 0, "ratio"_a = 0.0, "levels"_a = 0, "iterations"_a = 80, "tolerance"_a = 0.0,
+        "seed"_a = 1, "placement"_a = "gaps", "engine"_a = "raster", "resolution"_a = 0, "coverage"_a = "area",
+        "cone"_a = "quad", "device"_a = "",
+        R"(Hierarchical point sets, as ``bluetile progressive`` (the paper, section 2.1).
+
+From scratch (``count``: level 0 has N relaxed random points, then ``levels`` levels in all,
+4 by default), or on a ``base`` of shape (N, 2) with optional ``base_levels`` (N,), kept bit for
+bit. Each level adds ``add`` points (default ``count``) or multiplies the total by ``ratio``;
+new points start in the gaps (``placement="gaps"``, best candidate) or at random, and are
+relaxed around the fixed earlier levels. Returns (points (M, 2), levels (M,) int32).)");
+}
+
+}  // namespace pybluetile

@@ -1,0 +1,62 @@
+// random_points and dart: point sets that need no engine.
+#include <nanobind/stl/string.h>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/sampling/dart_throwing.h"
+
+namespace pybluetile {
+
+using namespace nb::literals;
+
+void bind_sampling(nb::module_& m) {
+  m.def(
+      "random_points",
+      [](std::size_t count, std::uint64_t seed, std::uint64_t set) {
+        std::vector<bluetile::Point> points;
+        {
+          nb::gil_scoped_release release;
+          points = bluetile::uniform_random_points(count, seed, set);
+        }
+        return points_to_numpy({points}, false);
+      },
+      "count"_a, "seed"_a = 1, "set"_a = 0,
+      R"(Uniform random points on the unit torus, shape (count, 2): the random start of set ``set``
+of ``bluetile relax --count N --seed S``, bit for bit.)");
+
+  m.def(
+      "dart",
+      [](std::size_t count, std::uint64_t seed, std::size_t max_failures, double shrink, double start, bool info) {
+        bluetile::DartOptions o;
+        o.count = count;
+        o.seed = seed;
+        o.max_failures = max_failures;
+        o.shrink = shrink;
+        o.start = start;
+        bluetile::DartResult r;
+        {
+          nb::gil_scoped_release release;
+          r = bluetile::throw_darts(o);
+        }
+        nb::object points = nb::cast(points_to_numpy({r.points}, false));
+        if (!info) return points;
+        nb::dict d;
+        d["initial_radius"] = r.initial_radius;
+        d["final_radius"] = r.final_radius;
+        d["trials"] = r.trials;
+        d["reductions"] = r.reductions;
+        return nb::object(nb::make_tuple(points, d));
+      },
+      nb::sig("def dart(count: int, *, seed: int = 1, max_failures: int = 1000, shrink: float = 0.99, "
+              "start: float = 1.0, info: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, float | int]]"),
+      "count"_a, nb::kw_only(), "seed"_a = 1, "max_failures"_a = 1000, "shrink"_a = 0.99, "start"_a = 1.0,
+      "info"_a = false,
+      R"(Dart throwing with radius reduction on the unit torus, as ``bluetile dart``: shape (count, 2).
+
+A candidate is kept when no kept point is closer than the radius, which starts at ``start``
+hexagonal spacings and shrinks by ``shrink`` after ``max_failures`` rejections in a row. With
+``info=True`` returns (points, dict of initial_radius, final_radius, trials, reductions).)");
+}
+
+}  // namespace pybluetile

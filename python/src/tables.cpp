@@ -1,0 +1,98 @@
+// save_table and load_table: the sample-table formats of core/point_table.h.
+#include <fstream>
+#include <optional>
+
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_table.h"
+
+namespace pybluetile {
+
+using namespace nb::literals;
+
+namespace {
+
+void save_table(const std::string& path, const AnyArray& points, std::optional<AnyArray> levels,
+                const std::string& format, bool float32, const std::string& name,
+                const std::vector<std::string>& comment) {
+  PointSets input = point_sets(points, "points");
+  std::vector<bluetile::PointSet> sets;
+  for (auto& s : input.sets) sets.push_back({std::move(s), {}});
+  if (levels) {
+    if (input.batched) throw nb::value_error("levels: only with points of shape (N, 2)");
+    sets[0].levels = levels_array(*levels, sets[0].points.size(), "levels", bluetile::kMaxTableLevel);
+  }
+  nb::gil_scoped_release release;
+  const bluetile::TableFormat f = bluetile::table_format_for(path, format);
+  if (f == bluetile::TableFormat::text) {
+    std::string text = bluetile::format_points(bluetile::PointSet{}, comment);
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      if (sets.size() > 1) text += "# set " + std::to_string(k) + "\n";
+      text += bluetile::format_points(sets[k]);
+    }
+    bluetile::write_text_atomically(path, text);
+    return;
+  }
+  bluetile::TableWriteOptions options;
+  options.float32 = float32;
+  options.name = name;
+  options.comment = comment;
+  bluetile::write_atomically(path, [&](const std::string& temporary) {
+    std::ofstream out(temporary, std::ios::binary);
+    bluetile::write_table(f, bluetile::point_sets_table(sets), options, path,
+                          [&](std::string_view bytes) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
+    out.close();
+    if (!out) throw bluetile::Error(path + ": cannot write");
+  });
+}
+
+nb::list load_table(const std::string& path, bool levels) {
+  std::vector<bluetile::PointSet> sets;
+  {
+    nb::gil_scoped_release release;
+    sets = bluetile::read_point_table(path);
+  }
+  nb::list result;
+  for (bluetile::PointSet& set : sets) {
+    nb::object points = nb::cast(points_to_numpy({set.points}, false));
+    if (!levels) {
+      result.append(points);
+      continue;
+    }
+    const std::size_t n = set.points.size();
+    nb::object level = nb::none();
+    if (set.has_levels()) level = nb::cast(to_numpy(std::vector<std::int32_t>(set.levels.begin(), set.levels.end()), {n}));
+    result.append(nb::make_tuple(points, level));
+  }
+  return result;
+}
+
+}  // namespace
+
+void bind_tables(nb::module_& m) {
+  m.def("save_table", &save_table, "path"_a, "points"_a, nb::kw_only(), "levels"_a = nb::none(), "format"_a = "",
+        "float32"_a = false, "name"_a = "", "comment"_a = std::vector<std::string>{},
+        R"(Writes point sets as the tool does with ``--output`` (and ``--format``).
+
+``points``: shape (N, 2) or (K, N, 2); ``levels``: (N,) whole numbers for one set. The format is
+``format`` ("text", "npy", "binary", "header") or the extension (.txt .dat .pts, .npy, .bpt, .h
+.hpp; anything else is refused). ``float32``: 4-byte values in npy and binary; ``name``: the C
+array of a header (default from the file name); ``comment``: lines at the top (text, header).
+The file appears whole or not at all.)");
+
+  m.def("load_table", &load_table,
+        nb::sig("def load_table(path: str, *, levels: bool = False) "
+                "-> list[NDArray[numpy.float64]] | list[tuple[NDArray[numpy.float64], NDArray[numpy.int32] | None]]"),
+        "path"_a, nb::kw_only(), "levels"_a = false,
+        R"(Reads every set of a point file (text, with '#' lines between sets), an .npy file or a
+binary point table, recognised by content. Returns a list of arrays of shape (N, 2), one per set;
+with ``levels=True`` a list of (points, levels) where levels is an (N,) int32 array or None.)");
+}
+
+}  // namespace pybluetile

@@ -1,0 +1,198 @@
+"""pybluetile against the bluetile tool (bit for bit, same seeds), NumPy as an independent
+reader and writer of .npy, bad input, and the GIL released while the library works."""
+import json
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import pybluetile as bt
+
+
+def load_text(path, columns=2):
+    """Points written by the tool (17 significant digits: exact doubles)."""
+    return np.loadtxt(path, comments="#", ndmin=2)[:, :columns]
+
+
+def test_relax_matches_the_tool_bit_for_bit(tool, tmp_path):
+    out = tmp_path / "relaxed.txt"
+    tool("relax", "--count", 300, "--iterations", 12, "--seed", 5, "--engine", "exact", "--output", out)
+    points = bt.relax(count=300, iterations=12, seed=5, engine="exact")
+    assert points.shape == (300, 2) and points.dtype == np.float64
+    assert np.array_equal(points, load_text(out))
+    # From given points, with fixed sites, as relax --input --fixed.
+    start = bt.random_points(100, seed=9)
+    np.savetxt(tmp_path / "start.txt", start, fmt="%.17g")
+    tool("relax", "--input", tmp_path / "start.txt", "--iterations", 4, "--fixed", 10, "--engine", "exact",
+         "--output", tmp_path / "more.txt")
+    more = bt.relax(start, iterations=4, fixed=10, engine="exact")
+    assert np.array_equal(more, load_text(tmp_path / "more.txt"))
+    assert np.array_equal(more[:10], start[:10])
+
+
+def test_raster_engine_matches_the_tool(tool, tmp_path):
+    out = tmp_path / "raster.txt"
+    tool("relax", "--count", 64, "--iterations", 3, "--seed", 2, "--engine", "raster", "--output", out)
+    assert np.array_equal(bt.relax(count=64, iterations=3, seed=2, engine="raster"), load_text(out))
+
+
+def test_sets_match_the_tool(tool, tmp_path):
+    out = tmp_path / "sets.txt"
+    tool("relax", "--count", 40, "--sets", 3, "--iterations", 5, "--seed", 4, "--engine", "exact", "--output", out)
+    sets = bt.relax(count=40, sets=3, iterations=5, seed=4, engine="exact")
+    assert sets.shape == (3, 40, 2)
+    from_tool = bt.load_table(str(out))
+    assert len(from_tool) == 3
+    for k in range(3):
+        assert np.array_equal(sets[k], from_tool[k])
+    # Set k does not depend on how many sets there are; an (K, N, 2) input relaxes each set.
+    assert np.array_equal(bt.relax(count=40, iterations=5, seed=4, engine="exact"), sets[0])
+    again = bt.relax(bt.random_points(40, seed=4, set=2)[None], iterations=5, engine="exact")
+    assert np.array_equal(again[0], sets[2])
+
+
+def test_random_points_are_the_relax_start():
+    assert np.array_equal(bt.random_points(50, seed=3), bt.relax(count=50, iterations=0, seed=3, engine="exact"))
+
+
+def test_centroids_match_the_tool(tool, tmp_path):
+    points = bt.random_points(80, seed=1)
+    np.savetxt(tmp_path / "p.txt", points, fmt="%.17g")
+    tool("centroids", "--input", tmp_path / "p.txt", "--engine", "exact", "--output", tmp_path / "c.txt")
+    reference = np.loadtxt(tmp_path / "c.txt", comments="#")
+    centres, areas = bt.centroids(points, engine="exact")
+    assert np.array_equal(centres, reference[:, :2]) and np.array_equal(areas, reference[:, 2])
+    assert abs(areas.sum() - 1.0) < 1e-12
+    batched_centres, batched_areas = bt.centroids(np.stack([points, points]), engine="exact")
+    assert batched_centres.shape == (2, 80, 2) and np.array_equal(batched_areas[1], areas)
+
+
+def test_progressive_matches_the_tool(tool, tmp_path):
+    out = tmp_path / "levels.txt"
+    tool("progressive", "--count", 30, "--levels", 3, "--iterations", 5, "--seed", 7, "--engine", "exact",
+         "--output", out)
+    reference = np.loadtxt(out, comments="#")
+    points, levels = bt.progressive(count=30, levels=3, iterations=5, seed=7, engine="exact")
+    assert points.shape == (90, 2) and levels.dtype == np.int32
+    assert np.array_equal(points, reference[:, :2]) and np.array_equal(levels, reference[:, 2])
+    # One more level on that base keeps the base bit for bit.
+    more, more_levels = bt.progressive(points, levels, add=30, iterations=5, engine="exact")
+    assert np.array_equal(more[:90], points) and list(np.unique(more_levels)) == [0, 1, 2, 3]
+
+
+def test_dart_matches_the_tool(tool, tmp_path):
+    tool("dart", "--count", 200, "--seed", 3, "--output", tmp_path / "d.txt")
+    points, info = bt.dart(200, seed=3, info=True)
+    assert np.array_equal(points, load_text(tmp_path / "d.txt"))
+    assert info["final_radius"] <= info["initial_radius"]
+
+
+def test_analyze_matches_stats_json(tool, tmp_path):
+    points = bt.relax(count=200, iterations=20, seed=1, engine="exact")
+    np.savetxt(tmp_path / "p.txt", points, fmt="%.17g")
+    tool("analyze", "--input", tmp_path / "p.txt", "--output", tmp_path / "a")
+    stats = json.loads((tmp_path / "a" / "stats.json").read_text())
+    mine = bt.analyze(points)
+    for key in ("n", "sets", "nn_min", "nn_max", "nn_mean", "hexagonal_spacing", "mean_centroid_distance",
+                "periodogram_size"):
+        assert mine[key] == stats[key], key
+    assert mine["nn_x1000"] == stats["nn_x1000"] and mine["nn_relative"] == stats["nn_relative"]
+    for column in ("frequency", "power", "anisotropy_db", "count"):
+        reference = np.array([np.nan if v is None else v for v in stats["radial"][column]])
+        assert np.array_equal(mine["radial"][column], reference, equal_nan=True), column
+    f = stats["periodogram_size"]
+    spectrum = bt.periodogram(points)
+    assert spectrum.shape == (f, f) and spectrum[f // 2, f // 2] == pytest.approx(200.0)
+    assert np.array_equal(spectrum, mine["periodogram"])
+    assert np.array_equal(bt.radial_power(points)["power"], mine["radial"]["power"])
+    distances = bt.nearest_neighbour_distances(points)
+    assert distances.min() == stats["nn_min"]
+
+
+def test_tables_round_trip_and_numpy_reads_them(tmp_path):
+    sets = bt.relax(count=64, sets=5, iterations=2, seed=1, engine="exact")
+    bt.save_table(str(tmp_path / "t.npy"), sets)
+    assert np.array_equal(np.load(tmp_path / "t.npy"), sets)
+    bt.save_table(str(tmp_path / "t32.npy"), sets, float32=True)
+    loaded32 = np.load(tmp_path / "t32.npy")
+    assert loaded32.dtype == np.float32 and np.array_equal(loaded32, sets.astype(np.float32))
+    for name in ("t.npy", "t.bpt", "t.txt"):
+        path = str(tmp_path / name)
+        bt.save_table(path, sets)
+        back = bt.load_table(path)
+        assert len(back) == 5 and all(np.array_equal(back[k], sets[k]) for k in range(5)), name
+    # Files NumPy writes, in any order and byte order, read back exactly.
+    np.save(tmp_path / "f.npy", np.asfortranarray(sets))
+    np.save(tmp_path / "b.npy", sets.astype(">f8"))
+    for name in ("f.npy", "b.npy"):
+        back = bt.load_table(str(tmp_path / name))
+        assert all(np.array_equal(back[k], sets[k]) for k in range(5)), name
+    bt.save_table(str(tmp_path / "t.h"), sets[:2], name="blue")
+    header = (tmp_path / "t.h").read_text()
+    assert "static const float blue[2][64][2] = {" in header
+    with pytest.raises(bt.Error, match=r"unknown extension '\.png'"):
+        bt.save_table(str(tmp_path / "t.png"), sets)
+
+
+def test_levels_round_trip(tmp_path):
+    points, levels = bt.progressive(count=20, levels=2, iterations=2, engine="exact")
+    bt.save_table(str(tmp_path / "l.npy"), points, levels=levels)
+    table = np.load(tmp_path / "l.npy")
+    assert table.shape == (1, 40, 3) and np.array_equal(table[0, :, 2], levels)
+    (back, back_levels), = bt.load_table(str(tmp_path / "l.npy"), levels=True)
+    assert np.array_equal(back, points) and np.array_equal(back_levels, levels)
+
+
+def test_bad_input_raises_clear_exceptions(tool, tmp_path):
+    with pytest.raises(TypeError, match=r"points: expected float64 \(or float32\) values, got int64"):
+        bt.relax(np.zeros((10, 2), dtype=np.int64), engine="exact")
+    with pytest.raises(ValueError, match=r"points: expected shape \(N, 2\) or \(K, N, 2\) with N >= 1, got \(10, 3\)"):
+        bt.centroids(np.zeros((10, 3)), engine="exact")
+    bad = bt.random_points(5)
+    bad[3, 1] = np.nan
+    with pytest.raises(ValueError, match=r"points\[3\]: not a finite number 'nan'"):
+        bt.relax(bad, engine="exact")
+    with pytest.raises(ValueError, match="engine: expected one of 'raster', 'exact', got 'gpu'"):
+        bt.relax(count=10, engine="gpu")
+    with pytest.raises(ValueError, match="give either points or count"):
+        bt.relax()
+    # float32 input is taken exactly; a strided view is read as it is.
+    pts32 = bt.random_points(30).astype(np.float32)
+    assert np.array_equal(bt.relax(pts32, iterations=0, engine="exact"), pts32.astype(np.float64))
+    wide = np.zeros((30, 4))
+    wide[:, ::2] = pts32
+    assert np.array_equal(bt.relax(wide[:, ::2], iterations=0, engine="exact"), pts32.astype(np.float64))
+    # The library's errors carry the tool's message (the tool prints "bluetile: " before it).
+    damaged = tmp_path / "damaged.txt"
+    damaged.write_text("0.1 0.2\n0.3 inf\n")
+    cli = tool("relax", "--input", damaged, "--iterations", 1, "--output", tmp_path / "o.txt", check=False)
+    assert cli.returncode != 0
+    with pytest.raises(bt.Error) as error:
+        bt.load_table(str(damaged))
+    assert cli.stderr.strip() == "bluetile: " + str(error.value)
+    assert isinstance(error.value, ValueError)
+
+
+def test_the_gil_is_released_while_relaxing():
+    counter = 0
+    stop = False
+
+    def count():
+        nonlocal counter
+        while not stop:
+            counter += 1
+            time.sleep(0)
+
+    thread = threading.Thread(target=count)
+    thread.start()
+    try:
+        time.sleep(0.05)
+        before = counter
+        bt.relax(count=2000, iterations=40, seed=1, engine="exact")  # about 0.2 s on one core
+        during = counter - before
+    finally:
+        stop = True
+        thread.join()
+    # With the GIL held the other thread could not run at all during the call.
+    assert during > 100, f"the counting thread ran {during} times while relax ran"

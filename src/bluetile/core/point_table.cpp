@@ -1,0 +1,510 @@
+#include "bluetile/core/point_table.h"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "bluetile/core/error.h"
+#include "bluetile/core/input_file.h"
+
+namespace bluetile {
+namespace {
+
+constexpr char kBinaryMagic[8] = {'\x89', 'B', 'T', 'P', '\r', '\n', '\x1a', '\n'};
+constexpr std::size_t kBinaryHeaderBytes = 40;
+constexpr std::uint32_t kBinaryVersion = 1;
+constexpr char kNpyMagic[6] = {'\x93', 'N', 'U', 'M', 'P', 'Y'};
+// Bytes gathered before each call of the sink: large enough that the sink's cost per call
+// vanishes, small enough to stay in cache.
+constexpr std::size_t kSinkChunk = 1 << 16;
+
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+// The extension of the file name in `path`, with its dot, lower case; "" when none.
+std::string extension_of(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  std::size_t dot = name.find_last_of('.');
+  if (dot == std::string::npos || dot == 0) return "";
+  return lower(name.substr(dot));
+}
+
+// Buffers bytes for a sink.
+class ChunkedWriter {
+ public:
+  explicit ChunkedWriter(const ByteSink& sink) : sink_(sink) { buffer_.reserve(kSinkChunk); }
+  ~ChunkedWriter() = default;
+
+  void write(const void* data, std::size_t size) {
+    const char* bytes = static_cast<const char*>(data);
+    buffer_.append(bytes, size);
+    if (buffer_.size() >= kSinkChunk) flush();
+  }
+  void write(std::string_view text) { write(text.data(), text.size()); }
+  template <typename T>
+  void little_endian(T value) {
+    if constexpr (std::endian::native == std::endian::big) value = byte_swapped(value);
+    write(&value, sizeof value);
+  }
+  void flush() {
+    if (!buffer_.empty()) sink_(buffer_);
+    buffer_.clear();
+  }
+
+  template <typename T>
+  static T byte_swapped(T value) {
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    std::reverse(bytes, bytes + sizeof(T));
+    std::memcpy(&value, bytes, sizeof(T));
+    return value;
+  }
+
+ private:
+  const ByteSink& sink_;
+  std::string buffer_;
+};
+
+// The float stored for a coordinate: the nearest one, kept below 1 (see point_table.h).
+float table_float(double value) {
+  float f = static_cast<float>(value);
+  if (value < 1.0 && f >= 1.0f) f = std::nextafter(1.0f, 0.0f);
+  return f;
+}
+
+std::size_t common_rows(const TableView& table, const std::string& path, TableFormat format) {
+  if (table.sets == 0) return 0;
+  std::size_t rows = table.rows(0);
+  for (std::size_t k = 1; k < table.sets; ++k) {
+    if (table.rows(k) != rows) {
+      throw Error(path + ": set 0 has " + std::to_string(rows) + " points but set " + std::to_string(k) + " has " +
+                  std::to_string(table.rows(k)) + ": the " + std::string(table_format_name(format)) +
+                  " format needs the same count in every set (text takes any)");
+    }
+  }
+  return rows;
+}
+
+template <typename T>
+void write_values(ChunkedWriter& out, const TableView& table, std::size_t rows) {
+  for (std::size_t k = 0; k < table.sets; ++k)
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t c = 0; c < table.columns; ++c) {
+        double v = table.value(k, i, c);
+        if constexpr (std::is_same_v<T, float>) {
+          out.little_endian(table_float(v));
+        } else {
+          out.little_endian(v);
+        }
+      }
+}
+
+void write_npy(ChunkedWriter& out, const TableView& table, std::size_t rows, bool float32) {
+  std::string dict = "{'descr': '" + std::string(float32 ? "<f4" : "<f8") + "', 'fortran_order': False, 'shape': (" +
+                     std::to_string(table.sets) + ", " + std::to_string(rows) + ", " + std::to_string(table.columns) +
+                     "), }";
+  // Version 1.0: magic, 2 version bytes, a 2-byte header length; the data starts at a multiple
+  // of 64 bytes and the header ends with a newline.
+  std::size_t unpadded = sizeof kNpyMagic + 2 + 2 + dict.size() + 1;
+  dict.append((64 - unpadded % 64) % 64, ' ');
+  dict += '\n';
+  out.write(kNpyMagic, sizeof kNpyMagic);
+  out.write("\x01\x00", 2);
+  out.little_endian(static_cast<std::uint16_t>(dict.size()));
+  out.write(dict);
+  if (float32) {
+    write_values<float>(out, table, rows);
+  } else {
+    write_values<double>(out, table, rows);
+  }
+}
+
+void write_binary(ChunkedWriter& out, const TableView& table, std::size_t rows, bool float32) {
+  out.write(kBinaryMagic, sizeof kBinaryMagic);
+  out.little_endian(kBinaryVersion);
+  out.little_endian(static_cast<std::uint32_t>(float32 ? 4 : 8));
+  out.little_endian(static_cast<std::uint32_t>(table.columns));
+  out.little_endian(std::uint32_t{0});
+  out.little_endian(static_cast<std::uint64_t>(table.sets));
+  out.little_endian(static_cast<std::uint64_t>(rows));
+  if (float32) {
+    write_values<float>(out, table, rows);
+  } else {
+    write_values<double>(out, table, rows);
+  }
+}
+
+bool is_identifier(const std::string& name) {
+  if (name.empty() || std::isdigit(static_cast<unsigned char>(name[0]))) return false;
+  return std::all_of(name.begin(), name.end(),
+                     [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
+// A float literal that reads back as exactly `f`: 9 significant digits, with a '.' or an
+// exponent so that the 'f' suffix makes a valid literal.
+void float_literal(float f, char* text, std::size_t size) {
+  int len = std::snprintf(text, size, "%.9g", static_cast<double>(f));
+  if (!std::strpbrk(text, ".e")) len += std::snprintf(text + len, size - static_cast<std::size_t>(len), ".0");
+  std::snprintf(text + len, size - static_cast<std::size_t>(len), "f");
+}
+
+void write_header(ChunkedWriter& out, const TableView& table, std::size_t rows, const TableWriteOptions& options,
+                  const std::string& path) {
+  std::string name = options.name.empty() ? table_name_for_path(path) : options.name;
+  if (!is_identifier(name)) throw Error(path + ": '" + name + "' is not a C identifier (letters, digits, '_')");
+  for (const std::string& line : options.comment) out.write("// " + line + "\n");
+  out.write("// " + std::to_string(table.sets) + " set(s) of " + std::to_string(rows) + " points, columns x y" +
+            (table.columns == 3 ? " level" : "") + ", coordinates in [0, 1) (the unit torus).\n");
+  out.write("#pragma once\n\n");
+  out.write("static const float " + name + "[" + std::to_string(table.sets) + "][" + std::to_string(rows) + "][" +
+            std::to_string(table.columns) + "] = {\n");
+  char literal[32];
+  for (std::size_t k = 0; k < table.sets; ++k) {
+    out.write("  {  // set " + std::to_string(k) + "\n");
+    for (std::size_t i = 0; i < rows; ++i) {
+      out.write("    {");
+      for (std::size_t c = 0; c < table.columns; ++c) {
+        float_literal(table_float(table.value(k, i, c)), literal, sizeof literal);
+        if (c) out.write(", ");
+        out.write(literal);
+      }
+      out.write("},\n");
+    }
+    out.write("  },\n");
+  }
+  out.write("};\n");
+}
+
+// --- reading ---------------------------------------------------------------------------------
+
+// Reads little- or big-endian values out of a byte range, bounds checked by the callers.
+template <typename T>
+T load(const char* at, bool big_endian) {
+  T value;
+  std::memcpy(&value, at, sizeof value);
+  if (big_endian != (std::endian::native == std::endian::big)) value = ChunkedWriter::byte_swapped(value);
+  return value;
+}
+
+// Builds point sets from decoded values, checking each (shared by npy and binary).
+class SetBuilder {
+ public:
+  SetBuilder(const std::string& name, std::size_t sets, std::size_t rows, std::size_t columns)
+      : name_(name), columns_(columns), sets_(sets) {
+    for (PointSet& set : sets_) {
+      set.points.reserve(rows);
+      if (columns == 3) set.levels.reserve(rows);
+    }
+  }
+
+  void add(std::size_t set, std::size_t row, std::size_t column, double value) {
+    auto where = [&] { return name_ + ": set " + std::to_string(set) + ", point " + std::to_string(row) + ": "; };
+    if (!std::isfinite(value)) throw Error(where() + "not a finite number '" + format_value(value) + "'");
+    if (column == 2) {
+      if (value < 0 || value > kMaxTableLevel || value != std::floor(value))
+        throw Error(where() + "level must be a whole number in [0, " + std::to_string(kMaxTableLevel) + "], got '" +
+                    format_value(value) + "'");
+      sets_[set].levels.push_back(static_cast<int>(value));
+      return;
+    }
+    if (column == 0) {
+      x_ = value;
+    } else {
+      sets_[set].points.push_back(wrap_point(Point{x_, value}, Domain{}));
+    }
+  }
+
+  std::vector<PointSet> finish() { return std::move(sets_); }
+
+ private:
+  static std::string format_value(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", value);
+    return text;
+  }
+
+  const std::string& name_;
+  std::size_t columns_;
+  std::vector<PointSet> sets_;
+  double x_ = 0.0;
+};
+
+void check_columns(std::size_t columns, const std::string& name) {
+  if (columns != 2 && columns != 3)
+    throw Error(name + ": " + std::to_string(columns) + " columns per point; expected 2 (x y) or 3 (x y level)");
+}
+
+// sets * rows * columns * bytes without overflow, or Error.
+std::size_t payload_bytes(std::uint64_t sets, std::uint64_t rows, std::uint64_t columns, std::uint64_t bytes,
+                          const std::string& name) {
+  std::uint64_t total = bytes;
+  for (std::uint64_t factor : {sets, rows, columns}) {
+    if (factor != 0 && total > std::numeric_limits<std::uint64_t>::max() / factor)
+      throw Error(name + ": sizes " + std::to_string(sets) + " x " + std::to_string(rows) + " x " +
+                  std::to_string(columns) + " overflow: a damaged file");
+    total *= factor;
+  }
+  return static_cast<std::size_t>(total);
+}
+
+// A small parser for the Python-literal dictionary of an npy header.
+class NpyHeader {
+ public:
+  NpyHeader(std::string_view text, const std::string& name) : text_(text), name_(name) {}
+
+  std::string string_value(std::string_view key) {
+    std::size_t at = value_start(key);
+    char quote = at < text_.size() ? text_[at] : '\0';
+    if (quote != '\'' && quote != '"') fail(std::string(key) + " is not a string");
+    std::size_t end = text_.find(quote, at + 1);
+    if (end == std::string_view::npos) fail("unterminated string");
+    return std::string(text_.substr(at + 1, end - at - 1));
+  }
+
+  bool bool_value(std::string_view key) {
+    std::size_t at = value_start(key);
+    if (text_.substr(at, 4) == "True") return true;
+    if (text_.substr(at, 5) == "False") return false;
+    fail(std::string(key) + " is not True or False");
+  }
+
+  std::vector<std::uint64_t> tuple_value(std::string_view key) {
+    std::size_t at = value_start(key);
+    if (at >= text_.size() || text_[at] != '(') fail(std::string(key) + " is not a tuple");
+    std::size_t end = text_.find(')', at);
+    if (end == std::string_view::npos) fail("unterminated tuple");
+    std::vector<std::uint64_t> values;
+    std::size_t i = at + 1;
+    while (i < end) {
+      while (i < end && (text_[i] == ' ' || text_[i] == ',')) ++i;
+      if (i == end) break;
+      std::uint64_t v = 0;
+      std::size_t digits = 0;
+      while (i < end && std::isdigit(static_cast<unsigned char>(text_[i]))) {
+        if (v > (std::numeric_limits<std::uint64_t>::max() - 9) / 10) fail("shape value too large");
+        v = v * 10 + static_cast<std::uint64_t>(text_[i] - '0');
+        ++i;
+        ++digits;
+      }
+      if (digits == 0) fail("shape holds something other than whole numbers");
+      values.push_back(v);
+    }
+    return values;
+  }
+
+  [[noreturn]] void fail(const std::string& what) const { throw Error(name_ + ": bad .npy header: " + what); }
+
+ private:
+  std::size_t value_start(std::string_view key) {
+    for (char quote : {'\'', '"'}) {
+      std::string quoted = quote + std::string(key) + quote;
+      std::size_t at = text_.find(quoted);
+      if (at == std::string_view::npos) continue;
+      at = text_.find(':', at + quoted.size());
+      if (at == std::string_view::npos) break;
+      ++at;
+      while (at < text_.size() && text_[at] == ' ') ++at;
+      return at;
+    }
+    fail("no '" + std::string(key) + "'");
+  }
+
+  std::string_view text_;
+  const std::string& name_;
+};
+
+// Every read checked, out of memory included (input_file.h).
+std::string read_bytes(const std::string& path) { return read_input(path); }
+
+bool starts_with(std::string_view bytes, const char* magic, std::size_t size) {
+  return bytes.size() >= size && std::memcmp(bytes.data(), magic, size) == 0;
+}
+
+}  // namespace
+
+TableFormat table_format_for(const std::string& path, const std::string& requested) {
+  if (!requested.empty()) {
+    for (TableFormat f : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header})
+      if (requested == table_format_name(f)) return f;
+    throw Error("unknown table format '" + requested + "' (text, npy, binary, header)");
+  }
+  if (path == "-") return TableFormat::text;
+  std::string ext = extension_of(path);
+  if (ext.empty() || ext == ".txt" || ext == ".dat" || ext == ".pts") return TableFormat::text;
+  if (ext == ".npy") return TableFormat::npy;
+  if (ext == ".bpt") return TableFormat::binary;
+  if (ext == ".h" || ext == ".hpp") return TableFormat::header;
+  throw Error(path + ": unknown extension '" + ext +
+              "' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header; or say --format)");
+}
+
+std::string_view table_format_name(TableFormat format) {
+  switch (format) {
+    case TableFormat::text: return "text";
+    case TableFormat::npy: return "npy";
+    case TableFormat::binary: return "binary";
+    case TableFormat::header: return "header";
+  }
+  return "text";
+}
+
+TableView point_sets_table(std::span<const PointSet> sets) {
+  bool levels = !sets.empty() && sets[0].has_levels();
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    if (sets[k].has_levels() != levels)
+      throw Error("set " + std::to_string(k) + (levels ? " has no levels" : " has levels") + " but set 0 " +
+                  (levels ? "has" : "has none") + ": a table has one set of columns");
+  }
+  TableView view;
+  view.sets = sets.size();
+  view.columns = levels ? 3 : 2;
+  view.rows = [sets](std::size_t k) { return sets[k].points.size(); };
+  view.value = [sets](std::size_t k, std::size_t i, std::size_t c) {
+    const PointSet& set = sets[k];
+    return c == 0 ? set.points[i].x : c == 1 ? set.points[i].y : static_cast<double>(set.levels[i]);
+  };
+  return view;
+}
+
+void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options, const std::string& path,
+                 const ByteSink& sink) {
+  if (format == TableFormat::text) throw Error(path + ": text tables are written as point files (point_file.h)");
+  check_columns(table.columns, path);
+  const std::size_t rows = common_rows(table, path, format);
+  ChunkedWriter out(sink);
+  switch (format) {
+    case TableFormat::npy: write_npy(out, table, rows, options.float32); break;
+    case TableFormat::binary: write_binary(out, table, rows, options.float32); break;
+    case TableFormat::header: write_header(out, table, rows, options, path); break;
+    case TableFormat::text: break;
+  }
+  out.flush();
+}
+
+std::string table_name_for_path(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  std::size_t dot = name.find_last_of('.');
+  if (dot != std::string::npos && dot > 0) name.resize(dot);
+  std::string id;
+  for (char c : name) {
+    bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+    if (ok) {
+      id += c;
+    } else if (!id.empty() && id.back() != '_') {
+      id += '_';
+    }
+  }
+  while (!id.empty() && id.back() == '_') id.pop_back();
+  if (id.empty()) return "bluetile_points";
+  if (std::isdigit(static_cast<unsigned char>(id[0]))) id = "points_" + id;
+  return id;
+}
+
+std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::string& name) {
+  if (bytes.size() < sizeof kBinaryMagic || !starts_with(bytes, kBinaryMagic, sizeof kBinaryMagic))
+    throw Error(name + ": not a bluetile binary point table (wrong magic)");
+  if (bytes.size() < kBinaryHeaderBytes)
+    throw Error(name + ": binary point table cut short: " + std::to_string(bytes.size()) + " bytes, the header alone is " +
+                std::to_string(kBinaryHeaderBytes));
+  const char* h = bytes.data();
+  auto version = load<std::uint32_t>(h + 8, false);
+  auto value_bytes = load<std::uint32_t>(h + 12, false);
+  auto columns = load<std::uint32_t>(h + 16, false);
+  auto sets = load<std::uint64_t>(h + 24, false);
+  auto rows = load<std::uint64_t>(h + 32, false);
+  if (version != kBinaryVersion)
+    throw Error(name + ": binary point table version " + std::to_string(version) + ", this reader knows version 1");
+  if (value_bytes != 4 && value_bytes != 8)
+    throw Error(name + ": " + std::to_string(value_bytes) + " bytes per value; expected 4 (float32) or 8 (float64)");
+  check_columns(columns, name);
+  std::size_t payload = payload_bytes(sets, rows, columns, value_bytes, name);
+  if (bytes.size() - kBinaryHeaderBytes != payload) {
+    throw Error(name + ": header says " + std::to_string(sets) + " set(s) of " + std::to_string(rows) +
+                " points (" + std::to_string(kBinaryHeaderBytes + payload) + " bytes) but the file has " +
+                std::to_string(bytes.size()) + " bytes");
+  }
+  SetBuilder builder(name, sets, rows, columns);
+  const char* at = h + kBinaryHeaderBytes;
+  for (std::size_t k = 0; k < sets; ++k)
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t c = 0; c < columns; ++c, at += value_bytes)
+        builder.add(k, i, c, value_bytes == 4 ? load<float>(at, false) : load<double>(at, false));
+  return builder.finish();
+}
+
+std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string& name) {
+  if (!starts_with(bytes, kNpyMagic, sizeof kNpyMagic)) throw Error(name + ": not a .npy file (wrong magic)");
+  if (bytes.size() < 10) throw Error(name + ": .npy file cut short in its header");
+  const int major = static_cast<unsigned char>(bytes[6]);
+  std::size_t header_size = 0, header_start = 0;
+  if (major == 1) {
+    header_size = load<std::uint16_t>(bytes.data() + 8, false);
+    header_start = 10;
+  } else if (major == 2 || major == 3) {
+    if (bytes.size() < 12) throw Error(name + ": .npy file cut short in its header");
+    header_size = load<std::uint32_t>(bytes.data() + 8, false);
+    header_start = 12;
+  } else {
+    throw Error(name + ": .npy format version " + std::to_string(major) + " (this reader knows 1 to 3)");
+  }
+  if (bytes.size() - header_start < header_size) throw Error(name + ": .npy file cut short in its header");
+  NpyHeader header(bytes.substr(header_start, header_size), name);
+  const std::string descr = header.string_value("descr");
+  const bool fortran = header.bool_value("fortran_order");
+  std::vector<std::uint64_t> shape = header.tuple_value("shape");
+
+  if (descr.size() != 3 || (descr[0] != '<' && descr[0] != '>' && descr[0] != '=' && descr[0] != '|') ||
+      descr[1] != 'f' || (descr[2] != '4' && descr[2] != '8'))
+    header.fail("dtype '" + descr + "'; expected float64 ('<f8') or float32 ('<f4')");
+  const bool big_endian = descr[0] == '>' || (descr[0] != '<' && std::endian::native == std::endian::big);
+  const std::size_t value_bytes = descr[2] == '4' ? 4 : 8;
+  if (shape.size() == 2) shape.insert(shape.begin(), 1);
+  if (shape.size() != 3) header.fail("shape has " + std::to_string(shape.size()) + " dimensions; expected (N, C) or (K, N, C)");
+  const std::uint64_t sets = shape[0], rows = shape[1], columns = shape[2];
+  check_columns(columns, name);
+  std::size_t payload = payload_bytes(sets, rows, columns, value_bytes, name);
+  std::size_t data_start = header_start + header_size;
+  if (bytes.size() - data_start != payload) {
+    throw Error(name + ": shape (" + std::to_string(sets) + ", " + std::to_string(rows) + ", " + std::to_string(columns) +
+                ") needs " + std::to_string(payload) + " data bytes but the file has " +
+                std::to_string(bytes.size() - data_start));
+  }
+  SetBuilder builder(name, sets, rows, columns);
+  const char* data = bytes.data() + data_start;
+  for (std::size_t k = 0; k < sets; ++k)
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t c = 0; c < columns; ++c) {
+        // C order: the last index varies fastest; Fortran order: the first.
+        std::size_t index = fortran ? k + sets * (i + rows * c) : (k * rows + i) * columns + c;
+        const char* at = data + index * value_bytes;
+        builder.add(k, i, c, value_bytes == 4 ? load<float>(at, big_endian) : load<double>(at, big_endian));
+      }
+  return builder.finish();
+}
+
+std::vector<PointSet> read_point_table(const std::string& path) {
+  if (path == "-") return read_point_sets(path);
+  char start[sizeof kBinaryMagic] = {};
+  {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
+    in.read(start, sizeof start);
+  }
+  std::string_view head(start, sizeof start);
+  if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(read_bytes(path), path);
+  if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(read_bytes(path), path);
+  return read_point_sets(path);
+}
+
+}  // namespace bluetile

@@ -1,0 +1,92 @@
+// Sample tables: K point sets in one file, in the format a consumer wants (docs/DESIGN.md,
+// section 6). Text is the point-file format of point_file.h; the others are binary or code:
+//
+// - npy: NumPy's format, version 1.0, C order, shape (K, N, C) with C = 2 (x y) or 3 (x y
+//   level), little-endian float64 ('<f8') or float32 ('<f4'). Read back: any version (1-3),
+//   either byte order, C or Fortran order, shape (N, C) or (K, N, C).
+// - binary: the bluetile point table (.bpt), for C and C++ readers, all little-endian:
+//     offset  size  field
+//          0     8  magic 0x89 'B' 'T' 'P' '\r' '\n' 0x1A '\n'
+//          8     4  version, 1
+//         12     4  bytes per value: 4 (float32) or 8 (float64), IEEE 754
+//         16     4  columns C: 2 (x y) or 3 (x y level)
+//         20     4  reserved, 0
+//         24     8  sets K
+//         32     8  points per set N
+//         40        K * N * C values, set by set, point by point, column by column
+//   The file is exactly 40 + K * N * C * bytes long.
+// - header: C/C++ source, `static const float NAME[K][N][C] = {...};`, each literal exact for
+//   its float (9 significant digits).
+//
+// Coordinates are on the unit torus, in [0, 1). Float32 values are the nearest float, except
+// that a value rounding up to 1 is stored as the largest float below 1, so every stored point
+// stays in the domain. Levels (the third column) are whole numbers in [0, kMaxTableLevel].
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "bluetile/core/point_file.h"
+
+namespace bluetile {
+
+enum class TableFormat { text, npy, binary, header };
+
+// The largest level a table may hold: as point files.
+inline constexpr int kMaxTableLevel = kMaxLevel;
+
+// The format to write `path` in: `requested` when not empty ("text", "npy", "binary",
+// "header"), else by the extension: .txt .dat .pts or none -> text, .npy -> npy, .bpt -> binary,
+// .h .hpp -> header; "-" (standard output) -> text. Throws Error naming the path or the name for
+// an unknown one: a table is never written in a format nobody asked for.
+TableFormat table_format_for(const std::string& path, const std::string& requested = "");
+
+// "text", "npy", "binary", "header".
+std::string_view table_format_name(TableFormat format);
+
+// What the table writers read: `sets` sets of `rows(k)` rows of `columns` values each.
+struct TableView {
+  std::size_t sets = 0;
+  std::size_t columns = 2;
+  std::function<std::size_t(std::size_t set)> rows;
+  std::function<double(std::size_t set, std::size_t row, std::size_t column)> value;
+};
+
+// Columns x y, and level when the sets have levels (all of them or none; Error otherwise).
+TableView point_sets_table(std::span<const PointSet> sets);
+
+struct TableWriteOptions {
+  bool float32 = false;  // npy and binary: 4-byte floats instead of 8 (header: always float)
+  // header: the array's name; empty picks one from the file name (table_name_for_path).
+  std::string name;
+  // header: comment lines at the top of the file.
+  std::vector<std::string> comment;
+};
+
+// Receives the bytes of a table in order, in pieces.
+using ByteSink = std::function<void(std::string_view bytes)>;
+
+// Writes `table` in a binary or code format (npy, binary, header; text goes through
+// point_file.h). Every set must have the same number of rows. `path` names the output in
+// messages and gives the header's default name. Throws Error("<path>: <what>").
+void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options,
+                 const std::string& path, const ByteSink& sink);
+
+// A C identifier from a file name: "tables/blue-noise 64.h" -> "blue_noise_64".
+std::string table_name_for_path(const std::string& path);
+
+// Reads every set of a file in any readable format, recognised by its first bytes: npy,
+// binary, else text (point_file.h; sets apart at '#' lines, UTK's convention). Throws
+// Error("<path>: <what>") for a damaged file: short, wrong magic, sizes that do not match,
+// unknown value types, non-finite values, levels that are not whole numbers.
+std::vector<PointSet> read_point_table(const std::string& path);
+
+// The same decoders over bytes in memory; `name` stands for the file in messages.
+std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string& name);
+std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::string& name);
+
+}  // namespace bluetile

@@ -1,0 +1,36 @@
+#include "cli/density_options.h"
+
+namespace bluetile::cli {
+
+void add_density_transfer_options(CLI::App* command, DensityMapOptions& options, std::string_view invert_help) {
+  command->add_option("--transfer", options.transfer,
+                      "How image samples become linear values: srgb (decode the sRGB curve), linear (as stored), "
+                      "auto (srgb for 8/16-bit images such as PNG, linear for float images such as EXR)")
+      ->check(CLI::IsMember({"auto", "srgb", "linear"}))
+      ->capture_default_str();
+  command->add_flag("--invert", options.invert, std::string(invert_help));
+  command->add_option("--gamma", options.gamma, "Density = value^gamma after decoding and --invert")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+}
+
+void add_weight_exponent_option(CLI::App* command, double& exponent) {
+  command->add_option("--weight-exponent", exponent,
+                      "Weight Lloyd's cells by density^E: 2 keeps the point density proportional to the map (a "
+                      "centroidal Voronoi diagram's point density goes as the square root of its weight), 1 is Secord "
+                      "2002's weighting, whose contrast flattens as the set converges")
+      ->check(CLI::Range(0.0, 8.0))
+      ->capture_default_str();
+}
+
+DensityTransfer density_transfer(const DensityMapOptions& options, bool invert_by_default) {
+  DensityTransfer t;
+  t.curve = options.transfer == "srgb"     ? TransferCurve::srgb
+            : options.transfer == "linear" ? TransferCurve::linear
+                                           : TransferCurve::automatic;
+  t.invert = options.invert != invert_by_default;
+  t.gamma = options.gamma;
+  return t;
+}
+
+}  // namespace bluetile::cli

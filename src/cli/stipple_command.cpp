@@ -1,0 +1,150 @@
+// bluetile stipple: a stipple drawing of an image by weighted Lloyd relaxation (Secord 2002,
+// "Weighted Voronoi Stippling"; Deussen, Hiller, van Overveld, Strothotte 2000, "Floating
+// Points", which the paper cites as an application). Dots start where the image is dark, drawn in
+// proportion to its density, and move to the centres of mass of their cells weighted by that
+// density squared, under which a converged set keeps that density (relax/lloyd.h).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+
+#include "cli/commands.h"
+#include "cli/density_options.h"
+#include "cli/engine_options.h"
+#include "cli/relax_log.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/io/image.h"
+#include "bluetile/io/svg.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/sampling/density_sampling.h"
+
+namespace bluetile::cli {
+namespace {
+
+struct StippleOptions {
+  std::string image;
+  long long count = 0;
+  int iterations = 50;
+  std::uint64_t seed = 1;
+  double tolerance = 0.0;
+  bool periodic = false;
+  std::string output;
+  std::string svg;
+  std::string png;
+  int png_width = 1024;
+  double dot_radius = 0.0;
+  std::string log;
+  bool verbose = false;
+  DensityMapOptions transfer;
+  double weight_exponent = 2.0;
+  EngineOptions engine;
+};
+
+// The drawing's domain: the image's aspect ratio, its longer side 1, so points stay in [0,1)^2.
+Domain image_domain(const DensityGrid& map) {
+  const double longer = std::max(map.width, map.height);
+  return Domain{{map.width / longer, map.height / longer}};
+}
+
+// Dots that just touch where the map is densest: half the hexagonal spacing of the point count
+// that would fill the domain at that density.
+double default_dot_radius(const DensityGrid& map, const Domain& domain, std::size_t count) {
+  const double peak = *std::max_element(map.texels.begin(), map.texels.end());
+  return 0.5 * hexagonal_spacing(static_cast<double>(count) * peak / map.mean(), domain.area());
+}
+
+// The drawing in domain units, y up, one black disc per dot on white.
+void write_svg(OutputFile& out, const std::vector<Point>& points, const Domain& domain, double radius) {
+  const Point size = domain.size;
+  SvgDocument svg(0.0, 0.0, size.x, size.y, 1000.0 * size.x, 1000.0 * size.y, "px");
+  svg.set_title("bluetile stipple");
+  svg.rect(0.0, 0.0, size.x, size.y, SvgStyle::filled(colours::white));
+  svg.begin_group(SvgStyle::filled(colours::black), SvgTransform::fit_y_up(0.0, 0.0, size.x, size.y, 0.0, 0.0, size.x, size.y));
+  for (const Point& p : points) svg.circle(p, radius);
+  svg.end_group();
+  out.write(svg.str());
+}
+
+void write_render(OutputFile& out, const std::vector<Point>& points, const Domain& domain, double radius, int width) {
+  const double scale = width / domain.size.x;
+  const int height = std::max(1, static_cast<int>(std::lround(domain.size.y * scale)));
+  Canvas canvas(width, height, colours::white);
+  for (const Point& p : points) canvas.disc({p.x * scale, (domain.size.y - p.y) * scale}, radius * scale, colours::black);
+  write_image(out, canvas);
+}
+
+void run_stipple(const StippleOptions& o) {
+  // Every output is declared, and so checked, before any work; they appear together at the end.
+  OutputSet outputs;
+  outputs.add_input(o.image);
+  OutputFile& points_file = outputs.add(o.output, {.allow_stdout = true});
+  OutputFile* svg_file = o.svg.empty() ? nullptr : &outputs.add(o.svg, {.allow_stdout = true});
+  OutputFile* png_file = o.png.empty() ? nullptr : &outputs.add(o.png);
+  OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
+  auto map = std::make_shared<DensityGrid>(load_density_map(o.image, density_transfer(o.transfer, true)));
+  const Domain domain = image_domain(*map);
+  const auto count = static_cast<std::size_t>(o.count);
+  Rng rng(derive_seed(o.seed, 0));
+  Scene scene = make_scene(sample_density(*map, domain, count, rng), domain);
+  scene.boundary = o.periodic ? Boundary::periodic : Boundary::bounded;
+  scene.density = std::make_shared<DensityGrid>(weight_for_point_density(*map, o.weight_exponent));
+
+  auto engine = make_engine(o.engine);
+  RelaxLog log("stipple", o.iterations, o.verbose, log_file ? &log_file->open() : nullptr);
+  LloydResult result = relax_lloyd(*engine, scene, log.lloyd_options(o.iterations, o.tolerance));
+  log.finish(result, o.tolerance, o.iterations);
+
+  const double radius = o.dot_radius > 0.0 ? o.dot_radius : default_dot_radius(*map, domain, count);
+  char size[64];
+  std::snprintf(size, sizeof size, "%.17g x %.17g", domain.size.x, domain.size.y);
+  const std::vector<std::string> header = {
+      "bluetile stipple: " + std::to_string(count) + " points, " + std::to_string(result.iterations) +
+          " iterations, engine " + std::string(engine->name()) + ", seed " + std::to_string(o.seed) + ", image " +
+          o.image,
+      std::string("domain ") + size + (o.periodic ? ", periodic" : ", bounded") + " (y up: image row 0 at the top)"};
+  points_file.write([&](OutputStream& out) { write_points(out, PointSet{scene.sites, {}}, header); });
+  if (svg_file) write_svg(*svg_file, scene.sites, domain, radius);
+  if (png_file) write_render(*png_file, scene.sites, domain, radius, o.png_width);
+  if (log_file) log_file->close();
+  outputs.publish();
+}
+
+}  // namespace
+
+void add_stipple_command(CLI::App& app) {
+  auto o = std::make_shared<StippleOptions>();
+  o->engine.engine = "exact";  // the raster engine does not weight cells yet
+  CLI::App* cmd = app.add_subcommand(
+      "stipple", "Stipple an image: dots whose density follows its darkness, relaxed by weighted Lloyd (Secord 2002)");
+  cmd->add_option("--image", o->image, "Image to stipple (PNG, TIFF, EXR, ...: anything OpenImageIO reads)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  cmd->add_option("-n,--count", o->count, "Number of dots")->required()->check(CLI::Range(1LL, 100000000LL));
+  cmd->add_option("-k,--iterations", o->iterations, "Lloyd iterations")->check(CLI::Range(0, 100000000))->capture_default_str();
+  cmd->add_option("-s,--seed", o->seed, "Seed of the density-proportional start")->capture_default_str();
+  cmd->add_option("--tolerance", o->tolerance, "Stop early once no dot moves more than this (domain units)")
+      ->check(CLI::NonNegativeNumber);
+  cmd->add_flag("--periodic", o->periodic, "Cells wrap around the picture's edges (default: they end at the border)");
+  cmd->add_option("-o,--output", o->output,
+                  "Output point file: the picture's longer side spans [0, 1), y up (image row 0 is the top)")
+      ->required();
+  cmd->add_option("--svg", o->svg, "Also write the drawing as SVG (one black disc per dot)");
+  cmd->add_option("--png", o->png, "Also render the drawing as a PNG");
+  cmd->add_option("--png-width", o->png_width, "Width of the --png render in pixels")
+      ->check(CLI::Range(16, 32768))
+      ->capture_default_str();
+  cmd->add_option("--dot-radius", o->dot_radius,
+                  "Dot radius in domain units (default: dots just touch where the image is darkest)")
+      ->check(CLI::PositiveNumber);
+  cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
+  cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
+  add_density_transfer_options(cmd, o->transfer, "Bright means dense (default: dark means dense, as ink on paper)");
+  add_weight_exponent_option(cmd, o->weight_exponent);
+  add_engine_options(cmd, o->engine);
+  cmd->callback([o] { run_stipple(*o); });
+}
+
+}  // namespace bluetile::cli

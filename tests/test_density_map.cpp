@@ -1,0 +1,179 @@
+// Density maps: the transfer from image samples to texels, orientation, file formats, the
+// errors for bad images, and bilinear lookup.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "bluetile/core/error.h"
+#include "bluetile/io/density_map.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::error_of;
+
+ImageFile grey_image(int width, int height, std::vector<float> values, bool floating_point = false) {
+  ImageFile image;
+  image.width = width;
+  image.height = height;
+  image.channels = 1;
+  image.values = std::move(values);
+  image.floating_point = floating_point;
+  return image;
+}
+
+TEST(DensityMap, SrgbCurveAtKnownValues) {
+  EXPECT_DOUBLE_EQ(srgb_to_linear(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(srgb_to_linear(1.0), 1.0);
+  EXPECT_NEAR(srgb_to_linear(0.5), 0.214041140, 1e-9);   // ((0.5 + 0.055) / 1.055)^2.4
+  EXPECT_DOUBLE_EQ(srgb_to_linear(0.04), 0.04 / 12.92);  // the linear toe
+}
+
+TEST(DensityMap, ImageRowZeroIsTheTopOfThePlane) {
+  // 2 x 3 picture: the top row bright, the bottom row dark.
+  ImageFile image = grey_image(2, 3, {1.0f, 0.5f, 0.25f, 0.25f, 0.0f, 0.125f});
+  DensityTransfer linear;
+  linear.curve = TransferCurve::linear;
+  DensityGrid grid = density_from_image(image, linear, "picture");
+  ASSERT_EQ(grid.width, 2);
+  ASSERT_EQ(grid.height, 3);
+  EXPECT_EQ(grid.at(0, 2), 1.0f);  // image (0, 0): top left -> grid row 2 (top)
+  EXPECT_EQ(grid.at(1, 2), 0.5f);
+  EXPECT_EQ(grid.at(0, 1), 0.25f);
+  EXPECT_EQ(grid.at(0, 0), 0.0f);  // image (0, 2): bottom left -> grid row 0
+  EXPECT_EQ(grid.at(1, 0), 0.125f);
+}
+
+TEST(DensityMap, TransferDecodesInvertsAndRaisesToGamma) {
+  ImageFile image = grey_image(2, 1, {0.5f, 1.0f});
+  DensityTransfer t;  // automatic: integer samples are sRGB
+  DensityGrid grid = density_from_image(image, t, "g");
+  EXPECT_NEAR(grid.at(0, 0), 0.214041140, 1e-7);
+  EXPECT_EQ(grid.at(1, 0), 1.0f);
+  // The same samples stored as float are linear under `automatic`.
+  image.floating_point = true;
+  EXPECT_EQ(density_from_image(image, t, "g").at(0, 0), 0.5f);
+  t.curve = TransferCurve::srgb;  // ...unless asked
+  EXPECT_NEAR(density_from_image(image, t, "g").at(0, 0), 0.214041140, 1e-7);
+
+  t.curve = TransferCurve::linear;
+  t.invert = true;
+  t.gamma = 2.0;
+  grid = density_from_image(grey_image(2, 1, {0.25f, 0.0f}), t, "g");
+  EXPECT_EQ(grid.at(0, 0), 0.5625f);  // (1 - 0.25)^2
+  EXPECT_EQ(grid.at(1, 0), 1.0f);
+}
+
+TEST(DensityMap, LuminanceOfColourAndAlphaIgnored) {
+  ImageFile rgba;
+  rgba.width = 3;
+  rgba.height = 1;
+  rgba.channels = 4;
+  rgba.values = {1, 0, 0, 0.5f, 0, 1, 0, 0, 0, 0, 1, 1};
+  DensityTransfer linear;
+  linear.curve = TransferCurve::linear;
+  DensityGrid grid = density_from_image(rgba, linear, "c");
+  EXPECT_FLOAT_EQ(grid.at(0, 0), 0.2126f);
+  EXPECT_FLOAT_EQ(grid.at(1, 0), 0.7152f);
+  EXPECT_FLOAT_EQ(grid.at(2, 0), 0.0722f);
+  ImageFile grey_alpha = grey_image(1, 1, {0.75f, 0.0f});
+  grey_alpha.channels = 2;
+  EXPECT_EQ(density_from_image(grey_alpha, linear, "ga").at(0, 0), 0.75f);
+}
+
+TEST(DensityMap, BadSamplesNameTheirPixel) {
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  DensityTransfer t;
+  EXPECT_EQ(error_of([&] { density_from_image(grey_image(3, 2, {1, 1, 1, 1, nan, 1}, true), t, "m.exr"); }),
+            "m.exr: pixel (1, 1) (column, row from the top) channel 0 is nan: density samples must be finite and "
+            "non-negative");
+  EXPECT_NE(error_of([&] { density_from_image(grey_image(1, 1, {-0.5f}, true), t, "m.exr"); }).find("is -0.5"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] {
+              density_from_image(grey_image(1, 1, {std::numeric_limits<float>::infinity()}, true), t, "m.exr");
+            }).find("is inf"),
+            std::string::npos);
+  EXPECT_EQ(error_of([&] { density_from_image(grey_image(0, 0, {}), t, "e.png"); }),
+            "e.png: the image is empty (0 x 0 pixels)");
+  EXPECT_EQ(error_of([&] { density_from_image(grey_image(2, 1, {0, 0}), t, "z.png"); }),
+            "z.png: the density is zero everywhere");
+  DensityTransfer inverted;
+  inverted.invert = true;
+  EXPECT_EQ(error_of([&] { density_from_image(grey_image(1, 1, {1.0f}), inverted, "w.png"); }),
+            "w.png: the density is zero everywhere");
+  EXPECT_NE(error_of([&] { density_from_image(grey_image(1, 1, {2.5f}, true), inverted, "h.exr"); })
+                .find("luminance 2.5, above 1"),
+            std::string::npos);
+  DensityTransfer bad_gamma;
+  bad_gamma.gamma = 0.0;
+  EXPECT_NE(error_of([&] { density_from_image(grey_image(1, 1, {1.0f}), bad_gamma, "g.png"); }).find("gamma 0"),
+            std::string::npos);
+}
+
+TEST(DensityMap, FilesOfEveryDepthReadBack) {
+  test::TempDir dir;
+  DensityTransfer linear;
+  linear.curve = TransferCurve::linear;
+  const std::vector<float> values = {0.0f, 0.25f, 0.5f, 1.0f, 0.75f, 0.125f};  // 3 x 2, grey
+  // 8-bit PNG: samples rounded to 1/255.
+  write_image_file(dir.file("m8.png"), 3, 2, 1, values, SampleFormat::uint8);
+  DensityGrid g8 = load_density_map(dir.file("m8.png"), linear);
+  EXPECT_FLOAT_EQ(g8.at(1, 1), 64.0f / 255.0f);  // image (1, 0) = 0.25 -> 64/255, grid row 1
+  EXPECT_FLOAT_EQ(g8.at(0, 0), 1.0f);            // image (0, 1)
+  // 16-bit PNG: 1/65535.
+  write_image_file(dir.file("m16.png"), 3, 2, 1, values, SampleFormat::uint16);
+  DensityGrid g16 = load_density_map(dir.file("m16.png"), linear);
+  EXPECT_FLOAT_EQ(g16.at(1, 1), 16384.0f / 65535.0f);
+  // EXR and float TIFF keep the value, and count as linear under `automatic`.
+  std::vector<float> hdr = values;
+  hdr[1] = 3.5f;
+  for (const char* name : {"m.exr", "m.tif"}) {
+    write_image_file(dir.file(name), 3, 2, 1, hdr, SampleFormat::float32);
+    DensityGrid g = load_density_map(dir.file(name), DensityTransfer{});
+    EXPECT_EQ(g.at(1, 1), 3.5f) << name;
+    EXPECT_EQ(g.at(2, 0), 0.125f) << name;
+  }
+  // RGB: luminance.
+  write_image_file(dir.file("rgb.png"), 1, 1, 3, {0.0f, 1.0f, 0.0f}, SampleFormat::uint8);
+  EXPECT_FLOAT_EQ(load_density_map(dir.file("rgb.png"), linear).at(0, 0), 0.7152f);
+}
+
+TEST(DensityMap, BadFilesGiveOneClearError) {
+  test::TempDir dir;
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  write_image_file(dir.file("nan.exr"), 2, 2, 1, {1.0f, 1.0f, nan, 1.0f}, SampleFormat::float32);
+  EXPECT_EQ(error_of([&] { load_density_map(dir.file("nan.exr"), DensityTransfer{}); }),
+            dir.file("nan.exr") + ": pixel (0, 1) (column, row from the top) channel 0 is nan: density samples must "
+                                  "be finite and non-negative");
+  std::string missing = error_of([&] { load_density_map(dir.file("missing.png"), DensityTransfer{}); });
+  EXPECT_EQ(missing.rfind(dir.file("missing.png") + ": cannot read image", 0), 0u) << missing;
+  std::string garbage = dir.write("garbage.png", "not a picture");
+  EXPECT_EQ(error_of([&] { load_density_map(garbage, DensityTransfer{}); }).rfind(garbage + ": cannot read image", 0),
+            0u);
+  std::string empty = dir.write("empty.png", "");
+  EXPECT_EQ(error_of([&] { load_density_map(empty, DensityTransfer{}); }).rfind(empty + ": cannot read image", 0), 0u);
+}
+
+TEST(DensityGrid, BilinearLookupAtCentresBetweenAndBeyond) {
+  DensityGrid grid(2, 2);
+  grid.at(0, 0) = 1.0f;
+  grid.at(1, 0) = 3.0f;
+  grid.at(0, 1) = 5.0f;
+  grid.at(1, 1) = 7.0f;
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {0.25, 0.25}), 1.0);  // texel centres
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {0.75, 0.75}), 7.0);
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {0.5, 0.25}), 2.0);   // halfway along a row
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {0.5, 0.5}), 4.0);    // the middle
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {0.375, 0.625}), 4.5);  // 1 + 2 * 0.25 + 4 * 0.75
+  // Clamp continues the edge texels; wrap repeats the grid.
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {0.0, 0.25}), 1.0);
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {-3.0, 2.0}), 5.0);
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {0.0, 0.25}, GridEdge::wrap), 2.0);  // between texel 1 (left copy) and 0
+  EXPECT_DOUBLE_EQ(sample_bilinear(grid, {1.25, 0.25}, GridEdge::wrap), 1.0);
+  EXPECT_DOUBLE_EQ(grid.mean(), 4.0);
+}
+
+}  // namespace
+}  // namespace bluetile

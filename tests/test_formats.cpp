@@ -1,0 +1,289 @@
+// Sample-table formats (core/point_table.h): choice by name and extension, exact round trips,
+// bytes checked against hand-built files, and every kind of damaged file.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_table.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+std::vector<PointSet> sample_sets(std::size_t sets, std::size_t points, bool levels) {
+  std::vector<PointSet> result;
+  for (std::size_t k = 0; k < sets; ++k) {
+    PointSet set;
+    set.points = test::uniform_points(points, 100 + k);
+    if (levels)
+      for (std::size_t i = 0; i < points; ++i) set.levels.push_back(static_cast<int>(i * 3 / points));
+    result.push_back(std::move(set));
+  }
+  // Values at the edges of the domain: the largest double below 1 and the smallest subnormal.
+  result[0].points[0] = {std::nextafter(1.0, 0.0), 5e-324};
+  return result;
+}
+
+std::string encode(TableFormat format, const std::vector<PointSet>& sets, TableWriteOptions options = {},
+                   const std::string& path = "table") {
+  std::string bytes;
+  write_table(format, point_sets_table(sets), options, path, [&](std::string_view piece) { bytes += piece; });
+  return bytes;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+template <typename T>
+void append(std::string& bytes, T value) {
+  bytes.append(reinterpret_cast<const char*>(&value), sizeof value);
+}
+
+// A binary table written field by field, as a C reader of point_table.h's layout would.
+std::string binary_by_hand(std::uint32_t value_bytes, std::uint32_t columns, std::uint64_t sets, std::uint64_t rows,
+                           const std::vector<double>& values) {
+  std::string bytes("\x89" "BTP\r\n\x1a\n", 8);
+  append<std::uint32_t>(bytes, 1);
+  append<std::uint32_t>(bytes, value_bytes);
+  append<std::uint32_t>(bytes, columns);
+  append<std::uint32_t>(bytes, 0);
+  append<std::uint64_t>(bytes, sets);
+  append<std::uint64_t>(bytes, rows);
+  for (double v : values) {
+    if (value_bytes == 4) {
+      append<float>(bytes, static_cast<float>(v));
+    } else {
+      append<double>(bytes, v);
+    }
+  }
+  return bytes;
+}
+
+// An npy file with a given header dictionary, version 1.0, padded as NumPy pads it.
+std::string npy_by_hand(const std::string& dict, const std::string& data) {
+  std::string header = dict;
+  while ((10 + header.size() + 1) % 64 != 0) header += ' ';
+  header += '\n';
+  std::string bytes("\x93NUMPY\x01\x00", 8);
+  append<std::uint16_t>(bytes, static_cast<std::uint16_t>(header.size()));
+  return bytes + header + data;
+}
+
+void expect_same_sets(const std::vector<PointSet>& a, const std::vector<PointSet>& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    ASSERT_EQ(a[k].points.size(), b[k].points.size()) << "set " << k;
+    for (std::size_t i = 0; i < a[k].points.size(); ++i) ASSERT_EQ(a[k].points[i], b[k].points[i]) << k << ", " << i;
+    EXPECT_EQ(a[k].levels, b[k].levels) << "set " << k;
+  }
+}
+
+// The sets as float32 would hold them (point_table.h: nearest float, kept below 1).
+std::vector<PointSet> as_float32(std::vector<PointSet> sets) {
+  for (PointSet& set : sets)
+    for (Point& p : set.points)
+      for (double* c : {&p.x, &p.y}) {
+        float f = static_cast<float>(*c);
+        if (f >= 1.0f) f = std::nextafter(1.0f, 0.0f);
+        *c = f;
+      }
+  return sets;
+}
+
+TEST(Formats, ChosenByNameOrExtensionAndUnknownOnesRefused) {
+  EXPECT_EQ(table_format_for("a.txt"), TableFormat::text);
+  EXPECT_EQ(table_format_for("dir.v2/points"), TableFormat::text);
+  EXPECT_EQ(table_format_for("a.DAT"), TableFormat::text);
+  EXPECT_EQ(table_format_for("-"), TableFormat::text);
+  EXPECT_EQ(table_format_for("a.npy"), TableFormat::npy);
+  EXPECT_EQ(table_format_for("a.bpt"), TableFormat::binary);
+  EXPECT_EQ(table_format_for("a.h"), TableFormat::header);
+  EXPECT_EQ(table_format_for("a.hpp"), TableFormat::header);
+  EXPECT_EQ(table_format_for("a.anything", "npy"), TableFormat::npy);
+  EXPECT_EQ(error_of([] { table_format_for("a.png"); }),
+            "a.png: unknown extension '.png' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header; or say --format)");
+  EXPECT_EQ(error_of([] { table_format_for("a.txt", "csv"); }), "unknown table format 'csv' (text, npy, binary, header)");
+}
+
+TEST(Formats, NpyBytesAreNumpysLayout) {
+  std::vector<PointSet> sets{PointSet{{{0.25, 0.5}, {0.75, 0.125}}, {}}};
+  std::string bytes = encode(TableFormat::npy, sets);
+  const std::string dict = "{'descr': '<f8', 'fortran_order': False, 'shape': (1, 2, 2), }";
+  std::string data;
+  for (double v : {0.25, 0.5, 0.75, 0.125}) append(data, v);
+  EXPECT_EQ(bytes, npy_by_hand(dict, data));
+  EXPECT_EQ((bytes.size() - data.size()) % 64, 0u);  // the data is aligned, as NumPy wants
+}
+
+TEST(Formats, EveryFormatRoundTripsExactly) {
+  for (bool levels : {false, true}) {
+    SCOPED_TRACE(levels ? "with levels" : "x y");
+    std::vector<PointSet> sets = sample_sets(3, 50, levels);
+    expect_same_sets(parse_npy_table(encode(TableFormat::npy, sets), "t.npy"), sets);
+    expect_same_sets(parse_binary_table(encode(TableFormat::binary, sets), "t.bpt"), sets);
+    TableWriteOptions f32;
+    f32.float32 = true;
+    expect_same_sets(parse_npy_table(encode(TableFormat::npy, sets, f32), "t.npy"), as_float32(sets));
+    expect_same_sets(parse_binary_table(encode(TableFormat::binary, sets, f32), "t.bpt"), as_float32(sets));
+  }
+}
+
+TEST(Formats, Float32KeepsPointsBelowOne) {
+  std::vector<PointSet> sets{PointSet{{{1.0 - 1e-9, 0.5}}, {}}};
+  TableWriteOptions f32;
+  f32.float32 = true;
+  auto back = parse_binary_table(encode(TableFormat::binary, sets, f32), "t.bpt");
+  EXPECT_EQ(back[0].points[0].x, static_cast<double>(std::nextafter(1.0f, 0.0f)));
+}
+
+TEST(Formats, HeaderLiteralsAreExactFloats) {
+  std::vector<PointSet> sets = sample_sets(2, 5, false);
+  sets[1].points[0] = {0.0, 1e-30};
+  std::string text = encode(TableFormat::header, sets, {.float32 = false, .name = "", .comment = {"made by a test"}},
+                            "out/blue-noise 64.h");
+  EXPECT_NE(text.find("// made by a test\n"), std::string::npos);
+  EXPECT_NE(text.find("static const float blue_noise_64[2][5][2] = {\n"), std::string::npos) << text;
+  // Every literal, read as C reads it, is the float of the value.
+  std::vector<float> literals;
+  std::size_t line_start = 0;
+  while ((line_start = text.find("\n    {", line_start)) != std::string::npos) {
+    const char* at = text.c_str() + line_start + 6;  // past "\n    {"
+    for (int c = 0; c < 2; ++c) {
+      char* end = nullptr;
+      literals.push_back(std::strtof(at, &end));
+      ASSERT_EQ(*end, 'f') << "literal without its f suffix at: " << std::string(at, 20);
+      at = end + 3;  // past "f, "
+    }
+    line_start += 6;
+  }
+  std::vector<float> expected;
+  for (const PointSet& set : as_float32(sets))
+    for (Point p : set.points) expected.insert(expected.end(), {static_cast<float>(p.x), static_cast<float>(p.y)});
+  EXPECT_EQ(literals, expected);
+  EXPECT_NE(text.find("{0.0f, 1e-30f}"), std::string::npos);
+  EXPECT_EQ(error_of([&] { encode(TableFormat::header, sets, {.float32 = false, .name = "2x", .comment = {}}, "t.h"); }),
+            "t.h: '2x' is not a C identifier (letters, digits, '_')");
+  EXPECT_EQ(table_name_for_path("7.h"), "points_7");
+  EXPECT_EQ(table_name_for_path("--.h"), "bluetile_points");
+}
+
+TEST(Formats, SetsOfDifferentSizesNeedText) {
+  std::vector<PointSet> sets = sample_sets(2, 4, false);
+  sets[1].points.pop_back();
+  EXPECT_EQ(error_of([&] { encode(TableFormat::npy, sets, {}, "t.npy"); }),
+            "t.npy: set 0 has 4 points but set 1 has 3: the npy format needs the same count in every set (text takes any)");
+}
+
+TEST(Formats, ReadsNpyInFortranOrderBigEndianAndFloat32) {
+  // Shape (2, 2, 2): value of [k][i][c] = k + 0.5 i + 0.25 c, so every element differs.
+  auto value = [](int k, int i, int c) { return 0.125 * k + 0.5 * i + 0.25 * c; };
+  std::string fortran, big;
+  for (int c = 0; c < 2; ++c)
+    for (int i = 0; i < 2; ++i)
+      for (int k = 0; k < 2; ++k) append(fortran, value(k, i, c));
+  for (int k = 0; k < 2; ++k)
+    for (int i = 0; i < 2; ++i)
+      for (int c = 0; c < 2; ++c) {
+        float f = static_cast<float>(value(k, i, c));
+        char b[4];
+        std::memcpy(b, &f, 4);
+        big += std::string{b[3], b[2], b[1], b[0]};
+      }
+  auto from_fortran = parse_npy_table(
+      npy_by_hand("{'descr': '<f8', 'fortran_order': True, 'shape': (2, 2, 2), }", fortran), "f.npy");
+  auto from_big = parse_npy_table(npy_by_hand("{'descr': '>f4', 'fortran_order': False, 'shape': (2, 2, 2), }", big),
+                                  "b.npy");
+  for (const auto& sets : {from_fortran, from_big}) {
+    ASSERT_EQ(sets.size(), 2u);
+    for (int k = 0; k < 2; ++k)
+      for (int i = 0; i < 2; ++i) EXPECT_EQ(sets[k].points[i], Point(value(k, i, 0), value(k, i, 1))) << k << i;
+  }
+  // (N, 2): one set.
+  std::string data;
+  for (double v : {0.1, 0.2, 0.3, 0.4}) append(data, v);
+  auto one = parse_npy_table(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }", data), "o.npy");
+  ASSERT_EQ(one.size(), 1u);
+  EXPECT_EQ(one[0].points[1], Point(0.3, 0.4));
+}
+
+TEST(Formats, DamagedNpyFilesGiveClearErrors) {
+  std::string data;
+  for (double v : {0.1, 0.2, 0.3, 0.4}) append(data, v);
+  auto npy_error = [](const std::string& bytes) { return error_of([&] { parse_npy_table(bytes, "d.npy"); }); };
+  EXPECT_EQ(npy_error("not numpy"), "d.npy: not a .npy file (wrong magic)");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<i8', 'fortran_order': False, 'shape': (2, 2), }", data)),
+            "d.npy: bad .npy header: dtype '<i8'; expected float64 ('<f8') or float32 ('<f4')");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 1, 2, 2), }", data)),
+            "d.npy: bad .npy header: shape has 4 dimensions; expected (N, C) or (K, N, C)");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (4, 1), }", data)),
+            "d.npy: 1 columns per point; expected 2 (x y) or 3 (x y level)");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }", data)),
+            "d.npy: shape (1, 3, 2) needs 48 data bytes but the file has 32");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'shape': (2, 2), }", data)), "d.npy: bad .npy header: no 'fortran_order'");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }", data).substr(0, 40)),
+            "d.npy: .npy file cut short in its header");
+  std::string nan_data = data;
+  double nan = std::nan("");
+  std::memcpy(nan_data.data() + 24, &nan, 8);
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }", nan_data)),
+            "d.npy: set 0, point 1: not a finite number 'nan'");
+}
+
+TEST(Formats, DamagedBinaryFilesGiveClearErrors) {
+  auto binary_error = [](const std::string& bytes) { return error_of([&] { parse_binary_table(bytes, "d.bpt"); }); };
+  const std::vector<double> four{0.1, 0.2, 0.3, 0.4};
+  std::string good = binary_by_hand(8, 2, 1, 2, four);
+  ASSERT_EQ(good.size(), 40u + 32u);
+  EXPECT_EQ(binary_error(good), "");
+  EXPECT_EQ(binary_error(good.substr(0, 20)), "d.bpt: binary point table cut short: 20 bytes, the header alone is 40");
+  EXPECT_EQ(binary_error(good.substr(0, 60)),
+            "d.bpt: header says 1 set(s) of 2 points (72 bytes) but the file has 60 bytes");
+  std::string wrong_magic = good;
+  wrong_magic[3] = 'X';
+  EXPECT_EQ(binary_error(wrong_magic), "d.bpt: not a bluetile binary point table (wrong magic)");
+  EXPECT_EQ(binary_error(binary_by_hand(8, 2, 1, 3, four)),
+            "d.bpt: header says 1 set(s) of 3 points (88 bytes) but the file has 72 bytes");
+  EXPECT_EQ(binary_error(binary_by_hand(8, 2, 1ull << 62, 1ull << 62, four)),
+            "d.bpt: sizes 4611686018427387904 x 4611686018427387904 x 2 overflow: a damaged file");
+  EXPECT_EQ(binary_error(binary_by_hand(8, 4, 1, 1, four)), "d.bpt: 4 columns per point; expected 2 (x y) or 3 (x y level)");
+  std::string v2 = good;
+  v2[8] = 2;
+  EXPECT_EQ(binary_error(v2), "d.bpt: binary point table version 2, this reader knows version 1");
+  std::string three_bytes = good;
+  three_bytes[12] = 3;
+  EXPECT_EQ(binary_error(three_bytes), "d.bpt: 3 bytes per value; expected 4 (float32) or 8 (float64)");
+  EXPECT_EQ(binary_error(binary_by_hand(4, 2, 1, 2, {0.1, INFINITY, 0.3, 0.4})),
+            "d.bpt: set 0, point 0: not a finite number 'inf'");
+  EXPECT_EQ(binary_error(binary_by_hand(8, 3, 1, 1, {0.1, 0.2, 1.5})),
+            "d.bpt: set 0, point 0: level must be a whole number in [0, 1000000], got '1.5'");
+  // Coordinates outside [0, 1) wrap onto the torus, as in point files.
+  auto wrapped = parse_binary_table(binary_by_hand(8, 2, 1, 1, {-0.25, 1.5}), "w.bpt");
+  EXPECT_EQ(wrapped[0].points[0], Point(0.75, 0.5));
+}
+
+TEST(Formats, FilesAreRecognisedByTheirFirstBytes) {
+  test::TempDir dir;
+  std::vector<PointSet> sets = sample_sets(2, 10, true);
+  auto save = [&](const std::string& name, const std::string& bytes) { return dir.write(name, bytes); };
+  // Extensions do not matter for reading: the content says what a file is.
+  expect_same_sets(read_point_table(save("a.data", encode(TableFormat::npy, sets))), sets);
+  expect_same_sets(read_point_table(save("b.data", encode(TableFormat::binary, sets))), sets);
+  auto text = read_point_table(save("c.txt", "# header\n# set 0\n0.5 0.5\n# set 1\n0.25 0.25\n0.75 0.75\n"));
+  ASSERT_EQ(text.size(), 2u);
+  EXPECT_EQ(text[1].points.size(), 2u);
+  EXPECT_EQ(error_of([&] { read_point_table(save("d.bpt", std::string("\x89" "BTP\r\n", 6))); }),
+            dir.file("d.bpt") + ": not a bluetile binary point table (wrong magic)");
+}
+
+}  // namespace
+}  // namespace bluetile
