@@ -245,8 +245,8 @@ std::vector<Row> measure_interleaved(const std::vector<const EngineSpec*>& specs
       const RasterStats& st = raster->stats();
       const double calls = static_cast<double>(std::max<std::uint64_t>(st.computes, 1));
       char buf[160];
-      std::snprintf(buf, sizeof buf, "per call: gpu %.1f ms + host %.1f ms; %.2f passes; %.0f boundary px",
-                    st.gpu_seconds * 1e3 / calls, st.host_seconds * 1e3 / calls,
+      std::snprintf(buf, sizeof buf, "per call: device %.1f ms + upload %.1f ms + host %.1f ms; %.2f passes; %.0f boundary px",
+                    st.device_seconds * 1e3 / calls, st.upload_seconds * 1e3 / calls, st.host_seconds * 1e3 / calls,
                     static_cast<double>(st.scene_passes) / calls, static_cast<double>(st.boundary_pixels) / calls);
       t.row.note = buf;
     }

@@ -12,22 +12,23 @@ out float gl_ClipDistance[4];
 
 void main() {
   ConeInstance cone = instances[gl_InstanceIndex];
-  SceneInfo scene = scenes[sites[cone.id - 1u].scene];
+  SiteInfo site = sites[cone.id - 1u];
+  SceneInfo scene = scenes[site.scene];
   int triangle = gl_VertexIndex / 3;
   int corner = gl_VertexIndex % 3;
   const float step = 6.28318530718 / float(BLUETILE_FAN_SEGMENTS);
   float rim = cone.radius / cos(0.5 * step);
-  vec2 q = cone.position;
+  vec2 q = vec2(cone.pixel) + site.fraction + 0.5;  // framebuffer coordinates within the tile
   float depth = 0.0;
   if (corner != 0) {
     float angle = step * float(triangle + corner - 1);
-    q += rim * vec2(cos(angle), sin(angle));
+    q += rim * vec2(cos(angle), sin(angle)) / scene.pixel_size;
     depth = rim * scene.depth_scale;
   }
-  gl_Position = to_clip(scene, q, depth);
+  gl_Position = to_clip(vec2(scene.origin) + q, depth);
   gl_ClipDistance[0] = q.x;
-  gl_ClipDistance[1] = scene.domain_size.x - q.x;
+  gl_ClipDistance[1] = float(scene.size.x) - q.x;
   gl_ClipDistance[2] = q.y;
-  gl_ClipDistance[3] = scene.domain_size.y - q.y;
+  gl_ClipDistance[3] = float(scene.size.y) - q.y;
   out_id = cone.id;
 }

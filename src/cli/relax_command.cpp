@@ -177,8 +177,10 @@ void add_relax_command(CLI::App& app) {
   add_density_transfer_options(cmd, o->transfer);
   add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
-  cmd->callback([o] {
+  cmd->callback([o, cmd] {
     if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");
+    // Only the exact engine weights cells and bounds domains so far: it is the default there.
+    if (cmd->count("--engine") == 0 && (!o->density_map.empty() || o->bounded)) o->engine.engine = "exact";
     run_relax(*o);
   });
 }

@@ -7,6 +7,9 @@
 #include <cstdlib>
 #include <cstring>
 #include <optional>
+#include <thread>
+
+#include <sys/resource.h>
 
 #include "bluetile/core/error.h"
 
@@ -130,8 +133,10 @@ DeviceInfo describe(VkPhysicalDevice device, std::size_t index) {
   VkFormatProperties format;
   vkGetPhysicalDeviceFormatProperties(device, VK_FORMAT_R32_UINT, &format);
   if (!(format.optimalTilingFeatures & VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT)) missing.push_back("R32_UINT attachments");
+  if (!(format.optimalTilingFeatures & VK_FORMAT_FEATURE_STORAGE_IMAGE_BIT)) missing.push_back("R32_UINT storage images");
   vkGetPhysicalDeviceFormatProperties(device, VK_FORMAT_D32_SFLOAT, &format);
   if (!(format.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) missing.push_back("D32_SFLOAT depth");
+  info.float64 = features.features.shaderFloat64 == VK_TRUE;
   info.suitable = missing.empty();
   for (std::size_t i = 0; i < missing.size(); ++i) info.missing += (i ? ", " : "") + missing[i];
   return info;
@@ -231,7 +236,47 @@ std::vector<DeviceInfo> list_devices() {
   return infos;
 }
 
+std::size_t driver_address_space_needed() {
+  std::size_t threads = std::max(1u, std::thread::hardware_concurrency());
+  if (const char* env = std::getenv("LP_NUM_THREADS")) {
+    char* end = nullptr;
+    unsigned long n = std::strtoul(env, &end, 10);
+    if (end != env && *end == '\0') threads = std::max<std::size_t>(1, n);
+  }
+  constexpr std::size_t kMiB = std::size_t{1} << 20;
+  return (512 + 144 * std::min<std::size_t>(threads, 6) + 12 * (threads > 6 ? threads - 6 : 0)) * kMiB;
+}
+
+namespace {
+
+// The process's current virtual size (VmSize), 0 when unknown.
+std::size_t address_space_used() {
+  std::FILE* f = std::fopen("/proc/self/status", "r");
+  if (!f) return 0;
+  char line[256];
+  std::size_t kib = 0;
+  while (std::fgets(line, sizeof line, f))
+    if (std::sscanf(line, "VmSize: %zu kB", &kib) == 1) break;
+  std::fclose(f);
+  return kib * 1024;
+}
+
+}  // namespace
+
+void check_address_space(std::size_t bytes, const std::string& what) {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
+  const std::size_t allowed = static_cast<std::size_t>(limit.rlim_cur);
+  const std::size_t used = address_space_used();
+  const std::size_t left = allowed > used ? allowed - used : 0;
+  if (left >= bytes) return;
+  auto mib = [](std::size_t b) { return std::to_string((b + (1u << 20) - 1) >> 20); };
+  throw Error(what + " needs about " + mib(bytes) + " MiB of address space but the limit (ulimit -v " +
+              std::to_string(allowed >> 10) + ") leaves " + mib(left) + " MiB; raise the limit or use --engine exact");
+}
+
 Context::Context(const std::string& wanted_device) {
+  check_address_space(driver_address_space_needed(), "the Vulkan driver");
   bool validation = validation_wanted();
   if (validation && !layer_available(kValidationLayer)) {
     std::fprintf(stderr, "bluetile: warning: BLUETILE_VALIDATION is set but %s is not installed\n", kValidationLayer);
@@ -273,6 +318,7 @@ Context::Context(const std::string& wanted_device) {
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &f12;
     features.features.shaderInt64 = VK_TRUE;
+    features.features.shaderFloat64 = info_.float64 ? VK_TRUE : VK_FALSE;
     features.features.shaderClipDistance = VK_TRUE;
     VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     device_info.pNext = &features;
@@ -313,22 +359,46 @@ void Context::release() {
   instance_ = VK_NULL_HANDLE;
 }
 
-std::uint32_t Context::memory_type(std::uint32_t allowed, VkMemoryPropertyFlags wanted) const {
-  for (std::uint32_t i = 0; i < memory_properties_.memoryTypeCount; ++i)
-    if ((allowed & (1u << i)) && (memory_properties_.memoryTypes[i].propertyFlags & wanted) == wanted) return i;
-  throw Error("the Vulkan device has no memory type with the needed properties");
+std::uint32_t Context::memory_type(std::uint32_t allowed, VkMemoryPropertyFlags required,
+                                   VkMemoryPropertyFlags preferred) const {
+  std::uint32_t fallback = UINT32_MAX;
+  for (std::uint32_t i = 0; i < memory_properties_.memoryTypeCount; ++i) {
+    if (!(allowed & (1u << i))) continue;
+    const VkMemoryPropertyFlags flags = memory_properties_.memoryTypes[i].propertyFlags;
+    if ((flags & required) != required) continue;
+    if ((flags & preferred) == preferred) return i;
+    if (fallback == UINT32_MAX) fallback = i;
+  }
+  if (fallback != UINT32_MAX) return fallback;
+  throw Error("the Vulkan device '" + info_.name + "' has no memory type with the needed properties");
 }
 
-VkDeviceMemory Context::allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags wanted) {
+VkDeviceMemory Context::allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags required,
+                                 VkMemoryPropertyFlags preferred, bool& host_visible) {
   VkMemoryAllocateInfo info{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
   info.allocationSize = requirements.size;
-  info.memoryTypeIndex = memory_type(requirements.memoryTypeBits, wanted);
+  info.memoryTypeIndex = memory_type(requirements.memoryTypeBits, required, preferred);
   VkDeviceMemory memory = VK_NULL_HANDLE;
-  BLUETILE_VK_CHECK(vkAllocateMemory(device_, &info, nullptr, &memory));
+  VkResult result = vkAllocateMemory(device_, &info, nullptr, &memory);
+  const VkMemoryPropertyFlags flags = memory_properties_.memoryTypes[info.memoryTypeIndex].propertyFlags;
+  if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY && (flags & preferred) == preferred && preferred != required) {
+    // The preferred type may sit in a small heap (host-visible device memory without
+    // resizable BAR is 256 MiB): retry without the preference.
+    info.memoryTypeIndex = memory_type(requirements.memoryTypeBits, required, required);
+    result = vkAllocateMemory(device_, &info, nullptr, &memory);
+  }
+  BLUETILE_VK_CHECK(result);
+  const VkMemoryPropertyFlags coherent = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+  host_visible = (memory_properties_.memoryTypes[info.memoryTypeIndex].propertyFlags & coherent) == coherent;
   return memory;
 }
 
-Buffer Context::create_buffer(VkDeviceSize size, VkBufferUsageFlags usage) {
+Buffer Context::create_buffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use) {
+  size = std::max<VkDeviceSize>(size, 16);
+  if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > properties_.limits.maxStorageBufferRange)
+    throw Error("a buffer of " + std::to_string(size >> 20) + " MiB exceeds the device's maxStorageBufferRange of " +
+                std::to_string(properties_.limits.maxStorageBufferRange >> 20) + " MiB (" + info_.name +
+                "); use a smaller --resolution or fewer --sets");
   Buffer b;
   b.size = size;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -339,9 +409,16 @@ Buffer Context::create_buffer(VkDeviceSize size, VkBufferUsageFlags usage) {
   try {
     VkMemoryRequirements requirements;
     vkGetBufferMemoryRequirements(device_, b.buffer, &requirements);
-    b.memory = allocate(requirements, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    const VkMemoryPropertyFlags coherent = VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT;
+    bool host_visible = false;
+    if (use == MemoryUse::device) {
+      b.memory = allocate(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT | coherent,
+                          host_visible);
+    } else {
+      b.memory = allocate(requirements, coherent, coherent | VK_MEMORY_PROPERTY_HOST_CACHED_BIT, host_visible);
+    }
     BLUETILE_VK_CHECK(vkBindBufferMemory(device_, b.buffer, b.memory, 0));
-    BLUETILE_VK_CHECK(vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
+    if (host_visible) BLUETILE_VK_CHECK(vkMapMemory(device_, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped));
   } catch (...) {
     destroy(b);
     throw;
@@ -374,7 +451,8 @@ Image Context::create_image(std::uint32_t width, std::uint32_t height, VkFormat 
   try {
     VkMemoryRequirements requirements;
     vkGetImageMemoryRequirements(device_, image.image, &requirements);
-    image.memory = allocate(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+    bool host_visible = false;
+    image.memory = allocate(requirements, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT, host_visible);
     BLUETILE_VK_CHECK(vkBindImageMemory(device_, image.image, image.memory, 0));
     VkImageViewCreateInfo view{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
     view.image = image.image;

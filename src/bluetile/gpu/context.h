@@ -38,6 +38,7 @@ struct DeviceInfo {
   std::string api_version;
   bool suitable = false;    // has what the raster engine needs
   std::string missing;      // what it lacks when not suitable
+  bool float64 = false;     // shaderFloat64: the exact boundary split runs in double precision
 };
 
 // Every Vulkan device the loader sees. Throws Error when there is no Vulkan at all.
@@ -46,11 +47,30 @@ std::vector<DeviceInfo> list_devices();
 // Validation-layer errors reported so far in this process (0 when the layer is off).
 std::size_t validation_error_count();
 
+// Address space the Vulkan driver needs to start, in bytes: fitted to lavapipe's measured
+// peak (Mesa 22.3: 635 MiB with one rasterizer thread, 740 with 2, 1090 with 4, 1480 with 16;
+// glibc gives each driver thread its own 64 MiB malloc arena). Under a smaller `ulimit -v` the
+// driver crashes inside vkCreateDevice or its threads, so Context checks this first.
+std::size_t driver_address_space_needed();
+
+// Throws Error when the process's address-space limit (ulimit -v) leaves less than `bytes`
+// beyond what it already uses, saying what `what` needs and what the limit allows.
+void check_address_space(std::size_t bytes, const std::string& what);
+
+// Where a buffer lives. Memory types are picked by their properties, never assumed: on a
+// device with one memory type for everything (lavapipe, most integrated GPUs) every buffer is
+// mapped; on a discrete GPU `device` buffers are not, and data reach them through `staging`
+// buffers and copies in the command buffer.
+enum class MemoryUse {
+  device,   // device-local; mapped too when the device-local memory is host-visible
+  staging,  // host-visible and coherent, for uploads and readbacks
+};
+
 struct Buffer {
   VkBuffer buffer = VK_NULL_HANDLE;
   VkDeviceMemory memory = VK_NULL_HANDLE;
   VkDeviceSize size = 0;
-  void* mapped = nullptr;  // persistently mapped (host-visible, coherent memory)
+  void* mapped = nullptr;  // persistently mapped when the memory is host-visible (and coherent)
 };
 
 struct Image {
@@ -77,9 +97,13 @@ class Context {
   const DeviceInfo& info() const { return info_; }
   // Largest total size of images and buffers we allow ourselves (half the biggest heap).
   VkDeviceSize memory_budget() const { return memory_budget_; }
+  // Whether shaders may use 64-bit floats (enabled when the device has shaderFloat64).
+  bool float64() const { return info_.float64; }
 
-  // A host-visible, coherent buffer, mapped for its whole life.
-  Buffer create_buffer(VkDeviceSize size, VkBufferUsageFlags usage);
+  // A buffer of `size` bytes (at least 1), mapped for its whole life when its memory is
+  // host-visible. Throws Error naming the limit when `size` exceeds the device's storage
+  // buffer range and the buffer is a storage buffer.
+  Buffer create_buffer(VkDeviceSize size, VkBufferUsageFlags usage, MemoryUse use = MemoryUse::device);
   void destroy(Buffer& buffer);
   // A 2D image with one mip level and a view of it.
   Image create_image(std::uint32_t width, std::uint32_t height, VkFormat format, VkImageUsageFlags usage,
@@ -92,8 +116,10 @@ class Context {
 
  private:
   void release();
-  std::uint32_t memory_type(std::uint32_t allowed, VkMemoryPropertyFlags wanted) const;
-  VkDeviceMemory allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags wanted);
+  // A memory type among `allowed` with all of `required`, one with `preferred` too if any.
+  std::uint32_t memory_type(std::uint32_t allowed, VkMemoryPropertyFlags required, VkMemoryPropertyFlags preferred) const;
+  VkDeviceMemory allocate(const VkMemoryRequirements& requirements, VkMemoryPropertyFlags required,
+                          VkMemoryPropertyFlags preferred, bool& host_visible);
 
   VkInstance instance_ = VK_NULL_HANDLE;
   VkDebugUtilsMessengerEXT messenger_ = VK_NULL_HANDLE;

@@ -1,87 +1,140 @@
-// Struct layouts and workgroup sizes shared by the raster engine (C++) and its shaders (GLSL,
-// std430). Included by both; the C++ side checks sizes and offsets with static_assert.
+// Struct layouts, bindings and workgroup sizes shared by the raster engine (C++) and its shaders
+// (GLSL, std430). Included by both; the C++ side checks sizes and offsets with static_assert.
+// No 64-bit float appears in a struct (doubles travel as uvec2 bit patterns), so the float32
+// shaders need no Float64 capability.
 #ifndef BLUETILE_GPU_RASTER_LAYOUT_H
 #define BLUETILE_GPU_RASTER_LAYOUT_H
 
-#define BLUETILE_REDUCE_GROUP_X 16
-#define BLUETILE_REDUCE_GROUP_Y 16
-// Segments of the tessellated-fan cone variant (the classic method; see DESIGN section 3).
+// Classification: one invocation sums a segment of this many pixels of one row, so runs of
+// equal IDs cost one set of atomics each instead of one per pixel (7x fewer at 16 pixels per
+// cell, ~30x at point coverage's 1000).
+#define BLUETILE_CLASSIFY_SEGMENT 32
+// Invocations per classification workgroup: consecutive rows of one segment column.
+#define BLUETILE_CLASSIFY_GROUP 64
+// Boundary pixels per split workgroup.
+#define BLUETILE_SPLIT_GROUP 64
+// Split workgroups per row of its indirect dispatch (well below the 65535 every device allows).
+#define BLUETILE_SPLIT_ROW 4096u
+// Sites that may own part of one boundary pixel (after pruning); more go to the host (rare:
+// dense clusters at a coarse resolution).
+#define BLUETILE_MAX_CANDIDATES 16
+// Grid buckets a split may visit per axis; a wider window (a huge cell in a dense scene) goes
+// to the host.
+#define BLUETILE_MAX_WINDOW 9
+// Segments of the tessellated-fan cone variant (the classic method; see docs/RASTER.md).
 #define BLUETILE_FAN_SEGMENTS 32
 
 // Scene flag bits.
-#define BLUETILE_SCENE_AREA 1u  // split boundary pixels on the host: reduce interior pixels only
+#define BLUETILE_SCENE_AREA 1u  // area coverage: classify pixels, split the boundary ones
 
 // Site flag bits.
-#define BLUETILE_SITE_SPLIT 1u  // another site is so close that float depths may confuse them
+#define BLUETILE_SITE_SPLIT 1u   // another site is so close that float depths may confuse them: split all its pixels
+#define BLUETILE_SITE_WANTED 2u  // its cell is measured (pieces are summed only for wanted sites)
 
-// Descriptor bindings (one set).
+// Descriptor bindings (one set for every pipeline).
 #define BLUETILE_BINDING_INSTANCES 0
 #define BLUETILE_BINDING_SCENES 1
 #define BLUETILE_BINDING_SITES 2
-#define BLUETILE_BINDING_IDS 3
+#define BLUETILE_BINDING_POSITIONS 3
 #define BLUETILE_BINDING_SUMS 4
 #define BLUETILE_BINDING_COUNTERS 5
 #define BLUETILE_BINDING_BOUNDARY 6
+#define BLUETILE_BINDING_MASKS 7
+#define BLUETILE_BINDING_GRID 8
+#define BLUETILE_BINDING_OVERFLOW 9
+#define BLUETILE_BINDING_ID_IMAGE 10
+#define BLUETILE_BINDING_COUNT 11
+
+// Fixed slots of the counters buffer; per-scene uncovered-sample counts follow.
+#define BLUETILE_COUNTER_DISPATCH 0   // 3 words: the split's indirect dispatch (x, y, z)
+#define BLUETILE_COUNTER_BOUNDARY 3   // boundary pixels listed
+#define BLUETILE_COUNTER_OVERFLOW 4   // boundary pixels left to the host
+#define BLUETILE_COUNTER_UNCOVERED 8  // first per-scene uncovered-sample count
 
 #ifdef __cplusplus
+#include <cstddef>
 #include <cstdint>
 namespace bluetile::gpu {
 using uint = std::uint32_t;
 using int64_t = std::int64_t;
 struct vec2 { float x, y; };
 struct ivec2 { std::int32_t x, y; };
-#define BLUETILE_STRUCT(name) struct name
-#else
-#define BLUETILE_STRUCT(name) struct name
+struct uvec2 { std::uint32_t x, y; };
 #endif
 
 // One cone: a site or one of its periodic replicas, drawn as a square of half-side `radius`
-// (domain units) clamped to its scene's rectangle.
-BLUETILE_STRUCT(ConeInstance) {
-  vec2 position;  // replica position in scene coordinates (may lie outside the domain)
-  float radius;
-  uint id;        // global site index + 1 (0 = no site)
+// (domain units) clamped to its scene's tile.
+struct ConeInstance {
+  ivec2 pixel;   // the site's pixel shifted by whole periods for a replica (may lie outside the tile)
+  float radius;  // domain units
+  uint id;       // global site index + 1 (0 = no site)
 };
 
-BLUETILE_STRUCT(SceneInfo) {
-  ivec2 origin;       // tile corner in the atlas, pixels
-  ivec2 size;         // tile size, pixels (the scene's resolution)
-  vec2 pixel_size;    // domain units per pixel along x and y
+// Sample (i, j) of a scene lies at (i hx, j hy): the corners of the pixels in area coverage,
+// the pixel centres in point coverage. Pixel (i, j) of area coverage spans samples (i, j) to
+// (i + 1, j + 1), wrapped.
+struct SceneInfo {
+  ivec2 origin;       // tile corner in the atlas, samples
+  ivec2 size;         // tile size: the scene's resolution rx x ry
+  vec2 pixel_size;    // hx, hy (domain units)
   vec2 domain_size;
-  float depth_scale;  // 1 / (largest possible depth distance): depths stay in [0, 1]
+  float depth_scale;  // 1 / (largest depth distance): depths stay in [0, 1]
   uint site_begin;    // global index of the scene's first site
-  uint boundary_offset;  // first word of the scene's boundary bit mask (rows padded to words)
   uint flags;
+  uint mask_offset;   // first word of the scene's site masks (two bits per pixel, rows of words)
+  ivec2 grid_size;    // site grid columns, rows
+  uint grid_offset;   // first word of the scene's grid in the grid buffer: bucket starts, then sites
+  uint pad0;
+  vec2 bucket_size;   // site grid bucket sides, domain units
+  float reach_limit;  // farthest a piece may lie from its site for the fixed-point bounds (domain)
+  float pad1;
+  // The same in double precision (bit patterns), for the float64 split.
+  uvec2 pixel_size64[2];
+  uvec2 domain_size64[2];
+  uvec2 bucket_size64[2];
+  uvec2 reach_limit64;
+  // Fixed-point scales of piece sums (powers of two): area, first moment, second moment.
+  uvec2 scale64[3];
+  vec2 scale32;      // area and first-moment scales as floats (the float32 split)
+  float scale32_second;
+  float pad2;
 };
 
-// Per site: what the reduction needs to form offsets relative to the site exactly.
-BLUETILE_STRUCT(SiteInfo) {
-  ivec2 pixel;     // the pixel that holds the site
-  vec2 fraction;   // site offset of that pixel's centre, (pixel + 0.5) * pixel_size - site
+// Per site: what the shaders need to form offsets relative to the site.
+struct SiteInfo {
+  ivec2 pixel;    // floor(site / pixel size): the sample below-left of the site
+  vec2 fraction;  // site / pixel size - pixel, in [0, 1)
   uint scene;
-  uint flags;  // BLUETILE_SITE_SPLIT: split all its pixels on the host (area mode)
+  uint flags;     // BLUETILE_SITE_*
+  uint pad0;
   uint pad1;
-  uint pad2;
 };
 
-// Per site sums over its whole pixels, offsets in pixels relative to the site's pixel,
-// wrapped into [-size/2, size/2). Integer sums are exact and independent of order.
-BLUETILE_STRUCT(SiteSums) {
+// Per site sums. Whole pixels (area) or samples (point): integer offsets d in pixels from the
+// site's pixel, wrapped into [-size/2, size/2); exact, so independent of order. Boundary pieces
+// (area): fixed-point moments relative to the site, scaled by the scene's scales.
+struct SiteSums {
   int64_t sum_x;
   int64_t sum_y;
   int64_t sum_xx;
   int64_t sum_yy;
-  uint count;       // whole pixels summed (all owned pixels in point mode, interior ones in area mode)
-  uint owned;       // pixel centres showing this site's ID
-  uint farthest;    // float bits of the largest squared distance (domain units) to an owned centre
+  int64_t piece_area;
+  int64_t piece_x;
+  int64_t piece_y;
+  int64_t piece_second;
+  uint count;     // whole pixels (area) or samples (point) summed
+  uint owned;     // samples showing this site's ID
+  uint farthest;  // float bits of the largest squared distance (domain units) to an owned sample
   uint pad;
 };
 
 #ifdef __cplusplus
 static_assert(sizeof(ConeInstance) == 16);
-static_assert(sizeof(SceneInfo) == 48);
+static_assert(sizeof(SceneInfo) == 176);
+static_assert(offsetof(SceneInfo, pixel_size64) == 80);
+static_assert(offsetof(SceneInfo, scale64) == 136);
 static_assert(sizeof(SiteInfo) == 32);
-static_assert(sizeof(SiteSums) == 48);
+static_assert(sizeof(SiteSums) == 80);
 }  // namespace bluetile::gpu
 #endif
 

@@ -79,6 +79,9 @@ struct Cell {
   double area = 0.0;           // cell area (geometric, whatever the density)
   double mass = 0.0;           // integral of rho over the cell (the area when there is no density)
   double second_moment = 0.0;  // integral of rho |x - site|^2 over the cell (its Lloyd energy)
+  // Distance from the site to the farthest point of its cell (exact engine: exactly; raster
+  // engine: its farthest owned sample plus a pixel diagonal). Loops may pass it on as a hint.
+  double radius = 0.0;
   CellStatus status = CellStatus::ok;
 };
 

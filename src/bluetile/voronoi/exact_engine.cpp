@@ -207,6 +207,7 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   const PolygonMoments moments = cell_polygon.moments();
   cell.area = moments.area();
   cell.mass = cell.area;
+  cell.radius = std::sqrt(cell_polygon.max_radius_squared());
   cell.second_moment = moments.second_moment();
   Point offset = moments.centroid();
   if (weighting.texels) {

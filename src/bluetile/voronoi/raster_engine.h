@@ -1,7 +1,8 @@
 // The raster centroid engine (Vulkan): Hoff et al. 1999's distance cones, bounded, in an ID
-// buffer, reduced by a compute shader to exact integer sums; in `area` coverage the pixels on
-// cell boundaries are split exactly among their candidate sites on the host. The method, its
-// guarantees and measured figures: raster_engine.cpp and docs/RASTER.md.
+// image sampled at pixel corners, reduced by compute shaders to exact integer sums; in `area`
+// coverage the pixels on cell boundaries are split exactly on the device, in double precision
+// where it has shaderFloat64. The method, its guarantees and measured figures: raster_engine.cpp
+// and docs/RASTER.md.
 #pragma once
 
 #include <cstdint>
@@ -10,7 +11,9 @@
 #include <vector>
 
 #include "bluetile/core/output_file.h"
+#include "bluetile/gpu/raster_layout.h"
 #include "bluetile/voronoi/engine.h"
+#include "bluetile/voronoi/raster_scene.h"
 
 namespace bluetile {
 
@@ -24,10 +27,12 @@ enum class ConeShape {
   fan,   // the classic tessellated cone (triangle fan), depth interpolated: biased
 };
 
-enum class Reduction {
-  automatic,  // host on CPU devices (lavapipe), the compute shader on GPUs
-  gpu,        // compute shader with 64-bit integer atomics
-  host,       // the same integer sums on the host, threaded
+// Where the per-pixel work (classification, sums, boundary split) runs.
+enum class PixelWork {
+  automatic,  // the host on CPU devices (lavapipe runs compute shaders on one thread, 50-100x
+              // slower than the same loops natively: docs/BENCHMARKS.md), the device elsewhere
+  device,     // classify.comp and split_f64.comp / split_f32.comp
+  host,       // the host reference (raster_reference.cpp), threaded
 };
 
 struct RasterOptions {
@@ -39,26 +44,37 @@ struct RasterOptions {
   // First pass of a scene: every cone has radius radius_factor * sqrt(area / N). Later passes
   // on the same batch use per-site radii from the last cell radius and the sites' motion.
   double radius_factor = 2.5;
+  // Remember each site's cell radius under its position, so the next call (sites moved to
+  // their centroids) draws cones just large enough, however the caller rebuilds its scenes.
   bool adapt_radius = true;
-  Reduction reduction = Reduction::automatic;
+  // Split boundary pixels in single precision even where the device has shaderFloat64 (the
+  // path of devices without it; for tests and measurements).
+  bool force_float32 = false;
+  PixelWork pixel_work = PixelWork::automatic;
   // Vulkan device: empty (CPU/lavapipe first), an index or a name substring.
   std::string device;
   // Keep a copy of every scene's ID buffer from the last compute (for id_image()).
   bool keep_id_images = false;
+  // Keep every scene's last accepted pass (ID image, device sums, overflow) for pass_data().
+  bool keep_pass_data = false;
 };
 
 // Counters over the engine's life, to see what the passes cost and how often the coverage
 // check forced a redo.
 struct RasterStats {
-  std::uint64_t computes = 0;        // compute() calls
-  std::uint64_t submits = 0;         // GPU submissions (one per atlas pass)
-  std::uint64_t scene_passes = 0;    // scenes rendered, redos included
-  std::uint64_t redone_scenes = 0;   // scene passes rejected by the coverage check and redone
-  std::uint64_t uncovered_pixels = 0;  // pixels no cone reached, in rejected passes
-  std::uint64_t boundary_pixels = 0;   // pixels split on the host (area coverage)
-  std::uint64_t fallback_cells = 0;    // cells that owned no pixel (values from the exact engine)
-  double gpu_seconds = 0.0;          // recording, submit and wait
-  double host_seconds = 0.0;         // coverage check, boundary split, assembling cells
+  std::uint64_t computes = 0;         // compute() calls
+  std::uint64_t submits = 0;          // device submissions (one per atlas pass)
+  std::uint64_t scene_passes = 0;     // scenes drawn, redos included
+  std::uint64_t redone_scenes = 0;    // scene passes rejected by the coverage check and redone
+  std::uint64_t uncovered_pixels = 0;  // samples no cone reached, in rejected passes
+  std::uint64_t boundary_pixels = 0;   // pixels split on the device (area coverage)
+  std::uint64_t host_split_pixels = 0;  // boundary pixels the device left to the host
+  std::uint64_t fallback_cells = 0;    // cells measured by the exact engine (point coverage, no sample)
+  std::uint64_t remembered_radii = 0;  // sites whose cone radius came from the radius memory
+  double drawn_radius_sum = 0.0;       // sum of the cone radii of every site drawn (domain units)
+  double upload_seconds = 0.0;  // filling the device's input buffers
+  double device_seconds = 0.0;  // recording, submission and wait
+  double host_seconds = 0.0;    // scene preparation, coverage check, host splits, assembling cells
 };
 
 // One scene's ID buffer: ids[j * width + i] is the index of the site that owns pixel (i, j)'s
@@ -90,6 +106,20 @@ class RasterEngine final : public CentroidEngine {
   // The scene resolution the engine uses for a scene (x side, pixels); throws Error when it
   // exceeds the device's limits.
   int resolution_for(const Scene& scene) const;
+  // Whether boundary pixels are split in double precision (the device has shaderFloat64 and
+  // force_float32 is off).
+  bool float64_split() const;
+  // Whether the per-pixel work runs on the device (see PixelWork).
+  bool pixel_work_on_device() const;
+
+  // Scene `scene`'s last accepted pass in the last compute (needs keep_pass_data).
+  struct PassData {
+    RasterScene scene;                  // as drawn: radii, flags, scales, grid
+    std::vector<std::uint32_t> ids;     // ID image: scene-local site index + 1, 0 for none
+    std::vector<gpu::SiteSums> sums;    // the device's sums, one per site
+    std::vector<std::uint32_t> host_split;  // boundary pixels the device left to the host
+  };
+  const PassData& pass_data(std::size_t scene) const;
 
  private:
   struct Impl;

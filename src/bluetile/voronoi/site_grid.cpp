@@ -6,7 +6,8 @@
 
 namespace bluetile {
 
-SiteGrid::SiteGrid(std::span<const Point> sites, const Domain& domain, double sites_per_bucket) : domain_(domain) {
+SiteGrid::SiteGrid(std::span<const Point> sites, const Domain& domain, double sites_per_bucket, bool with_search_order)
+    : domain_(domain) {
   const std::size_t n = sites.size();
   const double bucket_side = std::sqrt(sites_per_bucket * domain_.area() / static_cast<double>(std::max<std::size_t>(n, 1)));
   columns_ = std::clamp<long>(std::lround(domain_.size.x / bucket_side), 1, 1 << 14);
@@ -29,7 +30,7 @@ SiteGrid::SiteGrid(std::span<const Point> sites, const Domain& domain, double si
     points_[slot] = sites[i];
     index_[slot] = static_cast<std::uint32_t>(i);
   }
-  build_search_order();
+  if (with_search_order) build_search_order();
 }
 
 void SiteGrid::build_search_order() {

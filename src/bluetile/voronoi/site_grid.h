@@ -19,8 +19,9 @@ namespace bluetile {
 class SiteGrid {
  public:
   // Buckets about `sites_per_bucket` sites each on average (at least one bucket, at most
-  // 2^14 per axis). Sites must lie inside the domain.
-  SiteGrid(std::span<const Point> sites, const Domain& domain, double sites_per_bucket);
+  // 2^14 per axis). Sites must lie inside the domain. Without `with_search_order` the grid has
+  // no search_order() (it costs a sort per grid; only searches from sites need it).
+  SiteGrid(std::span<const Point> sites, const Domain& domain, double sites_per_bucket, bool with_search_order = true);
 
   // A bucket offset and the least distance from any point of bucket (0,0) to bucket (dx,dy).
   struct SearchStep {
@@ -74,13 +75,11 @@ class SiteGrid {
     }
   }
 
-  // Buckets in storage order, for cache-friendly traversal.
-  std::size_t bucket_count() const { return start_.size() - 1; }
-  std::span<const std::uint32_t> sites_in_bucket(std::size_t b) const {
-    return {index_.data() + start_[b], index_.data() + start_[b + 1]};
-  }
+  // The storage itself (for copying the grid to a device): bucket b holds the sites
+  // site_indices()[bucket_starts()[b] .. bucket_starts()[b + 1]), bucket b = row * columns + column.
+  std::span<const std::uint32_t> bucket_starts() const { return start_; }
+  std::span<const std::uint32_t> site_indices() const { return index_; }
 
- private:
   // How many periods bucket index a lies away from [0, n): floor(a / n), without a division in
   // the common case of a neighbour at most one period away (divisions dominated the search).
   static long wrap_count(long a, long n) {
@@ -88,6 +87,13 @@ class SiteGrid {
     return a >= -n ? -1 : -((-a + n - 1) / n);
   }
 
+  // Buckets in storage order, for cache-friendly traversal.
+  std::size_t bucket_count() const { return start_.size() - 1; }
+  std::span<const std::uint32_t> sites_in_bucket(std::size_t b) const {
+    return {index_.data() + start_[b], index_.data() + start_[b + 1]};
+  }
+
+ private:
   void build_search_order();
 
   Domain domain_;

@@ -1,0 +1,21 @@
+// From a raster pass's per-site sums to cells: whole pixels (integer offsets), device pieces
+// (fixed point) and host pieces (double) in domain units, relative to each site. Pure host code.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "bluetile/gpu/raster_layout.h"
+#include "bluetile/voronoi/engine.h"
+#include "bluetile/voronoi/raster_reference.h"
+#include "bluetile/voronoi/raster_scene.h"
+
+namespace bluetile {
+
+// The wanted cells of `scene` into `out`. `host_pieces` holds one entry per site (pieces of
+// pixels split on the host; may be empty). A cell with no area (in point coverage: no sample)
+// is measured by the exact engine (exact_fallback).
+void assemble_cells(const RasterScene& scene, std::span<const gpu::SiteSums> sums, std::span<const PieceSums> host_pieces,
+                    SceneCells& out);
+
+}  // namespace bluetile

@@ -1,0 +1,290 @@
+// The host reference of the raster engine's device passes (see raster_reference.h): the same
+// method as shaders/classify.comp and shaders/split_body.glsl, written out again in C++.
+#include "bluetile/voronoi/raster_reference.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "bluetile/core/parallel.h"
+
+namespace bluetile {
+namespace {
+
+// As classify.comp's wrapped_offset: d = i - p wrapped so that d + c - f lies in [-size/2, size/2).
+int wrapped_offset(int i, int p, float c, float f, int size) {
+  int d = i - p;
+  const float t = static_cast<float>(d) + c - f;
+  if (t < -0.5f * static_cast<float>(size)) {
+    d += size;
+  } else if (t >= 0.5f * static_cast<float>(size)) {
+    d -= size;
+  }
+  return d;
+}
+
+std::int64_t run_sum(std::int64_t d0, std::int64_t n) { return n * d0 + n * (n - 1) / 2; }
+std::int64_t run_sum_squares(std::int64_t d0, std::int64_t n) {
+  return n * d0 * d0 + d0 * n * (n - 1) + (n - 1) * n * (2 * n - 1) / 6;
+}
+
+void add_run(gpu::SiteSums& s, int dx0, int dy, int n) {
+  s.count += static_cast<std::uint32_t>(n);
+  s.sum_x += run_sum(dx0, n);
+  s.sum_xx += run_sum_squares(dx0, n);
+  s.sum_y += static_cast<std::int64_t>(n) * dy;
+  s.sum_yy += static_cast<std::int64_t>(n) * dy * dy;
+}
+
+// What the shaders read of a site (SiteInfo).
+struct SiteFrame {
+  int px = 0, py = 0;
+  float fx = 0.0f, fy = 0.0f;
+};
+
+}  // namespace
+
+std::vector<std::uint32_t> raster_site_masks(const RasterScene& scene) {
+  const std::size_t words_per_row = static_cast<std::size_t>(scene.rx + 15) / 16;
+  std::vector<std::uint32_t> masks(words_per_row * static_cast<std::size_t>(scene.ry), 0u);
+  for (std::size_t s = 0; s < scene.size(); ++s) {
+    if (scene.coincident[s]) continue;
+    int px, py;
+    double fx, fy;
+    scene.site_pixel(s, px, py, fx, fy);
+    std::uint32_t& word = masks[static_cast<std::size_t>(py) * words_per_row + static_cast<std::size_t>(px / 16)];
+    const std::uint32_t shift = 2u * static_cast<std::uint32_t>(px % 16);
+    // A second site in the pixel sets the "several" bit.
+    if (word & (1u << shift)) word |= 2u << shift;
+    word |= 1u << shift;
+  }
+  return masks;
+}
+
+void add_sums(gpu::SiteSums& a, const gpu::SiteSums& b) {
+  a.sum_x += b.sum_x;
+  a.sum_y += b.sum_y;
+  a.sum_xx += b.sum_xx;
+  a.sum_yy += b.sum_yy;
+  a.piece_area += b.piece_area;
+  a.piece_x += b.piece_x;
+  a.piece_y += b.piece_y;
+  a.piece_second += b.piece_second;
+  a.count += b.count;
+  a.owned += b.owned;
+  a.farthest = std::max(a.farthest, b.farthest);
+}
+
+namespace {
+
+std::uint32_t classify_rows(const RasterScene& scene, std::span<const std::uint32_t> ids, const std::vector<std::uint32_t>& masks,
+                            int row_begin, int row_end, std::span<gpu::SiteSums> sums, std::vector<std::uint32_t>& boundary);
+
+}  // namespace
+
+std::uint32_t reference_classify(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
+                                 std::vector<std::uint32_t>& boundary) {
+  const std::vector<std::uint32_t> masks = scene.area ? raster_site_masks(scene) : std::vector<std::uint32_t>{};
+  return classify_rows(scene, ids, masks, 0, scene.ry, sums, boundary);
+}
+
+std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
+                             bool split, bool parallel, std::vector<std::uint32_t>& host_pixels, std::uint64_t& boundary_count) {
+  const std::vector<std::uint32_t> masks = scene.area ? raster_site_masks(scene) : std::vector<std::uint32_t>{};
+  const std::size_t n = scene.size();
+  // One slice of rows per thread, each with its own sums (exact integers: merged in any order).
+  const std::size_t slices = parallel ? std::max<std::size_t>(1, std::min<std::size_t>(thread_count(), static_cast<std::size_t>(scene.ry))) : 1;
+  std::vector<std::vector<gpu::SiteSums>> slice_sums(slices);
+  std::vector<std::vector<std::uint32_t>> slice_boundary(slices), slice_host(slices);
+  std::vector<std::uint32_t> slice_uncovered(slices, 0);
+  auto rows = [&](std::size_t k, int& begin, int& end) {
+    begin = static_cast<int>(k * static_cast<std::size_t>(scene.ry) / slices);
+    end = static_cast<int>((k + 1) * static_cast<std::size_t>(scene.ry) / slices);
+  };
+  parallel_for(slices, 1, [&](std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < last; ++k) {
+      int begin, end;
+      rows(k, begin, end);
+      std::span<gpu::SiteSums> target = sums;
+      if (k > 0) {
+        slice_sums[k].assign(n, gpu::SiteSums{});
+        target = slice_sums[k];
+      }
+      slice_uncovered[k] = classify_rows(scene, ids, masks, begin, end, target, slice_boundary[k]);
+    }
+  });
+  std::uint32_t uncovered = 0;
+  boundary_count = 0;
+  for (std::size_t k = 0; k < slices; ++k) {
+    uncovered += slice_uncovered[k];
+    boundary_count += slice_boundary[k].size();
+  }
+  if (split && uncovered == 0) {
+    parallel_for(slices, 1, [&](std::size_t first, std::size_t last) {
+      for (std::size_t k = first; k < last; ++k) {
+        std::span<gpu::SiteSums> target = k > 0 ? std::span<gpu::SiteSums>(slice_sums[k]) : sums;
+        for (std::uint32_t pixel : slice_boundary[k])
+          if (!reference_split(scene, ids, pixel, target)) slice_host[k].push_back(pixel);
+      }
+    });
+  }
+  for (std::size_t k = 1; k < slices; ++k)
+    for (std::size_t i = 0; i < n; ++i) add_sums(sums[i], slice_sums[k][i]);
+  for (std::size_t k = 0; k < slices; ++k) host_pixels.insert(host_pixels.end(), slice_host[k].begin(), slice_host[k].end());
+  return uncovered;
+}
+
+namespace {
+
+std::uint32_t classify_rows(const RasterScene& scene, std::span<const std::uint32_t> ids, const std::vector<std::uint32_t>& masks,
+                            int row_begin, int row_end, std::span<gpu::SiteSums> sums, std::vector<std::uint32_t>& boundary) {
+  const int rx = scene.rx, ry = scene.ry;
+  const bool area = scene.area;
+  const float hx = static_cast<float>(scene.hx), hy = static_cast<float>(scene.hy);
+  std::vector<SiteFrame> frames(scene.size());
+  for (std::size_t s = 0; s < scene.size(); ++s) {
+    double fx, fy;
+    scene.site_pixel(s, frames[s].px, frames[s].py, fx, fy);
+    frames[s].fx = static_cast<float>(fx);
+    frames[s].fy = static_cast<float>(fy);
+  }
+  const std::size_t words_per_row = static_cast<std::size_t>(rx + 15) / 16;
+  auto id_at = [&](int i, int j) {
+    i = i >= rx ? i - rx : i;
+    j = j >= ry ? j - ry : j;
+    return ids[static_cast<std::size_t>(j) * rx + i];
+  };
+  auto distance_squared = [&](const SiteFrame& f, int dx, int dy) {
+    const float ox = (static_cast<float>(dx) - f.fx) * hx, oy = (static_cast<float>(dy) - f.fy) * hy;
+    return ox * ox + oy * oy;
+  };
+  auto flush_samples = [&](std::uint32_t id, int dx, int dy, int length, float far) {
+    gpu::SiteSums& s = sums[id - 1];
+    s.owned += static_cast<std::uint32_t>(length);
+    s.farthest = std::max(s.farthest, std::bit_cast<std::uint32_t>(far));
+    if (!area) add_run(s, dx, dy, length);
+  };
+  std::uint32_t uncovered = 0;
+  for (int j = row_begin; j < row_end; ++j) {
+    for (int i0 = 0; i0 < rx; i0 += BLUETILE_CLASSIFY_SEGMENT) {
+      const int i1 = std::min(i0 + BLUETILE_CLASSIFY_SEGMENT, rx);
+      std::uint32_t site_id = 0;
+      SiteFrame site;
+      bool split = false;
+      int dy_sample = 0, dy_pixel = 0;
+      std::uint32_t sample_site = 0;
+      int sample_dx = 0, sample_dy = 0, sample_length = 0;
+      float sample_far = 0.0f;
+      std::uint32_t pixel_site = 0;
+      int pixel_dx = 0, pixel_dy = 0, pixel_length = 0;
+      std::uint32_t a = id_at(i0, j), c = area ? id_at(i0, j + 1) : 0u;
+      for (int i = i0; i < i1; ++i) {
+        const std::uint32_t b = id_at(i + 1, j), e = area ? id_at(i + 1, j + 1) : 0u;
+        if (a == 0) {
+          ++uncovered;
+        } else if (a != site_id) {
+          site_id = a;
+          site = frames[a - 1];
+          split = scene.split[a - 1] != 0;
+          dy_sample = wrapped_offset(j, site.py, 0.0f, site.fy, ry);
+          dy_pixel = wrapped_offset(j, site.py, 0.5f, site.fy, ry);
+        }
+        if (a != 0) {
+          const int dx = wrapped_offset(i, site.px, 0.0f, site.fx, rx);
+          if (a == sample_site && dx == sample_dx + sample_length) {
+            ++sample_length;
+          } else {
+            if (sample_length > 0) flush_samples(sample_site, sample_dx, sample_dy, sample_length, sample_far);
+            sample_site = a;
+            sample_dx = dx;
+            sample_dy = dy_sample;
+            sample_length = 1;
+            sample_far = distance_squared(site, dx, dy_sample);
+          }
+          sample_far = std::max(sample_far, distance_squared(site, dx, dy_sample));
+        }
+        if (area) {
+          bool whole = a != 0 && a == b && a == c && a == e && !split;
+          int dx = 0;
+          if (whole) {
+            const std::uint32_t word = masks[static_cast<std::size_t>(j) * words_per_row + static_cast<std::size_t>(i >> 4)] >>
+                                       (2u * static_cast<std::uint32_t>(i & 15));
+            const bool holds_site = word & 1u, holds_several = word & 2u;
+            whole = !holds_site || (!holds_several && site.px == i && site.py == j);
+            dx = wrapped_offset(i, site.px, 0.5f, site.fx, rx);
+            const float tx = static_cast<float>(dx) + 0.5f - site.fx, ty = static_cast<float>(dy_pixel) + 0.5f - site.fy;
+            whole = whole && std::abs(tx) < 0.5f * static_cast<float>(rx) - 1.0f &&
+                    std::abs(ty) < 0.5f * static_cast<float>(ry) - 1.0f;
+          }
+          if (whole && a == pixel_site && dx == pixel_dx + pixel_length) {
+            ++pixel_length;
+          } else {
+            if (pixel_length > 0) add_run(sums[pixel_site - 1], pixel_dx, pixel_dy, pixel_length);
+            pixel_length = 0;
+            if (whole) {
+              pixel_site = a;
+              pixel_dx = dx;
+              pixel_dy = dy_pixel;
+              pixel_length = 1;
+            } else {
+              boundary.push_back(static_cast<std::uint32_t>(j * rx + i));
+            }
+          }
+        }
+        a = b;
+        c = e;
+      }
+      if (sample_length > 0) flush_samples(sample_site, sample_dx, sample_dy, sample_length, sample_far);
+      if (pixel_length > 0) add_run(sums[pixel_site - 1], pixel_dx, pixel_dy, pixel_length);
+    }
+  }
+  return uncovered;
+}
+
+}  // namespace
+
+double corner_owner_distance(const RasterScene& scene, std::span<const std::uint32_t> ids, std::uint32_t pixel) {
+  const int rx = scene.rx, ry = scene.ry;
+  const int i = static_cast<int>(pixel % static_cast<std::uint32_t>(rx)), j = static_cast<int>(pixel / static_cast<std::uint32_t>(rx));
+  const Point lattice{static_cast<double>(i) * scene.hx, static_cast<double>(j) * scene.hy};
+  const Point half_pixel{0.5 * scene.hx, 0.5 * scene.hy};
+  const Point domain = scene.scene->domain.size;
+  double nearest = 1e30;
+  for (int corner = 0; corner < 4; ++corner) {
+    int ci = i + (corner & 1), cj = j + (corner >> 1);
+    ci = ci >= rx ? ci - rx : ci;
+    cj = cj >= ry ? cj - ry : cj;
+    const std::uint32_t id = ids[static_cast<std::size_t>(cj) * rx + ci];
+    if (id == 0) continue;
+    const Point from{scene.sites[id - 1].x - lattice.x, scene.sites[id - 1].y - lattice.y};
+    Point o = from - half_pixel;
+    o = {raster_detail::wrap_axis(o.x, domain.x), raster_detail::wrap_axis(o.y, domain.y)};
+    nearest = std::min(nearest, std::sqrt(o.x * o.x + o.y * o.y));
+  }
+  return nearest;
+}
+
+bool reference_split(const RasterScene& scene, std::span<const std::uint32_t> ids, std::uint32_t pixel,
+                     std::span<gpu::SiteSums> sums) {
+  auto fixed = [](double v, double scale) { return static_cast<std::int64_t>(std::floor(v * scale + 0.5)); };
+  return split_boundary_pixel(scene, corner_owner_distance(scene, ids, pixel), pixel, true,
+                              [&](std::uint32_t site, const PolygonMoments& m) {
+                                gpu::SiteSums& s = sums[site];
+                                s.piece_area += fixed(m.area(), scene.scale_area);
+                                s.piece_x += fixed(m.first_moment().x, scene.scale_first);
+                                s.piece_y += fixed(m.first_moment().y, scene.scale_first);
+                                s.piece_second += fixed(m.second_moment(), scene.scale_second);
+                              });
+}
+
+void host_split(const RasterScene& scene, double nearest, std::uint32_t pixel, std::span<PieceSums> pieces) {
+  split_boundary_pixel(scene, nearest, pixel, false, [&](std::uint32_t site, const PolygonMoments& m) {
+    PieceSums& p = pieces[site];
+    p.area += m.area();
+    p.x += m.first_moment().x;
+    p.y += m.first_moment().y;
+    p.second += m.second_moment();
+  });
+}
+
+}  // namespace bluetile

@@ -1,0 +1,97 @@
+// One scene as the raster engine draws it: sites wrapped into the domain, coincident sites set
+// aside, sites too close for float depths flagged, cone radii, the sample lattice and the
+// fixed-point scales of the boundary sums. Pure host code (no Vulkan): the device pass, the host
+// reference and the coverage check all read it. Method: raster_engine.cpp and docs/RASTER.md.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "bluetile/voronoi/engine.h"
+#include "bluetile/voronoi/site_grid.h"
+
+namespace bluetile {
+
+struct RasterScene {
+  const Scene* scene = nullptr;
+  std::size_t index = 0;  // in the batch
+  bool area = true;       // area coverage (else point)
+  int rx = 0, ry = 0;     // samples along x and y
+  double hx = 0.0, hy = 0.0;  // pixel size
+  double radius_cap = 0.0;    // a cone this large covers the whole torus
+  std::vector<Point> sites;   // wrapped into the domain
+  std::vector<std::uint8_t> coincident;  // equal to a site of lower index: not drawn
+  std::vector<std::uint8_t> split;       // has a site too close for float depths: all its pixels are split
+  std::vector<double> radius;            // cone radius per site
+  // Pieces may lie at most this far from their site (else the pixel goes to the host), which
+  // bounds each site's piece sums; the fixed-point scales follow (powers of two).
+  double reach_limit = 0.0;
+  double scale_area = 1.0, scale_first = 1.0, scale_second = 1.0;
+
+  // Per pass.
+  int origin_x = 0, origin_y = 0;  // tile corner in the atlas
+  std::uint32_t site_begin = 0;    // global index of site 0 in the pass
+  int redos = 0;
+  bool done = false;
+  // From the coverage check: per site, the radius its cone must reach for the last diagram to
+  // pass (the largest farthest-sample distance of the sites within twice that distance).
+  std::vector<double> need;
+
+  std::size_t size() const { return sites.size(); }
+  double pixel_diagonal() const;
+  bool wanted(std::size_t i) const { return i >= scene->wanted_begin && i < scene->wanted_end; }
+  // floor(site / pixel size), clamped to the lattice, and the fraction left over in [0, 1).
+  void site_pixel(std::size_t i, int& px, int& py, double& fx, double& fy) const;
+  // The scene's site grid (coincident sites are skipped by its users).
+  const SiteGrid& grid() const { return *grid_; }
+  std::shared_ptr<const SiteGrid> grid_;  // set by prepare_raster_scene
+  // Recomputes the fixed-point scales from the current radii.
+  void update_scales();
+};
+
+// Remembers each site's last cell radius under its position, so that the next call, which
+// gets the sites at their centroids, draws small cones however the caller rebuilt or reordered
+// its scenes. Only the last call's entries are kept.
+class RadiusMemory {
+ public:
+  // Radii for `scene`'s sites where they are known; returns how many were found.
+  std::size_t recall(RasterScene& scene) const;
+  // Records the last pass: `next_position[i]` is where site i will be next time (its centroid
+  // for a wanted site), `radius[i]` its cell radius.
+  void remember(const RasterScene& scene, const std::vector<Point>& next_position, const std::vector<double>& radius);
+  // Forgets entries of earlier calls (call once per compute, before remembering).
+  void start_call();
+
+ private:
+  struct Entry {
+    std::uint64_t key = 0;
+    double radius = 0.0, motion = 0.0;
+  };
+  static std::uint64_t key_of(Point p, Point domain);
+  void insert(const Entry& e);
+  const Entry* find(std::uint64_t key) const;
+  void grow();
+
+  std::vector<Entry> table_;  // open addressing, linear probing; key 0 = empty
+  std::vector<Entry> pending_;  // this call's entries, inserted at the next start_call
+  std::size_t used_ = 0;
+};
+
+struct RasterSettings {
+  bool area = true;
+  int resolution = 0;          // 0: default_resolution
+  double radius_factor = 2.5;  // start radius: factor * sqrt(area / N)
+  std::uint32_t max_side = 16384;  // device limit on the atlas side
+};
+
+// Prepares `scene` (index `index` in its batch). Throws Error on a bad scene (non-finite site,
+// wanted range outside the sites, non-positive domain) or a resolution beyond `max_side`.
+RasterScene prepare_raster_scene(const Scene& scene, std::size_t index, const RasterSettings& settings);
+
+// Flags sites whose nearest other site is closer than float depths can tell apart (see
+// raster_scene.cpp); the radii must be set.
+void flag_close_sites(RasterScene& scene);
+
+}  // namespace bluetile

@@ -1,0 +1,53 @@
+// Helpers of the raster engine's tests: skipping without Vulkan, engines shared by options
+// (contexts and shader JIT are costly), comparisons against the exact engine.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include "bluetile/voronoi/engine.h"
+#include "bluetile/voronoi/raster_engine.h"
+
+namespace bluetile::test {
+
+// Empty when a suitable Vulkan device exists, else why not.
+const std::string& vulkan_missing_reason();
+
+#define REQUIRE_VULKAN()                                                                                         \
+  do {                                                                                                           \
+    if (!::bluetile::test::vulkan_missing_reason().empty())                                                      \
+      GTEST_SKIP() << "no Vulkan: " << ::bluetile::test::vulkan_missing_reason();                               \
+  } while (false)
+
+// A raster engine with these options, shared by the tests of the process (adapt_radius off:
+// every call starts afresh). Released before the process exits.
+RasterEngine& shared_engine(int resolution, Coverage coverage, ConeShape cone = ConeShape::quad,
+                            PixelWork work = PixelWork::automatic, bool force_float32 = false);
+
+struct Errors {
+  double mean = 0.0, max = 0.0, max_area = 0.0, max_second = 0.0;
+  double total_area = 0.0;
+};
+
+// Centroid, area and second-moment differences of a against b, over the wanted cells.
+Errors compare_cells(const SceneCells& a, const SceneCells& b, const Scene& scene);
+
+// True when every field of every cell is the same bits.
+bool identical_cells(const SceneCells& a, const SceneCells& b);
+
+Scene relaxed_scene(std::size_t n, std::uint64_t seed, int iterations);
+
+struct HardCase {
+  const char* name;
+  std::vector<Point> sites;
+};
+// DESIGN section 7's hard cases: one and two sites, a pair 1e-7 apart, sites on 0 and just
+// below 1, lattices with ties, a cluster straddling the corner, sites the raster cannot tell
+// apart (1e-18 apart, and one ulp apart).
+std::vector<HardCase> hard_cases();
+
+}  // namespace bluetile::test
