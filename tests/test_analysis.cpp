@@ -235,8 +235,13 @@ TEST(Summary, PrefixesOfALeveledSet) {
   EXPECT_NEAR(result[0].summary.nn.min, 0.25, 1e-15);
   EXPECT_NEAR(result[1].summary.nn.min, 0.25 / std::sqrt(2.0), 1e-15);
   EXPECT_NEAR(result[2].summary.nn.min, 0.125, 1e-15);
-  // One F for all prefixes: the full set's, 2 floor(5 sqrt(64)) = 80.
-  for (const auto& l : result) EXPECT_EQ(l.summary.periodogram.size, 80);
+  // Each prefix at its natural F = 2 floor(5 sqrt(N)): 40, 56, 80; or one F when asked.
+  EXPECT_EQ(result[0].summary.periodogram.size, 40);
+  EXPECT_EQ(result[1].summary.periodogram.size, 56);
+  EXPECT_EQ(result[2].summary.periodogram.size, 80);
+  o.size = 80;
+  for (const auto& l : summarize_levels(points, levels, o)) EXPECT_EQ(l.summary.periodogram.size, 80);
+  o.size = 0;
   // The 4x4 lattice has its power at multiples of 4 only.
   EXPECT_NEAR(result[0].summary.periodogram.at(4, 0), 16.0, 1e-9);
   EXPECT_LT(result[0].summary.periodogram.at(2, 0), 1e-20);
@@ -264,7 +269,8 @@ TEST(AnalyzeCommand, WritesEveryOutput) {
   std::string out = dir.file("nested/out");
   auto r = test::run_bluetile({"analyze", "--input", input, "--output", out});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  for (const char* name : {"stats.json", "radial.csv", "report.txt", "points.png", "spectrum.png", "radial.png"})
+  for (const char* name : {"stats.json", "radial.csv", "rdf.csv", "report.txt", "points.png", "spectrum.png",
+                           "radial.png", "rdf.png", "points.svg", "spectrum.svg", "radial.svg", "rdf.svg"})
     EXPECT_TRUE(std::filesystem::exists(out + "/" + name)) << name;
   auto stats = nlohmann::json::parse(test::read_text(out + "/stats.json"));
   EXPECT_EQ(stats["n"], 400);
@@ -276,11 +282,22 @@ TEST(AnalyzeCommand, WritesEveryOutput) {
   EXPECT_DOUBLE_EQ(stats["nn_x1000"]["min"].get<double>(), 1000.0 * nn.min);
   EXPECT_DOUBLE_EQ(stats["nn_relative"]["min"].get<double>(), nn.min / hexagonal_spacing(400.0));
   EXPECT_GT(stats["mean_centroid_distance"].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(stats["rho"].get<double>(), nn.min / hexagonal_spacing(400.0));
+  EXPECT_DOUBLE_EQ(stats["average_min_distance"].get<double>(), nn.mean / hexagonal_spacing(400.0));
+  EXPECT_EQ(stats["nu_eff"].get<double>(), 0.0);  // white noise has no zero region
+  EXPECT_EQ(stats["boundary"], "periodic");
   std::string csv = test::read_text(out + "/radial.csv");
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "frequency,power,anisotropy_db");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "frequency,power,anisotropy_db,nu");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 100);  // F/2 annuli
-  EXPECT_NE(csv.find("\n0,400,nan\n"), std::string::npos);
-  EXPECT_NE(test::read_text(out + "/report.txt").find("400 points"), std::string::npos);
+  EXPECT_NE(csv.find("\n0,400,nan,0\n"), std::string::npos);
+  EXPECT_NE(csv.find("\n10,"), std::string::npos);
+  EXPECT_NE(csv.find(",1\n"), std::string::npos);  // |k| = 10 is nu = 10 / (sqrt(400) / 2) = 1
+  std::string rdf = test::read_text(out + "/rdf.csv");
+  EXPECT_EQ(rdf.substr(0, rdf.find('\n')), "r,r_relative,g");
+  EXPECT_EQ(std::count(rdf.begin(), rdf.end(), '\n'), 1 + 50);  // N / 8 bins
+  const std::string report = test::read_text(out + "/report.txt");
+  EXPECT_NE(report.find("400 points"), std::string::npos);
+  EXPECT_EQ(r.out, report);  // the report is printed too
 }
 
 TEST(AnalyzeCommand, BadInputFailsCleanlyAndWritesNothing) {
@@ -338,8 +355,11 @@ TEST(AnalyzeCommand, AverageCompareAndLevels) {
   ASSERT_EQ(stats["compare"].size(), 2u);
   EXPECT_EQ(stats["compare"][1]["label"], "second");
   EXPECT_EQ(stats["compare"][1]["n"], 250);
+  EXPECT_FALSE(stats.contains("n"));  // no figures at the top that belong to one input only
+  EXPECT_FALSE(stats.contains("nn_min"));
+  EXPECT_NE(r.out.find("nu_eff"), std::string::npos);  // the table of measures, one row per input
   std::string csv = test::read_text(dir.file("cmp/radial.csv"));
-  EXPECT_EQ(csv.substr(0, csv.find('\n')), "frequency,power,anisotropy_db,set");
+  EXPECT_EQ(csv.substr(0, csv.find('\n')), "frequency,power,anisotropy_db,nu,set");
   EXPECT_NE(csv.find(",second\n"), std::string::npos);
 
   // The hand-made leveled file of tests/data: see its header.

@@ -38,6 +38,31 @@ TEST(PointFile, WrapsCoordinatesOntoTheTorus) {
   EXPECT_EQ(set.points[2].x, 0.0);  // would round to 1.0, which is outside [0,1)
 }
 
+TEST(PointFile, OutOfRangeRefusedWhenAskedAndDomainDeclared) {
+  ReadOptions strict;
+  strict.wrap = false;
+  try {
+    parse_points("0.1 0.2\n0.5 1.25\n", "pts.txt", strict);
+    ADD_FAILURE() << "accepted y = 1.25";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "pts.txt:2: y = 1.25 is outside [0, 1)");
+  }
+  EXPECT_THROW(parse_points("-0.0001 0.5\n", "x", strict), Error);
+  EXPECT_THROW(parse_points("1 0.5\n", "x", strict), Error);
+  EXPECT_EQ(parse_points("0 0.999\n", "x", strict).points.size(), 1u);
+  // "# domain bounded" before a set says how it was made; it holds for later sets of the file.
+  EXPECT_FALSE(parse_points("0.1 0.2\n", "x").declared_boundary);
+  EXPECT_EQ(parse_points("# domain bounded\n0.1 0.2\n", "x").declared_boundary, Boundary::bounded);
+  EXPECT_EQ(parse_points("# made by scipy\n#  domain   periodic \n0.1 0.2\n", "x").declared_boundary,
+            Boundary::periodic);
+  EXPECT_FALSE(parse_points("# domain square\n0.1 0.2\n", "x").declared_boundary);
+  TempDir dir;
+  auto sets = read_point_sets(dir.write("s.txt", "# domain bounded\n# set 0\n0.1 0.2\n# set 1\n0.3 0.4\n"));
+  ASSERT_EQ(sets.size(), 2u);
+  EXPECT_EQ(sets[0].declared_boundary, Boundary::bounded);
+  EXPECT_EQ(sets[1].declared_boundary, Boundary::bounded);
+}
+
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 nan\n"), "pts.txt:2: not a finite number 'nan'");
   EXPECT_EQ(parse_error("0.1 0.2\ninf 0.3\n"), "pts.txt:2: not a finite number 'inf'");

@@ -51,14 +51,18 @@ std::string read_text(const std::string& path) {
 }
 
 CommandResult run_bluetile(const std::vector<std::string>& arguments) {
-  TempDir capture;
   std::string command = "'" BLUETILE_BINARY "'";
   for (const auto& a : arguments) {
     std::string quoted;
     for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
     command += " '" + quoted + "'";
   }
-  command += " </dev/null >'" + capture.file("out") + "' 2>'" + capture.file("err") + "'";
+  return run_command(command);
+}
+
+CommandResult run_command(const std::string& shell_command) {
+  TempDir capture;
+  const std::string command = shell_command + " </dev/null >'" + capture.file("out") + "' 2>'" + capture.file("err") + "'";
   int status = std::system(command.c_str());
   CommandResult result;
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);

@@ -34,6 +34,10 @@ struct CommandResult {
 // Runs the bluetile binary with `arguments` (shell-quoted here), stdin from /dev/null.
 CommandResult run_bluetile(const std::vector<std::string>& arguments);
 
+// Runs a shell command line (quote its words yourself), stdin from /dev/null; exit code 127
+// when the shell cannot find the program.
+CommandResult run_command(const std::string& shell_command);
+
 std::string read_text(const std::string& path);
 
 // The message of the bluetile::Error that f throws, or "" when it throws none.

@@ -1,12 +1,15 @@
 // bluetile analyze: spectral and spatial statistics of point sets (DESIGN sections 5 and 6):
-// stats.json, radial.csv, report.txt, points.png, spectrum.png, radial.png in the output folder.
+// stats.json, radial.csv, rdf.csv, report.txt (also printed), and points, spectrum, radial and
+// rdf images as PNG and SVG in the output folder; optionally a one-page summary (PDF or SVG).
 // One set; the mean over several (--average); several series side by side (--compare); or every
 // prefix of a hierarchical set (--by-level).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -20,6 +23,7 @@
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/io/figures.h"
+#include "bluetile/io/pdf.h"
 
 namespace bluetile::cli {
 namespace {
@@ -36,6 +40,12 @@ struct AnalyzeOptions {
   bool cells = false;
   std::string from;
   bool no_centroids = false;
+  bool bounded = false;
+  bool wrap = false;
+  std::string axis = "normalised";
+  double rdf_range = 0.0;
+  int rdf_bins = 0;
+  std::string summary;
   int threads = 0;
   int image_size = 800;
   std::string title;
@@ -46,14 +56,25 @@ struct Series {
   std::string label;
   std::string input;
   int level = -1;
-  PointSet first;  // drawn in points.png
+  PointSet first;         // drawn in points.png
+  std::size_t sets = 1;   // sets in the input (points.png shows the first)
   Summary summary;
 };
 
-std::vector<PointSet> read_sets(const std::string& path) {
+std::string append_wrap_hint(const std::string& message) {
+  if (message.find("is outside [0, 1)") == std::string::npos) return message;
+  return message + " (--wrap wraps such points onto the torus)";
+}
+
+std::vector<PointSet> read_sets(const std::string& path, const ReadOptions& read) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a point file");
-  std::vector<PointSet> sets = read_point_sets(path);
+  std::vector<PointSet> sets;
+  try {
+    sets = read_point_sets(path, read);
+  } catch (const Error& e) {
+    throw Error(append_wrap_hint(e.what()));
+  }
   if (sets.empty()) throw Error(path + ": no points");
   for (const PointSet& s : sets) {
     if (s.points.size() < 2)
@@ -71,17 +92,22 @@ std::vector<std::vector<Point>> points_of(const std::vector<PointSet>& sets) {
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
+const char* boundary_name(Boundary b) { return b == Boundary::periodic ? "periodic" : "bounded"; }
+
 nlohmann::json summary_json(const Summary& s) {
   const double h = s.nn.hexagonal_spacing;
   nlohmann::json j;
   j["n"] = s.count;
   j["sets"] = s.sets;
+  j["boundary"] = boundary_name(s.boundary);
   j["nn_min"] = s.nn.min;
   j["nn_max"] = s.nn.max;
   j["nn_mean"] = s.nn.mean;
   j["nn_x1000"] = {{"min", 1000.0 * s.nn.min}, {"max", 1000.0 * s.nn.max}, {"mean", 1000.0 * s.nn.mean}};
   j["nn_relative"] = {{"min", s.nn.min / h}, {"max", s.nn.max / h}, {"mean", s.nn.mean / h}};
   j["hexagonal_spacing"] = h;
+  j["rho"] = s.nn.rho();
+  j["average_min_distance"] = s.nn.rho_mean();
   if (s.sets > 1) {
     j["nn_min_lowest"] = s.nn_min_lowest;
     j["nn_min_highest"] = s.nn_min_highest;
@@ -90,16 +116,23 @@ nlohmann::json summary_json(const Summary& s) {
     j["mean_centroid_distance"] = s.centroid_distance;
     j["mean_centroid_distance_relative"] = s.centroid_distance / h;
   }
+  j["nu_eff"] = s.measures.nu_eff;
+  j["omega"] = s.measures.omega;
+  j["omega_range_nu"] = s.measures.omega_range;
+  if (s.has_bond_order) j["bond_order"] = {{"local", s.bond_order.local}, {"global", s.bond_order.global}};
+  j["rdf_range_relative"] = s.rdf.range() / h;
+  j["rdf_bins"] = s.rdf.g.size();
   j["periodogram_size"] = s.periodogram.size;
-  nlohmann::json f = nlohmann::json::array(), p = nlohmann::json::array(), a = nlohmann::json::array(),
-                 c = nlohmann::json::array();
+  nlohmann::json f = nlohmann::json::array(), nu = nlohmann::json::array(), p = nlohmann::json::array(),
+                 a = nlohmann::json::array(), c = nlohmann::json::array();
   for (const Annulus& an : s.radial) {
     f.push_back(an.frequency);
+    nu.push_back(s.nu(an.frequency));
     p.push_back(number(an.power));
     a.push_back(number(an.anisotropy_db));
     c.push_back(an.count);
   }
-  j["radial"] = {{"frequency", f}, {"power", p}, {"anisotropy_db", a}, {"count", c}};
+  j["radial"] = {{"frequency", f}, {"nu", nu}, {"power", p}, {"anisotropy_db", a}, {"count", c}};
   return j;
 }
 
@@ -111,10 +144,24 @@ std::string csv_number(double v) {
 }
 
 std::string radial_csv(const std::vector<Series>& series, bool with_label) {
-  std::string text = with_label ? "frequency,power,anisotropy_db,set\n" : "frequency,power,anisotropy_db\n";
+  std::string text = with_label ? "frequency,power,anisotropy_db,nu,set\n" : "frequency,power,anisotropy_db,nu\n";
   for (const Series& s : series) {
     for (const Annulus& a : s.summary.radial) {
-      text += csv_number(a.frequency) + "," + csv_number(a.power) + "," + csv_number(a.anisotropy_db);
+      text += csv_number(a.frequency) + "," + csv_number(a.power) + "," + csv_number(a.anisotropy_db) + "," +
+              csv_number(s.summary.nu(a.frequency));
+      text += with_label ? "," + s.label + "\n" : "\n";
+    }
+  }
+  return text;
+}
+
+std::string rdf_csv(const std::vector<Series>& series, bool with_label) {
+  std::string text = with_label ? "r,r_relative,g,set\n" : "r,r_relative,g\n";
+  for (const Series& s : series) {
+    const RadialDistribution& rdf = s.summary.rdf;
+    for (std::size_t b = 0; b < rdf.g.size(); ++b) {
+      text += csv_number(rdf.radius(b)) + "," + csv_number(rdf.radius(b) / rdf.hexagonal_spacing) + "," +
+              csv_number(rdf.g[b]);
       text += with_label ? "," + s.label + "\n" : "\n";
     }
   }
@@ -127,19 +174,43 @@ std::string fixed(double v, int decimals) {
   return buffer;
 }
 
+// The measures researchers quote, name and value, for the report, the summary page and tables.
+std::vector<std::pair<std::string, std::string>> measure_rows(const Summary& s) {
+  std::vector<std::pair<std::string, std::string>> rows = {
+      {"points" + std::string(s.sets > 1 ? " (per set)" : ""), std::to_string(s.count)},
+      {"distances", s.boundary == Boundary::periodic ? "periodic (torus)" : "bounded (unit square)"},
+      {"rho = min NN distance / d_hex", fixed(s.nn.rho(), 4)},
+      {"average min distance / d_hex", fixed(s.nn.rho_mean(), 4)},
+      {"max NN distance / d_hex", fixed(s.nn.max / s.nn.hexagonal_spacing, 4)},
+      {"effective Nyquist frequency nu_eff", fixed(s.measures.nu_eff, 3)},
+      {"oscillations Omega", fixed(s.measures.omega, 3)},
+  };
+  if (s.has_bond_order) {
+    rows.push_back({"bond order |psi6| (local)", fixed(s.bond_order.local, 3)});
+    rows.push_back({"bond order |<psi6>| (global)", fixed(s.bond_order.global, 3)});
+  }
+  if (s.has_centroid_distance)
+    rows.push_back({"mean distance to centroid / d_hex", fixed(s.centroid_distance / s.nn.hexagonal_spacing, 4)});
+  rows.push_back({"periodogram F", std::to_string(s.periodogram.size)});
+  if (s.sets > 1) rows.push_back({"sets averaged", std::to_string(s.sets)});
+  return rows;
+}
+
 void report_series(std::ostringstream& out, const Series& series) {
   const Summary& s = series.summary;
   const double h = s.nn.hexagonal_spacing;
   out << series.label << ": " << s.count << " points";
   if (s.sets > 1) out << ", mean over " << s.sets << " sets";
-  out << "\n";
+  out << (s.boundary == Boundary::bounded ? ", bounded (Euclidean distances in the unit square)" : "") << "\n";
   char row[160];
   auto line = [&](const std::string& name, double scale, int decimals) {
     std::snprintf(row, sizeof row, "    %-36s %10.*f %10.*f %10.*f\n", name.c_str(), decimals, s.nn.min * scale, decimals,
                   s.nn.max * scale, decimals, s.nn.mean * scale);
     out << row;
   };
-  std::snprintf(row, sizeof row, "  %-38s %10s %10s %10s\n", "nearest-neighbour distance (torus)", "min", "max", "mean");
+  std::snprintf(row, sizeof row, "  %-38s %10s %10s %10s\n",
+                s.boundary == Boundary::periodic ? "nearest-neighbour distance (torus)" : "nearest-neighbour distance",
+                "min", "max", "mean");
   out << row;
   line("raw", 1.0, 6);
   line("x1000 (the paper's table)", 1000.0, 2);
@@ -147,6 +218,13 @@ void report_series(std::ostringstream& out, const Series& series) {
   if (s.sets > 1)
     out << "    per-set minimum ranges " << fixed(1000 * s.nn_min_lowest, 2) << " to "
         << fixed(1000 * s.nn_min_highest, 2) << " (x1000)\n";
+  out << "  rho " << fixed(s.nn.rho(), 4) << ", average minimum distance " << fixed(s.nn.rho_mean(), 4)
+      << " (in hexagonal spacings)\n";
+  out << "  effective Nyquist frequency nu_eff " << fixed(s.measures.nu_eff, 3) << ", oscillations Omega "
+      << fixed(s.measures.omega, 3) << " (nu = |k| / (sqrt(N) / 2); square lattice nu_eff = 1)\n";
+  if (s.has_bond_order)
+    out << "  bond-orientational order: local |psi6| " << fixed(s.bond_order.local, 3) << ", global |<psi6>| "
+        << fixed(s.bond_order.global, 3) << " (1 = hexagonal lattice)\n";
   if (s.has_centroid_distance)
     out << "  mean distance to cell centroid: " << csv_number(s.centroid_distance) << " ("
         << fixed(s.centroid_distance / h, 4) << " hexagonal spacings; 0 = centroidal)\n";
@@ -155,11 +233,55 @@ void report_series(std::ostringstream& out, const Series& series) {
     if (s.radial[i].power > s.radial[peak].power) peak = i;
   if (peak < s.radial.size())
     out << "  periodogram F = " << s.periodogram.size << ": peak radial power " << fixed(s.radial[peak].power, 3)
-        << " at |k| = " << csv_number(s.radial[peak].frequency) << " (hexagonal lattice frequency "
-        << fixed(std::sqrt(2.0 * static_cast<double>(s.count) / std::sqrt(3.0)), 1) << ")\n";
+        << " at |k| = " << csv_number(s.radial[peak].frequency) << ", nu = " << fixed(s.nu(s.radial[peak].frequency), 3)
+        << " (hexagonal lattice: nu = " << fixed(2.0 * std::sqrt(2.0 / std::sqrt(3.0)), 3) << ")\n";
+  std::size_t rdf_peak = 0;
+  for (std::size_t b = 0; b < s.rdf.g.size(); ++b)
+    if (s.rdf.g[b] > s.rdf.g[rdf_peak]) rdf_peak = b;
+  if (!s.rdf.g.empty())
+    out << "  RDF peak g = " << fixed(s.rdf.g[rdf_peak], 3) << " at r = " << fixed(s.rdf.radius(rdf_peak) / h, 3)
+        << " hexagonal spacings (range " << fixed(s.rdf.range() / h, 2) << ", " << s.rdf.g.size() << " bins)\n";
   if (s.sets > 1)
     out << "  (anisotropy of a mean of " << s.sets << " periodograms: white noise sits at "
         << fixed(-10.0 * std::log10(static_cast<double>(s.sets)), 1) << " dB, not 0)\n";
+}
+
+// One row per series: the measures side by side (compare and by-level modes).
+void report_table(std::ostringstream& out, const std::vector<Series>& series) {
+  std::size_t width = 8;
+  for (const Series& s : series) width = std::max(width, s.label.size());
+  char row[256];
+  std::snprintf(row, sizeof row, "%-*s %8s %8s %8s %8s %8s %8s\n", static_cast<int>(width), "", "N", "rho", "avg min",
+                "nu_eff", "Omega", "psi6");
+  out << row;
+  for (const Series& s : series) {
+    const Summary& m = s.summary;
+    std::snprintf(row, sizeof row, "%-*s %8zu %8.4f %8.4f %8.3f %8.3f %8s\n", static_cast<int>(width), s.label.c_str(),
+                  m.count, m.nn.rho(), m.nn.rho_mean(), m.measures.nu_eff, m.measures.omega,
+                  m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
+    out << row;
+  }
+  out << "\n";
+}
+
+// Boundary of the analysis: --bounded, or what the files declare ("# domain ..."), else periodic.
+Boundary choose_boundary(const AnalyzeOptions& o, const std::vector<std::vector<PointSet>>& inputs) {
+  std::optional<Boundary> declared;
+  std::string declared_by;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    for (const PointSet& s : inputs[i]) {
+      if (!s.declared_boundary) continue;
+      if (declared && *declared != *s.declared_boundary)
+        throw Error(o.inputs[i] + ": declares '# domain " + boundary_name(*s.declared_boundary) + "' but " + declared_by +
+                    " declares '# domain " + boundary_name(*declared) + "': analyse them apart");
+      declared = s.declared_boundary;
+      declared_by = o.inputs[i];
+    }
+  }
+  if (o.bounded && declared == Boundary::periodic)
+    throw Error("--bounded, but " + declared_by + " declares '# domain periodic'");
+  if (o.bounded) return Boundary::bounded;
+  return declared.value_or(Boundary::periodic);
 }
 
 void run_analyze(const AnalyzeOptions& o) {
@@ -168,8 +290,19 @@ void run_analyze(const AnalyzeOptions& o) {
     throw Error("choose one of --average, --compare and --by-level");
   if (o.size != 0 && (o.size < 2 || o.size % 2 != 0)) throw Error("--size must be an even number >= 2");
   if (!(o.bin_width > 0.0) || !std::isfinite(o.bin_width)) throw Error("--bin-width must be positive");
+  if (!(o.rdf_range >= 0.0) || !std::isfinite(o.rdf_range)) throw Error("--rdf-range must be a positive number of hexagonal spacings");
   if (!o.labels.empty() && o.labels.size() != o.inputs.size())
     throw Error("--label needs one label per input (" + std::to_string(o.inputs.size()) + ")");
+  const FrequencyAxis axis = o.axis == "integer" ? FrequencyAxis::integer : FrequencyAxis::normalised;
+  std::string summary_format;
+  if (!o.summary.empty()) {
+    const std::string extension = std::filesystem::path(o.summary).extension().string();
+    if (extension == ".pdf") summary_format = "pdf";
+    else if (extension == ".svg") summary_format = "svg";
+    else throw Error(o.summary + ": --summary writes .pdf or .svg, not '" + extension + "'");
+    if (summary_format == "pdf" && !pdf_unavailable_reason().empty())
+      throw Error(o.summary + ": " + pdf_unavailable_reason());
+  }
 
   // Every output is declared, and so checked, before any work; they appear together at the end.
   OutputSet outputs;
@@ -177,16 +310,26 @@ void run_analyze(const AnalyzeOptions& o) {
   if (!o.from.empty()) outputs.add_input(o.from);
   outputs.add_folder(o.output);
   const std::filesystem::path dir(o.output);
-  OutputFile& stats_file = outputs.add((dir / "stats.json").string());
-  OutputFile& radial_file = outputs.add((dir / "radial.csv").string());
-  OutputFile& points_file = outputs.add((dir / "points.png").string());
-  OutputFile& spectrum_file = outputs.add((dir / "spectrum.png").string());
-  OutputFile& radial_image_file = outputs.add((dir / "radial.png").string());
-  OutputFile& report_file = outputs.add((dir / "report.txt").string());
+  auto output = [&](const std::string& name) -> OutputFile& { return outputs.add((dir / name).string()); };
+  OutputFile& stats_file = output("stats.json");
+  OutputFile& radial_file = output("radial.csv");
+  OutputFile& rdf_file = output("rdf.csv");
+  OutputFile& points_png_file = output("points.png");
+  OutputFile& spectrum_png_file = output("spectrum.png");
+  OutputFile& radial_png_file = output("radial.png");
+  OutputFile& rdf_png_file = output("rdf.png");
+  OutputFile& points_svg_file = output("points.svg");
+  OutputFile& spectrum_svg_file = output("spectrum.svg");
+  OutputFile& radial_svg_file = output("radial.svg");
+  OutputFile& rdf_svg_file = output("rdf.svg");
+  OutputFile& report_file = output("report.txt");
+  OutputFile* summary_file = o.summary.empty() ? nullptr : &outputs.add(o.summary);
 
   // Read and check every input before anything is computed.
+  ReadOptions read;
+  read.wrap = o.wrap;
   std::vector<std::vector<PointSet>> inputs;
-  for (const std::string& path : o.inputs) inputs.push_back(read_sets(path));
+  for (const std::string& path : o.inputs) inputs.push_back(read_sets(path, read));
   std::size_t total_sets = 0;
   for (const auto& sets : inputs) total_sets += sets.size();
   if (!o.average && !o.compare && total_sets > 1)
@@ -194,9 +337,16 @@ void run_analyze(const AnalyzeOptions& o) {
                 " files): use --average to analyse their mean or --compare to plot them together");
   if (o.by_level && !inputs[0][0].has_levels())
     throw Error(o.inputs[0] + ": --by-level needs a level column (x y level)");
+  const Boundary boundary = choose_boundary(o, inputs);
+  if (o.cells && boundary == Boundary::bounded)
+    throw Error("--cells draws periodic Voronoi cells: not for a bounded set");
   std::vector<Point> from;
   if (!o.from.empty()) {
-    from = read_point_file(o.from).points;
+    try {
+      from = read_point_file(o.from, read).points;
+    } catch (const Error& e) {
+      throw Error(append_wrap_hint(e.what()));
+    }
     if (from.size() != inputs[0][0].points.size())
       throw Error(o.from + ": --from has " + std::to_string(from.size()) + " points but the input has " +
                   std::to_string(inputs[0][0].points.size()));
@@ -209,6 +359,9 @@ void run_analyze(const AnalyzeOptions& o) {
   options.size = o.size;
   options.bin_width = o.bin_width;
   options.centroids = !o.no_centroids;
+  options.boundary = boundary;
+  options.rdf.range = o.rdf_range;
+  options.rdf.bins = static_cast<std::size_t>(o.rdf_bins);
   std::unique_ptr<Progress> bar;
   options.progress = [&](std::size_t done, std::size_t total) {
     if (!bar) bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
@@ -216,39 +369,39 @@ void run_analyze(const AnalyzeOptions& o) {
   };
 
   std::vector<Series> series;
-  Summary whole;  // what stats.json's top level and radial.csv describe
   if (o.compare) {
     for (std::size_t i = 0; i < inputs.size(); ++i) {
       auto sets = points_of(inputs[i]);
-      series.push_back({label_of(i), o.inputs[i], -1, inputs[i][0], summarize(sets, options)});
+      series.push_back({label_of(i), o.inputs[i], -1, inputs[i][0], inputs[i].size(), summarize(sets, options)});
       bar.reset();
     }
-    whole = series[0].summary;
   } else if (o.by_level) {
     const PointSet& set = inputs[0][0];
     std::vector<LevelSummary> levels = summarize_levels(set.points, set.levels, options);
     for (LevelSummary& l : levels) {
       std::string label = l.level == 0 ? "level 0" : "levels 0-" + std::to_string(l.level);
-      series.push_back({label, o.inputs[0], l.level, set, std::move(l.summary)});
+      series.push_back({label, o.inputs[0], l.level, set, 1, std::move(l.summary)});
     }
     bar.reset();
-    whole = series.back().summary;
   } else {
     std::vector<std::vector<Point>> sets;
     for (const auto& file : inputs)
       for (const PointSet& s : file) sets.push_back(s.points);
     std::string label = inputs.size() == 1 ? label_of(0) : "mean of " + std::to_string(sets.size()) + " sets";
     if (!o.labels.empty() && o.labels.size() == 1) label = o.labels[0];
-    series.push_back({label, o.inputs[0], -1, inputs[0][0], summarize(sets, options)});
+    series.push_back({label, o.inputs[0], -1, inputs[0][0], sets.size(), summarize(sets, options)});
     bar.reset();
-    whole = series[0].summary;
   }
 
-  // Images, rendered before anything is written.
+  // Images, rendered before anything is written: PNG canvases and SVG documents.
+  const bool several = series.size() > 1;
   std::vector<Canvas> point_images, spectrum_images;
+  std::vector<SvgDocument> point_svgs, spectrum_svgs;
   std::vector<std::string> captions;
+  std::vector<PointsFigure> figures;
   for (const Series& s : series) {
     PointsFigure figure;
+    figure.periodic = boundary == Boundary::periodic;
     if (o.by_level) {
       for (std::size_t i = 0; i < s.first.points.size(); ++i) {
         if (s.first.levels[i] > s.level) continue;
@@ -260,33 +413,75 @@ void run_analyze(const AnalyzeOptions& o) {
       if (s.first.has_levels()) figure.levels = s.first.levels;
       figure.from = from;
     }
+    if (s.sets > 1) figure.note = "set 1 of " + std::to_string(s.sets) + " (the analysis covers all " + std::to_string(s.sets) + ")";
     figure.cells = o.cells;
-    const bool several = series.size() > 1;
-    point_images.push_back(draw_points(figure, several ? o.image_size * 2 / 3 : o.image_size));
+    const int size = several ? o.image_size * 2 / 3 : o.image_size;
+    point_images.push_back(draw_points(figure, size));
+    point_svgs.push_back(points_svg(figure, size));
     spectrum_images.push_back(draw_spectrum(s.summary.periodogram, several ? 512 : 1024, several ? 384 : 512));
-    captions.push_back(s.label);
+    spectrum_svgs.push_back(spectrum_svg(s.summary.periodogram, several ? 512 : 1024, several ? 384 : 512));
+    // By-level prefixes each have their own frequency range: say which.
+    captions.push_back(o.by_level ? s.label + ", F = " + std::to_string(s.summary.periodogram.size) : s.label);
+    figures.push_back(std::move(figure));
   }
-  Canvas points_png = series.size() == 1 ? point_images[0] : montage(point_images, captions);
-  Canvas spectrum_png = series.size() == 1 ? spectrum_images[0] : montage(spectrum_images, captions);
+  Canvas points_png = several ? montage(point_images, captions) : point_images[0];
+  Canvas spectrum_png = several ? montage(spectrum_images, captions) : spectrum_images[0];
+  SvgDocument points_doc = several ? montage_svg(point_svgs, captions) : point_svgs[0];
+  SvgDocument spectrum_doc = several ? montage_svg(spectrum_svgs, captions) : spectrum_svgs[0];
   std::vector<RadialCurve> curves;
-  for (const Series& s : series) curves.push_back({s.label, s.summary.radial});
-  std::string title = series.size() == 1 ? series[0].label + ": " + std::to_string(series[0].summary.count) + " points"
-                                         : (o.by_level ? "prefixes of " + label_of(0) : "comparison");
+  std::vector<RdfCurve> rdf_curves;
+  for (const Series& s : series) {
+    curves.push_back({s.label, s.summary.radial, s.summary.count});
+    rdf_curves.push_back({s.label, s.summary.rdf});
+  }
+  std::string title = !several ? series[0].label + ": " + std::to_string(series[0].summary.count) + " points"
+                               : (o.by_level ? "prefixes of " + label_of(0) : "comparison");
   if (!o.title.empty())
     title = o.title;
-  else if (series.size() == 1 && series[0].summary.sets > 1)
+  else if (!several && series[0].summary.sets > 1)
     title = "mean over " + std::to_string(series[0].summary.sets) + " sets of " +
             std::to_string(series[0].summary.count) + " points";
   // White noise averaged over M sets: anisotropy about -10 log10(M) dB (Lagae & Dutré 2008).
   double reference = 0.0;
   if (std::all_of(series.begin(), series.end(), [&](const Series& s) { return s.summary.sets == series[0].summary.sets; }))
     reference = -10.0 * std::log10(static_cast<double>(series[0].summary.sets));
-  Canvas radial_png = draw_radial(curves, title, reference);
+  const Plot radial = radial_plot(curves, title, reference, axis);
+  const Plot rdf = rdf_plot(rdf_curves, title);
+  Canvas radial_png = render_plot(radial, 900, 760);
+  Canvas rdf_png = render_plot(rdf, 900, 480);
+  SvgDocument radial_svg = render_plot_svg(radial, 900, 760);
+  SvgDocument rdf_svg = render_plot_svg(rdf, 900, 480);
 
-  nlohmann::json stats = summary_json(whole);
+  std::optional<SvgDocument> summary_doc;
+  if (!o.summary.empty()) {
+    const Series& s = series.back();  // by level: the whole set
+    SummaryPage page;
+    page.title = o.title.empty() ? (several && !o.by_level ? "comparison" : title) : o.title;
+    page.subtitle = "bluetile analyze";
+    for (const std::string& in : o.inputs) page.subtitle += " " + in;
+    page.points = figures.back();
+    if (page.points.note.empty()) page.points.note = s.label;
+    page.periodogram = s.summary.periodogram;
+    page.radial = curves;
+    page.rdf = rdf_curves;
+    page.axis = axis;
+    page.anisotropy_reference = reference;
+    page.measures = measure_rows(s.summary);
+    summary_doc = summary_page(page);
+  }
+
+  nlohmann::json stats;
   stats["mode"] = o.compare ? "compare" : o.by_level ? "by-level" : o.average ? "average" : "single";
+  if (!o.compare) {
+    // One set, a mean, or the whole leveled set (its last prefix); compare mode has no single
+    // set to describe, so its figures are only under "compare", each with its label.
+    stats.update(summary_json(series.back().summary));
+    stats["label"] = series.back().label;
+  }
+  stats["boundary"] = boundary_name(boundary);
   stats["inputs"] = o.inputs;
   stats["bin_width"] = o.bin_width;
+  stats["frequency_axis"] = axis == FrequencyAxis::normalised ? "nu = |k| / (sqrt(N) / 2)" : "|k|";
   if (o.compare || o.by_level) {
     nlohmann::json list = nlohmann::json::array();
     for (const Series& s : series) {
@@ -298,31 +493,49 @@ void run_analyze(const AnalyzeOptions& o) {
     }
     stats[o.compare ? "compare" : "levels"] = std::move(list);
   }
-  const std::vector<std::string> images = {"points.png", "spectrum.png", "radial.png"};
+  const std::vector<std::string> images = {"points.png", "points.svg", "spectrum.png", "spectrum.svg",
+                                           "radial.png", "radial.svg", "rdf.png",      "rdf.svg"};
   stats["images"] = images;
 
   std::ostringstream report;
   report << "bluetile analyze";
   for (const std::string& in : o.inputs) report << " " << in;
   report << "\n\n";
+  if (several) report_table(report, series);
   for (const Series& s : series) {
     report_series(report, s);
     report << "\n";
   }
-  if (whole.count == 1000) {
+  if (series.back().summary.count == 1000) {
     report << "The paper (section 2, N = 1000, x1000): dart throwing min 21.64 max 33.44, Lloyd 80 iterations\n"
               "min 24.86 max 32.33. Compare minima and the ordering; its max column does not reproduce\n"
               "(DESIGN section 5: we get about 36).\n\n";
   }
-  report << "written: stats.json radial.csv report.txt points.png spectrum.png radial.png\n";
+  if (!o.by_level && series[0].sets > 1 && !o.compare)
+    report << "points.png and points.svg show the first of the " << series[0].sets << " sets.\n";
+  report << "written: stats.json radial.csv rdf.csv report.txt points spectrum radial rdf (.png .svg)";
+  if (!o.summary.empty()) report << ", " << o.summary;
+  report << "\n";
 
+  const std::vector<Series> tables = o.compare ? series : std::vector<Series>{series.back()};
   stats_file.write(stats.dump(2) + "\n");
-  radial_file.write(radial_csv(o.compare ? series : std::vector<Series>{series.back()}, o.compare));
-  write_image(points_file, points_png);
-  write_image(spectrum_file, spectrum_png);
-  write_image(radial_image_file, radial_png);
+  radial_file.write(radial_csv(tables, o.compare));
+  rdf_file.write(rdf_csv(tables, o.compare));
+  write_image(points_png_file, points_png);
+  write_image(spectrum_png_file, spectrum_png);
+  write_image(radial_png_file, radial_png);
+  write_image(rdf_png_file, rdf_png);
+  points_svg_file.write(points_doc.str());
+  spectrum_svg_file.write(spectrum_doc.str());
+  radial_svg_file.write(radial_svg.str());
+  rdf_svg_file.write(rdf_svg.str());
+  if (summary_file) {
+    if (summary_format == "pdf") write_pdf(*summary_doc, *summary_file);
+    else summary_file->write(summary_doc->str());
+  }
   report_file.write(report.str());
   outputs.publish();
+  std::cout << report.str() << std::flush;
 }
 
 }  // namespace
@@ -330,21 +543,37 @@ void run_analyze(const AnalyzeOptions& o) {
 void add_analyze_command(CLI::App& app) {
   auto o = std::make_shared<AnalyzeOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "analyze", "Spectrum, radial power, anisotropy and nearest-neighbour statistics of point sets (psa's conventions)");
+      "analyze",
+      "Spectrum, radial power, anisotropy, RDF, nu_eff, Omega and nearest-neighbour statistics of point sets (psa's "
+      "conventions)");
   cmd->add_option("-i,--input", o->inputs, "Point file(s); a file may hold several sets separated by '#' lines")
       ->required();
   cmd->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
   add_integer_option(cmd, "--size", o->size, 0, 65536,
                      "Periodogram size F (even): frequencies -F/2..F/2-1; default (0) 2 floor(5 sqrt(N))");
   add_real_option(cmd, "--bin-width", o->bin_width, {0.0, 65536.0, true, false}, "Annulus width in integer frequencies");
+  cmd->add_option("--axis", o->axis, "Frequency axis of the plots: normalised (nu = |k| / (sqrt(N) / 2)) or integer")
+      ->check(CLI::IsMember({"normalised", "integer"}))
+      ->capture_default_str();
   cmd->add_flag("--average", o->average, "Analyse the mean over all sets of all inputs (equal sizes)");
   cmd->add_flag("--compare", o->compare, "One series per input file (its sets averaged), plotted together");
   cmd->add_flag("--by-level", o->by_level, "Analyse every prefix (levels 0..l) of a hierarchical set");
   cmd->add_option("--label", o->labels, "Legend label per input (default: file names)");
+  cmd->add_flag("--bounded", o->bounded,
+                "The sets were made in the bounded unit square: Euclidean distances, edge-corrected RDF (also "
+                "chosen by a '# domain bounded' line in the file)");
+  cmd->add_flag("--wrap", o->wrap, "Wrap points outside [0, 1) onto the torus (else they are an error)");
+  add_real_option(cmd, "--rdf-range", o->rdf_range, {0.0, 1e6}, "Largest RDF distance in hexagonal spacings (default 8, psa's)")
+      ->default_str("8");
+  add_integer_option(cmd, "--rdf-bins", o->rdf_bins, 1, 1000000, "RDF histogram bins (default N / 8 within 32..1000, psa's)")
+      ->default_str("N / 8");
+  cmd->add_option("--summary", o->summary,
+                  "Also write a one-page summary (points, spectrum, radial power, anisotropy, RDF, measures) to this "
+                  ".pdf or .svg file");
   cmd->add_flag("--cells", o->cells, "Draw the periodic Voronoi cells in points.png");
   cmd->add_option("--from", o->from, "Draw each point's move from its position in this file (same count and order)");
   cmd->add_flag("--no-centroids", o->no_centroids, "Skip the mean distance of the sites to their exact cell centroids");
-  cmd->add_option("--title", o->title, "Title of radial.png");
+  cmd->add_option("--title", o->title, "Title of radial.png and of the summary");
   add_integer_option(cmd, "--image-size", o->image_size, 64, 8192,
                      "Side of points.png in pixels (two thirds of it per set side by side)");
   add_integer_option(cmd, "--threads", o->threads, 1, 1024, "CPU threads (default: all cores); output does not depend on it")

@@ -186,8 +186,10 @@ TEST(Outputs, AnalyzePublishesAllOrNothing) {
   // A missing folder appears with all its files, or not at all.
   r = run({"analyze", "-i", dir.file("p.txt"), "-o", dir.file("new/sub"), "--no-centroids"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(entries(dir.file("new")), (Names{"sub/", "sub/points.png", "sub/radial.csv", "sub/radial.png", "sub/report.txt",
-                                             "sub/spectrum.png", "sub/stats.json"}));
+  EXPECT_EQ(entries(dir.file("new")),
+            (Names{"sub/", "sub/points.png", "sub/points.svg", "sub/radial.csv", "sub/radial.png", "sub/radial.svg",
+                   "sub/rdf.csv", "sub/rdf.png", "sub/rdf.svg", "sub/report.txt", "sub/spectrum.png", "sub/spectrum.svg",
+                   "sub/stats.json"}));
 }
 
 TEST(Outputs, FileSizeLimitIsAWriteErrorAndLeavesNothing) {

@@ -9,9 +9,12 @@
 
 namespace bluetile {
 
-std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points, const Domain& domain) {
+std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points, const Domain& domain,
+                                                Boundary boundary) {
   const std::size_t n = points.size();
   if (n == 0) throw Error("nearest-neighbour distances need at least one point");
+  const bool periodic = boundary == Boundary::periodic;
+  if (!periodic && n < 2) throw Error("nearest-neighbour distances in a bounded domain need at least two points");
   // Buckets of side >= the typical spacing; rings grow until the nearest found is provably nearest.
   double side = std::sqrt(2.0 * domain.area() / static_cast<double>(n));
   long columns = std::clamp<long>(static_cast<long>(domain.size.x / side), 1, 1 << 14);
@@ -39,6 +42,7 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points
           for (long dx = -ring; dx <= ring; ++dx) {
             if (std::max(std::labs(dx), std::labs(dy)) != ring) continue;
             long bx = cx + dx, by = cy + dy;
+            if (!periodic && (bx < 0 || by < 0 || bx >= columns || by >= rows)) continue;
             long wx = static_cast<long>(std::floor(static_cast<double>(bx) / static_cast<double>(columns)));
             long wy = static_cast<long>(std::floor(static_cast<double>(by) / static_cast<double>(rows)));
             std::size_t b = static_cast<std::size_t>((by - wy * rows) * columns + (bx - wx * columns));
@@ -56,6 +60,7 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points
                                  p.y - static_cast<double>(cy - ring) * cell.y,
                                  static_cast<double>(cy + ring + 1) * cell.y - p.y});
         if (best <= reach * reach) break;
+        if (!periodic && ring >= std::max(columns, rows)) break;  // every bucket visited
       }
       nearest[i] = std::sqrt(best);
     }
@@ -63,8 +68,9 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points
   return nearest;
 }
 
-NearestNeighbourStats nearest_neighbour_stats(const std::vector<Point>& points, const Domain& domain) {
-  std::vector<double> d = nearest_neighbour_distances(points, domain);
+NearestNeighbourStats nearest_neighbour_stats(const std::vector<Point>& points, const Domain& domain,
+                                              Boundary boundary) {
+  std::vector<double> d = nearest_neighbour_distances(points, domain, boundary);
   NearestNeighbourStats stats;
   stats.count = d.size();
   stats.min = *std::min_element(d.begin(), d.end());

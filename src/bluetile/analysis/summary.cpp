@@ -1,4 +1,5 @@
-// Point-set summaries for `bluetile analyze` (the paper, sections 1.2 and 2; DESIGN section 5).
+// Point-set summaries for `bluetile analyze` (the paper, sections 1.2 and 2; DESIGN section 5;
+// Heck, Schlömer and Deussen 2013 for the RDF and its measures).
 #include "bluetile/analysis/summary.h"
 
 #include <algorithm>
@@ -18,6 +19,19 @@ double mean_centroid_distance(std::span<const Point> points) {
   return sum / static_cast<double>(points.size());
 }
 
+SpectrumCurve spectrum_from_rdf(const RadialDistribution& rdf, double nu_max, double step) {
+  if (!(step > 0.0) || !(nu_max > 0.0)) throw Error("spectrum from the RDF needs a positive range and step");
+  SpectrumCurve curve;
+  const double unit = 0.5 * std::sqrt(static_cast<double>(rdf.count) / rdf.area);  // |k| of nu = 1
+  const auto samples = static_cast<std::size_t>(std::ceil(nu_max / step));
+  for (std::size_t i = 0; i <= samples; ++i) {
+    const double nu = std::min(nu_max, static_cast<double>(i) * step);
+    curve.nu.push_back(nu);
+    curve.power.push_back(power_from_rdf(rdf, nu * unit));
+  }
+  return curve;
+}
+
 Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions& options) {
   if (sets.empty()) throw Error("no point sets to analyse");
   const std::size_t n = sets[0].size();
@@ -28,14 +42,21 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
       throw Error("cannot average sets of different sizes (" + std::to_string(n) + " and " +
                   std::to_string(set.size()) + " points)");
   }
+  const bool periodic = options.boundary == Boundary::periodic;
   Summary s;
   s.count = n;
   s.sets = sets.size();
+  s.boundary = options.boundary;
+  s.has_centroid_distance = options.centroids && periodic;
+  s.has_bond_order = options.bond_order && periodic;
+  RdfOptions rdf_options = options.rdf;
+  rdf_options.boundary = options.boundary;
   const int size = options.size > 0 ? options.size : default_periodogram_size(n);
   std::vector<Periodogram> periodograms;
+  std::vector<RadialDistribution> distributions;
   const std::size_t total_work = sets.size();
   for (std::size_t k = 0; k < sets.size(); ++k) {
-    NearestNeighbourStats nn = nearest_neighbour_stats(sets[k]);
+    NearestNeighbourStats nn = nearest_neighbour_stats(sets[k], Domain{}, options.boundary);
     if (k == 0) {
       s.nn = nn;
       s.nn_min_lowest = s.nn_min_highest = nn.min;
@@ -46,7 +67,13 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
       s.nn_min_lowest = std::min(s.nn_min_lowest, nn.min);
       s.nn_min_highest = std::max(s.nn_min_highest, nn.min);
     }
-    if (options.centroids) s.centroid_distance += mean_centroid_distance(sets[k]);
+    if (s.has_centroid_distance) s.centroid_distance += mean_centroid_distance(sets[k]);
+    if (s.has_bond_order) {
+      BondOrder b = bond_orientational_order(sets[k]);
+      s.bond_order.local += b.local;
+      s.bond_order.global += b.global;
+    }
+    distributions.push_back(radial_distribution(sets[k], rdf_options));
     std::function<void(std::size_t, std::size_t)> progress;
     if (options.progress) {
       progress = [&](std::size_t done, std::size_t total) {
@@ -59,10 +86,13 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
   s.nn.min /= count;
   s.nn.max /= count;
   s.nn.mean /= count;
-  s.has_centroid_distance = options.centroids;
   s.centroid_distance /= count;
+  s.bond_order.local /= count;
+  s.bond_order.global /= count;
   s.periodogram = sets.size() == 1 ? std::move(periodograms[0]) : average_periodograms(periodograms);
   s.radial = radial_power(s.periodogram, options.bin_width);
+  s.rdf = sets.size() == 1 ? std::move(distributions[0]) : average_distributions(distributions);
+  s.measures = spectral_measures(s.radial, options.bin_width, n);
   return s;
 }
 
@@ -80,10 +110,7 @@ std::vector<LevelSummary> summarize_levels(std::span<const Point> points, std::s
     if (prefix[0].size() < 2)
       throw Error("levels 0.." + std::to_string(level) + " hold " + std::to_string(prefix[0].size()) +
                   " point; a prefix needs at least 2 to analyse");
-    // One F for every prefix, the full set's: the curves share an abscissa and range.
-    SummaryOptions o = options;
-    if (o.size <= 0) o.size = default_periodogram_size(points.size());
-    result.push_back({level, summarize(prefix, o)});
+    result.push_back({level, summarize(prefix, options)});
   }
   return result;
 }

@@ -1,8 +1,10 @@
 // Everything `bluetile analyze` reports about one point set, or about the mean of several, or
-// about each prefix (levels 0..l) of a hierarchical set: nearest-neighbour statistics on the
-// torus (the paper's table, section 2), how far sites are from their cell centroids (how relaxed
-// a set is: 0 for a centroidal Voronoi tessellation), and the periodogram with its radial power
-// and anisotropy (section 1.2, DESIGN section 5).
+// about each prefix (levels 0..l) of a hierarchical set: nearest-neighbour statistics (the
+// paper's table, section 2; rho), how far sites are from their cell centroids (how relaxed a set
+// is: 0 for a centroidal Voronoi tessellation), the periodogram with its radial power and
+// anisotropy (section 1.2, DESIGN section 5), the radial distribution function, the effective
+// Nyquist frequency and oscillations (Heck, Schlömer and Deussen 2013) and the
+// bond-orientational order.
 #pragma once
 
 #include <cstddef>
@@ -10,9 +12,12 @@
 #include <span>
 #include <vector>
 
+#include "bluetile/analysis/bond_order.h"
 #include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/analysis/pair_correlation.h"
 #include "bluetile/analysis/periodogram.h"
 #include "bluetile/analysis/radial_power.h"
+#include "bluetile/analysis/spectral_measures.h"
 #include "bluetile/core/torus.h"
 
 namespace bluetile {
@@ -20,33 +25,60 @@ namespace bluetile {
 struct SummaryOptions {
   int size = 0;            // periodogram size F; 0 picks default_periodogram_size(N)
   double bin_width = 1.0;  // annulus width w
+  // periodic: torus distances (sets made with periodic boundaries); bounded: Euclidean
+  // distances in the unit square with edge-corrected estimators. Centroid distances and bond
+  // order use periodic Voronoi cells and are left out for bounded sets.
+  Boundary boundary = Boundary::periodic;
   bool centroids = true;   // measure the distance of each site to its exact cell centroid
+  bool bond_order = true;  // psi_6 from exact periodic Voronoi neighbours
+  RdfOptions rdf;          // range and bins (its boundary is taken from `boundary`)
   std::function<void(std::size_t, std::size_t)> progress;  // periodogram progress
 };
 
 struct Summary {
   std::size_t count = 0;  // points per set
   std::size_t sets = 1;   // sets averaged
+  Boundary boundary = Boundary::periodic;
   NearestNeighbourStats nn;       // for several sets: the mean over sets of min, max, mean
   double nn_min_lowest = 0.0;     // smallest and largest per-set minimum (equal for one set)
   double nn_min_highest = 0.0;
   double centroid_distance = 0.0; // mean distance of a site to its cell centroid (mean over sets)
   bool has_centroid_distance = false;
+  BondOrder bond_order;           // mean over sets
+  bool has_bond_order = false;
   Periodogram periodogram;        // mean over sets
   std::vector<Annulus> radial;
+  RadialDistribution rdf;         // mean over sets
+  // nu_eff and Omega of the radial power spectrum (`radial`). The spectrum the RDF implies
+  // (spectrum_from_rdf) gives nearly the same Omega, but its truncation at the RDF's range
+  // blurs the lowest frequencies, where nu_eff is decided: the direct sum is exact there.
+  SpectralMeasures measures;
+
+  // Normalised frequency nu = |k| / (sqrt(N) / 2) of an integer frequency.
+  double nu(double frequency) const { return normalised_frequency(frequency, count); }
 };
 
 // Mean distance of each site to the centroid of its exact periodic Voronoi cell (domain units).
 double mean_centroid_distance(std::span<const Point> points);
 
-// Analyses one set, or the mean over several sets of equal size (periodograms averaged before
-// the radial power is taken, as psa does). Throws Error for an empty list, sets of fewer than
-// two points, or sets of different sizes.
+// The radial power spectrum the RDF implies, sampled every `step` in nu from 0 to `nu_max`
+// (nu and power, for spectral_measures and plots).
+struct SpectrumCurve {
+  std::vector<double> nu, power;
+};
+SpectrumCurve spectrum_from_rdf(const RadialDistribution& rdf, double nu_max = kOscillationRangeNu,
+                                double step = 0.005);
+
+// Analyses one set, or the mean over several sets of equal size (periodograms and RDFs
+// averaged before the measures are taken, as psa --avg does). Throws Error for an empty list,
+// sets of fewer than two points, or sets of different sizes.
 Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions& options);
 
 // For a leveled set: the summary of each prefix, points with level <= l, for every level l
-// present (sorted). Every prefix uses the same periodogram size (default: the full set's). Throws Error when `levels` does
-// not match `points` or a prefix has fewer than two points.
+// present (sorted). Each prefix gets its own natural periodogram size (default_periodogram_size
+// of its count) unless options.size fixes one for all; on the normalised axis nu the curves
+// overlay either way. Throws Error when `levels` does not match `points` or a prefix has fewer
+// than two points.
 struct LevelSummary {
   int level = 0;
   Summary summary;

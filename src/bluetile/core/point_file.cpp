@@ -15,6 +15,7 @@ namespace {
 // Values quoted in messages are cut to this many bytes: a message stays one readable line.
 constexpr std::size_t kQuoteLength = 40;
 
+// 'value', cut: 'first 40 bytes...' (N bytes).
 std::string quote(std::string_view value) {
   // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on a literal + string chain.
   std::string text(1, '\'');
@@ -25,6 +26,12 @@ std::string quote(std::string_view value) {
     text += " (" + std::to_string(value.size()) + " bytes)";
   }
   return text;
+}
+
+// The same without the quotes (a value that parsed as a number).
+std::string shortened(std::string_view value) {
+  if (value.size() <= kQuoteLength) return std::string(value);
+  return std::string(value.substr(0, kQuoteLength)) + "... (" + std::to_string(value.size()) + " bytes)";
 }
 
 bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
@@ -80,7 +87,9 @@ bool parse_integer(std::string_view token, long long& value) {
 // Incrementally builds one set, checking each line.
 class SetParser {
  public:
-  explicit SetParser(const std::string& name) : name_(name) {}
+  SetParser(const std::string& name, const ReadOptions& options) : name_(name), options_(options) {}
+
+  void declare(std::optional<Boundary> boundary) { set_.declared_boundary = boundary; }
 
   void data_line(std::string_view line, std::size_t number) {
     LineError fail(name_, number);
@@ -112,6 +121,12 @@ class SetParser {
         fail("level must be an integer from 0 to " + std::to_string(kMaxLevel) + ", got " + quote(tokens.kept[2]));
       set_.levels.push_back(static_cast<int>(level));
     }
+    if (!options_.wrap) {
+      for (int axis = 0; axis < 2; ++axis) {
+        if (!(p[axis] >= 0.0 && p[axis] < 1.0))
+          fail(std::string(axis == 0 ? "x" : "y") + " = " + shortened(tokens.kept[axis]) + " is outside [0, 1)");
+      }
+    }
     set_.points.push_back(wrap_point(p, Domain{}));
   }
 
@@ -124,17 +139,31 @@ class SetParser {
                                     std::to_string(set_.points.size()) + " follow");
     }
     PointSet result = std::move(set_);
-    *this = SetParser(name_);
+    set_ = PointSet{};
+    set_.declared_boundary = result.declared_boundary;  // a "# domain" line holds for later sets
+    levels_seen_ = false;
+    declared_count_ = 0;
+    count_line_ = 0;
     return result;
   }
 
  private:
   std::string name_;
+  ReadOptions options_;
   PointSet set_;
   bool levels_seen_ = false;
   std::size_t declared_count_ = 0;
   std::size_t count_line_ = 0;
 };
+
+// The boundary a comment declares ("domain periodic" / "domain bounded"), if it is such a line.
+std::optional<Boundary> declared_boundary(std::string_view comment) {
+  Tokens words = split_whitespace(comment);
+  if (words.count != 2 || words.kept[0] != "domain") return std::nullopt;
+  if (words.kept[1] == "periodic") return Boundary::periodic;
+  if (words.kept[1] == "bounded") return Boundary::bounded;
+  return std::nullopt;
+}
 
 }  // namespace
 
@@ -142,7 +171,8 @@ class SetParser {
 // `several`, one per '#'-separated set).
 class PointTextParser::Impl {
  public:
-  Impl(std::string name, bool several) : name_(std::move(name)), several_(several), parser_(name_) {}
+  Impl(std::string name, bool several, const ReadOptions& options)
+      : name_(std::move(name)), several_(several), parser_(name_, options) {}
 
   void feed(std::string_view chunk) {
     if (at_start_) {
@@ -210,9 +240,15 @@ class PointTextParser::Impl {
       LineError(name_, number_)("binary data (NUL byte): not a point file");
     std::size_t hash = text.find('#');
     std::string_view data = text.substr(0, hash);
-    if (several_ && hash != std::string_view::npos && split_whitespace(data).count == 0) {
-      if (!parser_.empty()) sets_.push_back(parser_.finish());
-      return;
+    const bool comment_line = hash != std::string_view::npos && split_whitespace(data).count == 0;
+    if (comment_line) {
+      const std::optional<Boundary> boundary = declared_boundary(text.substr(hash + 1));
+      if (several_) {  // a '#' line ends a set (UTK's convention)
+        if (!parser_.empty()) sets_.push_back(parser_.finish());
+        if (boundary) parser_.declare(boundary);
+        return;
+      }
+      if (boundary && parser_.empty()) parser_.declare(boundary);
     }
     parser_.data_line(data, number_);
   }
@@ -226,8 +262,8 @@ class PointTextParser::Impl {
   std::size_t number_ = 0;
 };
 
-PointTextParser::PointTextParser(std::string name, bool several_sets)
-    : impl_(std::make_unique<Impl>(std::move(name), several_sets)) {}
+PointTextParser::PointTextParser(std::string name, bool several_sets, const ReadOptions& options)
+    : impl_(std::make_unique<Impl>(std::move(name), several_sets, options)) {}
 PointTextParser::~PointTextParser() = default;
 void PointTextParser::feed(std::string_view piece) { impl_->feed(piece); }
 std::vector<PointSet> PointTextParser::finish() { return impl_->finish(); }
@@ -236,15 +272,15 @@ std::size_t PointTextParser::points() const { return impl_->points_read(); }
 
 namespace {
 
-std::vector<PointSet> parse(std::string_view text, const std::string& name, bool several) {
-  PointTextParser parser(name, several);
+std::vector<PointSet> parse(std::string_view text, const std::string& name, bool several, const ReadOptions& options) {
+  PointTextParser parser(name, several, options);
   parser.feed(text);
   return parser.finish();
 }
 
-std::vector<PointSet> read(const std::string& path, bool several) {
+std::vector<PointSet> read(const std::string& path, bool several, const ReadOptions& options) {
   const std::string name = input_name(path);
-  PointTextParser parser(name, several);
+  PointTextParser parser(name, several, options);
   try {
     for_each_chunk(path, [&](std::string_view chunk) { parser.feed(chunk); });
     return parser.finish();
@@ -258,17 +294,21 @@ std::vector<PointSet> read(const std::string& path, bool several) {
 
 std::string input_name(const std::string& path) { return path == "-" ? "stdin" : path; }
 
-PointSet parse_points(std::string_view text, const std::string& name) {
-  return std::move(parse(text, name, false).front());
+PointSet parse_points(std::string_view text, const std::string& name, const ReadOptions& options) {
+  return std::move(parse(text, name, false, options).front());
 }
 
-std::vector<PointSet> parse_point_sets(std::string_view text, const std::string& name) {
-  return parse(text, name, true);
+std::vector<PointSet> parse_point_sets(std::string_view text, const std::string& name, const ReadOptions& options) {
+  return parse(text, name, true, options);
 }
 
-PointSet read_point_file(const std::string& path) { return std::move(read(path, false).front()); }
+PointSet read_point_file(const std::string& path, const ReadOptions& options) {
+  return std::move(read(path, false, options).front());
+}
 
-std::vector<PointSet> read_point_sets(const std::string& path) { return read(path, true); }
+std::vector<PointSet> read_point_sets(const std::string& path, const ReadOptions& options) {
+  return read(path, true, options);
+}
 
 void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header) {
   for (const auto& line : header) {

@@ -1,9 +1,11 @@
 // Point files (DESIGN section 6): UTF-8 text, one point per line "x y" with an optional third
 // column holding the point's level; '#' starts a comment; a first data line holding a single
 // integer is a point count (psa's convention) and is checked. Coordinates outside [0,1) are
-// wrapped onto the unit torus; NaN, infinity and malformed lines are errors naming the file
-// and line. A UTF-8 byte-order mark at the start is skipped. Written with 17 significant digits
-// so every double round-trips.
+// wrapped onto the unit torus (or refused, see ReadOptions); NaN, infinity and malformed lines
+// are errors naming the file and line. A comment line "# domain periodic" or "# domain bounded"
+// says how the sets after it were made (analysis measures bounded sets in the plain square). A
+// UTF-8 byte-order mark at the start is skipped. Written with 17 significant digits so every
+// double round-trips.
 //
 // Reading streams the file in chunks (memory: the points, not the text). Any failure, a
 // malformed line, a read error, running out of memory, is an Error naming the file (and the
@@ -12,6 +14,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -26,7 +29,16 @@ struct PointSet {
   // Level of each point (hierarchical sets), or empty when the file had no level column.
   std::vector<int> levels;
 
+  // What a "# domain ..." line before the set declared, if any.
+  std::optional<Boundary> declared_boundary;
+
   bool has_levels() const { return !levels.empty(); }
+};
+
+struct ReadOptions {
+  // false: a coordinate outside [0, 1) is an error naming the file, line and value, instead of
+  // being wrapped onto the torus.
+  bool wrap = true;
 };
 
 // The largest level a point file may hold: writers must not go beyond what readers accept.
@@ -37,22 +49,22 @@ std::string input_name(const std::string& path);
 
 // Reads one point set from `path`, or from standard input when path is "-".
 // Throws Error("<path>:<line>: <what>") on bad input, Error("<path>: <what>") on read failure.
-PointSet read_point_file(const std::string& path);
+PointSet read_point_file(const std::string& path, const ReadOptions& options = {});
 
 // Several sets in one file, separated by lines starting with '#' (UTK's convention), as
 // `relax --sets` writes them. Empty sets between consecutive '#' lines are skipped.
-std::vector<PointSet> read_point_sets(const std::string& path);
+std::vector<PointSet> read_point_sets(const std::string& path, const ReadOptions& options = {});
 
 // The same, from text in memory; `name` is used in error messages in place of a path.
-PointSet parse_points(std::string_view text, const std::string& name);
-std::vector<PointSet> parse_point_sets(std::string_view text, const std::string& name);
+PointSet parse_points(std::string_view text, const std::string& name, const ReadOptions& options = {});
+std::vector<PointSet> parse_point_sets(std::string_view text, const std::string& name, const ReadOptions& options = {});
 
 // Point-file text fed in pieces cut anywhere (the readers above feed 64 KiB chunks): the result,
 // or the error, does not depend on where the cuts fall.
 class PointTextParser {
  public:
   // `several_sets`: '#' lines separate sets (read_point_sets); else one set (read_point_file).
-  PointTextParser(std::string name, bool several_sets);
+  PointTextParser(std::string name, bool several_sets, const ReadOptions& options = {});
   ~PointTextParser();
   PointTextParser(const PointTextParser&) = delete;
   PointTextParser& operator=(const PointTextParser&) = delete;

@@ -5,12 +5,22 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 
 #include <glm/vec2.hpp>
 
 namespace bluetile {
 
 using Point = glm::dvec2;
+
+// The domain's boundary, for cells and for distances: periodic (opposite sides identified, the
+// paper's setting: cells wrap around, distances are taken on the torus, sets tile), or bounded
+// (the closed rectangle: cells are clipped by its border, distances are plain Euclidean ones,
+// no periodic images; a set made in a bounded square).
+enum class Boundary : std::uint8_t {
+  periodic,
+  bounded,
+};
 
 // A periodic rectangle [0, size.x) x [0, size.y).
 struct Domain {

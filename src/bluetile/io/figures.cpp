@@ -3,22 +3,32 @@
 #include <algorithm>
 #include <cmath>
 
+#include "bluetile/analysis/spectral_measures.h"
 #include "bluetile/core/error.h"
-#include "bluetile/io/plot.h"
 #include "bluetile/voronoi/exact_engine.h"
 
 namespace bluetile {
+namespace {
 
-Canvas draw_points(const PointsFigure& figure, int size) {
-  const double margin = 10.0, side = size - 2.0 * margin;
-  Canvas canvas(size, size, colours::white);
-  auto to_px = [&](Point p) { return Point{margin + p.x * side, margin + (1.0 - p.y) * side}; };
+constexpr double kPointsMargin = 10.0 / 800.0;  // frame margin, as a fraction of the figure's side
+
+// Room under the square for the figure's note.
+double note_height(double text_height, const PointsFigure& figure) {
+  return figure.note.empty() ? 0.0 : text_height + 12.0;
+}
+
+}  // namespace
+
+void paint_points(const PointsFigure& figure, Painter& painter, double x, double y, double size) {
+  const double margin = kPointsMargin * size, side = size - 2.0 * margin;
+  auto to_px = [&](Point p) { return Point{x + margin + p.x * side, y + margin + (1.0 - p.y) * side}; };
   const std::size_t n = figure.points.size();
   const double spacing = n ? hexagonal_spacing(static_cast<double>(n)) * side : side;
   // Marks a fifth of the hexagonal spacing across: they never touch in a blue-noise set.
-  const double radius = std::clamp(0.1 * spacing, 1.0, 5.0);
-  // Something within `reach` of an edge is drawn again one period over.
+  const double radius = std::clamp(0.1 * spacing, 1.0, 5.0) * std::min(1.0, size / 400.0);
+  // On the torus, something within `reach` of an edge is drawn again one period over.
   auto for_copies = [&](Point p, double reach, auto draw) {
+    if (!figure.periodic) return draw(p);
     for (int sy = -1; sy <= 1; ++sy) {
       for (int sx = -1; sx <= 1; ++sx) {
         Point q = p + Point{static_cast<double>(sx), static_cast<double>(sy)};
@@ -28,53 +38,74 @@ Canvas draw_points(const PointsFigure& figure, int size) {
     }
   };
 
-  if (figure.cells && n > 0) {
-    Scene scene = make_scene(figure.points);
+  if (figure.cells && figure.periodic && n > 0) {
+    const std::vector<std::vector<Point>> polygons = exact_cell_polygons(make_scene(figure.points));
     const Colour cell_colour{0.55f, 0.65f, 0.80f};
+    std::vector<Point> outline;
     for (std::size_t i = 0; i < n; ++i) {
-      std::vector<Point> polygon = exact_cell_polygon(scene, i);
+      const std::vector<Point>& polygon = polygons[i];
+      if (polygon.empty()) continue;
       double reach = 0.0;
       for (const Point& v : polygon) reach = std::max(reach, std::max(std::abs(v.x), std::abs(v.y)));
       for_copies(figure.points[i], reach, [&](Point site) {
-        for (std::size_t k = 0; k < polygon.size(); ++k)
-          canvas.line(to_px(site + polygon[k]), to_px(site + polygon[(k + 1) % polygon.size()]), cell_colour, 1.0);
+        outline.clear();
+        for (const Point& v : polygon) outline.push_back(to_px(site + v));
+        outline.push_back(outline.front());
+        painter.polyline(outline, cell_colour, 1.0);
       });
     }
   }
   if (figure.from.size() == n && n > 0) {
     const Colour move_colour{0.84f, 0.37f, 0.00f};
     for (std::size_t i = 0; i < n; ++i) {
-      Point d = torus_offset(figure.from[i], figure.points[i], Domain{});
+      Point d = figure.periodic ? torus_offset(figure.from[i], figure.points[i], Domain{}) : figure.points[i] - figure.from[i];
       double reach = std::max(std::abs(d.x), std::abs(d.y));
       for_copies(figure.points[i], reach, [&](Point p) {
-        canvas.line(to_px(p - d), to_px(p), move_colour, 1.2);
-        canvas.disc(to_px(p - d), 0.6 * radius, Colour{0.6f, 0.6f, 0.6f});
+        painter.line(to_px(p - d), to_px(p), move_colour, 1.2);
+        painter.disc(to_px(p - d), 0.6 * radius, Colour{0.6f, 0.6f, 0.6f});
       });
     }
   }
   // Frame of the unit square (one period).
   const Point corners[4] = {to_px({0, 0}), to_px({1, 0}), to_px({1, 1}), to_px({0, 1})};
-  for (int k = 0; k < 4; ++k) canvas.line(corners[k], corners[(k + 1) % 4], colours::grey, 1.0);
+  for (int k = 0; k < 4; ++k) painter.line(corners[k], corners[(k + 1) % 4], colours::grey, 1.0);
 
   const bool leveled = figure.levels.size() == n;
   for (std::size_t i = 0; i < n; ++i) {
     const int level = leveled ? figure.levels[i] : 0;
     const Colour c = leveled ? series_colour(static_cast<std::size_t>(level)) : colours::black;
     for_copies(figure.points[i], radius / side * 2.0, [&](Point p) {
-      if (level == 0) canvas.disc(to_px(p), radius, c);
-      else canvas.cross(to_px(p), radius * 1.1, c, std::max(1.0, 0.45 * radius));
+      if (level == 0) painter.disc(to_px(p), radius, c);
+      else painter.cross(to_px(p), radius * 1.1, c, std::max(1.0, 0.45 * radius));
     });
   }
+  if (!figure.note.empty())
+    painter.text(x + 0.5 * size, y + size + 6.0, figure.note, colours::black, Align::centre, Align::start);
+}
+
+Canvas draw_points(const PointsFigure& figure, int size) {
+  Canvas canvas(size, size + static_cast<int>(std::ceil(note_height(Canvas::text_height(2), figure))), colours::white);
+  CanvasPainter painter(canvas);
+  paint_points(figure, painter, 0.0, 0.0, size);
   return canvas;
 }
 
-Canvas draw_spectrum(const Periodogram& periodogram, int max_size, int min_size) {
+SvgDocument points_svg(const PointsFigure& figure, int size) {
+  const double height = size + note_height(14.0, figure);  // SvgPainter's default font size
+  SvgDocument result(0.0, 0.0, size, height, size, height, "px");
+  result.set_decimals(3);  // a thousandth of a pixel: coordinates to about 1e-6 of the square
+  result.rect(0, 0, size, height, SvgStyle::filled(colours::white));
+  SvgPainter painter(result);
+  paint_points(figure, painter, 0.0, 0.0, size);
+  return result;
+}
+
+SvgImage spectrum_image(const Periodogram& periodogram, int max_size) {
   const int f = periodogram.size;
   if (f < 2) throw Error("cannot draw an empty periodogram");
-  const int shrink = std::max(1, (f + max_size - 1) / max_size);
+  const int shrink = std::max(1, (f + max_size - 1) / std::max(1, max_size));
   const int cells = f / shrink;
-  const int grow = std::max(1, (min_size + cells - 1) / cells);
-  Canvas canvas(cells * grow, cells * grow, colours::black);
+  SvgImage image{cells, cells, 1, std::vector<std::uint8_t>(static_cast<std::size_t>(cells) * static_cast<std::size_t>(cells))};
   const double scale = 1.0 / std::log2(3.0);
   for (int cy = 0; cy < cells; ++cy) {
     for (int cx = 0; cx < cells; ++cx) {
@@ -83,22 +114,37 @@ Canvas draw_spectrum(const Periodogram& periodogram, int max_size, int min_size)
         for (int i = 0; i < shrink; ++i)
           sum += periodogram.power[static_cast<std::size_t>(cy * shrink + j) * static_cast<std::size_t>(f) +
                                    static_cast<std::size_t>(cx * shrink + i)];
-      double p = sum / static_cast<double>(shrink * shrink);
-      float g = static_cast<float>(std::clamp(std::log2(1.0 + std::sqrt(p)) * scale, 0.0, 1.0));
+      const double p = sum / static_cast<double>(shrink * shrink);
+      const double g = std::clamp(std::log2(1.0 + std::sqrt(p)) * scale, 0.0, 1.0);
       // Row ky = -F/2 is stored first; draw ky up.
-      const int top = (cells - 1 - cy) * grow, left = cx * grow;
-      for (int y = 0; y < grow; ++y)
-        for (int x = 0; x < grow; ++x) canvas.set(left + x, top + y, Colour{g, g, g});
+      image.pixels[static_cast<std::size_t>(cells - 1 - cy) * static_cast<std::size_t>(cells) + static_cast<std::size_t>(cx)] =
+          static_cast<std::uint8_t>(std::lround(g * 255.0));
     }
   }
+  return image;
+}
+
+Canvas draw_spectrum(const Periodogram& periodogram, int max_size, int min_size) {
+  const SvgImage image = spectrum_image(periodogram, max_size);
+  const int grow = std::max(1, (min_size + image.width - 1) / image.width);
+  Canvas canvas(image.width * grow, image.height * grow, colours::black);
+  CanvasPainter painter(canvas);
+  painter.image(0, 0, canvas.width(), canvas.height(), image);
   return canvas;
 }
 
-Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title, double anisotropy_reference,
-                   int width, int height) {
+SvgDocument spectrum_svg(const Periodogram& periodogram, int max_size, int display) {
+  SvgDocument doc(display, display);
+  doc.image(0, 0, display, display, spectrum_image(periodogram, max_size));
+  return doc;
+}
+
+Plot radial_plot(std::span<const RadialCurve> curves, const std::string& title, double anisotropy_reference,
+                 FrequencyAxis axis) {
   Plot plot;
   plot.title = title;
-  plot.x_label = "frequency |k| (integer frequencies on the unit torus)";
+  const bool normalised = axis == FrequencyAxis::normalised;
+  plot.x_label = normalised ? "frequency nu = |k| / (sqrt(N) / 2)" : "frequency |k| (integer frequencies on the unit torus)";
   PlotPanel power, anisotropy;
   power.y_label = "radial power P";
   power.reference = 1.0;
@@ -111,13 +157,14 @@ Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title
     PlotSeries a{"", {}, {}, series_colour(c), 2.0};
     for (std::size_t i = 1; i < curves[c].radial.size(); ++i) {
       const Annulus& an = curves[c].radial[i];
-      p.x.push_back(an.frequency);
+      const double x = normalised ? normalised_frequency(an.frequency, curves[c].count) : an.frequency;
+      p.x.push_back(x);
       p.y.push_back(an.power);
-      a.x.push_back(an.frequency);
+      a.x.push_back(x);
       a.y.push_back(an.anisotropy_db);
       if (std::isfinite(an.power)) power_max = std::max(power_max, an.power);
       if (std::isfinite(an.anisotropy_db)) ani_lo = std::min(ani_lo, an.anisotropy_db), ani_hi = std::max(ani_hi, an.anisotropy_db);
-      x_max = std::max(x_max, an.frequency);
+      x_max = std::max(x_max, x);
     }
     power.series.push_back(std::move(p));
     anisotropy.series.push_back(std::move(a));
@@ -129,7 +176,40 @@ Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title
   plot.x_min = 0.0;
   plot.x_max = x_max;
   plot.panels = {std::move(power), std::move(anisotropy)};
-  return render_plot(plot, width, height);
+  return plot;
+}
+
+Canvas draw_radial(std::span<const RadialCurve> curves, const std::string& title, double anisotropy_reference,
+                   FrequencyAxis axis, int width, int height) {
+  return render_plot(radial_plot(curves, title, anisotropy_reference, axis), width, height);
+}
+
+Plot rdf_plot(std::span<const RdfCurve> curves, const std::string& title) {
+  Plot plot;
+  plot.title = title;
+  plot.x_label = "distance r / hexagonal spacing";
+  PlotPanel panel;
+  panel.y_label = "RDF g(r)";
+  panel.reference = 1.0;
+  panel.y_min = 0.0;
+  double g_max = 2.0, x_max = 1.0;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    const RadialDistribution& rdf = curves[c].rdf;
+    PlotSeries s{curves[c].label, {}, {}, series_colour(c), 2.0};
+    for (std::size_t b = 0; b < rdf.g.size(); ++b) {
+      s.x.push_back(rdf.radius(b) / rdf.hexagonal_spacing);
+      s.y.push_back(rdf.g[b]);
+      g_max = std::max(g_max, rdf.g[b]);
+    }
+    x_max = std::max(x_max, rdf.range() / rdf.hexagonal_spacing);
+    panel.series.push_back(std::move(s));
+  }
+  // A lattice's peaks are histogram spikes: cap the axis where blue-noise peaks still show.
+  panel.y_max = std::min(std::ceil(g_max * 1.1 * 2.0) / 2.0, 6.0);
+  plot.x_min = 0.0;
+  plot.x_max = x_max;
+  plot.panels = {std::move(panel)};
+  return plot;
 }
 
 Canvas montage(std::span<const Canvas> images, std::span<const std::string> captions) {
@@ -146,6 +226,80 @@ Canvas montage(std::span<const Canvas> images, std::span<const std::string> capt
     x += images[i].width() + pad;
   }
   return canvas;
+}
+
+SvgDocument montage_svg(std::span<const SvgDocument> images, std::span<const std::string> captions) {
+  if (images.empty()) throw Error("nothing to put side by side");
+  const double pad = 16.0, caption_h = 30.0;
+  double width = pad, height = 0.0;
+  for (const SvgDocument& d : images) width += d.width() + pad, height = std::max(height, d.height());
+  SvgDocument doc(width, height + caption_h + pad);
+  doc.set_decimals(3);
+  doc.rect(0, 0, width, height + caption_h + pad, SvgStyle::filled(colours::white));
+  SvgPainter painter(doc);
+  double x = pad;
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    if (i < captions.size())
+      painter.text(x + 0.5 * images[i].width(), 8.0, captions[i], colours::black, Align::centre, Align::start);
+    doc.include(images[i], SvgTransform::translate(x, caption_h));
+    x += images[i].width() + pad;
+  }
+  return doc;
+}
+
+SvgDocument summary_page(const SummaryPage& page) {
+  // A4 portrait in points; two columns of 255 pt.
+  constexpr double kWidth = 595.0, kHeight = 842.0, kMargin = 36.0, kColumn = 255.0, kGutter = 13.0;
+  const double left = kMargin, right_column = kMargin + kColumn + kGutter;
+  SvgDocument doc(0.0, 0.0, kWidth, kHeight, kWidth, kHeight, "pt");
+  doc.set_decimals(3);
+  doc.set_title(page.title);
+  doc.rect(0, 0, kWidth, kHeight, SvgStyle::filled(colours::white));
+  doc.text({left, 50.0}, page.title, {.size = 14.0, .bold = true});
+  doc.text({left, 66.0}, page.subtitle, {.size = 8.5, .colour = Colour{0.25f, 0.25f, 0.25f}});
+
+  SvgPainter small(doc, 8.0);
+  // Row 1: the points and the periodogram.
+  const double row1 = 80.0;
+  PointsFigure points = page.points;
+  points.note.clear();
+  paint_points(points, small, left, row1, kColumn);
+  doc.image(right_column, row1, kColumn, kColumn, spectrum_image(page.periodogram, 1024));
+  small.text(left + 0.5 * kColumn, row1 + kColumn + 4.0, page.points.note.empty() ? "points" : page.points.note,
+             colours::black, Align::centre, Align::start);
+  small.text(right_column + 0.5 * kColumn, row1 + kColumn + 4.0,
+             "periodogram, F = " + std::to_string(page.periodogram.size) + " (k = 0 at the centre)", colours::black,
+             Align::centre, Align::start);
+
+  // Rows 2 and 3: radial power and the RDF; anisotropy and the table.
+  const double row2 = row1 + kColumn + 22.0, plot_h = 205.0, row3 = row2 + plot_h + 10.0;
+  const Plot radial = radial_plot(page.radial, "", page.anisotropy_reference, page.axis);
+  Plot power = radial, anisotropy = radial;
+  power.panels = {radial.panels[0]};
+  anisotropy.panels = {radial.panels[1]};
+  auto place = [&](const Plot& plot, double x, double y) {
+    doc.begin_group({}, SvgTransform::translate(x, y));
+    paint_plot(plot, small, kColumn, plot_h);
+    doc.end_group();
+  };
+  place(power, left, row2);
+  place(rdf_plot(page.rdf, ""), right_column, row2);
+  place(anisotropy, left, row3);
+
+  // The table of measures.
+  double y = row3 + 12.0;
+  doc.text({right_column, y}, "measures", {.size = 10.0, .bold = true});
+  y += 6.0;
+  for (const auto& [name, value] : page.measures) {
+    y += 13.0;
+    doc.text({right_column, y}, name, {.size = 8.5});
+    doc.text({right_column + kColumn, y}, value, {.size = 8.5, .anchor = Align::end});
+    doc.line({right_column, y + 3.5}, {right_column + kColumn, y + 3.5}, SvgStyle::stroked(colours::light_grey, 0.5));
+  }
+  doc.text({left, kHeight - 24.0},
+           "bluetile analyze, after psa's conventions (Heck, Schl\u00f6mer and Deussen 2013; Schl\u00f6mer and Deussen 2011)",
+           {.size = 7.0, .colour = colours::grey});
+  return doc;
 }
 
 }  // namespace bluetile

@@ -9,7 +9,11 @@
 namespace bluetile {
 namespace {
 
-constexpr int text_scale = 2;
+// Layout in units of the painter's text height, so a plot looks the same at any size.
+constexpr double kLeftMargin = 6.25, kRightMargin = 1.5, kTitleGap = 2.5, kPanelGap = 2.0;
+constexpr double kTickLength = 0.4375, kLegendSample = 1.875;
+// DejaVu Sans's mean advance over digits and lower-case letters, in ems: SVG text widths for layout.
+constexpr double kAdvanceEm = 0.6;
 
 double nice_step(double span, int target) {
   double raw = span / std::max(1, target);
@@ -62,7 +66,90 @@ Range data_range(const PlotPanel& panel, double x_lo, double x_hi) {
   return {lo, hi};
 }
 
+SvgStyle stroke(Colour c, double width) {
+  SvgStyle s = SvgStyle::stroked(c, width);
+  s.round_caps = true;
+  return s;
+}
+
 }  // namespace
+
+// --- painters ------------------------------------------------------------------------------
+
+void CanvasPainter::line(Point a, Point b, Colour c, double width) { canvas_.line(a, b, c, width); }
+void CanvasPainter::dashed_line(Point a, Point b, Colour c, double width, double dash, double gap) {
+  canvas_.dashed_line(a, b, c, width, dash, gap);
+}
+void CanvasPainter::polyline(std::span<const Point> points, Colour c, double width) {
+  for (std::size_t i = 0; i + 1 < points.size(); ++i) canvas_.line(points[i], points[i + 1], c, width);
+}
+void CanvasPainter::disc(Point centre, double radius, Colour c) { canvas_.disc(centre, radius, c); }
+void CanvasPainter::cross(Point centre, double half_size, Colour c, double width) {
+  canvas_.cross(centre, half_size, c, width);
+}
+void CanvasPainter::fill_rect(double x0, double y0, double x1, double y1, Colour c) { canvas_.fill_rect(x0, y0, x1, y1, c); }
+void CanvasPainter::text(double x, double y, std::string_view s, Colour c, Align h, Align v, bool vertical) {
+  canvas_.text(x, y, s, c, scale_, h, v, vertical);
+}
+double CanvasPainter::text_width(std::string_view s) const { return Canvas::text_width(s, scale_); }
+double CanvasPainter::text_height() const { return Canvas::text_height(scale_); }
+void CanvasPainter::image(double x, double y, double width, double height, const SvgImage& image) {
+  // Nearest pixel: the images drawn are periodograms, whose cells should stay sharp.
+  const int x0 = static_cast<int>(std::lround(x)), y0 = static_cast<int>(std::lround(y));
+  const int w = static_cast<int>(std::lround(width)), h = static_cast<int>(std::lround(height));
+  for (int j = 0; j < h; ++j) {
+    const int sy = std::min(image.height - 1, j * image.height / std::max(1, h));
+    for (int i = 0; i < w; ++i) {
+      const int sx = std::min(image.width - 1, i * image.width / std::max(1, w));
+      const std::size_t at = (static_cast<std::size_t>(sy) * static_cast<std::size_t>(image.width) +
+                              static_cast<std::size_t>(sx)) * static_cast<std::size_t>(image.channels);
+      const float r = image.pixels[at] / 255.0f;
+      const float g = image.channels == 3 ? image.pixels[at + 1] / 255.0f : r;
+      const float b = image.channels == 3 ? image.pixels[at + 2] / 255.0f : r;
+      canvas_.set(x0 + i, y0 + j, Colour{r, g, b});
+    }
+  }
+}
+
+void SvgPainter::line(Point a, Point b, Colour c, double width) { doc_.line(a, b, stroke(c, width)); }
+void SvgPainter::dashed_line(Point a, Point b, Colour c, double width, double dash, double gap) {
+  SvgStyle s = SvgStyle::stroked(c, width);
+  s.dash = {dash, gap};
+  doc_.line(a, b, s);
+}
+void SvgPainter::polyline(std::span<const Point> points, Colour c, double width) {
+  doc_.polyline(points, stroke(c, width));
+}
+void SvgPainter::disc(Point centre, double radius, Colour c) { doc_.circle(centre, radius, SvgStyle::filled(c)); }
+void SvgPainter::cross(Point centre, double half_size, Colour c, double width) {
+  const double h = half_size;
+  doc_.line(centre + Point{-h, -h}, centre + Point{h, h}, stroke(c, width));
+  doc_.line(centre + Point{-h, h}, centre + Point{h, -h}, stroke(c, width));
+}
+void SvgPainter::fill_rect(double x0, double y0, double x1, double y1, Colour c) {
+  doc_.rect(std::min(x0, x1), std::min(y0, y1), std::abs(x1 - x0), std::abs(y1 - y0), SvgStyle::filled(c));
+}
+double SvgPainter::text_width(std::string_view s) const { return kAdvanceEm * size_ * static_cast<double>(s.size()); }
+void SvgPainter::text(double x, double y, std::string_view s, Colour c, Align h, Align v, bool vertical) {
+  // The text's box on the page (turned when vertical), then the baseline within it.
+  const double length = text_width(s), box_w = vertical ? size_ : length, box_h = vertical ? length : size_;
+  auto offset = [](Align a, double extent) { return a == Align::start ? 0.0 : a == Align::centre ? 0.5 * extent : extent; };
+  const double left = x - offset(h, box_w), top = y - offset(v, box_h);
+  constexpr double kAscent = 0.78;  // of the em box above the baseline (DejaVu Sans caps: 0.73)
+  SvgText style{.size = size_, .colour = c};
+  if (vertical) {
+    // Reads bottom to top; glyph tops face left.
+    style.rotate_degrees = 90.0;
+    doc_.text({left + kAscent * size_, top + box_h}, s, style);
+  } else {
+    doc_.text({left, top + kAscent * size_}, s, style);
+  }
+}
+void SvgPainter::image(double x, double y, double width, double height, const SvgImage& image) {
+  doc_.image(x, y, width, height, image);
+}
+
+// --- plots -----------------------------------------------------------------------------------
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
   if (!(hi > lo)) throw Error("plot range is empty");
@@ -72,16 +159,17 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   return ticks;
 }
 
-Canvas render_plot(const Plot& plot, int width, int height) {
+void paint_plot(const Plot& plot, Painter& painter, double width, double height) {
   if (plot.panels.empty()) throw Error("a plot needs at least one panel");
-  Canvas canvas(width, height, colours::white);
-  const int glyph_h = Canvas::text_height(text_scale);
-  const double left = 100, right = width - 24.0;
-  const double top = plot.title.empty() ? 20.0 : 24.0 + glyph_h + 16.0;
-  const double bottom = height - (2.0 * glyph_h + 36.0);
-  const double gap = 2.0 * glyph_h;
+  const double th = painter.text_height();
+  const double left = kLeftMargin * th, right = width - kRightMargin * th;
+  const double top = plot.title.empty() ? 1.25 * th : 1.5 * th + th + 1.0 * th;
+  const double bottom = height - (2.0 * th + 2.25 * th);
+  const double gap = kPanelGap * th;
   const auto panels = static_cast<double>(plot.panels.size());
   const double panel_h = (bottom - top - gap * (panels - 1.0)) / panels;
+  const double tick = kTickLength * th;
+  const double frame = std::max(1.0, 0.094 * th), grid = std::max(0.5, 0.0625 * th);
 
   double x_lo = plot.x_min, x_hi = plot.x_max;
   if (!std::isfinite(x_lo) || !std::isfinite(x_hi)) {
@@ -97,7 +185,8 @@ Canvas render_plot(const Plot& plot, int width, int height) {
   const double x_step = x_ticks.size() > 1 ? x_ticks[1] - x_ticks[0] : x_hi - x_lo;
   auto to_px = [&](double x) { return left + (x - x_lo) / (x_hi - x_lo) * (right - left); };
 
-  if (!plot.title.empty()) canvas.text(0.5 * (left + right), 20.0, plot.title, colours::black, text_scale, Align::centre);
+  if (!plot.title.empty())
+    painter.text(0.5 * (left + right), 1.25 * th, plot.title, colours::black, Align::centre, Align::start);
 
   for (std::size_t p = 0; p < plot.panels.size(); ++p) {
     const PlotPanel& panel = plot.panels[p];
@@ -112,65 +201,97 @@ Canvas render_plot(const Plot& plot, int width, int height) {
     const double y_step = y_ticks.size() > 1 ? y_ticks[1] - y_ticks[0] : y_hi - y_lo;
     auto to_py = [&](double y) { return y_bottom - (y - y_lo) / (y_hi - y_lo) * panel_h; };
 
-    for (double t : x_ticks) canvas.line({to_px(t), y_top}, {to_px(t), y_bottom}, colours::light_grey, 1.0);
-    for (double t : y_ticks) canvas.line({left, to_py(t)}, {right, to_py(t)}, colours::light_grey, 1.0);
+    for (double t : x_ticks) painter.line({to_px(t), y_top}, {to_px(t), y_bottom}, colours::light_grey, grid);
+    for (double t : y_ticks) painter.line({left, to_py(t)}, {right, to_py(t)}, colours::light_grey, grid);
     if (std::isfinite(panel.reference) && panel.reference >= y_lo && panel.reference <= y_hi)
-      canvas.dashed_line({left, to_py(panel.reference)}, {right, to_py(panel.reference)}, colours::grey, 1.5, 8, 6);
+      painter.dashed_line({left, to_py(panel.reference)}, {right, to_py(panel.reference)}, colours::grey, 1.5 * grid,
+                          0.5 * th, 0.375 * th);
 
     for (const auto& s : panel.series) {
+      // Runs of segments that stay connected after clipping to the frame, one polyline each.
+      std::vector<Point> run;
+      auto flush = [&] {
+        if (run.size() >= 2) painter.polyline(run, s.colour, s.width);
+        run.clear();
+      };
       for (std::size_t i = 0; i + 1 < s.x.size() && i + 1 < s.y.size(); ++i) {
-        if (!std::isfinite(s.y[i]) || !std::isfinite(s.y[i + 1])) continue;
+        if (!std::isfinite(s.y[i]) || !std::isfinite(s.y[i + 1])) {
+          flush();
+          continue;
+        }
         Point a{to_px(s.x[i]), to_py(s.y[i])}, b{to_px(s.x[i + 1]), to_py(s.y[i + 1])};
-        if (clip(a, b, left, y_top, right, y_bottom)) canvas.line(a, b, s.colour, s.width);
+        const Point a0 = a, b0 = b;
+        if (!clip(a, b, left, y_top, right, y_bottom)) {
+          flush();
+          continue;
+        }
+        if (run.empty() || a != a0) {
+          flush();
+          run.push_back(a);
+        }
+        run.push_back(b);
+        if (b != b0) flush();
       }
+      flush();
       // A lone finite value between gaps still shows, as a dot.
       for (std::size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
         bool prev = i > 0 && std::isfinite(s.y[i - 1]), next = i + 1 < s.y.size() && std::isfinite(s.y[i + 1]);
         double py = to_py(s.y[i]);
         if (std::isfinite(s.y[i]) && !prev && !next && py >= y_top && py <= y_bottom)
-          canvas.disc({to_px(s.x[i]), py}, s.width, s.colour);
+          painter.disc({to_px(s.x[i]), py}, s.width, s.colour);
       }
     }
 
     // Frame, ticks and labels on top of the data.
-    canvas.line({left, y_top}, {right, y_top}, colours::black, 1.5);
-    canvas.line({left, y_bottom}, {right, y_bottom}, colours::black, 1.5);
-    canvas.line({left, y_top}, {left, y_bottom}, colours::black, 1.5);
-    canvas.line({right, y_top}, {right, y_bottom}, colours::black, 1.5);
+    const Point corners[4] = {{left, y_top}, {right, y_top}, {right, y_bottom}, {left, y_bottom}};
+    for (int k = 0; k < 4; ++k) painter.line(corners[k], corners[(k + 1) % 4], colours::black, frame);
     for (double t : x_ticks) {
-      canvas.line({to_px(t), y_bottom}, {to_px(t), y_bottom - 7}, colours::black, 1.5);
-      canvas.text(to_px(t), y_bottom + 6, tick_label(t, x_step), colours::black, text_scale, Align::centre);
+      painter.line({to_px(t), y_bottom}, {to_px(t), y_bottom - tick}, colours::black, frame);
+      painter.text(to_px(t), y_bottom + 0.375 * th, tick_label(t, x_step), colours::black, Align::centre, Align::start);
     }
     for (double t : y_ticks) {
-      canvas.line({left, to_py(t)}, {left + 7, to_py(t)}, colours::black, 1.5);
-      canvas.text(left - 6, to_py(t), tick_label(t, y_step), colours::black, text_scale, Align::end, Align::centre);
+      painter.line({left, to_py(t)}, {left + tick, to_py(t)}, colours::black, frame);
+      painter.text(left - 0.375 * th, to_py(t), tick_label(t, y_step), colours::black, Align::end, Align::centre);
     }
-    canvas.text(18, 0.5 * (y_top + y_bottom), panel.y_label, colours::black, text_scale, Align::start, Align::centre, true);
+    painter.text(1.125 * th, 0.5 * (y_top + y_bottom), panel.y_label, colours::black, Align::start, Align::centre, true);
 
     if (p == 0) {
       std::vector<const PlotSeries*> entries;
-      int label_w = 0;
+      double label_w = 0;
       for (const auto& s : panel.series)
-        if (!s.label.empty()) entries.push_back(&s), label_w = std::max(label_w, Canvas::text_width(s.label, text_scale));
+        if (!s.label.empty()) entries.push_back(&s), label_w = std::max(label_w, painter.text_width(s.label));
       if (!entries.empty()) {
-        const double row = glyph_h + 8.0, sample = 30.0;
-        const double box_w = sample + 18.0 + label_w + 12.0, box_h = row * static_cast<double>(entries.size()) + 8.0;
-        const double bx = right - box_w - 10.0, by = y_top + 10.0;
-        canvas.fill_rect(bx, by, bx + box_w, by + box_h, colours::white);
-        canvas.line({bx, by}, {bx + box_w, by}, colours::grey, 1.0);
-        canvas.line({bx, by + box_h}, {bx + box_w, by + box_h}, colours::grey, 1.0);
-        canvas.line({bx, by}, {bx, by + box_h}, colours::grey, 1.0);
-        canvas.line({bx + box_w, by}, {bx + box_w, by + box_h}, colours::grey, 1.0);
+        const double row = 1.5 * th, sample = kLegendSample * th;
+        const double box_w = sample + 1.125 * th + label_w + 0.75 * th, box_h = row * static_cast<double>(entries.size()) + 0.5 * th;
+        const double bx = right - box_w - 0.625 * th, by = y_top + 0.625 * th;
+        painter.fill_rect(bx, by, bx + box_w, by + box_h, colours::white);
+        const Point box[4] = {{bx, by}, {bx + box_w, by}, {bx + box_w, by + box_h}, {bx, by + box_h}};
+        for (int k = 0; k < 4; ++k) painter.line(box[k], box[(k + 1) % 4], colours::grey, grid);
         for (std::size_t e = 0; e < entries.size(); ++e) {
-          double cy = by + 4.0 + (static_cast<double>(e) + 0.5) * row;
-          canvas.line({bx + 8.0, cy}, {bx + 8.0 + sample, cy}, entries[e]->colour, entries[e]->width + 0.5);
-          canvas.text(bx + 18.0 + sample, cy, entries[e]->label, colours::black, text_scale, Align::start, Align::centre);
+          double cy = by + 0.25 * th + (static_cast<double>(e) + 0.5) * row;
+          painter.line({bx + 0.5 * th, cy}, {bx + 0.5 * th + sample, cy}, entries[e]->colour, entries[e]->width + 0.5);
+          painter.text(bx + 1.125 * th + sample, cy, entries[e]->label, colours::black, Align::start, Align::centre);
         }
       }
     }
   }
-  canvas.text(0.5 * (left + right), bottom + glyph_h + 14.0, plot.x_label, colours::black, text_scale, Align::centre);
+  painter.text(0.5 * (left + right), bottom + th + 0.875 * th, plot.x_label, colours::black, Align::centre, Align::start);
+}
+
+Canvas render_plot(const Plot& plot, int width, int height) {
+  Canvas canvas(width, height, colours::white);
+  CanvasPainter painter(canvas);
+  paint_plot(plot, painter, width, height);
   return canvas;
+}
+
+SvgDocument render_plot_svg(const Plot& plot, int width, int height) {
+  SvgDocument doc(width, height);
+  doc.set_decimals(2);  // a hundredth of a pixel
+  SvgPainter painter(doc);
+  doc.rect(0, 0, width, height, SvgStyle::filled(colours::white));
+  paint_plot(plot, painter, width, height);
+  return doc;
 }
 
 }  // namespace bluetile

@@ -381,6 +381,42 @@ void SvgDocument::end_group() {
   items_.push_back({Kind::end_group, 0, 0, 0});
 }
 
+namespace {
+
+// Re-adds what it visits to another document.
+class Copier final : public SvgVisitor {
+ public:
+  explicit Copier(SvgDocument& target) : target_(target) {}
+  void begin_group(const SvgStyle& style, const SvgTransform& transform) override { target_.begin_group(style, transform); }
+  void end_group() override { target_.end_group(); }
+  void rect(double x, double y, double width, double height, const SvgStyle& style) override {
+    target_.rect(x, y, width, height, style);
+  }
+  void circle(Point centre, double radius, const SvgStyle& style) override { target_.circle(centre, radius, style); }
+  void line(Point a, Point b, const SvgStyle& style) override { target_.line(a, b, style); }
+  void polyline(std::span<const Point> points, bool closed, const SvgStyle& style) override {
+    if (closed) target_.polygon(points, style);
+    else target_.polyline(points, style);
+  }
+  void text(Point at, std::string_view text, const SvgText& style) override { target_.text(at, text, style); }
+  void image(double x, double y, double width, double height, const SvgImage& image) override {
+    target_.image(x, y, width, height, image);
+  }
+
+ private:
+  SvgDocument& target_;
+};
+
+}  // namespace
+
+void SvgDocument::include(const SvgDocument& other, const SvgTransform& transform) {
+  if (&other == this) throw Error("SVG document: cannot include itself");
+  begin_group({}, transform);
+  Copier copier(*this);
+  other.visit(copier);
+  end_group();
+}
+
 void SvgDocument::visit(SvgVisitor& visitor) const {
   for (const Item& item : items_) {
     const double* v = numbers_.data() + item.first;

@@ -136,8 +136,13 @@ class SvgDocument {
   // View box [0, width] x [0, height], shown at that size in px.
   SvgDocument(double width, double height);
 
-  double width() const { return view_[2]; }
+  double view_x() const { return view_[0]; }
+  double view_y() const { return view_[1]; }
+  double width() const { return view_[2]; }   // of the view box, user units
   double height() const { return view_[3]; }
+  double display_width() const { return display_[0]; }
+  double display_height() const { return display_[1]; }
+  const std::string& unit() const { return unit_; }
   int decimals() const { return decimals_; }
   void set_decimals(int decimals);  // 0 to 12
   void set_title(std::string title);  // <title>: what viewers show as the name
@@ -157,6 +162,10 @@ class SvgDocument {
   // group throws Error.
   void begin_group(const SvgStyle& style = {}, const SvgTransform& transform = {});
   void end_group();
+
+  // Adds the content of `other` (not its view box or title) as one group mapped by
+  // `transform`: for composing a page from drawings made on their own.
+  void include(const SvgDocument& other, const SvgTransform& transform = {});
 
   // The content in order, to another renderer. Unclosed groups are closed at the end.
   void visit(SvgVisitor& visitor) const;

@@ -21,10 +21,7 @@
 
 namespace bluetile {
 
-enum class Boundary : std::uint8_t {
-  periodic,  // opposite sides identified: cells wrap around (the paper's setting)
-  bounded,   // the closed rectangle: cells are clipped by its border, no periodic images
-};
+// Boundary (core/torus.h): periodic (cells wrap around) or bounded (cells clipped by the border).
 
 struct Scene {
   Domain domain;

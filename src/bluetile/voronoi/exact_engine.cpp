@@ -322,6 +322,22 @@ std::vector<Point> exact_cell_polygon(const Scene& given, std::size_t site) {
   return polygon;
 }
 
+std::vector<std::vector<Point>> exact_cell_polygons(const Scene& given) {
+  Scene wrapped;
+  const Scene& scene = validated_scene(given, wrapped);
+  const CellSearch search(scene);
+  std::vector<std::vector<Point>> polygons(scene.sites.size());
+  parallel_for(polygons.size(), 256, [&](std::size_t begin, std::size_t end) {
+    ConvexPolygon cell_polygon;
+    SearchScratch scratch;
+    for (std::size_t site = begin; site < end; ++site) {
+      if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) continue;
+      for (const PolygonVertex& v : cell_polygon.vertices()) polygons[site].push_back(v.p);
+    }
+  });
+  return polygons;
+}
+
 std::vector<std::size_t> exact_cell_neighbours(const Scene& given, std::size_t site) {
   Scene wrapped;
   const Scene& scene = validated_scene(given, wrapped);

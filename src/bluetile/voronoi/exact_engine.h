@@ -25,6 +25,10 @@ class ExactEngine final : public CentroidEngine {
 // and tests). Empty for a coincident site.
 std::vector<Point> exact_cell_polygon(const Scene& scene, std::size_t site);
 
+// Every site's cell polygon (as exact_cell_polygon), the search grid built once for all: for
+// drawing all cells or measuring their shapes. On all threads; same result whatever their count.
+std::vector<std::vector<Point>> exact_cell_polygons(const Scene& scene);
+
 // Indices of the sites whose cells share an edge with `site`'s cell (periodic images folded
 // onto their site index; `site` itself when the cell touches its own copy; a bounded domain's
 // border is no neighbour).

@@ -1,0 +1,271 @@
+// The RDF, the spectral measures (nu_eff, Omega), bond order and bounded nearest neighbours
+// against closed forms (Poisson process, lattices, hand-made spectra), brute force, and each
+// other (the spectrum the RDF implies against the direct-sum periodogram).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "bluetile/analysis/bond_order.h"
+#include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/analysis/pair_correlation.h"
+#include "bluetile/analysis/spectral_measures.h"
+#include "bluetile/analysis/summary.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::uniform_points;
+
+std::vector<Point> square_lattice(int m) {
+  std::vector<Point> points;
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < m; ++i) points.push_back({(i + 0.5) / m, (j + 0.5) / m});
+  return points;
+}
+
+// 26 columns by 30 rows, odd rows shifted by half a column: a hexagonal lattice up to a 0.08%
+// stretch (30 / 26 = 1.1538 against 2 / sqrt 3 = 1.1547), periodic on the unit torus.
+std::vector<Point> hexagonal_lattice() {
+  std::vector<Point> points;
+  for (int j = 0; j < 30; ++j)
+    for (int i = 0; i < 26; ++i) points.push_back({(i + 0.25 + 0.5 * (j % 2)) / 26.0, (j + 0.5) / 30.0});
+  return points;
+}
+
+// The analysis used by the measure tests: no centroids, and a periodogram up to nu = 3 only
+// where nu_eff is all that is checked (the direct sum costs N F^2).
+Summary summarize_one(const std::vector<Point>& points, int size = 0) {
+  SummaryOptions o;
+  o.centroids = false;
+  o.size = size;
+  std::vector<std::vector<Point>> sets = {points};
+  return summarize(sets, o);
+}
+
+// Expected unordered pairs in bin b for a binomial process (z-scores below).
+double expected_pairs(const RadialDistribution& rdf, std::size_t b) {
+  const double r0 = static_cast<double>(b) * rdf.bin_width, r1 = r0 + rdf.bin_width;
+  return 0.5 * static_cast<double>(rdf.count) * static_cast<double>(rdf.count - 1) * std::numbers::pi *
+         (r1 * r1 - r0 * r0) / rdf.area;
+}
+
+// Sum of squared z-scores of g over the bins, divided by the bins: about 1 for g = 1.
+double reduced_chi_square(const RadialDistribution& rdf, double variance_factor) {
+  double chi = 0.0;
+  for (std::size_t b = 0; b < rdf.g.size(); ++b) {
+    const double sigma = std::sqrt(variance_factor / expected_pairs(rdf, b));
+    const double z = (rdf.g[b] - 1.0) / sigma;
+    EXPECT_LT(std::abs(z), 5.0) << "bin " << b << " g = " << rdf.g[b];
+    chi += z * z;
+  }
+  return chi / static_cast<double>(rdf.g.size());
+}
+
+TEST(RadialDistribution, PoissonProcessIsOneWithinTheStatisticalBound) {
+  // Binomial points: g = 1 at every r, the pair count in each bin Poisson-like.
+  auto points = uniform_points(3000, 21);
+  RadialDistribution periodic = radial_distribution(points);
+  EXPECT_EQ(periodic.g.size(), 3000u / 8u);
+  EXPECT_NEAR(periodic.range(), 8.0 * hexagonal_spacing(3000.0), 1e-12);
+  const double chi = reduced_chi_square(periodic, 1.0);
+  EXPECT_GT(chi, 0.7);
+  EXPECT_LT(chi, 1.35);
+
+  // Bounded: the translation correction keeps it unbiased right up to the range (here far
+  // enough out that the naive count would fall 17% short at r = 0.3: a circle of radius r
+  // keeps 1 - 4r/pi + r^2/pi of its pairs inside the square). Its weights, shared by all bins
+  // through the points near the edges, add variance and correlate the bins: three sets averaged.
+  RdfOptions bounded;
+  bounded.boundary = Boundary::bounded;
+  bounded.range = 0.3 / hexagonal_spacing(2000.0);
+  bounded.bins = 60;
+  std::vector<RadialDistribution> sets;
+  for (std::uint64_t seed : {31, 32, 33}) sets.push_back(radial_distribution(uniform_points(2000, seed), bounded));
+  RadialDistribution corrected = average_distributions(sets);
+  EXPECT_EQ(corrected.sets, 3u);
+  double far = 0.0;
+  for (std::size_t b = 0; b < 60; ++b) {
+    const double sigma = std::sqrt(2.0 / (3.0 * expected_pairs(corrected, b)));
+    EXPECT_LT(std::abs(corrected.g[b] - 1.0), 6.0 * sigma) << "bin " << b << " g = " << corrected.g[b];
+    if (b >= 40) far += corrected.g[b] / 20.0;
+  }
+  EXPECT_NEAR(far, 1.0, 0.02);
+}
+
+TEST(RadialDistribution, SquareLatticePeaksAtTheLatticeDistances) {
+  const int m = 20;
+  auto points = square_lattice(m);
+  RdfOptions o;
+  o.bins = 400;
+  RadialDistribution rdf = radial_distribution(points, o);
+  const double a = 1.0 / m, n = m * m;
+  // Neighbours per point at each lattice distance (k^2 = i^2 + j^2): 4 at 1, 4 at 2, 4 at 4,
+  // 8 at 5, 4 at 8, 4 at 9, 8 at 10, 8 at 13, 4 at 16, 8 at 17, 4 at 18, 8 at 20, 12 at 25, ...
+  std::vector<double> ordered_pairs(rdf.g.size(), 0.0);
+  for (int i = -m / 2; i <= m / 2; ++i) {
+    for (int j = -m / 2; j <= m / 2; ++j) {
+      const double r = a * std::sqrt(double(i * i + j * j));
+      if ((i == 0 && j == 0) || r >= rdf.range()) continue;
+      ordered_pairs[static_cast<std::size_t>(r / rdf.bin_width)] += n;
+    }
+  }
+  for (std::size_t b = 0; b < rdf.g.size(); ++b) {
+    const double r0 = static_cast<double>(b) * rdf.bin_width, r1 = r0 + rdf.bin_width;
+    const double counted = rdf.g[b] * n * (n - 1) * std::numbers::pi * (r1 * r1 - r0 * r0);
+    EXPECT_NEAR(counted, ordered_pairs[b], 1e-6 * n) << "bin " << b << " r = " << rdf.radius(b);
+  }
+  // The first peak is the bin holding r = a; nothing closer.
+  const auto first = static_cast<std::size_t>(a / rdf.bin_width);
+  for (std::size_t b = 0; b < first; ++b) EXPECT_EQ(rdf.g[b], 0.0);
+  EXPECT_GT(rdf.g[first], 10.0);
+}
+
+TEST(RadialDistribution, HandCountedPairsAndErrors) {
+  // Two points 0.1 apart across the torus's edge: one unordered pair in the bin of 0.1.
+  std::vector<Point> two = {{0.95, 0.5}, {0.05, 0.5}};
+  RdfOptions o;
+  o.range = 0.4 / hexagonal_spacing(2.0);
+  o.bins = 40;
+  RadialDistribution rdf = radial_distribution(two, o);
+  for (std::size_t b = 0; b < 40; ++b) {
+    const double r0 = static_cast<double>(b) * 0.01, r1 = r0 + 0.01;
+    const double pairs = rdf.g[b] * 2.0 * std::numbers::pi * (r1 * r1 - r0 * r0);
+    EXPECT_NEAR(pairs, b == 10 ? 2.0 : 0.0, 1e-9) << b;
+  }
+  // Bounded: the same two points are 0.9 apart, beyond the range.
+  o.boundary = Boundary::bounded;
+  rdf = radial_distribution(two, o);
+  for (double g : rdf.g) EXPECT_EQ(g, 0.0);
+  EXPECT_THROW(radial_distribution(std::vector<Point>{{0.5, 0.5}}), Error);
+  o.range = -1.0;
+  EXPECT_THROW(radial_distribution(two, o), Error);
+}
+
+TEST(RadialDistribution, BitIdenticalWhateverTheThreadCount) {
+  auto points = uniform_points(5000, 3);
+  RdfOptions o;
+  o.boundary = Boundary::bounded;
+  set_thread_count(1);
+  RadialDistribution one = radial_distribution(points, o);
+  set_thread_count(4);
+  RadialDistribution four = radial_distribution(points, o);
+  set_thread_count(0);
+  EXPECT_EQ(one.g, four.g);
+}
+
+TEST(SpectralMeasures, HandMadeSpectra) {
+  std::vector<double> nu, step, peak, flat;
+  for (int i = 0; i <= 10000; ++i) {
+    const double v = i * 0.001;
+    nu.push_back(v);
+    step.push_back(v < 1.2 ? 0.0 : 1.0);                        // step blue noise, edge at 1.2
+    peak.push_back(v < 1.6 ? 0.0 : v < 2.0 ? 3.0 : 1.0);        // a zero region and one box peak
+    flat.push_back(1.0);                                         // white noise
+  }
+  SpectralMeasures s = spectral_measures(nu, step);
+  EXPECT_NEAR(s.nu_eff, 0.6, 1e-3);            // half the edge
+  EXPECT_NEAR(s.omega, 0.5 * 1.2, 2e-3);       // (0 - 1)^2 over the zero region, in nu / 2
+  EXPECT_DOUBLE_EQ(s.omega_range, 10.0);
+  s = spectral_measures(nu, peak);
+  EXPECT_NEAR(s.nu_eff, 0.8, 1e-3);
+  EXPECT_NEAR(s.omega, 0.5 * (1.6 + 4.0 * 0.4), 5e-3);
+  s = spectral_measures(nu, flat);
+  EXPECT_EQ(s.nu_eff, 0.0);
+  EXPECT_EQ(s.omega, 0.0);
+  EXPECT_THROW(spectral_measures(std::vector<double>{1.0}, std::vector<double>{1.0}), Error);
+  EXPECT_DOUBLE_EQ(normalised_frequency(16.0, 1024), 1.0);
+}
+
+TEST(SpectralMeasures, LatticesAndWhiteNoise) {
+  // A square lattice's spectrum is 0 up to its first peaks at |k| = sqrt(N): nu_eff = 1, within
+  // the half annulus the radial binning leaves (1 / 16 here).
+  Summary s = summarize_one(square_lattice(16), 48);
+  EXPECT_NEAR(s.measures.nu_eff, 1.0, 1.0 / 16.0);
+  EXPECT_NEAR(s.nn.rho(), std::sqrt(std::sqrt(3.0) / 2.0), 1e-12);  // a / d_hex
+  // The hexagonal lattice: first ring at |k| = sqrt(2 N / sqrt 3): nu_eff = 1.0746.
+  s = summarize_one(hexagonal_lattice(), 90);
+  EXPECT_NEAR(s.measures.nu_eff, std::sqrt(2.0 / std::sqrt(3.0)), 1.0 / std::sqrt(780.0));
+  EXPECT_NEAR(s.nn.rho(), 1.0, 2e-3);
+  // White noise: no zero region, and Omega only the estimator's scatter.
+  SummaryOptions o;
+  o.centroids = false;
+  std::vector<std::vector<Point>> noise;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) noise.push_back(uniform_points(256, seed));
+  s = summarize(noise, o);
+  EXPECT_EQ(s.measures.nu_eff, 0.0);
+  EXPECT_DOUBLE_EQ(s.measures.omega_range, 10.0 - 0.5 / 8.0);  // the last annulus centre
+  EXPECT_LT(s.measures.omega, 0.05);
+}
+
+TEST(SpectralMeasures, RdfSpectrumAgreesWithThePeriodogram) {
+  // A relaxed set: pair distances (RDF, Hankel transform) and the direct Fourier sum are two
+  // independent routes to the same radial spectrum; the RDF's finite range smooths it a little.
+  Scene scene = make_scene(uniform_points(512, 9));
+  ExactEngine engine;
+  LloydOptions lloyd;
+  lloyd.iterations = 40;
+  relax_lloyd(engine, scene, lloyd);
+  Summary s = summarize_one(scene.sites);
+  // Bins of 1/32 spacing (the default at N = 512 is 1/8, which smooths the peak by some 10%).
+  RdfOptions fine;
+  fine.bins = 256;
+  const RadialDistribution rdf = radial_distribution(scene.sites, fine);
+  const SpectrumCurve implied = spectrum_from_rdf(rdf);
+  SpectralMeasures from_rdf = spectral_measures(implied.nu, implied.power);
+  EXPECT_GT(s.measures.omega, 1.5);
+  EXPECT_NEAR(from_rdf.omega, s.measures.omega, 0.08 * s.measures.omega);
+  // Beyond the peak both sit near 1: compare annulus by annulus over nu in [3, 9].
+  double worst = 0.0;
+  for (std::size_t i = 1; i < s.radial.size(); ++i) {
+    const double nu = s.nu(s.radial[i].frequency + 0.5);
+    if (nu < 3.0 || nu > 9.0) continue;
+    worst = std::max(worst, std::abs(power_from_rdf(rdf, s.radial[i].frequency + 0.5) - s.radial[i].power));
+  }
+  EXPECT_LT(worst, 0.35);
+}
+
+TEST(BondOrder, LatticesHaveClosedFormOrder) {
+  BondOrder hex = bond_orientational_order(hexagonal_lattice());
+  EXPECT_GT(hex.local, 0.99);
+  EXPECT_GT(hex.global, 0.99);
+  // Square lattice: 4 edge neighbours at 0, 90, 180, 270 degrees: exp(6 i theta) = 1, -1, 1, -1.
+  BondOrder square = bond_orientational_order(square_lattice(16));
+  EXPECT_LT(square.local, 1e-9);
+  EXPECT_LT(square.global, 1e-9);
+  // Random sites: some local order, no common orientation.
+  BondOrder noise = bond_orientational_order(uniform_points(2000, 5));
+  EXPECT_GT(noise.local, 0.2);
+  EXPECT_LT(noise.local, hex.local);
+  EXPECT_LT(noise.global, 0.05);
+}
+
+TEST(NearestNeighbour, BoundedMatchesBruteForce) {
+  // Points crowded at the edges, where the torus would find wrap-around neighbours.
+  std::vector<Point> points = uniform_points(600, 12);
+  for (Point& p : points) p = {std::pow(p.x, 3.0), 1.0 - std::pow(p.y, 3.0) * 0.999};
+  std::vector<double> fast = nearest_neighbour_distances(points, Domain{}, Boundary::bounded);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < points.size(); ++j) {
+      if (j == i) continue;
+      const Point d = points[j] - points[i];
+      best = std::min(best, std::sqrt(d.x * d.x + d.y * d.y));
+    }
+    ASSERT_EQ(fast[i], best) << i;
+  }
+  // Two points near opposite edges: 0.9 apart in the square, 0.1 on the torus.
+  std::vector<Point> two = {{0.05, 0.5}, {0.95, 0.5}};
+  EXPECT_NEAR(nearest_neighbour_distances(two, Domain{}, Boundary::bounded)[0], 0.9, 1e-15);
+  EXPECT_NEAR(nearest_neighbour_distances(two)[0], 0.1, 1e-15);
+  EXPECT_THROW(nearest_neighbour_distances(std::vector<Point>{{0.5, 0.5}}, Domain{}, Boundary::bounded), Error);
+}
+
+}  // namespace
+}  // namespace bluetile
