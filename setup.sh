@@ -7,18 +7,21 @@
 #   ./setup.sh test         build, then run the whole test suite (ctest); build the Python module
 #                           with pip into a virtual environment (build/python-venv) and run its
 #                           tests (pytest); then build the suite with address + undefined
-#                           sanitizers (in build-sanitize/) and run it again
+#                           sanitizers (in build-sanitize/) and run it again, and fuzz every file
+#                           reader briefly with libFuzzer (clang, in build-fuzz/)
 #   ./setup.sh build        install and build only
 #
 # Environment: BLUETILE_BUILD_DIR (default build), BLUETILE_BUILD_TYPE (default Release),
-# BLUETILE_SANITIZE=OFF skips the sanitizer pass of `test`, BLUETILE_PYTHON=OFF its Python pass.
+# BLUETILE_SANITIZE=OFF skips the sanitizer pass of `test` (fuzzing included), BLUETILE_PYTHON=OFF
+# its Python pass, BLUETILE_FUZZ_SECONDS (default 10) sets each fuzz target's run.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 cd "$here"
 
 # Packages the library, the tool and its tests need (cairo: PDF output, through a plugin
-# module; expat and poppler's pdfinfo: the tests read SVG and PDF back). CGAL is only for the
+# module; expat and poppler's pdfinfo: the tests read SVG and PDF back; clang and its runtime
+# libraries: libFuzzer for the fuzz targets). CGAL is only for the
 # optional reference benchmark (GPL, never linked into the library).
 packages=(
   cmake ninja-build g++ pkg-config
@@ -26,6 +29,7 @@ packages=(
   libglm-dev libopenimageio-dev libcli11-dev nlohmann-json3-dev libgtest-dev
   libcairo2-dev libexpat1-dev poppler-utils
   libcgal-dev
+  clang libclang-rt-dev
   python3-venv python3-dev python3-numpy python3-pytest
 )
 
@@ -49,12 +53,16 @@ install_missing() {
   "${sudo[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 }
 
-# build DIR CMAKE_ARGS...: configures (once) and builds into DIR.
+# build DIR CMAKE_ARGS... [--target T]: configures (once) and builds into DIR (only T if given).
 build() {
   local dir=$1
   shift
-  cmake -S . -B "$dir" -G Ninja "$@" >/dev/null
-  cmake --build "$dir"
+  local args=() target=()
+  while [ $# -gt 0 ]; do
+    if [ "$1" = --target ]; then target=(--target "$2"); shift 2; else args+=("$1"); shift; fi
+  done
+  cmake -S . -B "$dir" -G Ninja "${args[@]}" >/dev/null
+  cmake --build "$dir" "${target[@]}"
 }
 
 run_tests() {
@@ -72,6 +80,25 @@ python_tests() {
   # No build isolation: the build folder (build/python-*) and its objects are kept between runs.
   "$venv/bin/pip" install -q --disable-pip-version-check --no-build-isolation "$here"
   BLUETILE_BINARY="$(cd "$build_dir" && pwd)/bluetile" "$venv/bin/python" -m pytest -q -p no:cacheprovider "$here/python/tests"
+}
+
+# Each libFuzzer target for a few seconds, under address + undefined sanitizers, from the seed
+# corpus in fuzz/corpus/ (new inputs go to a scratch folder, not into the repository).
+fuzz_readers() {
+  local dir="$build_dir-fuzz"
+  build "$dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLUETILE_FUZZ=ON \
+    -DBLUETILE_IMAGES=OFF -DBLUETILE_RASTER=OFF -DBLUETILE_BUILD_TOOL=OFF -DBLUETILE_BUILD_TESTS=OFF \
+    -DBLUETILE_BUILD_BENCH=OFF -DBLUETILE_INSTALL=OFF --target bluetile_fuzzers
+  local scratch
+  scratch=$(mktemp -d)
+  for reader in point_file tile_set point_table; do
+    mkdir -p "$scratch/$reader"
+    "$dir/bluetile_fuzz_$reader" -max_total_time="${BLUETILE_FUZZ_SECONDS:-10}" -rss_limit_mb=2048 \
+      -malloc_limit_mb=1024 -timeout=10 -print_final_stats=1 "$scratch/$reader" "fuzz/corpus/$reader" \
+      2>"$scratch/$reader.log" || { tail -50 "$scratch/$reader.log" >&2; rm -rf "$scratch"; exit 1; }
+    grep -h "stat::number_of_executed_units" "$scratch/$reader.log" | sed "s/^/setup: fuzz $reader: /" >&2
+  done
+  rm -rf "$scratch"
 }
 
 demo() {
@@ -108,6 +135,8 @@ case "$what" in
       echo "setup: tests under address + undefined sanitizers" >&2
       build "$build_dir-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLUETILE_SANITIZE=ON -DBLUETILE_BUILD_BENCH=OFF
       run_tests "$build_dir-sanitize"
+      echo "setup: fuzzing the file readers (libFuzzer, ${BLUETILE_FUZZ_SECONDS:-10} s each)" >&2
+      fuzz_readers
     fi
     ;;
   build)
@@ -115,7 +144,7 @@ case "$what" in
     build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
     ;;
   *)
-    sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'
+    sed -n "2,16p" "$0" | sed 's/^# \{0,1\}//'
     exit 2
     ;;
 esac

@@ -625,7 +625,7 @@ int run(int argc, char** argv) {
       p.total_s = std::chrono::duration<double>(Clock::now() - t0).count();
       p.label = spec.label();
       p.threads = thread_count();
-      p.final_energy = result.history.back().energy;
+      p.final_energy = result.last.energy;
       if (exact_final.empty()) exact_final = scene.sites;  // the first spec is the exact engine
       for (std::size_t i = 0; i < scene.sites.size(); ++i)
         p.max_deviation = std::max(p.max_deviation, torus_distance(scene.sites[i], exact_final[i], Domain{}));

@@ -62,7 +62,28 @@ TEST(Rng, BelowIsUnbiasedAndInRange) {
 TEST(Rng, DerivedSeedsDiffer) {
   EXPECT_NE(derive_seed(1, 0), derive_seed(1, 1));
   EXPECT_NE(derive_seed(1, 0), derive_seed(2, 0));
-  EXPECT_EQ(derive_seed(5, 9), derive_seed(5, 9));
+}
+
+TEST(Rng, DerivedSeedsArePinned) {
+  // Issue 13, item 17: derive_seed(5, 9) was compared with itself. Values from an independent
+  // Python transcription of SplitMix64 (Steele, Lea, Flood 2014) as derive_seed uses it.
+  EXPECT_EQ(derive_seed(5, 9), 0x1D00A4E03A07AC5Eull);
+  EXPECT_EQ(derive_seed(0, 0), 0x75856F745165F252ull);
+  EXPECT_EQ(derive_seed(1, 1), 0xF977A0EAB49FFB2Full);
+  EXPECT_EQ(derive_seed(~0ull, ~0ull), 0xE99FF867DBF682C9ull);
+}
+
+TEST(Rng, StreamsArePinned) {
+  // More than one output pinned (the same independent transcription of xoshiro256**, Blackman
+  // and Vigna 2018, seeded by SplitMix64): a change in the state update shows up here.
+  Rng rng(1);
+  EXPECT_EQ(rng.next_u64(), 0xB3F2AF6D0FC710C5ull);
+  EXPECT_EQ(rng.next_u64(), 0x853B559647364CEAull);
+  EXPECT_EQ(rng.next_u64(), 0x92F89756082A4514ull);
+  EXPECT_EQ(rng.next_u64(), 0x642E1C7BC266A3A7ull);
+  Rng doubles(42);
+  EXPECT_EQ(doubles.uniform(), 0x1.5780b2e0c2ec0p-4);
+  EXPECT_EQ(doubles.uniform(), 0x1.84136619b444ep-2);
 }
 
 }  // namespace

@@ -229,7 +229,7 @@ TEST(DensityExactEngine, CellsWithoutDensityKeepTheirSiteAndAreReported) {
   ExactEngine engine;
   Scene moved = scene;
   LloydResult r = relax_lloyd(engine, moved, options);
-  EXPECT_EQ(r.history[0].zero_density, zero);
+  EXPECT_EQ(r.last.zero_density, zero);
 }
 
 TEST(DensityExactEngine, BadDensitiesAreClearErrors) {

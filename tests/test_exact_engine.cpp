@@ -25,12 +25,13 @@ struct ReferenceCell {
   Point centroid;
 };
 
-ReferenceCell brute_force_cell(const std::vector<Point>& sites, std::size_t i) {
-  std::vector<Point> poly = {{-1.5, -1.5}, {1.5, -1.5}, {1.5, 1.5}, {-1.5, 1.5}};
+ReferenceCell brute_force_cell(const std::vector<Point>& sites, std::size_t i, Domain domain = {}) {
+  const Point h = 1.5 * domain.size;
+  std::vector<Point> poly = {{-h.x, -h.y}, {h.x, -h.y}, {h.x, h.y}, {-h.x, h.y}};
   for (std::size_t j = 0; j < sites.size(); ++j) {
     for (int sx = -1; sx <= 1; ++sx) {
       for (int sy = -1; sy <= 1; ++sy) {
-        Point d = sites[j] + Point{sx, sy} - sites[i];
+        Point d = sites[j] + Point{sx, sy} * domain.size - sites[i];
         if (d.x == 0.0 && d.y == 0.0) continue;
         std::vector<Point> out;
         for (std::size_t k = 0; k < poly.size(); ++k) {
@@ -53,23 +54,23 @@ ReferenceCell brute_force_cell(const std::vector<Point>& sites, std::size_t i) {
     cx += (a.x + b.x) * cross;
     cy += (a.y + b.y) * cross;
   }
-  cell.centroid = wrap_point(sites[i] + Point{cx, cy} / (6.0 * cell.area), Domain{});
+  cell.centroid = wrap_point(sites[i] + Point{cx, cy} / (6.0 * cell.area), domain);
   return cell;
 }
 
-void expect_matches_brute_force(const std::vector<Point>& sites, double tolerance) {
-  SceneCells result = ExactEngine().compute(make_scene(sites));
+void expect_matches_brute_force(const std::vector<Point>& sites, double tolerance, Domain domain = {}) {
+  SceneCells result = ExactEngine().compute(make_scene(sites, domain));
   double total = 0.0;
   for (std::size_t i = 0; i < sites.size(); ++i) {
-    ReferenceCell ref = brute_force_cell(sites, i);
+    ReferenceCell ref = brute_force_cell(sites, i, domain);
     const Cell& cell = result.cells[i];
     EXPECT_NEAR(cell.area, ref.area, tolerance) << "site " << i;
-    Point d = torus_offset(cell.centroid, ref.centroid, Domain{});
+    Point d = torus_offset(cell.centroid, ref.centroid, domain);
     EXPECT_NEAR(d.x, 0.0, tolerance) << "site " << i;
     EXPECT_NEAR(d.y, 0.0, tolerance) << "site " << i;
     total += cell.area;
   }
-  EXPECT_NEAR(total, 1.0, 1e-12);
+  EXPECT_NEAR(total, domain.area(), 1e-12 * domain.area());
 }
 
 // Bit-for-bit equality of every field (memcmp would also compare padding bytes).
@@ -190,6 +191,18 @@ TEST(ExactEngine, MatchesBruteForceOnRandomSets) {
     std::size_t n = 3 + seed * 3;
     SCOPED_TRACE("seed " + std::to_string(seed));
     expect_matches_brute_force(uniform_points(n, seed), 1e-12);
+  }
+}
+
+TEST(ExactEngine, MatchesBruteForceOnNonSquareDomains) {
+  // Issue 13, item 17: rectangular periodic domains had no independent reference.
+  for (Domain domain : {Domain{{2.0, 0.5}}, Domain{{0.25, 3.0}}, Domain{{1.0, 0.1}}, Domain{{7.0, 3.0}}}) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      std::vector<Point> sites = uniform_points(150, seed + 40);
+      for (Point& p : sites) p *= domain.size;
+      SCOPED_TRACE("domain " + std::to_string(domain.size.x) + " x " + std::to_string(domain.size.y));
+      expect_matches_brute_force(sites, 1e-12 * domain.area(), domain);
+    }
   }
 }
 

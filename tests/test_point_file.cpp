@@ -73,16 +73,62 @@ TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2 0 7\n"), "pts.txt:1: expected 'x y' or 'x y level', got 4 columns: '0.1 0.2 0 7'");
   EXPECT_EQ(parse_error("0.1 0.2 0\n0.3 0.4\n"), "pts.txt:2: level column missing (earlier lines have one)");
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 0.4 1\n"), "pts.txt:2: level column appears here but not on earlier lines");
-  EXPECT_EQ(parse_error("0.1 0.2 -1\n"), "pts.txt:1: level must be a non-negative integer, got '-1'");
-  EXPECT_EQ(parse_error("0.1 0.2 1.5\n"), "pts.txt:1: level must be a non-negative integer, got '1.5'");
+  EXPECT_EQ(parse_error("0.1 0.2 -1\n"), "pts.txt:1: level must be an integer from 0 to 1000000, got '-1'");
+  EXPECT_EQ(parse_error("0.1 0.2 1.5\n"), "pts.txt:1: level must be an integer from 0 to 1000000, got '1.5'");
   EXPECT_EQ(parse_error("# c\n3\n0.1 0.2\n0.3 0.4\n"), "pts.txt:2: count line says 3 points but 2 follow");
   EXPECT_EQ(parse_error("-2\n"), "pts.txt:1: negative point count '-2'");
   EXPECT_EQ(parse_error(std::string("0.1 0.2\n\0\n", 10)), "pts.txt:2: binary data (NUL byte): not a point file");
   EXPECT_EQ(parse_error(""), "");
 }
 
+TEST(PointFile, ByteOrderMarkIsSkippedAtTheStartOnly) {
+  // Issue 13, item 13: "\xEF\xBB\xBF0.1 0.2" was "not a number '\xEF\xBB\xBF0.1'".
+  PointSet set = parse_points("\xEF\xBB\xBF" "0.1 0.2\n0.3 0.4\n", "x");
+  EXPECT_EQ(set.points, (std::vector<Point>{{0.1, 0.2}, {0.3, 0.4}}));
+  EXPECT_EQ(parse_error("0.1 0.2\n\xEF\xBB\xBF" "0.3 0.4\n"), "pts.txt:2: not a number '\xEF\xBB\xBF" "0.3'");
+  EXPECT_TRUE(parse_points("\xEF\xBB\xBF", "x").points.empty());
+  EXPECT_EQ(parse_error("\xEF\xBB"), "pts.txt:1: expected 'x y' or 'x y level', got '\xEF\xBB'");
+}
+
+TEST(PointFile, PiecesCutAnywhereParseAsTheWhole) {
+  const std::string text = "\xEF\xBB\xBF# set 0\r\n3\n0.1 0.2 0\n0.3 0.4 1 # c\n\n0.5 0.6 1\n# set 1\n0.7 0.8 2";
+  const std::vector<PointSet> whole = parse_point_sets(text, "x");
+  ASSERT_EQ(whole.size(), 2u);
+  ASSERT_EQ(whole[0].points.size(), 3u);
+  EXPECT_EQ(whole[1].points, (std::vector<Point>{{0.7, 0.8}}));
+  for (std::size_t step : {1, 2, 3, 5, 7, 64}) {
+    PointTextParser parser("x", true);
+    for (std::size_t at = 0; at < text.size(); at += step) parser.feed(std::string_view(text).substr(at, step));
+    std::vector<PointSet> pieces = parser.finish();
+    ASSERT_EQ(pieces.size(), whole.size()) << step;
+    for (std::size_t k = 0; k < whole.size(); ++k) {
+      EXPECT_EQ(pieces[k].points, whole[k].points) << step;
+      EXPECT_EQ(pieces[k].levels, whole[k].levels) << step;
+    }
+  }
+}
+
+TEST(PointFile, QuotedValuesAreCut) {
+  // Issue 13, item 13: a 10 MB bad line was quoted whole.
+  const std::string long_token(1000, 'z');
+  EXPECT_EQ(parse_error("0.1 " + long_token + "\n"), "pts.txt:1: not a number '" + std::string(40, 'z') + "...' (1000 bytes)");
+  EXPECT_EQ(parse_error("0.1 0.2 3 " + long_token + "\n"),
+            "pts.txt:1: expected 'x y' or 'x y level', got 4 columns: '0.1 0.2 3 " + std::string(30, 'z') +
+                "...' (1010 bytes)");
+  EXPECT_EQ(parse_error("0.1 1e999\n"), "pts.txt:1: coordinate out of range '1e999'");
+  EXPECT_EQ(parse_error("0.1 " + std::string(400, '9') + "x\n"),
+            "pts.txt:1: not a number '" + std::string(40, '9') + "...' (401 bytes)");
+}
+
 TEST(PointFile, MissingFileIsAnError) {
   EXPECT_THROW(read_point_file("/nonexistent/points.txt"), Error);
+  TempDir dir;
+  try {
+    read_point_file(dir.path());
+    ADD_FAILURE() << "a folder was read as a point file";
+  } catch (const Error& e) {
+    EXPECT_EQ(std::string(e.what()), dir.path() + ": is a folder");
+  }
 }
 
 TEST(PointFile, RoundTripsEveryBit) {

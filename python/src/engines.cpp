@@ -116,6 +116,7 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
     bluetile::LloydOptions options;
     options.iterations = iterations;
     options.tolerance = tolerance;
+    options.keep_history = history;
     result = bluetile::relax_lloyd(*e, scenes, options);
   }
   std::vector<std::vector<bluetile::Point>> relaxed;

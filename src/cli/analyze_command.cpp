@@ -16,9 +16,10 @@
 
 #include "bluetile/analysis/summary.h"
 #include "cli/commands.h"
+#include "cli/numeric_options.h"
 #include "cli/progress.h"
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/tiling/tiled_output.h"
@@ -321,7 +322,28 @@ void run_analyze(const AnalyzeOptions& o) {
       throw Error(o.summary + ": " + pdf_unavailable_reason());
   }
 
-  // Read and check every input before anything is computed or written.
+  // Every output is declared, and so checked, before any work; they appear together at the end.
+  OutputSet outputs;
+  for (const std::string& path : o.inputs) outputs.add_input(path);
+  if (!o.from.empty()) outputs.add_input(o.from);
+  outputs.add_folder(o.output);
+  const std::filesystem::path dir(o.output);
+  auto output = [&](const std::string& name) -> OutputFile& { return outputs.add((dir / name).string()); };
+  OutputFile& stats_file = output("stats.json");
+  OutputFile& radial_file = output("radial.csv");
+  OutputFile& rdf_file = output("rdf.csv");
+  OutputFile& points_png_file = output("points.png");
+  OutputFile& spectrum_png_file = output("spectrum.png");
+  OutputFile& radial_png_file = output("radial.png");
+  OutputFile& rdf_png_file = output("rdf.png");
+  OutputFile& points_svg_file = output("points.svg");
+  OutputFile& spectrum_svg_file = output("spectrum.svg");
+  OutputFile& radial_svg_file = output("radial.svg");
+  OutputFile& rdf_svg_file = output("rdf.svg");
+  OutputFile& report_file = output("report.txt");
+  OutputFile* summary_file = o.summary.empty() ? nullptr : &outputs.add(o.summary);
+
+  // Read and check every input before anything is computed.
   ReadOptions read;
   read.wrap = o.wrap;
   std::vector<std::vector<PointSet>> inputs;
@@ -514,29 +536,24 @@ void run_analyze(const AnalyzeOptions& o) {
   if (!o.summary.empty()) report << ", " << o.summary;
   report << "\n";
 
-  // Only now the output folder and the files, each atomically.
-  std::error_code ec;
-  std::filesystem::create_directories(o.output, ec);
-  if (ec || !std::filesystem::is_directory(o.output))
-    throw Error(o.output + ": cannot create output folder" + (ec ? ": " + ec.message() : ""));
-  const std::filesystem::path dir(o.output);
   const std::vector<Series> tables = o.compare ? series : std::vector<Series>{series.back()};
-  write_text_atomically((dir / "stats.json").string(), stats.dump(2) + "\n");
-  write_text_atomically((dir / "radial.csv").string(), radial_csv(tables, o.compare));
-  write_text_atomically((dir / "rdf.csv").string(), rdf_csv(tables, o.compare));
-  write_image((dir / "points.png").string(), points_png);
-  write_image((dir / "spectrum.png").string(), spectrum_png);
-  write_image((dir / "radial.png").string(), radial_png);
-  write_image((dir / "rdf.png").string(), rdf_png);
-  points_doc.write((dir / "points.svg").string());
-  spectrum_doc.write((dir / "spectrum.svg").string());
-  radial_svg.write((dir / "radial.svg").string());
-  rdf_svg.write((dir / "rdf.svg").string());
-  if (summary_doc) {
-    if (summary_format == "pdf") write_pdf(*summary_doc, o.summary);
-    else summary_doc->write(o.summary);
+  stats_file.write(stats.dump(2) + "\n");
+  radial_file.write(radial_csv(tables, o.compare));
+  rdf_file.write(rdf_csv(tables, o.compare));
+  write_image(points_png_file, points_png);
+  write_image(spectrum_png_file, spectrum_png);
+  write_image(radial_png_file, radial_png);
+  write_image(rdf_png_file, rdf_png);
+  points_svg_file.write(points_doc.str());
+  spectrum_svg_file.write(spectrum_doc.str());
+  radial_svg_file.write(radial_svg.str());
+  rdf_svg_file.write(rdf_svg.str());
+  if (summary_file) {
+    if (summary_format == "pdf") write_pdf(*summary_doc, *summary_file);
+    else summary_file->write(summary_doc->str());
   }
-  write_text_atomically((dir / "report.txt").string(), report.str());
+  report_file.write(report.str());
+  outputs.publish();
   std::cout << report.str() << std::flush;
 }
 
@@ -551,8 +568,9 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("-i,--input", o->inputs, "Point file(s); a file may hold several sets separated by '#' lines")
       ->required();
   cmd->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
-  cmd->add_option("--size", o->size, "Periodogram size F (even): frequencies -F/2..F/2-1; default 2 floor(5 sqrt(N))");
-  cmd->add_option("--bin-width", o->bin_width, "Annulus width in integer frequencies")->capture_default_str();
+  add_integer_option(cmd, "--size", o->size, 0, 65536,
+                     "Periodogram size F (even): frequencies -F/2..F/2-1; default (0) 2 floor(5 sqrt(N))");
+  add_real_option(cmd, "--bin-width", o->bin_width, {0.0, 65536.0, true, false}, "Annulus width in integer frequencies");
   cmd->add_option("--axis", o->axis, "Frequency axis of the plots: normalised (nu = |k| / (sqrt(N) / 2)) or integer")
       ->check(CLI::IsMember({"normalised", "integer"}))
       ->capture_default_str();
@@ -564,9 +582,10 @@ void add_analyze_command(CLI::App& app) {
                 "The sets were made in the bounded unit square: Euclidean distances, edge-corrected RDF (also "
                 "chosen by a '# domain bounded' line in the file)");
   cmd->add_flag("--wrap", o->wrap, "Wrap points outside [0, 1) onto the torus (else they are an error)");
-  cmd->add_option("--rdf-range", o->rdf_range, "Largest RDF distance in hexagonal spacings (default 8, psa's)");
-  cmd->add_option("--rdf-bins", o->rdf_bins, "RDF histogram bins (default N / 8 within 32..1000, psa's)")
-      ->check(CLI::Range(1, 1000000));
+  add_real_option(cmd, "--rdf-range", o->rdf_range, {0.0, 1e6}, "Largest RDF distance in hexagonal spacings (default 8, psa's)")
+      ->default_str("8");
+  add_integer_option(cmd, "--rdf-bins", o->rdf_bins, 1, 1000000, "RDF histogram bins (default N / 8 within 32..1000, psa's)")
+      ->default_str("N / 8");
   cmd->add_option("--summary", o->summary,
                   "Also write a one-page summary (points, spectrum, radial power, anisotropy, RDF, measures) to this "
                   ".pdf or .svg file");
@@ -574,11 +593,10 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--from", o->from, "Draw each point's move from its position in this file (same count and order)");
   cmd->add_flag("--no-centroids", o->no_centroids, "Skip the mean distance of the sites to their exact cell centroids");
   cmd->add_option("--title", o->title, "Title of radial.png and of the summary");
-  cmd->add_option("--image-size", o->image_size, "Side of points.png in pixels (two thirds of it per set side by side)")
-      ->check(CLI::Range(64, 8192))
-      ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "CPU threads (default: all cores); output does not depend on it")
-      ->check(CLI::Range(1, 1024));
+  add_integer_option(cmd, "--image-size", o->image_size, 64, 8192,
+                     "Side of points.png in pixels (two thirds of it per set side by side)");
+  add_integer_option(cmd, "--threads", o->threads, 1, 1024, "CPU threads (default: all cores); output does not depend on it")
+      ->default_str("all cores");
   cmd->callback([o] { run_analyze(*o); });
 }
 

@@ -7,6 +7,7 @@
 #include "cli/engine_options.h"
 #include "cli/point_output.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 
@@ -20,9 +21,11 @@ struct CentroidsOptions {
 };
 
 void run_centroids(const CentroidsOptions& o) {
+  OutputSet outputs;
+  outputs.add_input(o.input);
   std::vector<PointSet> sets = read_point_table(o.input);
-  if (sets.empty()) throw Error(o.input + ": no points");
-  PointOutput output(o.output, sets.size());
+  if (sets.empty()) throw Error(input_name(o.input) + ": no points");
+  PointOutput output(outputs, o.output, sets.size());
 
   std::vector<Scene> scenes;
   for (PointSet& set : sets) scenes.push_back(make_scene(std::move(set.points)));
@@ -39,7 +42,8 @@ void run_centroids(const CentroidsOptions& o) {
     const Cell& cell = results[k].cells[i];
     return c == 0 ? cell.centroid.x : c == 1 ? cell.centroid.y : cell.area;
   };
-  output.write(table, {"bluetile centroids of " + o.input + ", engine " + std::string(engine->name()) + ": cx cy area"});
+  output.write(table, {"bluetile centroids of " + input_name(o.input) + ", engine " + std::string(engine->name()) + ": cx cy area"});
+  outputs.publish();
   std::size_t coincident = 0;
   for (const SceneCells& r : results) coincident += r.coincident_count;
   if (coincident) {
@@ -54,9 +58,8 @@ void add_centroids_command(CLI::App& app) {
   auto o = std::make_shared<CentroidsOptions>();
   CLI::App* cmd = app.add_subcommand("centroids", "Write the Voronoi cell centroid and area of every point (cx cy area)");
   cmd->add_option("-i,--input", o->input,
-                  "Points: text (each '#'-separated set measured on its own), .npy or .bpt")
-      ->required()
-      ->check(CLI::ExistingFile);
+                  "Points: text (each '#'-separated set measured on its own), .npy or .bpt ('-': standard input)")
+      ->required();
   add_point_output_options(cmd, o->output, "Output table of cx cy area");
   add_engine_options(cmd, o->engine);
   cmd->callback([o] { run_centroids(*o); });

@@ -1,14 +1,24 @@
 // bluetile dart: the dart-throwing baseline (McCool & Fiume 1992; the paper, section 1.1).
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/memory_budget.h"
+#include "cli/numeric_options.h"
 #include "cli/point_output.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/sampling/dart_throwing.h"
 
 namespace bluetile::cli {
+namespace {
+
+// The points, the acceptance grid and its bookkeeping, rounded up.
+constexpr double kDartBytesPerPoint = 64.0;
+
+}  // namespace
 
 void add_dart_command(CLI::App& app) {
   auto o = std::make_shared<DartOptions>();
@@ -16,24 +26,22 @@ void add_dart_command(CLI::App& app) {
   auto sets = std::make_shared<long long>(1);
   auto verbose = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("dart", "Dart throwing with radius reduction on the unit torus");
-  cmd->add_option("-n,--count", o->count, "Number of points")->required()->check(CLI::Range(1, 100000000));
-  cmd->add_option("-s,--seed", o->seed, "Seed")->capture_default_str();
-  cmd->add_option("--sets", *sets, "Throw K independent sets; set k is the set --seed S+k gives alone")
-      ->check(CLI::Range(1LL, 10000000LL));
-  cmd->add_option("--max-failures", o->max_failures, "Rejections in a row before the radius shrinks")
-      ->check(CLI::Range(1, 1000000000))
-      ->capture_default_str();
-  cmd->add_option("--shrink", o->shrink, "Factor applied to the radius at each reduction")
-      ->check(CLI::Range(1e-6, 0.999999))
-      ->capture_default_str();
-  cmd->add_option("--start", o->start, "Starting radius in hexagonal spacings sqrt(2/(sqrt(3) N))")
-      ->check(CLI::Range(1e-6, 4.0))
-      ->capture_default_str();
-  add_point_output_options(cmd, *output, "Output points");
+  add_integer_option(cmd, "-n,--count", o->count, std::size_t{1}, static_cast<std::size_t>(kMaxCount), "Number of points")
+      ->required();
+  add_integer_option(cmd, "-s,--seed", o->seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(), "Seed");
+  add_integer_option(cmd, "--sets", *sets, 1LL, 10000000LL, "Throw K independent sets; set k is the set --seed S+k gives alone");
+  add_integer_option(cmd, "--max-failures", o->max_failures, std::size_t{1}, std::size_t{1000000000},
+                     "Rejections in a row before the radius shrinks");
+  add_real_option(cmd, "--shrink", o->shrink, {1e-6, 0.999999}, "Factor applied to the radius at each reduction");
+  add_real_option(cmd, "--start", o->start, {1e-6, 4.0}, "Starting radius in hexagonal spacings sqrt(2/(sqrt(3) N))");
+  add_point_output_options(cmd, *output, "Output points ('-': standard output)");
   cmd->add_flag("-v,--verbose", *verbose, "Print the final radius and the number of trials on stderr");
   cmd->callback([o, output, sets, verbose] {
     const auto k_sets = static_cast<std::size_t>(*sets);
-    PointOutput file(*output, k_sets);
+    check_memory(static_cast<double>(o->count) * static_cast<double>(k_sets) * kDartBytesPerPoint,
+                 "--count " + std::to_string(o->count) + (k_sets > 1 ? " --sets " + std::to_string(k_sets) : ""));
+    OutputSet outputs;
+    PointOutput file(outputs, *output, k_sets);
     std::vector<PointSet> results(k_sets);
     std::vector<std::string> header;
     for (std::size_t k = 0; k < k_sets; ++k) {
@@ -54,6 +62,7 @@ void add_dart_command(CLI::App& app) {
                        " points, seeds " + std::to_string(o->seed) + " + set index");
     }
     file.write(results, header);
+    outputs.publish();
   });
 }
 

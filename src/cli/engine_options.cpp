@@ -1,5 +1,6 @@
 #include "cli/engine_options.h"
 
+#include "cli/numeric_options.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/voronoi/exact_engine.h"
@@ -23,10 +24,10 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
   command->add_option("--engine", options.engine, "Centroid engine: raster (Vulkan) or exact (CPU)")
       ->check(CLI::IsMember({"raster", "exact"}))
       ->capture_default_str();
-  command->add_option("--resolution", options.resolution,
-                      "Raster engine: ID buffer side in pixels (default: from N, about 4 pixels per cell for area "
-                      "coverage, 1000 for point)")
-      ->check(CLI::Range(16, 65536));
+  add_integer_option(command, "--resolution", options.resolution, 16, 65536,
+                     "Raster engine: ID buffer side in pixels (default: from N, about 4 pixels per cell for area "
+                     "coverage, 1000 for point)")
+      ->default_str("from N");
   command->add_option("--coverage", options.coverage,
                       "Raster engine: point (pixel centres) or area (boundary pixels split exactly)")
       ->check(CLI::IsMember({"point", "area"}))
@@ -35,8 +36,9 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
       ->check(CLI::IsMember({"quad", "fan"}))
       ->capture_default_str();
   command->add_option("--device", options.device, "Raster engine: Vulkan device name or index (see 'bluetile devices')");
-  command->add_option("--threads", options.threads, "CPU threads (default: all cores); output does not depend on it")
-      ->check(CLI::Range(1, 1024));
+  add_integer_option(command, "--threads", options.threads, 1, 1024,
+                     "CPU threads (default: all cores); output does not depend on it")
+      ->default_str("all cores");
 }
 
 std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {
@@ -45,13 +47,13 @@ std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {
   return std::make_unique<RasterEngine>(raster_options(options));
 }
 
-void write_id_image(const EngineOptions& options, CentroidEngine& engine, const Scene& scene, const std::string& path) {
+void write_id_image(const EngineOptions& options, CentroidEngine& engine, const Scene& scene, OutputFile& out) {
   RasterOptions r = raster_options(options);
   if (auto* raster = dynamic_cast<RasterEngine*>(&engine)) r = raster->options();
   r.keep_id_images = true;
   RasterEngine drawer(r);
   drawer.compute(scene);
-  write_id_image(drawer.id_image(0), scene, path);
+  write_id_image(drawer.id_image(0), scene, out);
 }
 
 }  // namespace bluetile::cli

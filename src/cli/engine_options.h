@@ -6,6 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/voronoi/engine.h"
 
 namespace bluetile::cli {
@@ -26,6 +27,6 @@ std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options);
 
 // Writes the raster ID buffer of `scene` as an image (cells coloured, sites drawn). Uses
 // `engine` when it is the raster engine, else a raster engine made from `options`.
-void write_id_image(const EngineOptions& options, CentroidEngine& engine, const Scene& scene, const std::string& path);
+void write_id_image(const EngineOptions& options, CentroidEngine& engine, const Scene& scene, OutputFile& out);
 
 }  // namespace bluetile::cli

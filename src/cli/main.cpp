@@ -1,12 +1,29 @@
 // bluetile: blue-noise point sets by Lloyd relaxation (Hiller, Deussen, Keller 2001).
+#include <csignal>
 #include <cstdio>
 #include <exception>
 #include <new>
 
 #include "cli/commands.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
+#include "bluetile/core/parallel.h"
 
 int main(int argc, char** argv) {
+  try {
+    // Before any thread starts: every thread then leaves SIGINT, SIGTERM, SIGHUP to the watcher
+    // that removes staged outputs (output_file.h).
+    bluetile::install_interrupt_cleanup();
+    // A closed pipe on "-o -" and a file-size limit (ulimit -f) are then write errors, reported,
+    // with staged outputs removed, instead of signals that end the process on the spot.
+    std::signal(SIGPIPE, SIG_IGN);
+    std::signal(SIGXFSZ, SIG_IGN);
+    bluetile::thread_count();  // refuses a malformed BLUETILE_THREADS before any work
+  } catch (const bluetile::Error& e) {
+    std::fprintf(stderr, "bluetile: %s\n", e.what());
+    return 1;
+  }
+
   CLI::App app{"bluetile: blue-noise sample points by Lloyd relaxation on the unit torus"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "bluetile 0.1.0");

@@ -1,10 +1,5 @@
 #include "cli/point_output.h"
 
-#include <cerrno>
-#include <cstring>
-#include <fstream>
-
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 
 namespace bluetile::cli {
@@ -45,58 +40,57 @@ std::string set_file_name(const std::string& pattern, std::size_t set, std::size
   return name;
 }
 
-PointOutput::PointOutput(const PointOutputOptions& options, std::size_t sets) : options_(options), sets_(sets) {
+PointOutput::PointOutput(OutputSet& outputs, const PointOutputOptions& options, std::size_t sets)
+    : options_(options), sets_(sets) {
   if (one_file_each(options.output)) {
     for (std::size_t k = 0; k < sets; ++k) {
-      paths_.push_back(set_file_name(options.output, k, sets));
-      table_format_for(paths_.back(), options.format);  // an unknown extension is refused before any work
+      const std::string path = set_file_name(options.output, k, sets);
+      table_format_for(path, options.format);  // an unknown extension is refused before any work
+      files_.push_back(&outputs.add(path));
     }
     return;
   }
   TableFormat format = table_format_for(options.output, options.format);
   if (format == TableFormat::text && sets > 1 && options.output.find('#') != std::string::npos)
     throw Error("--output '" + options.output + "': file names with '#' cannot hold several sets");
-  paths_.push_back(options.output);
+  files_.push_back(&outputs.add(options.output, {.allow_stdout = true}));
 }
 
 void PointOutput::write(std::span<const PointSet> sets, const std::vector<std::string>& header) {
   if (sets.size() != sets_) throw Error("internal: " + std::to_string(sets.size()) + " sets for " + std::to_string(sets_) + " outputs");
   const TableView table = point_sets_table(sets);
-  if (paths_.size() == 1) {
-    write_one(paths_[0], table, sets, header);
+  if (files_.size() == 1) {
+    write_one(*files_[0], table, sets, header);
     return;
   }
-  for (std::size_t k = 0; k < sets.size(); ++k) write_one(paths_[k], single_set(table, k), sets.subspan(k, 1), header);
+  for (std::size_t k = 0; k < sets.size(); ++k) write_one(*files_[k], single_set(table, k), sets.subspan(k, 1), header);
 }
 
 void PointOutput::write(const TableView& table, const std::vector<std::string>& header) {
-  if (paths_.size() == 1) {
-    write_one(paths_[0], table, {}, header);
+  if (files_.size() == 1) {
+    write_one(*files_[0], table, {}, header);
     return;
   }
-  for (std::size_t k = 0; k < table.sets; ++k) write_one(paths_[k], single_set(table, k), {}, header);
+  for (std::size_t k = 0; k < table.sets; ++k) write_one(*files_[k], single_set(table, k), {}, header);
 }
 
-void PointOutput::write_one(const std::string& path, const TableView& table, std::span<const PointSet> point_sets,
+void PointOutput::write_one(OutputFile& file, const TableView& table, std::span<const PointSet> point_sets,
                             const std::vector<std::string>& header) {
-  const TableFormat format = table_format_for(path, options_.format);
+  const TableFormat format = table_format_for(file.path(), options_.format);
   TableWriteOptions w;
   w.float32 = options_.float32;
   w.name = options_.name;
   w.comment = header;
-  write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    const ByteSink sink = [&out](std::string_view bytes) { out.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); };
+  file.write([&](OutputStream& out) {
+    const ByteSink sink = [&out](std::string_view bytes) { out.write(bytes); };
     if (!point_sets.empty()) {
-      write_point_table(format, point_sets, w, path, sink);
+      write_point_table(format, point_sets, w, file.path(), sink);
     } else if (format != TableFormat::text) {
-      write_table(format, table, w, path, sink);
+      write_table(format, table, w, file.path(), sink);
     } else {
       sink(format_points(PointSet{}, header));
       write_text_table(table, sink);
     }
-    out.close();
-    if (!out) throw Error(path + ": cannot write: " + std::strerror(errno));
   });
 }
 

@@ -1,8 +1,9 @@
 // The point-set output of a command (relax, dart, progressive, centroids): --output (a '{}' in
 // it, every occurrence, is the set index: one file per set), --format, --float32, --name. The
 // names and formats are checked when the output is made, before any work; the format comes from
-// --format or each file's extension (core/point_table.h), never silently text. Each file is
-// written atomically (core/atomic_file.h).
+// --format or each file's extension (core/point_table.h), never silently text. The files are
+// outputs of the command's OutputSet (core/output_file.h): checked when declared, published with
+// the command's other outputs. '-' is standard output (text, or --format).
 #pragma once
 
 #include <span>
@@ -11,6 +12,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 
@@ -31,8 +33,9 @@ std::string set_file_name(const std::string& pattern, std::size_t set, std::size
 
 class PointOutput {
  public:
-  // The file, or one file per set when the name holds "{}", for `sets` sets.
-  PointOutput(const PointOutputOptions& options, std::size_t sets);
+  // The file, or one file per set when the name holds "{}", for `sets` sets, declared in
+  // `outputs` (which the caller publishes).
+  PointOutput(OutputSet& outputs, const PointOutputOptions& options, std::size_t sets);
 
   // Writes point sets; `header`: comment lines at the top (text and C header).
   void write(std::span<const PointSet> sets, const std::vector<std::string>& header);
@@ -40,12 +43,12 @@ class PointOutput {
   void write(const TableView& table, const std::vector<std::string>& header);
 
  private:
-  void write_one(const std::string& path, const TableView& table, std::span<const PointSet> point_sets,
+  void write_one(OutputFile& file, const TableView& table, std::span<const PointSet> point_sets,
                  const std::vector<std::string>& header);
 
   PointOutputOptions options_;
   std::size_t sets_;
-  std::vector<std::string> paths_;
+  std::vector<OutputFile*> files_;
 };
 
 }  // namespace bluetile::cli

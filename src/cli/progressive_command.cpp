@@ -1,16 +1,18 @@
 // bluetile progressive: hierarchical point sets, new levels relaxed around fixed earlier ones.
-#include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/engine_options.h"
+#include "cli/memory_budget.h"
+#include "cli/numeric_options.h"
 #include "cli/point_output.h"
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
-#include "bluetile/core/rng.h"
 #include "bluetile/relax/progressive.h"
 
 namespace bluetile::cli {
@@ -31,17 +33,21 @@ struct ProgressiveOptions {
   EngineOptions engine;
 };
 
+// Bytes per point of a level's relaxation (see kRelaxBytesPerSite) plus the levels column.
+constexpr double kBytesPerPoint = kRelaxBytesPerSite + 8.0;
+
 void run_progressive(const ProgressiveOptions& o) {
   if (!o.input.empty() && o.add == 0 && o.ratio == 0.0)
     throw Error("--input needs --add M or --ratio R: how many points to add");
-  if (o.ratio != 0.0 && o.ratio <= 1.0) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
+  OutputSet outputs;
+  if (!o.input.empty()) outputs.add_input(o.input);
   // The bases: the input's sets (each gets its own levels), or K empty ones.
   std::vector<PointSet> sets(static_cast<std::size_t>(o.sets));
   if (!o.input.empty()) {
     sets = read_point_table(o.input);
-    if (sets.empty()) throw Error(o.input + ": no points");
+    if (sets.empty()) throw Error(input_name(o.input) + ": no points");
   }
-  PointOutput output(o.output, sets.size());  // names and formats checked before any work
+  PointOutput output(outputs, o.output, sets.size());  // names and formats checked before any work
 
   HierarchyOptions options;
   options.count = static_cast<std::size_t>(o.count);
@@ -51,17 +57,27 @@ void run_progressive(const ProgressiveOptions& o) {
   options.iterations = o.iterations;
   options.tolerance = o.tolerance;
   options.placement = o.placement == "random" ? Placement::random : Placement::gaps;
-  // Every set's levels and sizes, checked before any work.
+  // Every set's levels and sizes, and the memory of them all, checked before any work.
   int target_levels = 0;
+  double total = 0.0;
   for (const PointSet& set : sets) {
     const int base_levels = count_levels(set);
     target_levels = o.levels ? o.levels : std::max(base_levels + 1, o.input.empty() ? 4 : 1);
     if (target_levels <= base_levels) {
-      throw Error("--levels " + std::to_string(target_levels) + ": " + (o.input.empty() ? "" : o.input + " ") +
+      throw Error("--levels " + std::to_string(target_levels) + ": " + (o.input.empty() ? "" : input_name(o.input) + " ") +
                   "already has " + std::to_string(base_levels) + " level(s); --levels is the total to reach");
     }
-    hierarchy_level_sizes(set, options);
+    std::vector<std::size_t> sizes;
+    try {
+      sizes = hierarchy_level_sizes(set, options);
+    } catch (const Error& e) {
+      throw Error(o.input.empty() ? std::string(e.what()) : input_name(o.input) + ": " + e.what());
+    }
+    total += static_cast<double>(set.points.size());
+    for (std::size_t add : sizes) total += static_cast<double>(add);
   }
+  check_memory(total * kBytesPerPoint, std::to_string(static_cast<long long>(total)) + " points in " +
+                                           std::to_string(target_levels) + " levels");
 
   auto engine = make_engine(o.engine);
   for (std::size_t k = 0; k < sets.size(); ++k) {
@@ -81,7 +97,7 @@ void run_progressive(const ProgressiveOptions& o) {
     sets[k] = add_levels(*engine, std::move(sets[k]), options);
   }
   std::string how = o.input.empty() ? "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed)
-                                    : "on " + o.input + ", seed " + std::to_string(o.seed);
+                                    : "on " + input_name(o.input) + ", seed " + std::to_string(o.seed);
   if (sets.size() > 1) how += " + set index";
   const std::string what = sets.size() == 1 ? std::to_string(sets[0].points.size()) + " points"
                                             : std::to_string(sets.size()) + " sets of " +
@@ -92,6 +108,7 @@ void run_progressive(const ProgressiveOptions& o) {
           ", placement " + o.placement,
       "columns: x y level"};
   output.write(sets, header);
+  outputs.publish();
 }
 
 }  // namespace
@@ -102,28 +119,29 @@ void add_progressive_command(CLI::App& app) {
       "progressive", "Hierarchical point sets: add levels of points relaxed around the fixed earlier levels");
   auto* input = cmd->add_option("-i,--input", o->input,
                                 "Base points, kept bit for bit: text (each '#'-separated set gets its own levels), .npy "
-                                "or .bpt")
-                    ->check(CLI::ExistingFile);
-  auto* count = cmd->add_option("-n,--count", o->count, "Build from scratch: level 0 has N relaxed random points")
-                    ->check(CLI::Range(1LL, 100000000LL));
+                                "or .bpt ('-': standard input)");
+  auto* count = add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount,
+                                   "Build from scratch: level 0 has N relaxed random points");
   input->excludes(count);
-  auto* add = cmd->add_option("-a,--add", o->add, "Points each new level adds (default with --count: N)")
-                  ->check(CLI::Range(1LL, 100000000LL));
-  auto* ratio = cmd->add_option("--ratio", o->ratio, "Instead of --add: each level multiplies the total by R (> 1)");
+  auto* add = add_integer_option(cmd, "-a,--add", o->add, 1LL, kMaxCount, "Points each new level adds (default with --count: N)");
+  // Above 10^8 every level would pass the point limit at once.
+  auto* ratio = add_real_option(cmd, "--ratio", o->ratio, {1.0, 1e8, true, false},
+                                "Instead of --add: each level multiplies the total by R (> 1)");
   add->excludes(ratio);
-  cmd->add_option("-l,--levels", o->levels,
-                  "Total levels of the result (default: 4 with --count, one more than the input has with --input)")
-      ->check(CLI::Range(1, 64));
-  cmd->add_option("-k,--iterations", o->iterations, "Lloyd iterations per level")->check(CLI::Range(0, 100000000))->capture_default_str();
-  cmd->add_option("--tolerance", o->tolerance, "Stop a level early once no point moves more than this")->check(CLI::NonNegativeNumber);
-  cmd->add_option("-s,--seed", o->seed, "Seed of the random placement")->capture_default_str();
+  add_integer_option(cmd, "-l,--levels", o->levels, 1, 64,
+                     "Total levels of the result (default: 4 with --count, one more than the input has with --input)")
+      ->default_str("");
+  add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations per level");
+  add_real_option(cmd, "--tolerance", o->tolerance, {}, "Stop a level early once no point moves more than this");
+  add_integer_option(cmd, "-s,--seed", o->seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(),
+                     "Seed of the random placement");
   cmd->add_option("--placement", o->placement, "Start of new points: gaps (best candidate) or random (the paper)")
       ->check(CLI::IsMember({"gaps", "random"}))
       ->capture_default_str();
-  cmd->add_option("--sets", o->sets, "Build K independent hierarchies; set k is the one --seed S+k gives alone")
-      ->check(CLI::Range(1LL, 10000000LL))
+  add_integer_option(cmd, "--sets", o->sets, 1LL, 10000000LL,
+                     "Build K independent hierarchies; set k is the one --seed S+k gives alone")
       ->needs(count);
-  add_point_output_options(cmd, o->output, "Output points (x y level)");
+  add_point_output_options(cmd, o->output, "Output points (x y level; '-': standard output)");
   add_engine_options(cmd, o->engine);
   cmd->callback([o] {
     if (o->input.empty() && o->count == 0) throw CLI::RequiredError("--input or --count");

@@ -1,13 +1,17 @@
 // bluetile relax: Lloyd relaxation of a random or given point set.
+#include <cstdio>
+#include <limits>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/density_options.h"
 #include "cli/engine_options.h"
+#include "cli/memory_budget.h"
+#include "cli/numeric_options.h"
 #include "cli/point_output.h"
 #include "cli/relax_log.h"
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
@@ -47,6 +51,16 @@ std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_
 }
 
 void run_relax(const RelaxOptions& o) {
+  if (o.input.empty()) {
+    check_memory(static_cast<double>(o.sets) * static_cast<double>(o.count) * kRelaxBytesPerSite,
+                 "--count " + std::to_string(o.count) + " x --sets " + std::to_string(o.sets));
+  }
+  // Every output is declared, and so checked, before any work.
+  OutputSet outputs;
+  if (!o.input.empty()) outputs.add_input(o.input);
+  OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
+  OutputFile* id_image = o.id_image.empty() ? nullptr : &outputs.add(o.id_image);
+
   // The map is stretched over the unit square, whatever its aspect ratio. Random starts follow
   // it; the cells are weighted so that the relaxed set keeps following it.
   std::shared_ptr<const DensityGrid> density, weight;
@@ -59,7 +73,7 @@ void run_relax(const RelaxOptions& o) {
   std::vector<PointSet> inputs;
   if (!o.input.empty()) {
     inputs = read_point_table(o.input);
-    if (inputs.empty()) throw Error(o.input + ": no points");
+    if (inputs.empty()) throw Error(input_name(o.input) + ": no points");
   } else {
     for (long long k = 0; k < o.sets; ++k)
       inputs.push_back({random_points(o.seed, static_cast<std::size_t>(k), static_cast<std::size_t>(o.count),
@@ -73,11 +87,11 @@ void run_relax(const RelaxOptions& o) {
                   " points" + (inputs.size() > 1 ? " of a set" : ""));
     }
   }
-  PointOutput point_output(o.output, inputs.size());  // names and formats checked before any work
+  PointOutput point_output(outputs, o.output, inputs.size());  // names and formats checked before any work
 
   std::vector<Scene> scenes;
   for (PointSet& set : inputs) {
-    Scene scene = make_scene(set.points);
+    Scene scene = make_scene(std::move(set.points));
     scene.wanted_begin = static_cast<std::size_t>(o.fixed);
     scene.boundary = o.bounded ? Boundary::bounded : Boundary::periodic;
     scene.density = weight;
@@ -85,21 +99,24 @@ void run_relax(const RelaxOptions& o) {
   }
 
   auto engine = make_engine(o.engine);
-  RelaxLog log("relax", o.iterations, o.verbose);
+  // The log is streamed while the run goes: its memory does not grow with the iterations.
+  RelaxLog log("relax", o.iterations, o.verbose, log_file ? &log_file->open() : nullptr);
   LloydResult result = relax_lloyd(*engine, scenes, log.lloyd_options(o.iterations, o.tolerance));
+  log.finish(result, o.tolerance, o.iterations);
 
   const std::string what = inputs.size() == 1 ? std::to_string(n) + " points"
                                               : std::to_string(inputs.size()) + " sets of " + std::to_string(n) + " points";
   std::vector<std::string> header = {
-      "bluetile relax: " + what + ", " + std::to_string(result.history.size()) +
+      "bluetile relax: " + what + ", " + std::to_string(result.iterations) +
       " iterations, engine " + std::string(engine->name()) +
-      (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + o.input) +
+      (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + input_name(o.input)) +
       (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "") +
       (o.density_map.empty() ? "" : ", density map " + o.density_map) + (o.bounded ? ", bounded" : "")};
   for (std::size_t k = 0; k < scenes.size(); ++k) inputs[k].points = scenes[k].sites;
   point_output.write(inputs, header);
-  if (!o.id_image.empty()) write_id_image(o.engine, *engine, scenes[0], o.id_image);
-  log.finish(result, o.log, o.tolerance, o.iterations);
+  if (log_file) log_file->close();
+  if (id_image) write_id_image(o.engine, *engine, scenes[0], *id_image);
+  outputs.publish();
 }
 
 }  // namespace
@@ -107,20 +124,22 @@ void run_relax(const RelaxOptions& o) {
 void add_relax_command(CLI::App& app) {
   auto o = std::make_shared<RelaxOptions>();
   CLI::App* cmd = app.add_subcommand("relax", "Relax a random (--count) or given (--input) point set by Lloyd's method");
-  auto* count = cmd->add_option("-n,--count", o->count, "Number of random points to start from")->check(CLI::Range(1LL, 100000000LL));
+  auto* count = add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount, "Number of random points to start from");
   auto* input = cmd->add_option("-i,--input", o->input,
-                                "Points to start from: text (each '#'-separated set relaxed on its own), .npy or .bpt")
-                    ->check(CLI::ExistingFile);
+                                "Points to start from: text (each '#'-separated set relaxed on its own), .npy or .bpt "
+                                "('-': standard input)");
   count->excludes(input);
   input->excludes(count);
-  cmd->add_option("-k,--iterations", o->iterations, "Lloyd iterations")->check(CLI::Range(0, 100000000))->capture_default_str();
-  cmd->add_option("-s,--seed", o->seed, "Seed of the random start")->capture_default_str();
-  cmd->add_option("--fixed", o->fixed, "Keep the first M sites in place (they still shape the cells)")->check(CLI::NonNegativeNumber);
-  cmd->add_option("--tolerance", o->tolerance, "Stop early once no site moves more than this (domain units)")->check(CLI::NonNegativeNumber);
-  auto* sets = cmd->add_option("--sets", o->sets, "Relax K independent sets (seeds derived from --seed); --output with {} writes one file each, else one table (text: '#' lines between sets)")
-      ->check(CLI::Range(1LL, 10000000LL));
+  add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations");
+  add_integer_option(cmd, "-s,--seed", o->seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(),
+                     "Seed of the random start");
+  add_integer_option(cmd, "--fixed", o->fixed, 0LL, kMaxCount, "Keep the first M sites in place (they still shape the cells)");
+  add_real_option(cmd, "--tolerance", o->tolerance, {}, "Stop early once no site moves more than this (domain units)");
+  auto* sets = add_integer_option(cmd, "--sets", o->sets, 1LL, kMaxSets,
+                                  "Relax K independent sets (seeds derived from --seed); --output with {} writes one "
+                                  "file each, else one table (text: '#' lines between sets)");
   sets->needs(count);
-  add_point_output_options(cmd, o->output, "Output points");
+  add_point_output_options(cmd, o->output, "Output points ('-': standard output)");
   cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
   cmd->add_option("--id-image", o->id_image, "Write the raster ID buffer of the result as an image (cells coloured, sites drawn)");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");

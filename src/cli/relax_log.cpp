@@ -2,14 +2,11 @@
 
 #include <cstdio>
 
-#include "bluetile/core/atomic_file.h"
-
 namespace bluetile::cli {
 
-RelaxLog::RelaxLog(std::string label, int iterations, bool verbose)
-    : progress_(std::move(label), iterations), verbose_(verbose) {
-  csv_ << "iteration,energy,max_displacement,mean_displacement,coincident,fallbacks,zero_density\n";
-  csv_.precision(17);
+RelaxLog::RelaxLog(std::string label, int iterations, bool verbose, OutputStream* csv)
+    : progress_(std::move(label), iterations), verbose_(verbose), csv_(csv) {
+  if (csv_) csv_->write("iteration,energy,max_displacement,mean_displacement,coincident,fallbacks,zero_density\n");
 }
 
 LloydOptions RelaxLog::lloyd_options(int iterations, double tolerance) {
@@ -21,8 +18,10 @@ LloydOptions RelaxLog::lloyd_options(int iterations, double tolerance) {
 }
 
 void RelaxLog::record(const LloydIteration& it) {
-  csv_ << it.iteration << ',' << it.energy << ',' << it.max_displacement << ',' << it.mean_displacement << ','
-       << it.coincident << ',' << it.fallbacks << ',' << it.zero_density << '\n';
+  if (csv_) {
+    csv_->print("%d,%.17g,%.17g,%.17g,%zu,%zu,%zu\n", it.iteration, it.energy, it.max_displacement,
+                it.mean_displacement, it.coincident, it.fallbacks, it.zero_density);
+  }
   if (verbose_) {
     progress_.finish();
     std::string notes;
@@ -36,10 +35,9 @@ void RelaxLog::record(const LloydIteration& it) {
   progress_.update(it.iteration, detail);
 }
 
-void RelaxLog::finish(const LloydResult& result, const std::string& path, double tolerance, int iterations) {
+void RelaxLog::finish(const LloydResult& result, double tolerance, int iterations) {
   progress_.finish();
-  if (!path.empty()) write_text_atomically(path, csv_.str());
-  const LloydIteration* last = result.history.empty() ? nullptr : &result.history.back();
+  const LloydIteration* last = result.iterations ? &result.last : nullptr;
   if (last && last->coincident) {
     std::fprintf(stderr, "bluetile: warning: %zu sites coincide with another site and were not moved\n",
                  last->coincident);

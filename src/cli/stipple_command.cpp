@@ -13,6 +13,7 @@
 #include "cli/engine_options.h"
 #include "cli/relax_log.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/io/image.h"
@@ -56,7 +57,7 @@ double default_dot_radius(const DensityGrid& map, const Domain& domain, std::siz
 }
 
 // The drawing in domain units, y up, one black disc per dot on white.
-void write_svg(const std::string& path, const std::vector<Point>& points, const Domain& domain, double radius) {
+void write_svg(OutputFile& out, const std::vector<Point>& points, const Domain& domain, double radius) {
   const Point size = domain.size;
   SvgDocument svg(0.0, 0.0, size.x, size.y, 1000.0 * size.x, 1000.0 * size.y, "px");
   svg.set_title("bluetile stipple");
@@ -64,19 +65,25 @@ void write_svg(const std::string& path, const std::vector<Point>& points, const 
   svg.begin_group(SvgStyle::filled(colours::black), SvgTransform::fit_y_up(0.0, 0.0, size.x, size.y, 0.0, 0.0, size.x, size.y));
   for (const Point& p : points) svg.circle(p, radius);
   svg.end_group();
-  svg.write(path);
+  out.write(svg.str());
 }
 
-void write_render(const std::string& path, const std::vector<Point>& points, const Domain& domain, double radius,
-                  int width) {
+void write_render(OutputFile& out, const std::vector<Point>& points, const Domain& domain, double radius, int width) {
   const double scale = width / domain.size.x;
   const int height = std::max(1, static_cast<int>(std::lround(domain.size.y * scale)));
   Canvas canvas(width, height, colours::white);
   for (const Point& p : points) canvas.disc({p.x * scale, (domain.size.y - p.y) * scale}, radius * scale, colours::black);
-  write_image(path, canvas);
+  write_image(out, canvas);
 }
 
 void run_stipple(const StippleOptions& o) {
+  // Every output is declared, and so checked, before any work; they appear together at the end.
+  OutputSet outputs;
+  outputs.add_input(o.image);
+  OutputFile& points_file = outputs.add(o.output, {.allow_stdout = true});
+  OutputFile* svg_file = o.svg.empty() ? nullptr : &outputs.add(o.svg, {.allow_stdout = true});
+  OutputFile* png_file = o.png.empty() ? nullptr : &outputs.add(o.png);
+  OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
   auto map = std::make_shared<DensityGrid>(load_density_map(o.image, density_transfer(o.transfer, true)));
   const Domain domain = image_domain(*map);
   const auto count = static_cast<std::size_t>(o.count);
@@ -86,21 +93,23 @@ void run_stipple(const StippleOptions& o) {
   scene.density = std::make_shared<DensityGrid>(weight_for_point_density(*map, o.weight_exponent));
 
   auto engine = make_engine(o.engine);
-  RelaxLog log("stipple", o.iterations, o.verbose);
+  RelaxLog log("stipple", o.iterations, o.verbose, log_file ? &log_file->open() : nullptr);
   LloydResult result = relax_lloyd(*engine, scene, log.lloyd_options(o.iterations, o.tolerance));
+  log.finish(result, o.tolerance, o.iterations);
 
   const double radius = o.dot_radius > 0.0 ? o.dot_radius : default_dot_radius(*map, domain, count);
   char size[64];
   std::snprintf(size, sizeof size, "%.17g x %.17g", domain.size.x, domain.size.y);
   const std::vector<std::string> header = {
-      "bluetile stipple: " + std::to_string(count) + " points, " + std::to_string(result.history.size()) +
+      "bluetile stipple: " + std::to_string(count) + " points, " + std::to_string(result.iterations) +
           " iterations, engine " + std::string(engine->name()) + ", seed " + std::to_string(o.seed) + ", image " +
           o.image,
       std::string("domain ") + size + (o.periodic ? ", periodic" : ", bounded") + " (y up: image row 0 at the top)"};
-  write_point_file(o.output, PointSet{scene.sites, {}}, header);
-  if (!o.svg.empty()) write_svg(o.svg, scene.sites, domain, radius);
-  if (!o.png.empty()) write_render(o.png, scene.sites, domain, radius, o.png_width);
-  log.finish(result, o.log, o.tolerance, o.iterations);
+  points_file.write([&](OutputStream& out) { write_points(out, PointSet{scene.sites, {}}, header); });
+  if (svg_file) write_svg(*svg_file, scene.sites, domain, radius);
+  if (png_file) write_render(*png_file, scene.sites, domain, radius, o.png_width);
+  if (log_file) log_file->close();
+  outputs.publish();
 }
 
 }  // namespace

@@ -28,6 +28,7 @@ inline bluetile::Scene relaxed_scene() {
   bluetile::ExactEngine engine;
   bluetile::LloydOptions options;
   options.iterations = 40;
+  options.keep_history = true;
   bluetile::LloydResult result = bluetile::relax_lloyd(engine, scene, options);
   check(result.history.size() == 40, "40 iterations ran");
   check(result.history.back().energy < result.history.front().energy, "Lloyd energy fell");

@@ -1,18 +1,17 @@
-// Writing output files so that a failed run leaves nothing half-written: everything goes to a
-// temporary file beside the target, which is renamed over the target only once complete.
+// The first output API, kept as two thin wrappers over output_file.h for code written against
+// it; new code declares its outputs in an OutputSet (output_file.h) and streams into them.
 #pragma once
 
 #include <functional>
 #include <string>
+#include <string_view>
 
 namespace bluetile {
 
-// Calls write(temporary_path), then renames the temporary file to `path`. The temporary path
-// keeps the target's extension (image writers choose the format by it). If write throws, the
-// temporary file is removed and the exception propagates; `path` is untouched.
+// Calls write(path of a file to create) and publishes that file at `path` (see output_file.h).
 void write_atomically(const std::string& path, const std::function<void(const std::string&)>& write);
 
-// Same, for text: the content is produced into a string first.
-void write_text_atomically(const std::string& path, const std::string& content);
+// write_output(path, content).
+void write_text_atomically(const std::string& path, std::string_view content);
 
 }  // namespace bluetile

@@ -2,20 +2,33 @@
 
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <condition_variable>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
+#include <string>
+#include <string_view>
 #include <thread>
 #include <vector>
+
+#include "bluetile/core/error.h"
 
 namespace bluetile {
 namespace {
 
+// Beyond any machine we run on; a larger value is a typo.
+constexpr std::size_t kMaxThreads = 1024;
+
 std::size_t default_thread_count() {
   if (const char* env = std::getenv("BLUETILE_THREADS")) {
-    long n = std::strtol(env, nullptr, 10);
-    if (n >= 1 && n <= 1024) return static_cast<std::size_t>(n);
+    std::string_view text(env);
+    std::size_t n = 0;
+    auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);
+    if (ec != std::errc() || end != text.data() + text.size() || n < 1 || n > kMaxThreads)
+      throw Error("BLUETILE_THREADS='" + std::string(text.substr(0, 40)) + "': expected an integer from 1 to " +
+                  std::to_string(kMaxThreads));
+    return n;
   }
   return std::max(1u, std::thread::hardware_concurrency());
 }

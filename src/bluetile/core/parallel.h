@@ -10,7 +10,8 @@
 namespace bluetile {
 
 // Number of threads used by parallel_for, at least 1. Default: the hardware's core count,
-// or BLUETILE_THREADS from the environment when set.
+// or BLUETILE_THREADS from the environment when set (an integer from 1 to 1024; anything else
+// throws Error naming it).
 std::size_t thread_count();
 void set_thread_count(std::size_t count);
 

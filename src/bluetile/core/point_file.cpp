@@ -1,26 +1,59 @@
 #include "bluetile/core/point_file.h"
 
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <fstream>
-#include <sstream>
+#include <cstdio>
+#include <memory>
+#include <new>
 
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/input_file.h"
 
 namespace bluetile {
 namespace {
 
-std::vector<std::string_view> split_whitespace(std::string_view line) {
-  std::vector<std::string_view> tokens;
+// Values quoted in messages are cut to this many bytes: a message stays one readable line.
+constexpr std::size_t kQuoteLength = 40;
+
+// 'value', cut: 'first 40 bytes...' (N bytes).
+std::string quote(std::string_view value) {
+  // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on a literal + string chain.
+  std::string text(1, '\'');
+  text.append(value.substr(0, kQuoteLength));
+  text += '\'';
+  if (value.size() > kQuoteLength) {
+    text.insert(text.size() - 1, "...");
+    text += " (" + std::to_string(value.size()) + " bytes)";
+  }
+  return text;
+}
+
+// The same without the quotes (a value that parsed as a number).
+std::string shortened(std::string_view value) {
+  if (value.size() <= kQuoteLength) return std::string(value);
+  return std::string(value.substr(0, kQuoteLength)) + "... (" + std::to_string(value.size()) + " bytes)";
+}
+
+bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+// The first tokens of a line (up to kKept) and how many there are in all.
+struct Tokens {
+  static constexpr std::size_t kKept = 3;
+  std::string_view kept[kKept];
+  std::size_t count = 0;
+};
+
+Tokens split_whitespace(std::string_view line) {
+  Tokens tokens;
   std::size_t i = 0;
   while (i < line.size()) {
-    while (i < line.size() && (line[i] == ' ' || line[i] == '\t' || line[i] == '\r')) ++i;
+    while (i < line.size() && is_blank(line[i])) ++i;
     std::size_t start = i;
-    while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r') ++i;
-    if (i > start) tokens.push_back(line.substr(start, i - start));
+    while (i < line.size() && !is_blank(line[i])) ++i;
+    if (i > start) {
+      if (tokens.count < Tokens::kKept) tokens.kept[tokens.count] = line.substr(start, i - start);
+      ++tokens.count;
+    }
   }
   return tokens;
 }
@@ -40,10 +73,9 @@ class LineError {
 double parse_coordinate(std::string_view token, const LineError& fail) {
   double value = 0.0;
   auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (ec == std::errc::result_out_of_range) fail("coordinate out of range '" + std::string(token) + "'");
-  if (ec != std::errc() || end != token.data() + token.size())
-    fail("not a number '" + std::string(token) + "'");
-  if (!std::isfinite(value)) fail("not a finite number '" + std::string(token) + "'");
+  if (end != token.data() + token.size() || ec == std::errc::invalid_argument) fail("not a number " + quote(token));
+  if (ec == std::errc::result_out_of_range) fail("coordinate out of range " + quote(token));
+  if (!std::isfinite(value)) fail("not a finite number " + quote(token));
   return value;
 }
 
@@ -61,22 +93,22 @@ class SetParser {
 
   void data_line(std::string_view line, std::size_t number) {
     LineError fail(name_, number);
-    auto tokens = split_whitespace(line);
-    if (tokens.empty()) return;
-    if (tokens.size() == 1) {
+    Tokens tokens = split_whitespace(line);
+    if (tokens.count == 0) return;
+    if (tokens.count == 1) {
       long long count = 0;
-      if (set_.points.empty() && count_line_ == 0 && parse_integer(tokens[0], count)) {
-        if (count < 0) fail("negative point count '" + std::string(tokens[0]) + "'");
+      if (set_.points.empty() && count_line_ == 0 && parse_integer(tokens.kept[0], count)) {
+        if (count < 0) fail("negative point count " + quote(tokens.kept[0]));
         declared_count_ = static_cast<std::size_t>(count);
         count_line_ = number;
         return;
       }
-      fail("expected 'x y' or 'x y level', got '" + std::string(line) + "'");
+      fail("expected 'x y' or 'x y level', got " + quote(line));
     }
-    if (tokens.size() > 3) fail("expected 'x y' or 'x y level', got " + std::to_string(tokens.size()) +
-                                " columns: '" + std::string(line) + "'");
-    Point p{parse_coordinate(tokens[0], fail), parse_coordinate(tokens[1], fail)};
-    bool has_level = tokens.size() == 3;
+    if (tokens.count > 3)
+      fail("expected 'x y' or 'x y level', got " + std::to_string(tokens.count) + " columns: " + quote(line));
+    Point p{parse_coordinate(tokens.kept[0], fail), parse_coordinate(tokens.kept[1], fail)};
+    bool has_level = tokens.count == 3;
     if (set_.points.empty()) {
       levels_seen_ = has_level;
     } else if (has_level != levels_seen_) {
@@ -85,26 +117,26 @@ class SetParser {
     }
     if (has_level) {
       long long level = 0;
-      if (!parse_integer(tokens[2], level) || level < 0 || level > 1000000)
-        fail("level must be a non-negative integer, got '" + std::string(tokens[2]) + "'");
+      if (!parse_integer(tokens.kept[2], level) || level < 0 || level > kMaxLevel)
+        fail("level must be an integer from 0 to " + std::to_string(kMaxLevel) + ", got " + quote(tokens.kept[2]));
       set_.levels.push_back(static_cast<int>(level));
     }
     if (!options_.wrap) {
       for (int axis = 0; axis < 2; ++axis) {
         if (!(p[axis] >= 0.0 && p[axis] < 1.0))
-          fail(std::string(axis == 0 ? "x" : "y") + " = " + std::string(tokens[static_cast<std::size_t>(axis)]) +
-               " is outside [0, 1)");
+          fail(std::string(axis == 0 ? "x" : "y") + " = " + shortened(tokens.kept[axis]) + " is outside [0, 1)");
       }
     }
     set_.points.push_back(wrap_point(p, Domain{}));
   }
 
   bool empty() const { return set_.points.empty() && count_line_ == 0; }
+  std::size_t size() const { return set_.points.size(); }
 
   PointSet finish() {
     if (count_line_ != 0 && declared_count_ != set_.points.size()) {
-      LineError(name_, count_line_)("count line says " + std::to_string(declared_count_) +
-                                    " points but " + std::to_string(set_.points.size()) + " follow");
+      LineError(name_, count_line_)("count line says " + std::to_string(declared_count_) + " points but " +
+                                    std::to_string(set_.points.size()) + " follow");
     }
     PointSet result = std::move(set_);
     set_ = PointSet{};
@@ -124,94 +156,191 @@ class SetParser {
   std::size_t count_line_ = 0;
 };
 
-std::string read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(path + ": read failed");
-  return text.str();
-}
-
 // The boundary a comment declares ("domain periodic" / "domain bounded"), if it is such a line.
 std::optional<Boundary> declared_boundary(std::string_view comment) {
-  auto words = split_whitespace(comment);
-  if (words.size() != 2 || words[0] != "domain") return std::nullopt;
-  if (words[1] == "periodic") return Boundary::periodic;
-  if (words[1] == "bounded") return Boundary::bounded;
+  Tokens words = split_whitespace(comment);
+  if (words.count != 2 || words.kept[0] != "domain") return std::nullopt;
+  if (words.kept[1] == "periodic") return Boundary::periodic;
+  if (words.kept[1] == "bounded") return Boundary::bounded;
   return std::nullopt;
 }
 
-// Calls on_line(content without comment, line number, starts_with_hash, comment text after '#')
-// for every line.
-template <typename OnLine>
-void for_each_line(const std::string& text, const std::string& name, OnLine on_line) {
-  std::size_t number = 0;
-  std::size_t start = 0;
-  while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
-    if (end == std::string::npos) end = text.size();
-    std::string_view line(text.data() + start, end - start);
-    ++number;
-    if (line.find('\0') != std::string_view::npos)
-      LineError(name, number)("binary data (NUL byte): not a point file");
-    std::size_t hash = line.find('#');
-    bool comment_line = split_whitespace(line.substr(0, hash)).empty() && hash != std::string_view::npos;
-    on_line(line.substr(0, hash), number, comment_line,
-            hash == std::string_view::npos ? std::string_view() : line.substr(hash + 1));
-    start = end + 1;
+}  // namespace
+
+// Splits text fed in arbitrary chunks into lines and hands them to one set parser (or, with
+// `several`, one per '#'-separated set).
+class PointTextParser::Impl {
+ public:
+  Impl(std::string name, bool several, const ReadOptions& options)
+      : name_(std::move(name)), several_(several), parser_(name_, options) {}
+
+  void feed(std::string_view chunk) {
+    if (at_start_) {
+      // A UTF-8 byte-order mark (some editors write one) is not part of the first line.
+      static constexpr std::string_view kBom = "\xEF\xBB\xBF";
+      carry_.append(chunk);
+      if (carry_.size() < kBom.size() && kBom.substr(0, carry_.size()) == carry_) return;  // undecided yet
+      at_start_ = false;
+      std::string text = std::move(carry_);
+      carry_.clear();
+      std::string_view rest(text);
+      if (rest.substr(0, kBom.size()) == kBom) rest.remove_prefix(kBom.size());
+      feed_lines(rest);
+      return;
+    }
+    feed_lines(chunk);
+  }
+
+  std::vector<PointSet> finish() {
+    if (at_start_) {  // fewer bytes than a byte-order mark
+      at_start_ = false;
+      std::string text = std::move(carry_);
+      carry_.clear();
+      feed_lines(text);
+    }
+    if (!carry_.empty()) {  // last line without a newline
+      std::string last = std::move(carry_);
+      carry_.clear();
+      line(last);
+    }
+    if (!several_ || !parser_.empty()) sets_.push_back(parser_.finish());
+    return std::move(sets_);
+  }
+
+  std::size_t line_number() const { return number_; }
+  std::size_t points_read() const {
+    std::size_t n = parser_.size();
+    for (const PointSet& s : sets_) n += s.points.size();
+    return n;
+  }
+
+ private:
+  void feed_lines(std::string_view chunk) {
+    while (!chunk.empty()) {
+      std::size_t end = chunk.find('\n');
+      if (end == std::string_view::npos) {
+        carry_.append(chunk);
+        return;
+      }
+      if (carry_.empty()) {
+        line(chunk.substr(0, end));
+      } else {
+        carry_.append(chunk.substr(0, end));
+        std::string whole = std::move(carry_);
+        carry_.clear();
+        line(whole);
+      }
+      chunk.remove_prefix(end + 1);
+    }
+  }
+
+  void line(std::string_view text) {
+    ++number_;
+    if (text.find('\0') != std::string_view::npos)
+      LineError(name_, number_)("binary data (NUL byte): not a point file");
+    std::size_t hash = text.find('#');
+    std::string_view data = text.substr(0, hash);
+    const bool comment_line = hash != std::string_view::npos && split_whitespace(data).count == 0;
+    if (comment_line) {
+      const std::optional<Boundary> boundary = declared_boundary(text.substr(hash + 1));
+      if (several_) {  // a '#' line ends a set (UTK's convention)
+        if (!parser_.empty()) sets_.push_back(parser_.finish());
+        if (boundary) parser_.declare(boundary);
+        return;
+      }
+      if (boundary && parser_.empty()) parser_.declare(boundary);
+    }
+    parser_.data_line(data, number_);
+  }
+
+  std::string name_;
+  bool several_;
+  SetParser parser_;
+  std::vector<PointSet> sets_;
+  std::string carry_;  // an incomplete line (or, at the start, bytes that may be a byte-order mark)
+  bool at_start_ = true;
+  std::size_t number_ = 0;
+};
+
+PointTextParser::PointTextParser(std::string name, bool several_sets, const ReadOptions& options)
+    : impl_(std::make_unique<Impl>(std::move(name), several_sets, options)) {}
+PointTextParser::~PointTextParser() = default;
+void PointTextParser::feed(std::string_view piece) { impl_->feed(piece); }
+std::vector<PointSet> PointTextParser::finish() { return impl_->finish(); }
+std::size_t PointTextParser::lines() const { return impl_->line_number(); }
+std::size_t PointTextParser::points() const { return impl_->points_read(); }
+
+namespace {
+
+std::vector<PointSet> parse(std::string_view text, const std::string& name, bool several, const ReadOptions& options) {
+  PointTextParser parser(name, several, options);
+  parser.feed(text);
+  return parser.finish();
+}
+
+std::vector<PointSet> read(const std::string& path, bool several, const ReadOptions& options) {
+  const std::string name = input_name(path);
+  PointTextParser parser(name, several, options);
+  try {
+    for_each_chunk(path, [&](std::string_view chunk) { parser.feed(chunk); });
+    return parser.finish();
+  } catch (const std::bad_alloc&) {
+    throw Error(name + ":" + std::to_string(parser.lines()) + ": out of memory after " + std::to_string(parser.points()) +
+                " points");
   }
 }
 
 }  // namespace
 
-PointSet parse_points(const std::string& text, const std::string& name, const ReadOptions& options) {
-  SetParser parser(name, options);
-  for_each_line(text, name, [&](std::string_view line, std::size_t number, bool comment_line, std::string_view comment) {
-    if (comment_line && parser.empty())
-      if (auto boundary = declared_boundary(comment)) parser.declare(boundary);
-    parser.data_line(line, number);
-  });
-  return parser.finish();
+std::string input_name(const std::string& path) { return path == "-" ? "stdin" : path; }
+
+PointSet parse_points(std::string_view text, const std::string& name, const ReadOptions& options) {
+  return std::move(parse(text, name, false, options).front());
+}
+
+std::vector<PointSet> parse_point_sets(std::string_view text, const std::string& name, const ReadOptions& options) {
+  return parse(text, name, true, options);
 }
 
 PointSet read_point_file(const std::string& path, const ReadOptions& options) {
-  return parse_points(read_whole_file(path), path, options);
+  return std::move(read(path, false, options).front());
 }
 
 std::vector<PointSet> read_point_sets(const std::string& path, const ReadOptions& options) {
-  std::string text = read_whole_file(path);
-  std::vector<PointSet> sets;
-  SetParser parser(path, options);
-  for_each_line(text, path, [&](std::string_view line, std::size_t number, bool comment_line, std::string_view comment) {
-    if (comment_line) {
-      if (!parser.empty()) sets.push_back(parser.finish());
-      if (auto boundary = declared_boundary(comment)) parser.declare(boundary);
-      return;
+  return read(path, true, options);
+}
+
+void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header) {
+  for (const auto& line : header) {
+    out.write("# ");
+    out.write(line);
+    out.put('\n');
+  }
+  // %.17g: 17 significant digits make every double round-trip.
+  for (std::size_t i = 0; i < set.points.size(); ++i) {
+    if (set.has_levels()) {
+      out.print("%.17g %.17g %d\n", set.points[i].x, set.points[i].y, set.levels[i]);
+    } else {
+      out.print("%.17g %.17g\n", set.points[i].x, set.points[i].y);
     }
-    parser.data_line(line, number);
-  });
-  if (!parser.empty()) sets.push_back(parser.finish());
-  return sets;
+  }
 }
 
 std::string format_points(const PointSet& set, const std::vector<std::string>& header) {
   std::string text;
-  text.reserve(set.points.size() * 42 + 64);
   for (const auto& line : header) text += "# " + line + "\n";
   char buffer[96];
   for (std::size_t i = 0; i < set.points.size(); ++i) {
-    int n = set.has_levels()
-                ? std::snprintf(buffer, sizeof buffer, "%.17g %.17g %d\n", set.points[i].x,
-                                set.points[i].y, set.levels[i])
-                : std::snprintf(buffer, sizeof buffer, "%.17g %.17g\n", set.points[i].x, set.points[i].y);
+    int n = set.has_levels() ? std::snprintf(buffer, sizeof buffer, "%.17g %.17g %d\n", set.points[i].x, set.points[i].y,
+                                             set.levels[i])
+                             : std::snprintf(buffer, sizeof buffer, "%.17g %.17g\n", set.points[i].x, set.points[i].y);
     text.append(buffer, static_cast<std::size_t>(n));
   }
   return text;
 }
 
 void write_point_file(const std::string& path, const PointSet& set, const std::vector<std::string>& header) {
-  write_text_atomically(path, format_points(set, header));
+  write_output(path, [&](OutputStream& out) { write_points(out, set, header); }, {.allow_stdout = true});
 }
 
 }  // namespace bluetile

@@ -3,14 +3,23 @@
 // integer is a point count (psa's convention) and is checked. Coordinates outside [0,1) are
 // wrapped onto the unit torus (or refused, see ReadOptions); NaN, infinity and malformed lines
 // are errors naming the file and line. A comment line "# domain periodic" or "# domain bounded"
-// says how the sets after it were made (analysis measures bounded sets in the plain square).
-// Written with 17 significant digits so every double round-trips.
+// says how the sets after it were made (analysis measures bounded sets in the plain square). A
+// UTF-8 byte-order mark at the start is skipped. Written with 17 significant digits so every
+// double round-trips.
+//
+// Reading streams the file in chunks (memory: the points, not the text). Any failure, a
+// malformed line, a read error, running out of memory, is an Error naming the file (and the
+// line where there is one); a file is never silently cut short. Values quoted in messages are
+// cut to a few dozen characters.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/torus.h"
 
 namespace bluetile {
@@ -32,20 +41,51 @@ struct ReadOptions {
   bool wrap = true;
 };
 
-// Reads one point set. Throws Error("<path>:<line>: <what>") on bad input.
-PointSet read_point_file(const std::string& path, const ReadOptions& options = {});
+// The largest level a point file may hold: writers must not go beyond what readers accept.
+inline constexpr int kMaxLevel = 1000000;
 
-// Parses point-file text; `name` is used in error messages in place of a path.
-PointSet parse_points(const std::string& text, const std::string& name, const ReadOptions& options = {});
+// The name used in messages for a path: "stdin" for "-", else the path.
+std::string input_name(const std::string& path);
+
+// Reads one point set from `path`, or from standard input when path is "-".
+// Throws Error("<path>:<line>: <what>") on bad input, Error("<path>: <what>") on read failure.
+PointSet read_point_file(const std::string& path, const ReadOptions& options = {});
 
 // Several sets in one file, separated by lines starting with '#' (UTK's convention), as
 // `relax --sets` writes them. Empty sets between consecutive '#' lines are skipped.
 std::vector<PointSet> read_point_sets(const std::string& path, const ReadOptions& options = {});
 
-// Text of a point file: optional header comment lines (each gets "# "), then one point a line.
+// The same, from text in memory; `name` is used in error messages in place of a path.
+PointSet parse_points(std::string_view text, const std::string& name, const ReadOptions& options = {});
+std::vector<PointSet> parse_point_sets(std::string_view text, const std::string& name, const ReadOptions& options = {});
+
+// Point-file text fed in pieces cut anywhere (the readers above feed 64 KiB chunks): the result,
+// or the error, does not depend on where the cuts fall.
+class PointTextParser {
+ public:
+  // `several_sets`: '#' lines separate sets (read_point_sets); else one set (read_point_file).
+  PointTextParser(std::string name, bool several_sets, const ReadOptions& options = {});
+  ~PointTextParser();
+  PointTextParser(const PointTextParser&) = delete;
+  PointTextParser& operator=(const PointTextParser&) = delete;
+
+  void feed(std::string_view piece);  // throws Error on a bad line
+  std::vector<PointSet> finish();     // throws Error; one set unless several_sets
+  std::size_t lines() const;          // complete lines seen so far
+  std::size_t points() const;         // points parsed so far
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// Streams a point file: optional header comment lines (each gets "# "), then one point a line.
+void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header = {});
+
+// The same text as a string (small sets; large ones stream through write_points).
 std::string format_points(const PointSet& set, const std::vector<std::string>& header = {});
 
-// Writes atomically (temporary file, then rename).
+// Writes a point file through output_file.h ("-" is standard output).
 void write_point_file(const std::string& path, const PointSet& set,
                       const std::vector<std::string>& header = {});
 

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/input_file.h"
 
 namespace bluetile {
 namespace {
@@ -322,20 +323,8 @@ class NpyHeader {
   const std::string& name_;
 };
 
-std::string read_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open: " + std::strerror(errno));
-  std::string bytes;
-  in.seekg(0, std::ios::end);
-  std::streamoff size = in.tellg();
-  if (size > 0) {
-    bytes.resize(static_cast<std::size_t>(size));
-    in.seekg(0);
-    in.read(bytes.data(), size);
-    if (in.gcount() != size) throw Error(path + ": read failed");
-  }
-  return bytes;
-}
+// Every read checked, out of memory included (input_file.h).
+std::string read_bytes(const std::string& path) { return read_input(path); }
 
 bool starts_with(std::string_view bytes, const char* magic, std::size_t size) {
   return bytes.size() >= size && std::memcmp(bytes.data(), magic, size) == 0;

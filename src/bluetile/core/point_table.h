@@ -36,8 +36,8 @@ namespace bluetile {
 
 enum class TableFormat { text, npy, binary, header };
 
-// The largest level a table may hold (as point files: see point_file.cpp).
-inline constexpr int kMaxTableLevel = 1000000;
+// The largest level a table may hold: as point files.
+inline constexpr int kMaxTableLevel = kMaxLevel;
 
 // The format to write `path` in: `requested` when not empty ("text", "npy", "binary",
 // "header"), else by the extension: .txt .dat .pts or none -> text, .npy -> npy, .bpt -> binary,

@@ -65,6 +65,16 @@ VkInstance create_instance(bool validation) {
     throw Error(std::string("no Vulkan driver found (") + vk_result_name(result) +
                 "); install one, for example Mesa's lavapipe (Debian: mesa-vulkan-drivers)");
   }
+  if (result == VK_ERROR_OUT_OF_HOST_MEMORY) {
+    // The loader answers a malformed driver manifest this way too; a real lack of memory this
+    // early is unlikely, so name the manifests rather than blame --resolution.
+    std::string manifests;
+    for (const char* variable : {"VK_DRIVER_FILES", "VK_ICD_FILENAMES"})
+      if (const char* value = std::getenv(variable)) manifests += std::string(variable) + "=" + value + " ";
+    throw Error("cannot create a Vulkan instance (VK_ERROR_OUT_OF_HOST_MEMORY), which the Vulkan loader also "
+                "reports for a malformed driver manifest: check " +
+                (manifests.empty() ? std::string("/usr/share/vulkan/icd.d/*.json") : manifests.substr(0, manifests.size() - 1)));
+  }
   BLUETILE_VK_CHECK(result);
   return instance;
 }

@@ -140,7 +140,7 @@ void Canvas::paste(const Canvas& other, int x, int y) {
     for (int i = 0; i < other.width(); ++i) set(x + i, y + j, other.pixel(i, j));
 }
 
-void write_image(const std::string& path, const Canvas& canvas) {
+void write_image(OutputFile& out, const Canvas& canvas) {
   // Grey images (spectra) are written with one channel: a third of the size.
   const std::vector<float>& rgb = canvas.rgb();
   bool grey = true;
@@ -151,7 +151,13 @@ void write_image(const std::string& path, const Canvas& canvas) {
     const float v = rgb[grey ? 3 * i : i];
     bytes[i] = static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
   }
-  write_image_file(path, canvas.width(), canvas.height(), channels, bytes);
+  write_image_file(out, canvas.width(), canvas.height(), channels, bytes);
+}
+
+void write_image(const std::string& path, const Canvas& canvas) {
+  OutputSet outputs;
+  write_image(outputs.add(path), canvas);
+  outputs.publish();
 }
 
 Canvas read_image(const std::string& path) {

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/torus.h"
 
 namespace bluetile {
@@ -67,8 +68,9 @@ class Canvas {
   std::vector<float> pixels_;  // RGB, row by row
 };
 
-// Writes an 8-bit RGB PNG (or any format OpenImageIO knows by the extension), atomically.
-// Throws Error naming the path on failure.
+// Writes an 8-bit RGB PNG (or any format OpenImageIO knows by the extension; grey images in one
+// channel) through output_file.h. Throws Error naming the path on failure.
+void write_image(OutputFile& out, const Canvas& canvas);
 void write_image(const std::string& path, const Canvas& canvas);
 
 // Reads an image back as a canvas (tests). Throws Error on failure.

@@ -3,11 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <memory>
 #include <mutex>
 
 #include <dlfcn.h>
 
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/io/oiio_plugin.h"
 
@@ -15,17 +16,19 @@ namespace bluetile {
 namespace {
 
 struct Plugin {
+  bluetile_oiio_encode_fn encode = nullptr;
   bluetile_oiio_write_fn write = nullptr;
   bluetile_oiio_read_fn read = nullptr;
 };
 
-// Where the module may be: BLUETILE_OIIO_PLUGIN, else by bare name, which the dynamic loader
-// looks up in the RUNPATH of the object holding this code: the program when the library is
-// linked statically, libbluetile_images.so when shared. Linking bluetile::images (CMake, in a
-// build tree or installed) or bluetile-images (pkg-config) puts the plugin's folder there.
+// Where the module may be: only BLUETILE_OIIO_PLUGIN when it is set (a wrong value is an error,
+// not a silent fall-back); else by bare name, which the dynamic loader looks up in the RUNPATH
+// of the object holding this code: the program when the library is linked statically,
+// libbluetile_images.so when shared. Linking bluetile::images (CMake, in a build tree or
+// installed) or bluetile-images (pkg-config) puts the plugin's folder there.
 std::vector<std::string> plugin_candidates() {
   std::vector<std::string> paths;
-  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) paths.push_back(env);
+  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) return {env};
   paths.push_back(BLUETILE_OIIO_PLUGIN_NAME);
   return paths;
 }
@@ -35,49 +38,82 @@ const Plugin& plugin() {
   static std::string failure;
   static std::once_flag once;
   std::call_once(once, [] {
-    std::string tried;
-    for (const std::string& path : plugin_candidates()) {
-      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
-      if (!handle) {
-        tried += "\n  " + std::string(dlerror());
-        continue;
+    // One line: the first candidate's reason (the one a user fixes), then what else was tried.
+    std::string first_reason, others;
+    const std::vector<std::string> candidates = plugin_candidates();
+    for (const std::string& path : candidates) {
+      std::string why;
+      if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+        loaded.encode = reinterpret_cast<bluetile_oiio_encode_fn>(dlsym(handle, "bluetile_oiio_encode"));
+        loaded.write = reinterpret_cast<bluetile_oiio_write_fn>(dlsym(handle, "bluetile_oiio_write"));
+        loaded.read = reinterpret_cast<bluetile_oiio_read_fn>(dlsym(handle, "bluetile_oiio_read"));
+        if (loaded.encode && loaded.write && loaded.read) return;
+        loaded = Plugin{};
+        why = path + ": not a bluetile OpenImageIO plugin (or one of another version)";
+      } else {
+        why = dlerror();
       }
-      loaded.write = reinterpret_cast<bluetile_oiio_write_fn>(dlsym(handle, "bluetile_oiio_write"));
-      loaded.read = reinterpret_cast<bluetile_oiio_read_fn>(dlsym(handle, "bluetile_oiio_read"));
-      if (loaded.write && loaded.read) return;
-      tried += "\n  " + path + ": not a bluetile OpenImageIO plugin";
+      if (first_reason.empty()) first_reason = why;
+      else others += (others.empty() ? "" : ", ") + path;
     }
-    failure = "cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME
-              " (a program linked to bluetile::images finds it through its RUNPATH;"
-              " BLUETILE_OIIO_PLUGIN names the file):" + tried;
+    failure = std::getenv("BLUETILE_OIIO_PLUGIN")
+                  ? "cannot load the image plugin named by BLUETILE_OIIO_PLUGIN: " + first_reason
+                  : "cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME
+                    " (a program linked to bluetile::images finds it through its RUNPATH;"
+                    " BLUETILE_OIIO_PLUGIN names the file): " +
+                        first_reason + (others.empty() ? "" : "; also tried " + others);
   });
   if (!loaded.write) throw Error(failure);
   return loaded;
 }
 
-void write_samples(const std::string& path, int width, int height, int channels, int bits, const void* samples,
+// Encodes in memory and streams through the output's checked writes; formats OpenImageIO writes
+// only to files go through a file, with messages naming the user's path.
+void write_samples(OutputFile& out, int width, int height, int channels, int bits, const void* samples,
                    std::size_t count) {
+  const std::string& path = out.path();
   if (count != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels))
     throw Error(path + ": image size does not match its pixels");
   const Plugin& p = plugin();
-  write_atomically(path, [&](const std::string& temporary) {
-    char error[512];
-    if (p.write(temporary.c_str(), width, height, channels, bits, samples, error, sizeof error) != 0)
-      throw Error(path + ": cannot write image: " + error);
+  // The format follows the extension; PNG for a path without one (/dev/stdout).
+  const std::string name = std::filesystem::path(path).extension().empty() ? path + ".png" : path;
+  char error[512];
+  unsigned char* bytes = nullptr;
+  std::size_t size = 0;
+  int status = p.encode(name.c_str(), width, height, channels, bits, samples, &bytes, &size, error, sizeof error);
+  if (status == 0) {
+    std::unique_ptr<unsigned char, decltype(&std::free)> owned(bytes, &std::free);
+    out.write(std::string_view(reinterpret_cast<const char*>(bytes), size));
+    return;
+  }
+  if (status != 2) throw Error(path + ": cannot write image: " + error);
+  out.write_through_path([&](const std::string& file) {
+    if (p.write(file.c_str(), width, height, channels, bits, samples, error, sizeof error) != 0) {
+      std::string message = error;
+      for (std::size_t at = message.find(file); at != std::string::npos; at = message.find(file, at + path.size()))
+        message.replace(at, file.size(), path);
+      throw Error(path + ": cannot write image: " + message);
+    }
   });
 }
 
 }  // namespace
 
-void write_image_file(const std::string& path, int width, int height, int channels,
-                      const std::vector<std::uint8_t>& pixels) {
-  write_samples(path, width, height, channels, 8, pixels.data(), pixels.size());
+void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
+  write_samples(out, width, height, channels, 8, pixels.data(), pixels.size());
 }
 
-void write_image_file(const std::string& path, int width, int height, int channels, const std::vector<float>& values,
+void write_image_file(const std::string& path, int width, int height, int channels,
+                      const std::vector<std::uint8_t>& pixels) {
+  OutputSet outputs;
+  write_image_file(outputs.add(path), width, height, channels, pixels);
+  outputs.publish();
+}
+
+void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<float>& values,
                       SampleFormat format) {
   if (format == SampleFormat::float32) {
-    write_samples(path, width, height, channels, 32, values.data(), values.size());
+    write_samples(out, width, height, channels, 32, values.data(), values.size());
     return;
   }
   const double top = format == SampleFormat::uint16 ? 65535.0 : 255.0;
@@ -85,12 +121,19 @@ void write_image_file(const std::string& path, int width, int height, int channe
   if (format == SampleFormat::uint16) {
     std::vector<std::uint16_t> samples(values.size());
     for (std::size_t i = 0; i < values.size(); ++i) samples[i] = static_cast<std::uint16_t>(quantise(values[i]));
-    write_samples(path, width, height, channels, 16, samples.data(), samples.size());
+    write_samples(out, width, height, channels, 16, samples.data(), samples.size());
   } else {
     std::vector<std::uint8_t> samples(values.size());
     for (std::size_t i = 0; i < values.size(); ++i) samples[i] = static_cast<std::uint8_t>(quantise(values[i]));
-    write_samples(path, width, height, channels, 8, samples.data(), samples.size());
+    write_samples(out, width, height, channels, 8, samples.data(), samples.size());
   }
+}
+
+void write_image_file(const std::string& path, int width, int height, int channels, const std::vector<float>& values,
+                      SampleFormat format) {
+  OutputSet outputs;
+  write_image_file(outputs.add(path), width, height, channels, values, format);
+  outputs.publish();
 }
 
 ImageFile read_image_file(const std::string& path) {

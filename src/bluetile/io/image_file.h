@@ -11,10 +11,15 @@
 #include <string>
 #include <vector>
 
+#include "bluetile/core/output_file.h"
+
 namespace bluetile {
 
 // Writes 8-bit pixels (row 0 at the top, `channels` interleaved) in the format named by the
-// path's extension (PNG usually), atomically. Throws Error naming the path on failure.
+// output path's extension (PNG when it has none, as /dev/stdout), encoded in memory and streamed
+// through output_file.h. Throws Error naming the user's path on failure.
+void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<std::uint8_t>& pixels);
+// The same as an output of its own (write_output).
 void write_image_file(const std::string& path, int width, int height, int channels,
                       const std::vector<std::uint8_t>& pixels);
 
@@ -22,7 +27,9 @@ enum class SampleFormat { uint8, uint16, float32 };
 
 // Writes float samples (row 0 at the top, `channels` interleaved) stored in the file as
 // `format`: integer formats take values in [0, 1] (rounded; others are clamped), float32 keeps
-// them as they are (EXR, TIFF). Atomic; throws Error naming the path on failure.
+// them as they are (EXR, TIFF). Streamed through output_file.h like the 8-bit writer.
+void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<float>& values,
+                      SampleFormat format);
 void write_image_file(const std::string& path, int width, int height, int channels, const std::vector<float>& values,
                       SampleFormat format);
 

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <string>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 namespace {
@@ -16,6 +17,32 @@ int fail(const std::string& message, char* error, size_t error_size) {
 }
 
 }  // namespace
+
+extern "C" __attribute__((visibility("default"))) int bluetile_oiio_encode(const char* name, int width, int height,
+                                                                           int channels, int bits, const void* pixels,
+                                                                           unsigned char** bytes, size_t* size,
+                                                                           char* error, size_t error_size) {
+  const OIIO::TypeDesc type = bits == 8 ? OIIO::TypeDesc::UINT8 : bits == 16 ? OIIO::TypeDesc::UINT16 : OIIO::TypeDesc::FLOAT;
+  if (bits != 8 && bits != 16 && bits != 32) return fail("unsupported sample size", error, error_size);
+  // The name only chooses the format; nothing is written under it.
+  auto out = OIIO::ImageOutput::create(name);
+  if (!out) return fail(OIIO::geterror(), error, error_size);
+  if (!out->supports("ioproxy")) {
+    fail(std::string(out->format_name()) + " cannot be written to memory", error, error_size);
+    return 2;
+  }
+  OIIO::Filesystem::IOVecOutput memory;
+  OIIO::ImageSpec spec(width, height, channels, type);
+  if (!out->set_ioproxy(&memory) || !out->open(name, spec) || !out->write_image(type, pixels) ||
+      !out->close())
+    return fail(out->geterror(), error, error_size);
+  const std::vector<unsigned char>& buffer = memory.buffer();
+  *bytes = static_cast<unsigned char*>(std::malloc(buffer.size() ? buffer.size() : 1));
+  if (!*bytes) return fail("out of memory", error, error_size);
+  std::memcpy(*bytes, buffer.data(), buffer.size());
+  *size = buffer.size();
+  return 0;
+}
 
 extern "C" __attribute__((visibility("default"))) int bluetile_oiio_write(const char* path, int width, int height,
                                                                           int channels, int bits, const void* pixels,

@@ -7,6 +7,13 @@
 extern "C" {
 
 // Each returns 0 on success, or non-zero with a message in `error` (always terminated).
+// Encodes pixels in the format that the extension of `name` names into *bytes (allocated with
+// malloc; the caller frees it); the library then streams them to the output (output_file.h),
+// checking every write. Nothing is written under `name`; OpenImageIO's messages use it. `bits`
+// as for bluetile_oiio_write_fn. Returns 2 when that format cannot be written to memory.
+typedef int (*bluetile_oiio_encode_fn)(const char* name, int width, int height, int channels, int bits,
+                                       const void* pixels, unsigned char** bytes, size_t* size, char* error,
+                                       size_t error_size);
 // `bits` names the sample type of `pixels` and of the file: 8 (unsigned char), 16 (unsigned
 // short) or 32 (float).
 typedef int (*bluetile_oiio_write_fn)(const char* path, int width, int height, int channels, int bits,

@@ -9,7 +9,6 @@
 
 #include <dlfcn.h>
 
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 
 #if BLUETILE_HAVE_CAIRO
@@ -204,12 +203,13 @@ class PdfPainter final : public SvgVisitor {
 
 std::string pdf_unavailable_reason() { return cairo().failure; }
 
-void write_pdf(const SvgDocument& document, const std::string& path) {
+void write_pdf(const SvgDocument& document, OutputFile& out) {
+  const std::string& path = out.path();
   const Cairo& c = cairo();
   if (!c.failure.empty()) throw Error(path + ": " + c.failure);
   const double scale = points_per(document.unit());
   const double width_pt = document.display_width() * scale, height_pt = document.display_height() * scale;
-  write_atomically(path, [&](const std::string& temporary) {
+  out.write_through_path([&](const std::string& temporary) {
     cairo_surface_t* surface = c.cairo_pdf_surface_create(temporary.c_str(), width_pt, height_pt);
     cairo_t* cr = c.cairo_create(surface);
     std::string failure;
@@ -239,8 +239,14 @@ std::string pdf_unavailable_reason() {
   return "PDF output needs cairo, which this build lacks (install libcairo2-dev and rebuild)";
 }
 
-void write_pdf(const SvgDocument&, const std::string& path) { throw Error(path + ": " + pdf_unavailable_reason()); }
+void write_pdf(const SvgDocument&, OutputFile& out) { throw Error(out.path() + ": " + pdf_unavailable_reason()); }
 
 #endif
+
+void write_pdf(const SvgDocument& document, const std::string& path) {
+  OutputSet outputs;
+  write_pdf(document, outputs.add(path));
+  outputs.publish();
+}
 
 }  // namespace bluetile

@@ -9,12 +9,15 @@
 
 #include <string>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/io/svg.h"
 
 namespace bluetile {
 
 // Writes `document` as a one-page PDF whose page is the document's display size (converted to
-// points: px = 0.75 pt, mm, cm, in), atomically. Throws Error naming the path on failure.
+// points: px = 0.75 pt, mm, cm, in), through output_file.h (cairo writes a file: the staged one,
+// or a private temporary copied to a device). Throws Error naming the path on failure.
+void write_pdf(const SvgDocument& document, OutputFile& out);
 void write_pdf(const SvgDocument& document, const std::string& path);
 
 // Why write_pdf cannot work here (cairo missing at build time, or not loadable now), or ""

@@ -44,7 +44,9 @@ LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, cons
     engine.compute(scenes, cells);
     LloydIteration log = move_to_centroids(scenes, cells);
     log.iteration = it;
-    result.history.push_back(log);
+    result.last = log;
+    result.iterations = it;
+    if (options.keep_history) result.history.push_back(log);
     if (options.on_iteration) options.on_iteration(log);
     if (options.tolerance > 0.0 && log.max_displacement < options.tolerance) {
       result.converged = true;

@@ -38,11 +38,16 @@ struct LloydOptions {
   double tolerance = 0.0;
   // Called after every iteration (logging, progress).
   std::function<void(const LloydIteration&)> on_iteration;
+  // Keep every iteration's figures in LloydResult::history (memory grows with the iterations:
+  // about 56 bytes each); otherwise only the last is kept.
+  bool keep_history = false;
 };
 
 struct LloydResult {
-  std::vector<LloydIteration> history;
-  bool converged = false;  // stopped by the tolerance
+  std::vector<LloydIteration> history;  // only with LloydOptions::keep_history
+  LloydIteration last;                  // the last iteration run (iteration 0: none ran)
+  int iterations = 0;                   // iterations run
+  bool converged = false;               // stopped by the tolerance
 };
 
 // The weight under which Lloyd's sites settle with point density proportional to `target`:

@@ -134,6 +134,11 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
     throw Error(std::to_string(target_levels) + " levels: the base already has " + std::to_string(base_levels) +
                 " level(s); the number of levels is the total to reach");
   }
+  // A level the point-file reader would refuse is not written (issue 13, item 12).
+  if (target_levels - 1 > kMaxLevel) {
+    throw Error("the base already has levels up to " + std::to_string(base_levels - 1) + ", and a point file holds levels up to " +
+                std::to_string(kMaxLevel) + " only");
+  }
   const std::size_t per_level = options.add ? options.add : options.count;
   std::vector<std::size_t> sizes;
   std::size_t total = base.points.size();

@@ -4,11 +4,10 @@
 #include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/input_file.h"
 
 namespace bluetile {
 namespace {
@@ -71,14 +70,8 @@ std::string colours_text(const TileColours& c) {
          std::to_string(c[3]);
 }
 
-std::string read_whole_file(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot open tile set");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error(path + ": read failed");
-  return text.str();
-}
+// Every read checked, out of memory included (input_file.h): never a tile set cut short.
+std::string read_whole_file(const std::string& path) { return read_input(path); }
 
 // Checks one finished tile: ranks a permutation of 0..n-1, levels non-decreasing along ranks.
 // Returns an empty string when the tile is sound, else what is wrong and the index of the point.

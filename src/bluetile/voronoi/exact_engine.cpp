@@ -5,11 +5,15 @@
 #include <cassert>
 #include <cmath>
 #include <limits>
+#include <optional>
 
+#include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/voronoi/density_moments.h"
 #include "bluetile/voronoi/polygon.h"
+#include "bluetile/voronoi/scene.h"
 #include "bluetile/voronoi/site_grid.h"
+#include "bluetile/voronoi/site_tree.h"
 
 namespace bluetile {
 namespace {
@@ -21,10 +25,37 @@ constexpr double kSitesPerBucket = 1.0;
 // The label of the cell edges that come from the initial rectangle (the site's own copies).
 constexpr std::uint32_t kOwnCopy = kUnlabelled;
 
+// When a site shares its grid bucket with this many others on average (uniform random sites:
+// about 1; a relaxed set: fewer), the sites are far from uniform (on a line, in a cluster): the
+// grid then costs O(N) or O(sqrt N) per cell, and the k-d tree (site_tree.h) searches instead.
+constexpr double kCrowdedBucket = 8.0;
+
 struct Candidate {
   double distance_squared;
   Point offset;
   std::uint32_t site;
+};
+
+// The neighbour search of one scene: the uniform grid, and the tree for far-from-uniform sites.
+struct CellSearch {
+  SiteGrid grid;
+  std::optional<SiteTree> tree;
+
+  explicit CellSearch(const Scene& scene) : grid(scene.sites, scene.domain, kSitesPerBucket) {
+    double sharing = 0.0;  // sum over sites of the other sites in their bucket
+    for (std::size_t b = 0; b < grid.bucket_count(); ++b) {
+      const double c = static_cast<double>(grid.sites_in_bucket(b).size());
+      sharing += c * (c - 1.0);
+    }
+    if (sharing > kCrowdedBucket * static_cast<double>(scene.sites.size()))
+      tree.emplace(scene.sites, scene.domain, scene.periodic());
+  }
+};
+
+// Per-thread buffers of the searches, reused from cell to cell.
+struct SearchScratch {
+  std::vector<Candidate> candidates;
+  SiteTree::Search tree;
 };
 
 bool inside_grid(const SiteGrid& grid, long bx, long by) {
@@ -112,11 +143,13 @@ bool build_cell_by_rings(const Scene& scene, const SiteGrid& grid, std::uint32_t
 
 // Computes the cell of `site` into `cell_polygon`. Returns false when the site coincides with a
 // site of lower index (which owns the cell).
-bool build_cell(const Scene& scene, const SiteGrid& grid, std::uint32_t site, ConvexPolygon& cell_polygon,
-                std::vector<Candidate>& candidates) {
+bool build_cell(const Scene& scene, const CellSearch& search, std::uint32_t site, ConvexPolygon& cell_polygon,
+                SearchScratch& scratch) {
   const Point origin = scene.sites[site];
-  const Point cell = grid.cell_size();
   start_cell(scene, origin, cell_polygon);
+  if (search.tree) return search.tree->clip_cell(site, origin, cell_polygon, scratch.tree);
+  const SiteGrid& grid = search.grid;
+  const Point cell = grid.cell_size();
   auto [cx, cy] = grid.bucket_coordinates(origin);
   // The site's place inside its bucket, for the exact distance to each bucket visited.
   const Point local{origin.x - static_cast<double>(cx) * cell.x, origin.y - static_cast<double>(cy) * cell.y};
@@ -143,7 +176,7 @@ bool build_cell(const Scene& scene, const SiteGrid& grid, std::uint32_t site, Co
     grid.for_each_in_bucket(cx + step.dx, cy + step.dy, origin, visit);
     if (coincident) return false;
   }
-  return build_cell_by_rings(scene, grid, site, cell_polygon, candidates);
+  return build_cell_by_rings(scene, grid, site, cell_polygon, scratch.candidates);
 }
 
 // How a scene's density weights its cells: not at all (no density, or a constant one, whose
@@ -207,18 +240,18 @@ void compute_scene(const Scene& scene, SceneCells& out, bool parallel_inside) {
   out.fallback_count = 0;
   out.zero_density_count = 0;
   if (scene.wanted_count() == 0) return;
-  check_density(scene);
-  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
+  const CellSearch search(scene);
+  const SiteGrid& grid = search.grid;
   const Weighting weighting(scene);
 
   auto run_buckets = [&](std::size_t begin, std::size_t end) {
     ConvexPolygon cell_polygon;
-    std::vector<Candidate> candidates;
-    candidates.reserve(64);
+    SearchScratch scratch;
+    scratch.candidates.reserve(64);
     for (std::size_t b = begin; b < end; ++b) {
       for (std::uint32_t site : grid.sites_in_bucket(b)) {
         if (site < scene.wanted_begin || site >= scene.wanted_end) continue;
-        bool complete = build_cell(scene, grid, site, cell_polygon, candidates);
+        bool complete = build_cell(scene, search, site, cell_polygon, scratch);
         out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, cell_polygon, weighting);
       }
     }
@@ -252,56 +285,68 @@ Scene make_scene(std::vector<Point> sites, Domain domain) {
 
 void ExactEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
   assert(scenes.size() == out.size());
+  // The contract, checked once per scene; wrapped copies only of scenes that need them.
+  std::vector<Scene> wrapped(scenes.size());
+  std::vector<const Scene*> checked(scenes.size());
+  for (std::size_t i = 0; i < scenes.size(); ++i) checked[i] = &validated_scene(scenes[i], wrapped[i]);
   // Small scenes run one per thread when there are enough of them to keep every thread busy;
   // otherwise (one scene, or large ones) each scene is split across the threads itself.
   constexpr std::size_t kSmallScene = 4096;
   std::vector<std::size_t> small;
   for (std::size_t i = 0; i < scenes.size(); ++i)
-    if (scenes[i].sites.size() <= kSmallScene) small.push_back(i);
+    if (checked[i]->sites.size() <= kSmallScene) small.push_back(i);
   const bool across_scenes = small.size() >= 2 * thread_count();
   if (!across_scenes) small.clear();
   for (std::size_t i = 0, k = 0; i < scenes.size(); ++i) {
     if (k < small.size() && small[k] == i) {
       ++k;
     } else {
-      compute_scene(scenes[i], out[i], true);
+      compute_scene(*checked[i], out[i], true);
     }
   }
   parallel_for(small.size(), 4, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) compute_scene(scenes[small[k]], out[small[k]], false);
+    for (std::size_t k = begin; k < end; ++k) compute_scene(*checked[small[k]], out[small[k]], false);
   });
 }
 
-std::vector<Point> exact_cell_polygon(const Scene& scene, std::size_t site) {
-  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
+std::vector<Point> exact_cell_polygon(const Scene& given, std::size_t site) {
+  Scene wrapped;
+  const Scene& scene = validated_scene(given, wrapped);
+  if (site >= scene.sites.size()) throw Error("exact_cell_polygon: no site " + std::to_string(site));
+  const CellSearch search(scene);
   ConvexPolygon cell_polygon;
-  std::vector<Candidate> candidates;
-  if (!build_cell(scene, grid, static_cast<std::uint32_t>(site), cell_polygon, candidates)) return {};
+  SearchScratch scratch;
+  if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) return {};
   std::vector<Point> polygon;
   for (const PolygonVertex& v : cell_polygon.vertices()) polygon.push_back(v.p);
   return polygon;
 }
 
-std::vector<std::vector<Point>> exact_cell_polygons(const Scene& scene) {
-  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
+std::vector<std::vector<Point>> exact_cell_polygons(const Scene& given) {
+  Scene wrapped;
+  const Scene& scene = validated_scene(given, wrapped);
+  const CellSearch search(scene);
   std::vector<std::vector<Point>> polygons(scene.sites.size());
   parallel_for(polygons.size(), 256, [&](std::size_t begin, std::size_t end) {
     ConvexPolygon cell_polygon;
-    std::vector<Candidate> candidates;
+    SearchScratch scratch;
     for (std::size_t site = begin; site < end; ++site) {
-      if (!build_cell(scene, grid, static_cast<std::uint32_t>(site), cell_polygon, candidates)) continue;
+      if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) continue;
       for (const PolygonVertex& v : cell_polygon.vertices()) polygons[site].push_back(v.p);
     }
   });
   return polygons;
 }
 
-std::vector<std::size_t> exact_cell_neighbours(const Scene& scene, std::size_t site) {
-  SiteGrid grid(scene.sites, scene.domain, kSitesPerBucket);
+std::vector<std::size_t> exact_cell_neighbours(const Scene& given, std::size_t site) {
+  Scene wrapped;
+  const Scene& scene = validated_scene(given, wrapped);
+  if (site >= scene.sites.size()) throw Error("exact_cell_neighbours: no site " + std::to_string(site));
+  const CellSearch search(scene);
   ConvexPolygon cell_polygon;
-  std::vector<Candidate> candidates;
+  SearchScratch scratch;
   std::vector<std::size_t> neighbours;
-  if (!build_cell(scene, grid, static_cast<std::uint32_t>(site), cell_polygon, candidates)) return neighbours;
+  if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) return neighbours;
   const auto polygon = cell_polygon.vertices();
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const PolygonVertex& v = polygon[i];

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/gpu/raster_layout.h"
 #include "bluetile/voronoi/engine.h"
 #include "bluetile/voronoi/raster_scene.h"
@@ -126,7 +127,8 @@ class RasterEngine final : public CentroidEngine {
 };
 
 // Writes `image` as a PNG (or any format OpenImageIO knows by the extension) with one colour
-// per cell and the sites drawn as dots, through write_atomically. Throws Error on failure.
+// per cell and the sites drawn as dots, through output_file.h. Throws Error on failure.
+void write_id_image(const IdImage& image, const Scene& scene, OutputFile& out);
 void write_id_image(const IdImage& image, const Scene& scene, const std::string& path);
 
 }  // namespace bluetile

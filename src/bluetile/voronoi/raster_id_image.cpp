@@ -23,7 +23,7 @@ void cell_colour(std::int32_t id, unsigned char rgb[3]) {
 
 }  // namespace
 
-void write_id_image(const IdImage& image, const Scene& scene, const std::string& path) {
+void write_id_image(const IdImage& image, const Scene& scene, OutputFile& out) {
   if (image.width <= 0 || image.height <= 0) throw Error("no ID image to write");
   const int w = image.width, h = image.height;
   std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w) * h * 3);
@@ -45,7 +45,13 @@ void write_id_image(const IdImage& image, const Scene& scene, const std::string&
         p[0] = p[1] = p[2] = 0;
       }
   }
-  write_image_file(path, w, h, 3, pixels);
+  write_image_file(out, w, h, 3, pixels);
+}
+
+void write_id_image(const IdImage& image, const Scene& scene, const std::string& path) {
+  OutputSet outputs;
+  write_id_image(image, scene, outputs.add(path));
+  outputs.publish();
 }
 
 }  // namespace bluetile

@@ -1,0 +1,127 @@
+#include "robustness_support.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+
+#include <fcntl.h>
+#include <grp.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "test_support.h"
+
+extern char** environ;
+
+namespace bluetile::robustness {
+namespace fs = std::filesystem;
+
+Child::Child(const Invocation& run) {
+  char pattern[] = "/tmp/bluetile-capture-XXXXXX";
+  if (!mkdtemp(pattern)) throw std::runtime_error("mkdtemp failed");
+  capture_dir_ = pattern;
+  const std::string out = capture_dir_ + "/out", err = capture_dir_ + "/err";
+
+  // Everything the child needs is prepared before fork: it only calls async-signal-safe functions.
+  std::vector<std::string> args = {BLUETILE_BINARY};
+  args.insert(args.end(), run.arguments.begin(), run.arguments.end());
+  std::vector<char*> argv;
+  for (std::string& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  std::vector<std::string> env;
+  for (char** e = environ; *e; ++e) {
+    std::string entry(*e);
+    bool replaced = false;
+    for (const auto& [name, value] : run.environment) replaced |= entry.rfind(name + "=", 0) == 0;
+    if (!replaced) env.push_back(entry);
+  }
+  for (const auto& [name, value] : run.environment) env.push_back(name + "=" + value);
+  std::vector<char*> envp;
+  for (std::string& e : env) envp.push_back(e.data());
+  envp.push_back(nullptr);
+
+  pid_ = fork();
+  if (pid_ < 0) throw std::runtime_error("fork failed");
+  if (pid_ == 0) {
+    int in = open(run.stdin_path.c_str(), O_RDONLY);
+    int o = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    int e = open(err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    if (in < 0 || o < 0 || e < 0) _exit(126);
+    dup2(in, 0);
+    dup2(o, 1);
+    dup2(e, 2);
+    // The parent (a test thread) may block these for its own reasons; the child starts clean.
+    sigset_t none;
+    sigemptyset(&none);
+    sigprocmask(SIG_SETMASK, &none, nullptr);
+    signal(SIGPIPE, SIG_DFL);
+    if (run.address_space_bytes > 0) {
+      rlimit limit{static_cast<rlim_t>(run.address_space_bytes), static_cast<rlim_t>(run.address_space_bytes)};
+      setrlimit(RLIMIT_AS, &limit);
+    }
+    if (run.file_size_bytes >= 0) {
+      rlimit limit{static_cast<rlim_t>(run.file_size_bytes), static_cast<rlim_t>(run.file_size_bytes)};
+      setrlimit(RLIMIT_FSIZE, &limit);
+    }
+    if (run.unprivileged && geteuid() == 0) {
+      const gid_t nobody_group = 65534;
+      if (setgroups(0, nullptr) != 0 || setgid(nobody_group) != 0 || setuid(65534) != 0) _exit(125);
+    }
+    execve(argv[0], argv.data(), envp.data());
+    _exit(127);
+  }
+}
+
+Child::~Child() {
+  if (!waited_ && pid_ > 0) {
+    kill(pid_, SIGKILL);
+    waitpid(pid_, nullptr, 0);
+  }
+  std::error_code ignored;
+  fs::remove_all(capture_dir_, ignored);
+}
+
+Outcome Child::wait() {
+  Outcome outcome;
+  int status = 0;
+  while (waitpid(pid_, &status, 0) < 0) {
+  }
+  waited_ = true;
+  if (WIFEXITED(status)) outcome.exit_code = WEXITSTATUS(status);
+  if (WIFSIGNALED(status)) outcome.signal = WTERMSIG(status);
+  outcome.out = test::read_text(capture_dir_ + "/out");
+  outcome.err = test::read_text(capture_dir_ + "/err");
+  return outcome;
+}
+
+Outcome run(const Invocation& r) { return Child(r).wait(); }
+
+std::vector<std::string> entries(const std::string& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::recursive_directory_iterator(folder)) {
+    std::string name = entry.path().lexically_relative(folder).string();
+    struct stat st {};
+    lstat(entry.path().c_str(), &st);
+    if (S_ISLNK(st.st_mode)) name += "@";
+    else if (S_ISFIFO(st.st_mode)) name += "|";
+    else if (S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode)) name += "%";
+    else if (S_ISDIR(st.st_mode)) name += "/";
+    names.push_back(name);
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+bool sanitized() {
+#if defined(__SANITIZE_ADDRESS__)
+  return true;
+#else
+  return false;
+#endif
+}
+
+}  // namespace bluetile::robustness

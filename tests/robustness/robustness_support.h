@@ -1,0 +1,55 @@
+// The robustness group's harness: runs the bluetile binary as a child process with a chosen
+// stdin, environment and resource limits, and looks at what it left behind.
+#pragma once
+
+#include <sys/types.h>
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace bluetile::robustness {
+
+struct Invocation {
+  std::vector<std::string> arguments;           // after the program name
+  std::string stdin_path = "/dev/null";
+  std::vector<std::pair<std::string, std::string>> environment;  // added to (or replacing in) ours
+  long address_space_bytes = 0;                 // RLIMIT_AS when > 0 (ulimit -v)
+  long file_size_bytes = -1;                    // RLIMIT_FSIZE when >= 0 (ulimit -f)
+  // Run as the unprivileged user "nobody" (65534) when the test runs as root, so that
+  // permissions apply; the folders it works in must then be open to it.
+  bool unprivileged = false;
+};
+
+struct Outcome {
+  int exit_code = -1;  // -1 when ended by a signal
+  int signal = 0;      // the signal that ended it, or 0
+  std::string out, err;
+};
+
+// A started child; wait() collects it.
+class Child {
+ public:
+  explicit Child(const Invocation& run);
+  ~Child();
+  pid_t pid() const { return pid_; }
+  Outcome wait();
+
+ private:
+  pid_t pid_ = -1;
+  std::string capture_dir_;
+  bool waited_ = false;
+};
+
+Outcome run(const Invocation& run);
+inline Outcome run(std::vector<std::string> arguments) { return run(Invocation{std::move(arguments)}); }
+
+// Every entry under `folder` (hidden ones and subfolders too), relative, sorted; "name@" for a
+// symbolic link, "name|" for a FIFO, "name%" for a device, "name/" for a folder.
+std::vector<std::string> entries(const std::string& folder);
+
+// Whether this binary and the tool were built with the address sanitizer (which reserves
+// terabytes of address space, so ulimit -v cannot be used).
+bool sanitized();
+
+}  // namespace bluetile::robustness

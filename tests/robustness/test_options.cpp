@@ -1,0 +1,95 @@
+// Numbers on the command line (issue 13, items 9 and 14): refused with the option, the value and
+// the accepted range, never clamped; whole numbers in scientific notation accepted.
+#include <gtest/gtest.h>
+
+#include "robustness_support.h"
+#include "test_support.h"
+
+namespace bluetile::robustness {
+namespace {
+
+using test::read_text;
+using test::TempDir;
+
+struct Refusal {
+  std::vector<std::string> arguments;
+  std::string message;  // the whole stderr line after "bluetile: "
+};
+
+TEST(Options, OutOfRangeNanAndInfinityAreRefused) {
+  TempDir dir;
+  const std::string out = dir.file("o.txt");
+  const std::string seeds = "expected an integer from 0 to 18446744073709551615 (see --help)";
+  const std::vector<Refusal> cases = {
+      {{"relax", "-n", "10", "-s", "18446744073709551616", "-o", out}, "--seed 18446744073709551616: out of range; " + seeds},
+      {{"relax", "-n", "10", "-s", "99999999999999999999999", "-o", out}, "--seed 99999999999999999999999: out of range; " + seeds},
+      {{"relax", "-n", "10", "-s", "-1", "-o", out}, "--seed -1: out of range; " + seeds},
+      {{"relax", "-n", "10", "--fixed", "99999999999999999999", "-o", out},
+       "--fixed 99999999999999999999: out of range; expected an integer from 0 to 100000000 (see --help)"},
+      {{"relax", "-n", "10", "--fixed", "-3", "-o", out},
+       "--fixed -3: out of range; expected an integer from 0 to 100000000 (see --help)"},
+      {{"relax", "-n", "10", "--tolerance", "nan", "-o", out},
+       "--tolerance nan: not a finite number; expected a finite number >= 0 (see --help)"},
+      {{"relax", "-n", "10", "--tolerance", "-1e-3", "-o", out},
+       "--tolerance -1e-3: out of range; expected a finite number >= 0 (see --help)"},
+      {{"progressive", "-n", "10", "--ratio", "nan", "-o", out},
+       "--ratio nan: not a finite number; expected a number above 1 and at most 100000000 (see --help)"},
+      {{"progressive", "-n", "10", "--ratio", "inf", "-o", out},
+       "--ratio inf: not a finite number; expected a number above 1 and at most 100000000 (see --help)"},
+      {{"relax", "-n", "1.5", "-o", out}, "--count 1.5: not an integer; expected an integer from 1 to 100000000 (see --help)"},
+      {{"relax", "-n", "1e9", "-o", out}, "--count 1e9: out of range; expected an integer from 1 to 100000000 (see --help)"},
+      {{"relax", "-n", "ten", "-o", out}, "--count ten: not a number; expected an integer from 1 to 100000000 (see --help)"},
+      {{"relax", "-n", "10", "-k", "1e-2", "-o", out},
+       "--iterations 1e-2: not an integer; expected an integer from 0 to 100000000 (see --help)"},
+      {{"dart", "-n", "10", "--shrink", "1", "-o", out},
+       "--shrink 1: out of range; expected a number from 1e-06 to 0.999999 (see --help)"},
+      {{"analyze", "-i", out, "-o", dir.file("an"), "--bin-width", "0"},
+       "--bin-width 0: out of range; expected a number above 0 and at most 65536 (see --help)"},
+      {{"relax", "-n", "10", "--resolution", "15", "-o", out},
+       "--resolution 15: out of range; expected an integer from 16 to 65536 (see --help)"},
+  };
+  for (const Refusal& c : cases) {
+    Outcome r = run(c.arguments);
+    EXPECT_EQ(r.exit_code, 105) << r.err;  // CLI11's validation exit status
+    EXPECT_EQ(r.err, "bluetile: " + c.message + "\n");
+  }
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>{});
+}
+
+TEST(Options, WholeNumbersInScientificNotationAreAccepted) {
+  TempDir dir;
+  // Issue 13, item 9: "-n 1e2" said "not in range".
+  Outcome r = run({"relax", "-n", "1e2", "-k", "2.5e1", "-s", "7E0", "--engine", "exact", "-o", dir.file("a.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run({"relax", "-n", "100", "-k", "25", "-s", "7", "--engine", "exact", "-o", dir.file("b.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir.file("a.txt")), read_text(dir.file("b.txt")));
+  r = run({"relax", "-n", "10", "-k", "1", "-s", "18446744073709551615", "--engine", "exact", "-o", dir.file("c.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(dir.file("c.txt")).find("seed 18446744073709551615"), std::string::npos);
+}
+
+TEST(Options, RunsTooLargeForTheMachineAreRefusedUpFront) {
+  TempDir dir;
+  // Issue 13, item 14: nothing bounded --count x --sets.
+  Outcome r = run({"relax", "-n", "100000000", "--sets", "10000000", "--engine", "exact", "-o", dir.file("o.txt")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 x --sets 10000000 needs about 142.1 PiB of memory, more than the ", 0), 0u)
+      << r.err;
+  if (!sanitized()) {  // ulimit -v stands in for a small machine
+    Invocation limited{{"dart", "-n", "100000000", "-o", dir.file("o.txt")}};
+    limited.address_space_bytes = 1L << 30;
+    r = run(limited);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 needs about 6.0 GiB of memory, more than the ", 0), 0u) << r.err;
+    limited.arguments = {"progressive", "-n", "50000000", "--levels", "2", "--engine", "exact", "-o", dir.file("o.txt")};
+    r = run(limited);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err.rfind("bluetile: 100000000 points in 2 levels needs about 15.6 GiB of memory, more than the ", 0), 0u)
+        << r.err;
+  }
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>{});
+}
+
+}  // namespace
+}  // namespace bluetile::robustness
