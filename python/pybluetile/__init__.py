@@ -22,6 +22,9 @@ from ._core import (
     save_table,
     set_thread_count,
     thread_count,
+    tile,
+    tile_set,
+    wang_tiles,
 )
 
 __version__ = "0.1.0"
@@ -41,4 +44,7 @@ __all__ = [
     "save_table",
     "set_thread_count",
     "thread_count",
+    "tile",
+    "tile_set",
+    "wang_tiles",
 ]

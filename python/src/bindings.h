@@ -1,5 +1,5 @@
 // Each part of the library adds its functions to the module in its own file; module.cpp calls
-// them in order. A new part (Wang tiles, tilings) is one more bind_* here and in module.cpp.
+// them in order. A new part is one more bind_* here and in module.cpp.
 #pragma once
 
 #include <nanobind/nanobind.h>
@@ -10,5 +10,6 @@ void bind_engines(nanobind::module_& m);   // relax, centroids, progressive
 void bind_sampling(nanobind::module_& m);  // random_points, dart
 void bind_analysis(nanobind::module_& m);  // analyze, periodogram, radial_power, nearest_neighbour_distances
 void bind_tables(nanobind::module_& m);    // save_table, load_table
+void bind_tiling(nanobind::module_& m);    // wang_tiles, tile_set, tile
 
 }  // namespace pybluetile

@@ -29,4 +29,5 @@ NB_MODULE(_core, m) {
   pybluetile::bind_sampling(m);
   pybluetile::bind_analysis(m);
   pybluetile::bind_tables(m);
+  pybluetile::bind_tiling(m);
 }

@@ -211,3 +211,58 @@ def test_the_gil_is_released_while_relaxing():
         thread.join()
     # With the GIL held the other thread could not run at all during the call.
     assert during > 100, f"the counting thread ran {during} times while relax ran"
+
+
+def tile_set_body(text):
+    """A tile-set file from its '# set' line on: the tiles, without the header that names the maker."""
+    return text[text.index("# set "):]
+
+
+def test_wang_tiles_match_the_tool(tool, tmp_path):
+    out = tmp_path / "set.tiles"
+    tool("wang", "--set", "wang8", "--points", 8, "--iterations", 3, "--warm", 2, "--levels", 2, "--ratio", 2,
+         "--strategy", "instances", "--period", 4, "--engine", "exact", "--seed", 3, "--output", out)
+    text = bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, strategy="instances", period=4,
+                         seed=3)
+    assert tile_set_body(text) == tile_set_body(out.read_text())
+    tiles = bt.tile_set(text)
+    assert tiles["kind"] == "wang8" and len(tiles["tiles"]) == 8
+    for t in tiles["tiles"]:
+        assert t["points"].shape == (16, 2)
+        assert sorted(t["ranks"].tolist()) == list(range(16))
+        assert np.array_equal(np.bincount(t["levels"]), [8, 8])
+        assert np.all((t["points"] >= 0) & (t["points"] < 1))
+    # A path reads the same set.
+    assert np.array_equal(bt.tile_set(str(out))["tiles"][5]["points"], tiles["tiles"][5]["points"])
+
+
+def test_tile_matches_the_tool(tool, tmp_path):
+    out = tmp_path / "window.txt"
+    region = (-3.5, -2.0, 4.25, 3.0)
+    tool("tile", "--region", *region, "--density", 40, "--seed", 7, "--columns", "x,y,i,j,tile,level,rank",
+         "--output", out)
+    from_tool = np.loadtxt(out, comments="#", ndmin=2)
+    got = bt.tile(region, density=40, seed=7, columns=True)
+    assert len(got["points"]) > 100
+    assert np.array_equal(got["points"], from_tool[:, :2])
+    for c, name in enumerate(("i", "j", "tile", "level", "rank")):
+        assert np.array_equal(got[name], from_tool[:, 2 + c]), name
+    # Overlapping windows agree on their overlap, bit for bit.
+    left = bt.tile((-3.5, -2.0, 1.0, 3.0), density=40, seed=7)
+    inside = got["points"][got["points"][:, 0] < 1.0]
+    assert np.array_equal(np.sort(left.view("f8,f8"), axis=0), np.sort(inside.copy().view("f8,f8"), axis=0))
+
+
+def test_tile_follows_a_density_map():
+    # Dense on the left column of the map, empty on the right: row 0 is the top.
+    density_map = np.array([[1.0, 0.0], [1.0, 0.0]])
+    points = bt.tile((0, 0, 8, 8), density_map=density_map, max_density=30, seed=2)
+    left = np.count_nonzero(points[:, 0] < 2)
+    right = np.count_nonzero(points[:, 0] > 6)
+    assert left > 20 * max(right, 1)
+    with pytest.raises(ValueError, match="density_map"):
+        bt.tile((0, 0, 1, 1), density_map=np.array([[-1.0]]), max_density=10)
+    with pytest.raises(ValueError, match="region"):
+        bt.tile((0, 0, -1, 1))
+    with pytest.raises(bt.Error, match="more than tiles"):
+        bt.tile((0, 0, 1, 1), tile_size=1.0, density=1e9)

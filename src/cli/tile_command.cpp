@@ -11,7 +11,7 @@
 #include "cli/commands.h"
 #include "cli/density_options.h"
 #include "cli/progress.h"
-#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/io/density_map.h"
@@ -162,29 +162,35 @@ std::vector<std::string> header_lines(const TileOptions& o, const Plan& plan, co
   return lines;
 }
 
-void write_points(const std::string& path, const Plan& plan, const TiledFormat& format, bool verbose) {
+void write_points(OutputFile& file, const Plan& plan, const TiledFormat& format, bool verbose) {
   Progress progress("tile", plan.tiler->cells(plan.window).rows());
   auto on_rows = [&](std::int64_t done, std::int64_t) { progress.update(done); };
   StreamTimes times;
-  if (path == "-") {
-    times = stream_tiled_points(*plan.tiler, plan.window, plan.thinning.get(), format, stdout, "stdout", on_rows);
+  auto stream_to = [&](std::FILE* out) {
+    times = stream_tiled_points(*plan.tiler, plan.window, plan.thinning.get(), format, out,
+                                file.is_stdout() ? "stdout" : file.path(), on_rows);
+  };
+  if (file.is_stdout()) {
+    stream_to(stdout);
+    if (std::fflush(stdout) != 0) throw Error("stdout: write failed: " + std::string(std::strerror(errno)));
   } else {
-    write_atomically(path, [&](const std::string& temporary) {
-      std::FILE* file = std::fopen(temporary.c_str(), "wb");
-      if (file == nullptr) throw Error(path + ": cannot write: " + std::strerror(errno));
+    // Streamed through stdio into the output's file (staged, or the device itself).
+    file.write_through_path([&](const std::string& path) {
+      std::FILE* out = std::fopen(path.c_str(), "wb");
+      if (out == nullptr) throw Error(file.path() + ": cannot write: " + std::strerror(errno));
       try {
-        times = stream_tiled_points(*plan.tiler, plan.window, plan.thinning.get(), format, file, path, on_rows);
+        stream_to(out);
       } catch (...) {
-        std::fclose(file);
+        std::fclose(out);
         throw;
       }
-      if (std::fclose(file) != 0) throw Error(path + ": write failed: " + std::strerror(errno));
+      if (std::fclose(out) != 0) throw Error(file.path() + ": write failed: " + std::strerror(errno));
     });
   }
   progress.finish();
   if (verbose)
     std::fprintf(stderr, "bluetile tile: %s: %zu points, %zu bytes; generate %.3f s, format %.3f s, write %.3f s\n",
-                 path.c_str(), times.points, times.bytes, times.generate, times.format, times.write);
+                 file.path().c_str(), times.points, times.bytes, times.generate, times.format, times.write);
 }
 
 void run_tile(const TileOptions& o) {
@@ -192,9 +198,14 @@ void run_tile(const TileOptions& o) {
   TiledFormat format;
   format.columns = parse_tiled_columns(o.columns);
   format.normalize = o.normalize;
-  for (std::size_t a = 0; a < o.outputs.size(); ++a)
-    for (std::size_t b = a + 1; b < o.outputs.size(); ++b)
-      if (o.outputs[a] == o.outputs[b]) throw Error("--output '" + o.outputs[a] + "' given twice");
+  // Every output is declared, and so checked (folders, the same file twice), before any work;
+  // all of them are published together at the end.
+  OutputSet outputs;
+  if (!o.tiles.empty()) outputs.add_input(o.tiles);
+  if (!o.density_map.empty()) outputs.add_input(o.density_map);
+  std::vector<OutputFile*> files;
+  for (const std::string& path : o.outputs)
+    files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputKind::text}));
   if (o.normalize && o.region[2] - o.region[0] != o.region[3] - o.region[1])
     throw Error("--normalize maps a square region onto the unit square; this region is " +
                 number(o.region[2] - o.region[0]) + " x " + number(o.region[3] - o.region[1]));
@@ -204,23 +215,24 @@ void run_tile(const TileOptions& o) {
   DotStyle dots;
   dots.radius = o.dot_radius > 0.0 ? o.dot_radius : default_dot_radius(plan.max_density);
   dots.follow_density = o.dots_follow_density;
-  for (const std::string& path : o.outputs) {
-    switch (output_kind(path)) {
+  for (OutputFile* file : files) {
+    switch (output_kind(file->path())) {
       case OutputKind::text:
       case OutputKind::binary: {
         TiledFormat f = format;
-        f.binary = output_kind(path) == OutputKind::binary;
-        write_points(path, plan, f, o.verbose);
+        f.binary = output_kind(file->path()) == OutputKind::binary;
+        write_points(*file, plan, f, o.verbose);
         break;
       }
       case OutputKind::svg:
-        write_dots_svg(path, *plan.tiler, plan.window, plan.thinning.get(), dots);
+        file->write(dots_svg(*plan.tiler, plan.window, plan.thinning.get(), dots));
         break;
       case OutputKind::image:
-        write_image(path, render_dots(*plan.tiler, plan.window, plan.thinning.get(), dots, o.image_size));
+        write_image(*file, render_dots(*plan.tiler, plan.window, plan.thinning.get(), dots, o.image_size));
         break;
     }
   }
+  outputs.publish();
 }
 
 }  // namespace

@@ -8,6 +8,8 @@
 #include <mutex>
 
 #include <dlfcn.h>
+#include <link.h>
+#include <unistd.h>
 
 #include "bluetile/core/error.h"
 #include "bluetile/io/oiio_plugin.h"
@@ -21,14 +23,42 @@ struct Plugin {
   bluetile_oiio_read_fn read = nullptr;
 };
 
-// Where the module may be: only BLUETILE_OIIO_PLUGIN when it is set (a wrong value is an error,
-// not a silent fall-back); else by bare name, which the dynamic loader looks up in the RUNPATH
-// of the object holding this code: the program when the library is linked statically,
-// libbluetile_images.so when shared. Linking bluetile::images (CMake, in a build tree or
-// installed) or bluetile-images (pkg-config) puts the plugin's folder there.
+// The folders the dynamic loader searches for libraries of the object holding this code (the
+// program when the library is linked statically, libbluetile_images.so when shared): its RUNPATH,
+// which linking bluetile::images (CMake, in a build tree or installed) or bluetile-images
+// (pkg-config) points at the plugin's folder, then LD_LIBRARY_PATH and the system folders.
+// Asked of the loader (dlinfo) rather than left to a bare-name dlopen because a dlopen
+// interposed by a sanitizer runtime searches the runtime's path instead of ours.
+std::vector<std::string> loader_search_folders() {
+  void* self = nullptr;
+  Dl_info where{};
+  if (dladdr(reinterpret_cast<void*>(&loader_search_folders), &where) && where.dli_fname)
+    self = dlopen(where.dli_fname, RTLD_LAZY | RTLD_NOLOAD);
+  if (!self) self = dlopen(nullptr, RTLD_LAZY);  // the program itself
+  std::vector<std::string> folders;
+  Dl_serinfo size{};
+  if (!self || dlinfo(self, RTLD_DI_SERINFOSIZE, &size) != 0) return folders;
+  // Dl_serinfo is followed by its strings: storage of whole Dl_serinfo keeps it aligned.
+  std::vector<Dl_serinfo> storage(size.dls_size / sizeof(Dl_serinfo) + 1);
+  Dl_serinfo* info = storage.data();
+  *info = size;
+  if (dlinfo(self, RTLD_DI_SERINFO, info) != 0) return folders;
+  for (unsigned i = 0; i < info->dls_cnt; ++i) {
+    const char* name = info->dls_serpath[i].dls_name;
+    if (name && *name) folders.emplace_back(name);
+  }
+  return folders;
+}
+
+// Where the module may be: BLUETILE_OIIO_PLUGIN, else in the loader's search folders of the
+// object holding this code, else by bare name (the loader's cache).
 std::vector<std::string> plugin_candidates() {
   std::vector<std::string> paths;
-  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) return {env};
+  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) paths.push_back(env);
+  for (const std::string& folder : loader_search_folders()) {
+    const std::string path = folder + "/" BLUETILE_OIIO_PLUGIN_NAME;
+    if (access(path.c_str(), F_OK) == 0) paths.push_back(path);
+  }
   paths.push_back(BLUETILE_OIIO_PLUGIN_NAME);
   return paths;
 }

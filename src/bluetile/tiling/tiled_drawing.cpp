@@ -38,8 +38,7 @@ Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thi
   return canvas;
 }
 
-void write_dots_svg(const std::string& path, const Tiler& tiler, const Window& window, const Thinning* thinning,
-                    const DotStyle& style) {
+std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style) {
   const double display_width = 800.0;
   const double display_height = display_width * window.height() / window.width();
   SvgDocument svg(0.0, 0.0, window.width(), window.height(), display_width, display_height, "px");
@@ -53,7 +52,7 @@ void write_dots_svg(const std::string& path, const Tiler& tiler, const Window& w
                   SvgTransform::fit_y_up(window.x0, window.y0, window.width(), window.height(), 0.0, 0.0, 1.0, 1.0));
   for_each_dot(tiler, window, thinning, style, [&](Point p, double r) { svg.circle(p, r); });
   svg.end_group();
-  svg.write(path);
+  return svg.str();
 }
 
 }  // namespace bluetile

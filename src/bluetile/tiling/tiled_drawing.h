@@ -27,9 +27,7 @@ double default_dot_radius(double max_density);
 Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style,
                    int width_pixels);
 
-// The same as an SVG: the view box is the window in plane units (y up), shown 800 px wide.
-// Written atomically; throws Error naming the path on failure.
-void write_dots_svg(const std::string& path, const Tiler& tiler, const Window& window, const Thinning* thinning,
-                    const DotStyle& style);
+// The same as an SVG document: the view box is the window in plane units (y up), shown 800 px wide.
+std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style);
 
 }  // namespace bluetile

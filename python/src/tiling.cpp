@@ -1,0 +1,239 @@
+// wang_tiles, tile_set and tile: Wang-tile sample sets (Hiller, Deussen, Keller 2001, section 3)
+// and windows of the aperiodic plane they tile. A tile set travels as the text of its file
+// (the format `bluetile wang` writes and `bluetile tile --tiles` reads), so that a set made here
+// and one made by the tool are the same thing; tile_set() opens it into arrays.
+#include <cmath>
+#include <optional>
+
+#include <nanobind/stl/optional.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/tuple.h>
+
+#include "arrays.h"
+#include "bindings.h"
+#include "engines.h"
+#include "bluetile/relax/wang_relax.h"
+#include "bluetile/tiling/default_tile_set.h"
+#include "bluetile/tiling/density_thinning.h"
+#include "bluetile/tiling/tile_set.h"
+#include "bluetile/tiling/tiler.h"
+
+namespace pybluetile {
+
+using namespace nb::literals;
+
+namespace {
+
+// The text of a file starts with its version line; anything else names a file.
+constexpr std::string_view kTileSetMagic = "# bluetile tiles";
+
+bluetile::TileSet load_tile_set(const std::optional<std::string>& tiles) {
+  if (!tiles) return bluetile::default_tile_set();
+  if (tiles->starts_with(kTileSetMagic)) return bluetile::parse_tile_set(*tiles, "tiles");
+  return bluetile::read_tile_set(*tiles);
+}
+
+bluetile::WangStrategy strategy_named(const std::string& name) {
+  if (name == "exact") return bluetile::WangStrategy::exact;
+  if (name == "instances") return bluetile::WangStrategy::instances;
+  if (name == "rounds") return bluetile::WangStrategy::rounds;
+  throw nb::value_error(("strategy: expected one of 'exact', 'instances', 'rounds', got '" + name + "'").c_str());
+}
+
+void check_whole(const char* name, long long value, long long low, long long high) {
+  if (value < low || value > high)
+    throw nb::value_error((std::string(name) + ": expected " + std::to_string(low) + " to " + std::to_string(high) +
+                           ", got " + std::to_string(value)).c_str());
+}
+
+std::string wang_tiles(const std::string& set, long long points, int iterations, int warm, int levels, double ratio,
+                       const std::string& strategy, int period, double margin, std::uint64_t seed,
+                       const std::string& engine) {
+  const auto kind = bluetile::parse_tile_set_kind(set);
+  if (!kind) throw nb::value_error(("set: expected one of 'wang8', 'wang16', 'corner16', got '" + set + "'").c_str());
+  check_whole("points", points, 1, 1000000);
+  check_whole("iterations", iterations, 0, 100000000);
+  check_whole("warm", warm, 0, 100000000);
+  check_whole("levels", levels, 1, 32);
+  check_whole("period", period, 2, 1024);
+  if (levels > 1 && !(ratio > 1.0 && std::isfinite(ratio)))
+    throw nb::value_error(("ratio: expected a finite number above 1, got " + std::to_string(ratio)).c_str());
+  if (!(margin >= 0.0 && margin <= 0.25))
+    throw nb::value_error(("margin: expected 0 to 0.25 tile units, got " + std::to_string(margin)).c_str());
+  EngineChoice choice;
+  choice.engine = engine;
+  check_engine_choice(choice);
+
+  bluetile::WangOptions w;
+  w.kind = *kind;
+  w.points = static_cast<std::size_t>(points);
+  w.levels = levels;
+  w.ratio = ratio;
+  w.seed = seed;
+  w.level.iterations = iterations;
+  w.level.warm_iterations = warm;
+  w.level.strategy = strategy_named(strategy);
+  w.level.period = period;
+  w.level.edge_margin = margin;
+  std::string text;
+  {
+    nb::gil_scoped_release release;
+    auto e = make_engine(choice);
+    bluetile::TileSet tiles = bluetile::relax_wang_tiles(*e, w);
+    tiles.header.push_back("made by: pybluetile.wang_tiles(set='" + set + "', points=" + std::to_string(points) +
+                           ", iterations=" + std::to_string(iterations) + ", warm=" + std::to_string(warm) +
+                           ", levels=" + std::to_string(levels) + ", strategy='" + strategy +
+                           "', seed=" + std::to_string(seed) + ", engine='" + engine + "')");
+    text = bluetile::format_tile_set(tiles);
+  }
+  return text;
+}
+
+nb::dict tile_set(const std::optional<std::string>& tiles) {
+  const bluetile::TileSet set = load_tile_set(tiles);
+  nb::list list;
+  for (std::size_t id = 0; id < set.tiles.size(); ++id) {
+    const bluetile::Tile& t = set.tiles[id];
+    const std::size_t n = t.points.size();
+    std::vector<double> xy;
+    xy.reserve(2 * n);
+    for (const bluetile::Point& p : t.points) xy.insert(xy.end(), {p.x, p.y});
+    nb::dict d;
+    d["id"] = id;
+    d["colours"] = nb::make_tuple(int{t.colours[0]}, int{t.colours[1]}, int{t.colours[2]}, int{t.colours[3]});
+    d["points"] = to_numpy(std::move(xy), {n, 2});
+    d["levels"] = to_numpy(std::vector<std::int32_t>(t.levels.begin(), t.levels.end()), {n});
+    d["ranks"] = to_numpy(std::vector<std::uint32_t>(t.ranks), {n});
+    list.append(d);
+  }
+  nb::dict out;
+  out["kind"] = std::string(bluetile::tile_set_kind_name(set.kind));
+  out["tiles"] = list;
+  return out;
+}
+
+nb::object tile(std::tuple<double, double, double, double> region, const std::optional<std::string>& tiles,
+                double tile_size, double density, std::uint64_t seed, std::optional<AnyArray> density_map,
+                double max_density, bool columns) {
+  const auto [x0, y0, x1, y1] = region;
+  const bluetile::Window window{x0, y0, x1, y1};
+  for (double v : {x0, y0, x1, y1})
+    if (!std::isfinite(v)) throw nb::value_error("region: coordinates must be finite");
+  if (!(x1 > x0) || !(y1 > y0)) throw nb::value_error("region: expected (x0, y0, x1, y1) with x1 > x0 and y1 > y0");
+  if (tile_size < 0.0 || density < 0.0 || max_density < 0.0 || !std::isfinite(tile_size) || !std::isfinite(density) ||
+      !std::isfinite(max_density))
+    throw nb::value_error("tile_size, density and max_density: expected finite numbers >= 0 (0: not given)");
+  if (density_map && density > 0.0) throw nb::value_error("density is for uniform tilings; with density_map give max_density");
+  if (!density_map && max_density > 0.0) throw nb::value_error("max_density needs density_map");
+
+  // The map: a 2-D array of non-negative values, row 0 at the top (as images and matplotlib's
+  // imshow have it), stretched over the region.
+  std::vector<float> texels;
+  std::size_t map_width = 0, map_height = 0;
+  if (density_map) {
+    const AnyArray& a = *density_map;
+    if (a.ndim() != 2 || a.shape(0) < 1 || a.shape(1) < 1)
+      throw nb::value_error("density_map: expected a 2-D array of shape (rows, columns)");
+    map_height = a.shape(0);
+    map_width = a.shape(1);
+    const bool f64 = a.dtype() == nb::dtype<double>(), f32 = a.dtype() == nb::dtype<float>();
+    if (!f64 && !f32)
+      throw nb::type_error(("density_map: expected float64 or float32, got " + dtype_name(a.dtype())).c_str());
+    texels.resize(map_width * map_height);
+    for (std::size_t r = 0; r < map_height; ++r)
+      for (std::size_t c = 0; c < map_width; ++c) {
+        const std::int64_t at = static_cast<std::int64_t>(r) * a.stride(0) + static_cast<std::int64_t>(c) * a.stride(1);
+        const double v = f64 ? static_cast<const double*>(a.data())[at] : static_cast<const float*>(a.data())[at];
+        if (!(v >= 0.0) || !std::isfinite(v))
+          throw nb::value_error(("density_map: values must be finite and >= 0, got " + std::to_string(v) + " at row " +
+                                 std::to_string(r) + ", column " + std::to_string(c)).c_str());
+        texels[(map_height - 1 - r) * map_width + c] = static_cast<float>(v);  // row 0 at the bottom, y up
+      }
+  }
+
+  std::vector<bluetile::TiledPoint> points;
+  {
+    nb::gil_scoped_release release;
+    bluetile::TileSet set = load_tile_set(tiles);
+    double per_tile = 0.0;
+    for (const bluetile::Tile& t : set.tiles) per_tile += static_cast<double>(t.points.size());
+    per_tile /= static_cast<double>(std::max<std::size_t>(1, set.tiles.size()));
+    // As `bluetile tile`: the tile size from the density when only that is given; the density
+    // where it is highest sets the thinning.
+    const double target = density_map ? max_density : density;
+    const double size = tile_size > 0.0 ? tile_size : target > 0.0 ? std::sqrt(per_tile / target) : 1.0;
+    const bluetile::Tiler tiler(std::move(set), seed, size);
+    const double full = tiler.full_density();
+    if (target > full * (1.0 + 1e-12))
+      throw bluetile::Error("density " + std::to_string(target) + " is more than tiles of size " + std::to_string(size) +
+                            " hold (" + std::to_string(full) + " points per unit area)");
+    const double fraction = target == 0.0 || target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
+    std::optional<bluetile::Thinning> thinning;
+    if (density_map)
+      thinning = bluetile::Thinning::from_map(static_cast<int>(map_width), static_cast<int>(map_height), texels, window,
+                                              fraction);
+    else if (fraction < 1.0)
+      thinning = bluetile::Thinning::uniform(fraction);
+    points = tiler.tiled_points(window, thinning ? &*thinning : nullptr);
+  }
+  const std::size_t n = points.size();
+  std::vector<double> xy;
+  xy.reserve(2 * n);
+  for (const bluetile::TiledPoint& p : points) xy.insert(xy.end(), {p.position.x, p.position.y});
+  nb::object array = nb::cast(to_numpy(std::move(xy), {n, 2}));
+  if (!columns) return array;
+  std::vector<std::int64_t> i(n), j(n);
+  std::vector<std::int32_t> tile_id(n), level(n);
+  std::vector<std::uint32_t> rank(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    i[k] = points[k].i;
+    j[k] = points[k].j;
+    tile_id[k] = points[k].tile;
+    level[k] = points[k].level;
+    rank[k] = points[k].rank;
+  }
+  nb::dict d;
+  d["points"] = array;
+  d["i"] = to_numpy(std::move(i), {n});
+  d["j"] = to_numpy(std::move(j), {n});
+  d["tile"] = to_numpy(std::move(tile_id), {n});
+  d["level"] = to_numpy(std::move(level), {n});
+  d["rank"] = to_numpy(std::move(rank), {n});
+  return d;
+}
+
+}  // namespace
+
+void bind_tiling(nb::module_& m) {
+  m.def("wang_tiles", &wang_tiles,
+        nb::sig("def wang_tiles(set: str = 'wang8', *, points: int = 52, iterations: int = 25, warm: int = 10, "
+                "levels: int = 1, ratio: float = 2.0, strategy: str = 'exact', period: int = 16, margin: float = 0.0, "
+                "seed: int = 1, engine: str = 'exact') -> str"),
+        "set"_a = "wang8", nb::kw_only(), "points"_a = 52, "iterations"_a = 25, "warm"_a = 10, "levels"_a = 1,
+        "ratio"_a = 2.0, "strategy"_a = "exact", "period"_a = 16, "margin"_a = 0.0, "seed"_a = 1, "engine"_a = "exact",
+        R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same
+points bit for bit), returned as the text of its tile-set file: write it to a file for
+``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``.)");
+
+  m.def("tile_set", &tile_set, nb::sig("def tile_set(tiles: str | None = None) -> dict[str, object]"),
+        "tiles"_a = nb::none(),
+        R"(A tile set's tiles as arrays: {'kind': str, 'tiles': [{'id', 'colours' (N, E, S, W, or the
+corners NW, NE, SE, SW), 'points' (n, 2) tile-local, 'levels' (n,), 'ranks' (n,)}]}. ``tiles``:
+the text of a tile-set file, a path to one, or None for the set built into the library.)");
+
+  m.def("tile", &tile,
+        nb::sig("def tile(region: tuple[float, float, float, float], *, tiles: str | None = None, tile_size: float = 0, "
+                "density: float = 0, seed: int = 1, density_map: NDArray[numpy.floating] | None = None, "
+                "max_density: float = 0, columns: bool = False) -> NDArray[numpy.float64] | dict[str, NDArray]"),
+        "region"_a, nb::kw_only(), "tiles"_a = nb::none(), "tile_size"_a = 0.0, "density"_a = 0.0, "seed"_a = 1,
+        "density_map"_a = nb::none(), "max_density"_a = 0.0, "columns"_a = false,
+        R"(The points of the window ``region`` = (x0, y0, x1, y1) (half-open) of the aperiodic tiling of
+the plane by a tile set, as ``bluetile tile --region``: the same points on every overlap for the
+same seed. ``tile_size`` (plane units per tile) or ``density`` (points per unit area; the tile
+size follows from it, and a lower density than the tiles hold thins every tile by rank); with
+``density_map`` (2-D array, row 0 at the top, stretched over the region) points are kept by rank
+where the map is dense, ``max_density`` where it is highest. Returns an (M, 2) array, or with
+``columns=True`` a dict of 'points', 'i', 'j' (cells), 'tile', 'level', 'rank'.)");
+}
+
+}  // namespace pybluetile
