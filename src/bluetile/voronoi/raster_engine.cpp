@@ -67,10 +67,11 @@ double nearest_site_distance(const RasterScene& scene, Point p) {
 
 int default_resolution(std::size_t sites, Coverage coverage) {
   double n = static_cast<double>(std::max<std::size_t>(sites, 1));
-  // area: ~4 pixels per cell, the fastest measured (boundary pixels grow as the square root of
-  // the pixels per cell, their candidates as its inverse: 2 to 16 pixels per cell cost 5.4, 4.5,
-  // 6.4, 9.0 ms of CPU per iteration at N = 1000, docs/BENCHMARKS.md); point: ~1000 pixels per
-  // cell (error ~ 0.05 pixel).
+  // area: ~4 pixels per cell, tied fastest with 1 (boundary pixels grow as the square root of
+  // the pixels per cell, their candidates as its inverse: 1, 2, 4, 8, 16 pixels per cell cost 4.9,
+  // 5.7, 5.0, 6.3, 7.1 ms of CPU per iteration at N = 1000, docs/BENCHMARKS.md; at 1 some pixels
+  // are left to the host fallback); point: ~1000 pixels per cell (error ~ 0.05
+  // pixel).
   double side = coverage == Coverage::area ? 2.0 * std::sqrt(n) : 32.0 * std::sqrt(n);
   int lo = coverage == Coverage::area ? 16 : 64;
   int rounded = static_cast<int>(std::ceil(side / 16.0)) * 16;
