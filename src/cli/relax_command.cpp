@@ -55,9 +55,17 @@ void run_relax(const RelaxOptions& o) {
     check_memory(static_cast<double>(o.sets) * static_cast<double>(o.count) * kRelaxBytesPerSite,
                  "--count " + std::to_string(o.count) + " x --sets " + std::to_string(o.sets));
   }
-  // Every output is declared, and so checked, before any work.
   OutputSet outputs;
   if (!o.input.empty()) outputs.add_input(o.input);
+  // The input's sets (UTK's '#' lines, .npy, .bpt: each set is relaxed on its own), or the
+  // random starts below.
+  std::vector<PointSet> inputs;
+  if (!o.input.empty()) {
+    inputs = read_point_table(o.input);
+    if (inputs.empty()) throw Error(input_name(o.input) + ": no points");
+  }
+  // Every output is declared, and so checked, before any work.
+  PointOutput point_output(outputs, o.output, o.input.empty() ? static_cast<std::size_t>(o.sets) : inputs.size());
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
   OutputFile* id_image = o.id_image.empty() ? nullptr : &outputs.add(o.id_image);
 
@@ -68,13 +76,7 @@ void run_relax(const RelaxOptions& o) {
     density = std::make_shared<DensityGrid>(load_density_map(o.density_map, density_transfer(o.transfer)));
     weight = std::make_shared<DensityGrid>(weight_for_point_density(*density, o.weight_exponent));
   }
-  // The input's sets (UTK's '#' lines, .npy, .bpt: each set is relaxed on its own), or the
-  // random starts.
-  std::vector<PointSet> inputs;
-  if (!o.input.empty()) {
-    inputs = read_point_table(o.input);
-    if (inputs.empty()) throw Error(input_name(o.input) + ": no points");
-  } else {
+  if (o.input.empty()) {
     for (long long k = 0; k < o.sets; ++k)
       inputs.push_back({random_points(o.seed, static_cast<std::size_t>(k), static_cast<std::size_t>(o.count),
                                       density.get()),
@@ -87,7 +89,6 @@ void run_relax(const RelaxOptions& o) {
                   " points" + (inputs.size() > 1 ? " of a set" : ""));
     }
   }
-  PointOutput point_output(outputs, o.output, inputs.size());  // names and formats checked before any work
 
   std::vector<Scene> scenes;
   for (PointSet& set : inputs) {

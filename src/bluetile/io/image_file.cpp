@@ -50,11 +50,12 @@ std::vector<std::string> loader_search_folders() {
   return folders;
 }
 
-// Where the module may be: BLUETILE_OIIO_PLUGIN, else in the loader's search folders of the
-// object holding this code, else by bare name (the loader's cache).
+// Where the module may be: only BLUETILE_OIIO_PLUGIN when it is set (a wrong value is an error,
+// not a silent fall-back); else in the loader's search folders of the object holding this code,
+// else by bare name (the loader's cache).
 std::vector<std::string> plugin_candidates() {
   std::vector<std::string> paths;
-  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) paths.push_back(env);
+  if (const char* env = std::getenv("BLUETILE_OIIO_PLUGIN")) return {env};
   for (const std::string& folder : loader_search_folders()) {
     const std::string path = folder + "/" BLUETILE_OIIO_PLUGIN_NAME;
     if (access(path.c_str(), F_OK) == 0) paths.push_back(path);
