@@ -12,6 +12,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "engines.h"
+#include "bluetile/core/error.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/tiling/default_tile_set.h"
 #include "bluetile/tiling/density_thinning.h"
