@@ -145,7 +145,8 @@ TEST(RasterHost, SitesTooCloseForFloatDepthsAreFlagged) {
   sites.push_back(sites[5] + Point{5e-3, 0.0});  // a tenth of the spacing: fine
   RasterSettings settings;
   settings.resolution = 64;
-  RasterScene job = prepare_raster_scene(make_scene(sites), 0, settings);
+  const Scene scene = make_scene(sites);
+  RasterScene job = prepare_raster_scene(scene, 0, settings);
   for (double& r : job.radius) r = 0.02;  // flags pairs closer than 6e-4 at 64^2
   flag_close_sites(job);
   EXPECT_TRUE(job.split[3]);

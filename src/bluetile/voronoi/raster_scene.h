@@ -90,6 +90,8 @@ struct RasterSettings {
 // Prepares `scene` (index `index` in its batch). Throws Error on a bad scene (non-finite site,
 // wanted range outside the sites, non-positive domain) or a resolution beyond `max_side`.
 RasterScene prepare_raster_scene(const Scene& scene, std::size_t index, const RasterSettings& settings);
+// The prepared scene keeps a pointer to `scene`: a temporary would dangle.
+RasterScene prepare_raster_scene(Scene&& scene, std::size_t index, const RasterSettings& settings) = delete;
 
 // Flags sites whose nearest other site is closer than float depths can tell apart (see
 // raster_scene.cpp); the radii must be set.
