@@ -269,7 +269,8 @@ void timing(const Options& o) {
 
 void levels(const Options& o) {
   ExactEngine engine;
-  std::printf("| set | n0 | levels | seed | prefix per tile | level boundary | rho | LF | seamX |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| set | n0 | levels | seed | prefix per tile | level boundary | rho | LF | seamX | C_LF | C_mid |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& kind : o.kinds) {
     for (std::size_t n : o.points) {
       for (const std::string& strategy : o.strategies) {
@@ -292,9 +293,10 @@ void levels(const Options& o) {
           for (const auto& [prefix, level] : counts) {
             TilingMetrics m = plane_metrics(set, o.periods[0], derive_seed(seed, 1000), static_cast<std::uint32_t>(prefix));
             double seam = level >= 0 ? seams.levels[static_cast<std::size_t>(level)].cross_relative() : 0.0;
-            std::printf("| %s | %zu | %d | %llu | %zu | %s | %.3f | %.4f | %s |\n", kind.c_str(), n, o.levels,
-                        static_cast<unsigned long long>(seed), prefix, level >= 0 ? std::to_string(level).c_str() : "",
-                        m.rho, m.low_frequency, level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "");
+            std::printf("| %s | %zu | %d | %llu | %zu | %s | %.3f | %.4f | %s | %.4f | %.1f |\n", kind.c_str(), n,
+                        o.levels, static_cast<unsigned long long>(seed), prefix,
+                        level >= 0 ? std::to_string(level).c_str() : "", m.rho, m.low_frequency,
+                        level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "", m.coherence_low, m.coherence_mid);
             std::fflush(stdout);
           }
         }
