@@ -205,36 +205,33 @@ void quality(const Options& o) {
     }
   }
   if (!o.untiled) return;
-  // Untiled Lloyd at the N of each tiled plane.
+  // Untiled Lloyd at the N of each tiled plane (N = n M^2 whatever the set).
   std::printf("\n| untiled Lloyd | N | iterations | seed | rho | LF | aniso dB |\n|---|---|---|---|---|---|---|\n");
-  for (const std::string& kind : o.kinds) {
-    const std::size_t tiles = static_cast<std::size_t>(TileRules(*parse_tile_set_kind(kind)).tile_count());
-    (void)tiles;
-    for (std::size_t n : o.points) {
-      for (int period : o.periods) {
-        const std::size_t count = n * static_cast<std::size_t>(period * period);
-        Stat rho, lf, an;
-        for (int s = 0; s < o.seeds; ++s) {
-          Rng rng(derive_seed(o.first_seed + static_cast<std::uint64_t>(s), 77));
-          std::vector<Point> sites(count);
-          for (Point& p : sites) p = rng.point(Domain{});
-          Scene scene = make_scene(sites);
-          LloydOptions lloyd;
-          lloyd.iterations = o.untiled_iterations;
-          relax_lloyd(engine, scene, lloyd);
-          TilingMetrics m = measure_tiling(scene.sites, 0, 1);
-          rho.add(m.rho);
-          lf.add(m.low_frequency);
-          an.add(m.diffuse_anisotropy_db);
-          std::printf("| | %zu | %d | %d | %.3f | %.4f | %.2f |\n", count, o.untiled_iterations, s, m.rho,
-                      m.low_frequency, m.diffuse_anisotropy_db);
-        }
-        std::printf("| mean | %zu | %d | | %.3f | %.4f | %.2f |\n", count, o.untiled_iterations, rho.mean(), lf.mean(),
-                    an.mean());
+  for (std::size_t n : o.points) {
+    for (int period : o.periods) {
+      const std::size_t count = n * static_cast<std::size_t>(period * period);
+      Stat rho, lf, an;
+      for (int s = 0; s < o.seeds; ++s) {
+        Rng rng(derive_seed(o.first_seed + static_cast<std::uint64_t>(s), 77));
+        std::vector<Point> sites(count);
+        for (Point& p : sites) p = rng.point(Domain{});
+        Scene scene = make_scene(sites);
+        LloydOptions lloyd;
+        lloyd.iterations = o.untiled_iterations;
+        relax_lloyd(engine, scene, lloyd);
+        TilingMetrics m = measure_tiling(scene.sites, 0, 1);
+        rho.add(m.rho);
+        lf.add(m.low_frequency);
+        an.add(m.diffuse_anisotropy_db);
+        std::printf("| | %zu | %d | %d | %.3f | %.4f | %.2f |\n", count, o.untiled_iterations, s, m.rho,
+                    m.low_frequency, m.diffuse_anisotropy_db);
       }
-      break;  // N depends on n and the period only
+      std::printf("| worst | %zu | %d | | %.3f | %.4f | %.2f |\n", count, o.untiled_iterations, rho.worst_low(),
+                  lf.worst_high(), an.worst_high());
+      std::printf("| mean | %zu | %d | | %.3f | %.4f | %.2f |\n", count, o.untiled_iterations, rho.mean(), lf.mean(),
+                  an.mean());
+      std::fflush(stdout);
     }
-    break;
   }
 }
 
@@ -272,7 +269,8 @@ void timing(const Options& o) {
 
 void levels(const Options& o) {
   ExactEngine engine;
-  std::printf("| set | n0 | levels | seed | prefix per tile | level boundary | rho | LF | seamX |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| set | n0 | levels | seed | prefix per tile | level boundary | rho | LF | seamX | C_LF | C_mid |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& kind : o.kinds) {
     for (std::size_t n : o.points) {
       for (const std::string& strategy : o.strategies) {
@@ -295,9 +293,10 @@ void levels(const Options& o) {
           for (const auto& [prefix, level] : counts) {
             TilingMetrics m = plane_metrics(set, o.periods[0], derive_seed(seed, 1000), static_cast<std::uint32_t>(prefix));
             double seam = level >= 0 ? seams.levels[static_cast<std::size_t>(level)].cross_relative() : 0.0;
-            std::printf("| %s | %zu | %d | %llu | %zu | %s | %.3f | %.4f | %s |\n", kind.c_str(), n, o.levels,
-                        static_cast<unsigned long long>(seed), prefix, level >= 0 ? std::to_string(level).c_str() : "",
-                        m.rho, m.low_frequency, level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "");
+            std::printf("| %s | %zu | %d | %llu | %zu | %s | %.3f | %.4f | %s | %.4f | %.1f |\n", kind.c_str(), n,
+                        o.levels, static_cast<unsigned long long>(seed), prefix,
+                        level >= 0 ? std::to_string(level).c_str() : "", m.rho, m.low_frequency,
+                        level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "", m.coherence_low, m.coherence_mid);
             std::fflush(stdout);
           }
         }

@@ -10,6 +10,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/io/image.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/wang_blocks.h"
 #include "bluetile/relax/wang_ranks.h"
@@ -325,8 +326,29 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
   test::CommandResult checked = test::run_bluetile({"wang-check", tiles, "--period", "4", "--output", dir.file("check")});
   ASSERT_EQ(checked.exit_code, 0) << checked.err;
   EXPECT_NE(checked.out.find("levels 0-1"), std::string::npos) << checked.out;
-  for (const char* name : {"stats.json", "plane.txt", "spectrum.png", "radial.png", "points.png"})
+  for (const char* name : {"stats.json", "plane.txt", "spectrum.png", "radial.png", "points.png", "tiles.png"})
     EXPECT_TRUE(std::filesystem::exists(dir.file("check/") + name)) << name;
+  // The plots hold their curves and colours, not only frames: the radial curve in the first
+  // series colour, the tile picture's two edge colours.
+  auto pixels_near = [](const Canvas& image, Colour c) {
+    int count = 0;
+    for (int y = 0; y < image.height(); ++y)
+      for (int x = 0; x < image.width(); ++x) {
+        Colour p = image.pixel(x, y);
+        if (std::abs(p.r - c.r) + std::abs(p.g - c.g) + std::abs(p.b - c.b) < 0.05f) ++count;
+      }
+    return count;
+  };
+  EXPECT_GT(pixels_near(read_image(dir.file("check/radial.png")), series_colour(0)), 100);
+  Canvas picture = read_image(dir.file("check/tiles.png"));
+  EXPECT_GT(pixels_near(picture, series_colour(1)), 100);
+  EXPECT_GT(pixels_near(picture, series_colour(2)), 100);
+
+  // The exact engine is the default here (the raster engine is far slower on these scenes).
+  test::CommandResult plain = test::run_bluetile(
+      {"wang", "--points", "8", "--iterations", "1", "--warm", "0", "--output", dir.file("plain.txt")});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  EXPECT_NE(read_tile_set(dir.file("plain.txt")).header[0].find("--engine exact"), std::string::npos);
 
   const std::string bad = dir.write("bad.txt", "# bluetile tiles 1\n# set wang9 colours 2\n");
   test::CommandResult refused = test::run_bluetile({"wang-check", bad});

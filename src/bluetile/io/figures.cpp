@@ -19,9 +19,14 @@ double note_height(double text_height, const PointsFigure& figure) {
 
 }  // namespace
 
+Point points_figure_pixel(Point p, double x, double y, double size) {
+  const double margin = kPointsMargin * size, side = size - 2.0 * margin;
+  return Point{x + margin + p.x * side, y + margin + (1.0 - p.y) * side};
+}
+
 void paint_points(const PointsFigure& figure, Painter& painter, double x, double y, double size) {
   const double margin = kPointsMargin * size, side = size - 2.0 * margin;
-  auto to_px = [&](Point p) { return Point{x + margin + p.x * side, y + margin + (1.0 - p.y) * side}; };
+  auto to_px = [&](Point p) { return points_figure_pixel(p, x, y, size); };
   const std::size_t n = figure.points.size();
   const double spacing = n ? hexagonal_spacing(static_cast<double>(n)) * side : side;
   // Marks a fifth of the hexagonal spacing across: they never touch in a blue-noise set.

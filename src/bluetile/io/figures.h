@@ -36,6 +36,8 @@ struct PointsFigure {
 // y up inside, the unit square framed.
 void paint_points(const PointsFigure& figure, Painter& painter, double x, double y, double size);
 Canvas draw_points(const PointsFigure& figure, int size = 800);
+// Where paint_points(..., x, y, size) puts the unit-square point p (for drawing over a figure).
+Point points_figure_pixel(Point p, double x, double y, double size);
 SvgDocument points_svg(const PointsFigure& figure, int size = 800);
 
 // The periodogram as grey levels, k = 0 at the centre and ky up. Tone map: grey =
