@@ -501,7 +501,13 @@ std::uint32_t RasterDevice::max_scenes_per_pass() const {
   return std::min<std::uint32_t>(impl_->gpu->properties().limits.maxComputeWorkGroupCount[2], 65535);
 }
 std::size_t RasterDevice::max_pass_pixels() const {
-  return static_cast<std::size_t>(std::min(static_cast<double>(impl_->gpu->memory_budget()) / kBytesPerSample, kMaxPassSamples));
+  const double range = static_cast<double>(impl_->gpu->properties().limits.maxStorageBufferRange);
+  return static_cast<std::size_t>(std::min({static_cast<double>(impl_->gpu->memory_budget()) / kBytesPerSample,
+                                            kMaxPassSamples, range / sizeof(gpu::uvec2)}));
+}
+std::size_t RasterDevice::max_pass_sites() const {
+  const std::size_t per_site = std::max({9 * sizeof(gpu::ConeInstance), sizeof(gpu::SiteSums), sizeof(gpu::SiteInfo)});
+  return impl_->gpu->properties().limits.maxStorageBufferRange / per_site;
 }
 
 void RasterDevice::run(std::span<RasterScene* const> group, std::uint32_t width, std::uint32_t height, bool read_ids,

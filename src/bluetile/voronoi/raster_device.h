@@ -40,8 +40,12 @@ class RasterDevice {
   bool float64_split() const;
   std::uint32_t max_side() const;           // largest atlas side (maxImageDimension2D)
   std::uint32_t max_scenes_per_pass() const;  // compute workgroup count limit
-  // Pixels (samples) one pass may hold, from the device's memory budget.
+  // Pixels (samples) one pass may hold, from the device's memory budget and the largest storage
+  // buffer (a pass keeps a list entry per pixel).
   std::size_t max_pass_pixels() const;
+  // Sites one pass may hold: its per-site buffers (nine cone instances each) within the largest
+  // storage buffer.
+  std::size_t max_pass_sites() const;
 
   // One pass over `group`; every scene's origin_x/origin_y is its tile in a `width` x `height`
   // atlas. Sets each scene's site_begin. Without `pixel_work` only the cones are drawn (the

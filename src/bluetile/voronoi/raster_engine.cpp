@@ -113,6 +113,7 @@ struct RasterEngine::Impl {
     const std::uint32_t max_side = device.max_side();
     const double pixel_budget = static_cast<double>(device.max_pass_pixels());
     const std::size_t max_scenes = device.max_scenes_per_pass();
+    const std::size_t max_sites = device.max_pass_sites();
     double total = 0.0;
     for (RasterScene* job : pending) total += static_cast<double>(job->rx) * job->ry;
     width = static_cast<std::uint32_t>(std::ceil(std::sqrt(std::min(total, pixel_budget))));
@@ -121,6 +122,7 @@ struct RasterEngine::Impl {
     std::vector<RasterScene*> group;
     std::uint32_t x = 0, y = 0, shelf = 0;
     double used = 0.0;
+    std::size_t sites = 0;
     for (RasterScene* job : pending) {
       const auto w = static_cast<std::uint32_t>(job->rx), h = static_cast<std::uint32_t>(job->ry);
       if (x + w > width) {
@@ -128,7 +130,12 @@ struct RasterEngine::Impl {
         y += shelf;
         shelf = 0;
       }
-      if (!group.empty() && (y + h > max_side || used + double(w) * h > pixel_budget || group.size() >= max_scenes)) break;
+      if (!group.empty() && (y + h > max_side || used + double(w) * h > pixel_budget || group.size() >= max_scenes ||
+                             sites + job->size() > max_sites))
+        break;
+      if (job->size() > max_sites)
+        throw Error("raster engine: a scene of " + std::to_string(job->size()) +
+                    " sites exceeds what the device's largest storage buffer holds; use --engine exact");
       if (double(w) * h > pixel_budget)
         throw Error("raster engine: a scene of " + std::to_string(w) + " x " + std::to_string(h) +
                     " pixels exceeds the device's memory budget; use a smaller --resolution");
@@ -137,6 +144,7 @@ struct RasterEngine::Impl {
       x += w;
       shelf = std::max(shelf, h);
       used += double(w) * h;
+      sites += job->size();
       group.push_back(job);
     }
     height = y + shelf;
