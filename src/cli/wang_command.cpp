@@ -11,7 +11,7 @@
 #include "bluetile/analysis/nearest_neighbour.h"
 #include "bluetile/analysis/radial_power.h"
 #include "bluetile/analysis/tiling_metrics.h"
-#include "bluetile/core/atomic_file.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
@@ -107,6 +107,8 @@ std::string metrics_row(const std::string& label, const TilingMetrics& m, bool t
 }
 
 void run_wang(const WangCommandOptions& o) {
+  OutputSet outputs;  // checked before the work, written at the end
+  OutputFile& output = outputs.add(o.output, {.allow_stdout = true});
   WangOptions w;
   w.kind = *parse_tile_set_kind(o.kind);
   w.points = static_cast<std::size_t>(o.points);
@@ -144,7 +146,9 @@ void run_wang(const WangCommandOptions& o) {
   if (o.margin > 0.0) command << " --margin " << o.margin;
   command << " --seed " << o.seed << " --engine " << engine->name();
   set.header = {"made by: " + command.str()};
-  write_tile_set(o.output, set);
+  validate_tile_set(set);
+  output.write(format_tile_set(set));
+  outputs.publish();
   if (o.check) std::printf("%s", seam_report(check_seams(set)).c_str());
 }
 
@@ -239,6 +243,23 @@ Canvas draw_tile_set(const TileSet& set, std::uint64_t seed) {
 }
 
 void run_check(const CheckOptions& o) {
+  // Every output is declared, and so checked, before any work; they appear together at the end.
+  OutputSet outputs;
+  outputs.add_input(o.input);
+  std::vector<OutputFile*> files;
+  if (!o.output.empty()) {
+    outputs.add_folder(o.output);
+    for (const char* name : {"stats.json", "plane.txt", "spectrum.png", "spectrum-untiled.png", "radial.png",
+                             "points.png", "tiles.png"}) {
+      if (std::string(name) == "spectrum-untiled.png" && !o.untiled) continue;
+      files.push_back(&outputs.add((std::filesystem::path(o.output) / name).string()));
+    }
+  }
+  auto file = [&](const std::string& name) -> OutputFile& {
+    for (OutputFile* f : files)
+      if (std::filesystem::path(f->path()).filename() == name) return *f;
+    throw Error("internal: no output " + name);
+  };
   TileSet set = read_tile_set(o.input);
   SeamCheck seams = check_seams(set);
   std::printf("%s: %s set, %zu tiles\n%s", o.input.c_str(), std::string(tile_set_kind_name(set.kind)).c_str(),
@@ -313,28 +334,29 @@ void run_check(const CheckOptions& o) {
               o.period);
 
   if (o.output.empty()) return;
-  std::filesystem::create_directories(o.output);
-  const std::string dir = o.output + "/";
-  write_text_atomically(dir + "stats.json", stats.dump(2) + "\n");
-  write_point_file(dir + "plane.txt", PointSet{plane.points, plane.levels},
-                   {"bluetile wang-check: " + std::to_string(o.period) + "x" + std::to_string(o.period) +
-                        " torus tiling of " + o.input + ", seed " + std::to_string(o.seed),
-                    "columns: x y level"});
+  file("stats.json").write(stats.dump(2) + "\n");
+  file("plane.txt").write([&](OutputStream& out) {
+    write_points(out, PointSet{plane.points, plane.levels},
+                 {"bluetile wang-check: " + std::to_string(o.period) + "x" + std::to_string(o.period) +
+                      " torus tiling of " + o.input + ", seed " + std::to_string(o.seed),
+                  "columns: x y level"});
+  });
   Periodogram full = tiled_periodogram(tile_prefixes(set, ~0u), plane.cell_tiles, o.period,
                                        default_periodogram_size(plane.points.size()));
-  write_image(dir + "spectrum.png", draw_spectrum(full));
+  write_image(file("spectrum.png"), draw_spectrum(full));
   std::vector<RadialCurve> curves{{"tiled, " + std::to_string(o.period) + "x" + std::to_string(o.period),
                                    radial_power(full), plane.points.size()}};
   if (!untiled.empty()) {
     Periodogram reference = compute_periodogram(untiled, full.size);
-    write_image(dir + "spectrum-untiled.png", draw_spectrum(reference));
+    write_image(file("spectrum-untiled.png"), draw_spectrum(reference));
     curves.push_back({"untiled Lloyd", radial_power(reference), untiled.size()});
   }
-  write_image(dir + "radial.png", draw_radial(curves, o.input));
+  write_image(file("radial.png"), draw_radial(curves, o.input));
   PointsFigure figure;
   figure.points = plane.points;
-  write_image(dir + "points.png", draw_points(figure, o.image_size));
-  write_image(dir + "tiles.png", draw_tile_set(set, o.seed));
+  write_image(file("points.png"), draw_points(figure, o.image_size));
+  write_image(file("tiles.png"), draw_tile_set(set, o.seed));
+  outputs.publish();
 }
 
 }  // namespace
