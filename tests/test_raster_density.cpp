@@ -187,6 +187,18 @@ TEST(RasterDensity, SameCellsWhateverTheThreadCount) {
   }
 }
 
+TEST(RasterDensity, DevicePixelWorkRoutesToTheHost) {
+  REQUIRE_VULKAN();
+  // An engine set to do its per-pixel work on the device (shaders that know neither densities
+  // nor borders) runs such scenes on the host: the same cells as the host path.
+  Scene scene = random_scene(200, Domain{}, Boundary::bounded, 12);
+  scene.density = random_texels(9, 9, 4, 0.2);
+  SceneCells device = shared_engine(48, Coverage::area, ConeShape::quad, PixelWork::device).compute(scene);
+  SceneCells host = shared_engine(48, Coverage::area, ConeShape::quad, PixelWork::host).compute(scene);
+  EXPECT_TRUE(test::identical_cells(device, host));
+  expect_exact(scene, 48, "device pixel work");
+}
+
 TEST(RasterDensity, PointCoverageRefusesAVaryingDensity) {
   REQUIRE_VULKAN();
   Scene scene = random_scene(50, Domain{}, Boundary::periodic, 2);
