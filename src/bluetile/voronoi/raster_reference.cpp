@@ -321,10 +321,32 @@ double corner_owner_distance(const RasterScene& scene, std::span<const std::uint
   return nearest;
 }
 
-WeightedMoments piece_density(const RasterScene& scene, std::uint32_t site, const ConvexPolygon& piece) {
+WeightedMoments piece_density(const RasterScene& scene, std::uint32_t site, const PolygonMoments& moments,
+                              const ConvexPolygon& piece) {
   thread_local std::vector<Point> vertices;
   vertices.clear();
-  for (const PolygonVertex& v : piece.vertices()) vertices.push_back(v.p);
+  Point lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (const PolygonVertex& v : piece.vertices()) {
+    vertices.push_back(v.p);
+    lo = {std::min(lo.x, v.p.x), std::min(lo.y, v.p.y)};
+    hi = {std::max(hi.x, v.p.x), std::max(hi.y, v.p.y)};
+  }
+  // A piece inside one texel (texels no smaller than pixels, mostly) is its density times its
+  // moments, without the texel walk.
+  const DensityGrid& density = *scene.density;
+  const Point size = scene.scene->domain.size, origin = scene.sites[site];
+  const Point texel{size.x / density.width, size.y / density.height};
+  auto texel_of = [](double x, double side) { return static_cast<long>(std::floor(x / side)); };
+  const long column = texel_of(origin.x + lo.x, texel.x), row = texel_of(origin.y + lo.y, texel.y);
+  if (column == texel_of(origin.x + hi.x, texel.x) && row == texel_of(origin.y + hi.y, texel.y)) {
+    auto index = [&](long i, int count) {
+      if (!scene.periodic) return static_cast<int>(std::clamp<long>(i, 0, count - 1));
+      const long m = i % count;
+      return static_cast<int>(m < 0 ? m + count : m);
+    };
+    const double rho = density.at(index(column, density.width), index(row, density.height));
+    return {rho * moments.area(), rho * moments.first_moment(), rho * moments.second_moment()};
+  }
   // On a torus the piece may lie around a copy of the site beyond the domain: the density's
   // texels wrap, so the site itself serves as the origin.
   return density_moments(vertices, scene.sites[site], *scene.density, scene.scene->domain.size, scene.periodic);
@@ -336,7 +358,7 @@ bool reference_split(const RasterScene& scene, std::span<const std::uint32_t> id
   // (split_boundary_pixel reports pieces only once it knows it keeps the pixel.)
   return split_boundary_pixel(scene, corner_owner_distance(scene, ids, pixel), pixel, true,
                               [&](std::uint32_t site, const PolygonMoments& m, const ConvexPolygon& polygon) {
-                                if (weigh) add_weighted(weighted[site], piece_density(scene, site, polygon), scene);
+                                if (weigh) add_weighted(weighted[site], piece_density(scene, site, m, polygon), scene);
                                 gpu::SiteSums& s = sums[site];
                                 s.piece_area += fixed(m.area(), scene.scale_area);
                                 s.piece_x += fixed(m.first_moment().x, scene.scale_first);
@@ -349,7 +371,7 @@ void host_split(const RasterScene& scene, double nearest, std::uint32_t pixel, s
   split_boundary_pixel(scene, nearest, pixel, false, [&](std::uint32_t site, const PolygonMoments& m, const ConvexPolygon& polygon) {
     PieceSums& p = pieces[site];
     if (scene.density) {
-      const WeightedMoments w = piece_density(scene, site, polygon);
+      const WeightedMoments w = piece_density(scene, site, m, polygon);
       p.weighted.mass += w.mass;
       p.weighted.first = p.weighted.first + w.first;
       p.weighted.second += w.second;

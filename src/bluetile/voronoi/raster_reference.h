@@ -58,8 +58,9 @@ struct PieceSums {
 };
 
 // The moments of a piece of `site`'s cell (vertices relative to the site's copy it belongs to)
-// under the scene's varying density, relative to that copy.
-WeightedMoments piece_density(const RasterScene& scene, std::uint32_t site, const ConvexPolygon& piece);
+// under the scene's varying density, relative to that copy; `moments` are its unweighted ones.
+WeightedMoments piece_density(const RasterScene& scene, std::uint32_t site, const PolygonMoments& moments,
+                              const ConvexPolygon& piece);
 
 // Splits boundary pixel `pixel` of `scene` as split_f64.comp does, calling
 // piece(site, moments relative to the site, the piece's polygon) for every piece of a wanted
