@@ -187,6 +187,21 @@ TEST(RasterDensity, SameCellsWhateverTheThreadCount) {
   }
 }
 
+TEST(RasterDensity, ADensityChangedInPlaceIsMeasuredAfresh) {
+  REQUIRE_VULKAN();
+  // The engine keeps per-map pixel tables between calls; a grid edited between them must not
+  // reuse the stale one.
+  Scene scene = random_scene(150, Domain{}, Boundary::periodic, 31);
+  auto grid = random_texels(13, 13, 8, 0.1);
+  scene.density = grid;
+  RasterEngine& engine = shared_engine(40, Coverage::area);
+  engine.compute(scene);
+  for (float& t : grid->texels) t = 1.0f - t;
+  SceneCells raster = engine.compute(scene);
+  SceneCells exact = ExactEngine().compute(scene);
+  EXPECT_LE(differences(scene, raster, exact).centroid, 1e-12);
+}
+
 TEST(RasterDensity, DevicePixelWorkRoutesToTheHost) {
   REQUIRE_VULKAN();
   // An engine set to do its per-pixel work on the device (shaders that know neither densities

@@ -31,6 +31,7 @@
 #include "bluetile/voronoi/raster_engine.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -310,9 +311,10 @@ struct RasterEngine::Impl {
 
   // The moments of every pixel under a scene's density, kept for the next calls (a relaxation
   // measures the same map at the same resolution every iteration). Holding the density keeps its
-  // address from naming another grid.
+  // address from naming another grid; the hash of its texels catches a grid changed in place.
   struct PixelDensityEntry {
     std::shared_ptr<const DensityGrid> density;
+    std::uint64_t texel_hash = 0;
     int rx = 0, ry = 0;
     Point size;
     Boundary boundary = Boundary::periodic;
@@ -322,13 +324,21 @@ struct RasterEngine::Impl {
   // Tables kept: a batch of scenes rarely holds more than a few maps.
   static constexpr std::size_t kPixelDensityTables = 4;
 
+  static std::uint64_t hash_texels(const DensityGrid& density) {
+    std::uint64_t h = 0xcbf29ce484222325ull ^ (static_cast<std::uint64_t>(density.width) << 32 | static_cast<std::uint32_t>(density.height));
+    for (float t : density.texels) h = (h ^ std::bit_cast<std::uint32_t>(t)) * 0x100000001b3ull;  // FNV-1a, per texel
+    return h;
+  }
+
   std::shared_ptr<const std::vector<WeightedMoments>> pixel_density_for(const Scene& scene, int rx, int ry) {
+    const std::uint64_t texel_hash = hash_texels(*scene.density);
     for (const PixelDensityEntry& e : pixel_density_cache)
-      if (e.density == scene.density && e.rx == rx && e.ry == ry && e.size == scene.domain.size && e.boundary == scene.boundary)
+      if (e.density == scene.density && e.texel_hash == texel_hash && e.rx == rx && e.ry == ry && e.size == scene.domain.size &&
+          e.boundary == scene.boundary)
         return e.table;
     if (pixel_density_cache.size() >= kPixelDensityTables) pixel_density_cache.erase(pixel_density_cache.begin());
     auto table = std::make_shared<const std::vector<WeightedMoments>>(pixel_density_moments(scene, rx, ry));
-    pixel_density_cache.push_back({scene.density, rx, ry, scene.domain.size, scene.boundary, table});
+    pixel_density_cache.push_back({scene.density, texel_hash, rx, ry, scene.domain.size, scene.boundary, table});
     return table;
   }
 
