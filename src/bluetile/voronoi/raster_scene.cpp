@@ -26,7 +26,7 @@ double power_of_two_above(double x) { return std::ldexp(1.0, std::ilogb(x) + 1);
 }  // namespace
 
 double raster_distance(const RasterScene& scene, Point a, Point b) {
-  if (scene.periodic) return torus_distance(a, b, scene.scene->domain);
+  if (scene.periodic) return torus_distance(a, b, scene.grid().domain());  // the grid's copy of the domain
   const Point d = b - a;
   return std::sqrt(d.x * d.x + d.y * d.y);
 }
