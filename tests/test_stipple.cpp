@@ -149,7 +149,7 @@ TEST(Stipple, RelaxFollowsADensityMapPeriodicOrBounded) {
     EXPECT_GT(right, 330u) << bounded;  // 10x the density: well over 2/3 of the points
     EXPECT_NE(read_text(dir.file("p.txt")).find("density map"), std::string::npos);
   }
-  // Without --engine the exact engine relaxes toward a map (the raster engine cannot yet).
+  // Without --engine the exact engine relaxes toward a map (the faster one on a CPU device).
   auto plain = run_bluetile({"relax", "-n", "50", "-k", "2", "--density-map", dir.file("map.png"), "-o", dir.file("e.txt")});
   EXPECT_EQ(plain.exit_code, 0) << plain.err;
   EXPECT_NE(read_text(dir.file("e.txt")).find("engine exact"), std::string::npos);

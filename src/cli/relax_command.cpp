@@ -154,7 +154,9 @@ void add_relax_command(CLI::App& app) {
   add_engine_options(cmd, o->engine);
   cmd->callback([o, cmd] {
     if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");
-    // Only the exact engine weights cells and bounds domains so far: it is the default there.
+    // Both engines weight cells and bound domains, the raster one only on its host per-pixel
+    // path, measured 5x slower than the exact engine on stipples (docs/BENCHMARKS.md): exact is
+    // the default there.
     if (cmd->count("--engine") == 0 && (!o->density_map.empty() || o->bounded)) o->engine.engine = "exact";
     run_relax(*o);
   });

@@ -116,7 +116,7 @@ void run_stipple(const StippleOptions& o) {
 
 void add_stipple_command(CLI::App& app) {
   auto o = std::make_shared<StippleOptions>();
-  o->engine.engine = "exact";  // the raster engine does not weight cells yet
+  o->engine.engine = "exact";  // the raster engine weights cells too, 5x slower here (docs/BENCHMARKS.md)
   CLI::App* cmd = app.add_subcommand(
       "stipple", "Stipple an image: dots whose density follows its darkness, relaxed by weighted Lloyd (Secord 2002)");
   cmd->add_option("--image", o->image, "Image to stipple (PNG, TIFF, EXR, ...: anything OpenImageIO reads)")

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "bluetile/voronoi/density_moments.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/voronoi/polygon.h"
 #include "bluetile/voronoi/raster_coverage.h"
@@ -10,11 +11,12 @@
 namespace bluetile {
 
 void assemble_cells(const RasterScene& scene, std::span<const gpu::SiteSums> sums, std::span<const PieceSums> host_pieces,
-                    SceneCells& out) {
+                    SceneCells& out, std::span<const WeightedSums> weighted) {
   const Scene& s = *scene.scene;
   out.cells.assign(s.wanted_count(), Cell{});
   out.coincident_count = 0;
   out.fallback_count = 0;
+  out.zero_density_count = 0;
   const double hx = scene.hx, hy = scene.hy;
   const double pixel_area = hx * hy;
   // Whole pixels are centred half a pixel above-right of their lower corner sample; point
@@ -52,8 +54,22 @@ void assemble_cells(const RasterScene& scene, std::span<const gpu::SiteSums> sum
       m2 += host_pieces[i].second;
     }
     cell.radius = farthest_sample(t) + reach;
+    WeightedMoments w;
+    if (scene.density) {
+      const WeightedSums& f = weighted[i];
+      const double unit = scene.density_scale;
+      w.mass = static_cast<double>(f.mass) / (unit * scene.scale_area);
+      w.first = {static_cast<double>(f.x) / (unit * scene.scale_first), static_cast<double>(f.y) / (unit * scene.scale_first)};
+      w.second = static_cast<double>(f.second) / (unit * scene.scale_second);
+      if (!host_pieces.empty()) {
+        w.mass += host_pieces[i].weighted.mass;
+        w.first = w.first + host_pieces[i].weighted.first;
+        w.second += host_pieces[i].weighted.second;
+      }
+    }
     if (!(area > 0.0)) {
       const std::vector<Point> polygon = exact_cell_polygon(s, i);
+      if (scene.density) w = density_moments(polygon, site, *scene.density, s.domain.size, scene.periodic);
       const PolygonMoments m = polygon_moments(polygon);
       area = m.area();
       mx = m.first_moment().x;
@@ -66,9 +82,25 @@ void assemble_cells(const RasterScene& scene, std::span<const gpu::SiteSums> sum
       ++out.fallback_count;
     }
     cell.area = area;
-    cell.mass = area;
-    cell.second_moment = m2;
-    cell.centroid = area > 0.0 ? wrap_point(site + Point{mx / area, my / area}, s.domain) : site;
+    if (scene.density) {
+      if (!(w.mass > 0.0) && area > 0.0) {
+        // No density anywhere in the cell: nothing pulls the site, it stays.
+        cell.mass = 0.0;
+        cell.second_moment = w.second;
+        cell.centroid = site;
+        cell.status = CellStatus::zero_density;
+        ++out.zero_density_count;
+        continue;
+      }
+      cell.mass = w.mass;
+      cell.second_moment = w.second;
+      cell.centroid = scene_point(s, site + Point{w.first.x / w.mass, w.first.y / w.mass});
+      continue;
+    }
+    // A uniform density (or none) weighs every point alike: the centroid is the unweighted one.
+    cell.mass = scene.density_constant * area;
+    cell.second_moment = scene.density_constant == 1.0 ? m2 : scene.density_constant * m2;
+    cell.centroid = area > 0.0 ? scene_point(s, site + Point{mx / area, my / area}) : site;
   }
 }
 

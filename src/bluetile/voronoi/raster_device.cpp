@@ -282,8 +282,10 @@ struct RasterDevice::Impl {
       if (job.coincident[i]) continue;
       const double r = job.radius[i];
       const auto id = static_cast<std::uint32_t>(at.site_begin + i + 1);
-      for (int ky = -1; ky <= 1; ++ky)
-        for (int kx = -1; kx <= 1; ++kx) {
+      // Replicas one period away on a torus; a bounded domain has none.
+      const int copies = job.periodic ? 1 : 0;
+      for (int ky = -copies; ky <= copies; ++ky)
+        for (int kx = -copies; kx <= copies; ++kx) {
           const Point p{job.sites[i].x + kx * size.x, job.sites[i].y + ky * size.y};
           if (p.x + r <= -job.hx || p.x - r >= size.x || p.y + r <= -job.hy || p.y - r >= size.y) continue;
           instance_data[count++] = {{px + kx * job.rx, py + ky * job.ry}, static_cast<float>(r), id};

@@ -24,10 +24,14 @@
 //  - raster_cells.cpp: sums to cells. A cell with no area (point coverage: no sample) comes from
 //    the exact engine (exact_fallback).
 // In area coverage the results are those of the exact Voronoi cells up to rounding, at any
-// resolution: resolution only sets the speed.
+// resolution: resolution only sets the speed. A bounded domain draws no replicas and wraps
+// nothing; a varying density weighs whole pixels by their moments under the texels they cover
+// (a table per map and resolution) and pieces by density_moments, into fixed-point sums (Secord
+// 2002's weighted centroids, exact to rounding). Both run on the host per-pixel path only.
 #include "bluetile/voronoi/raster_engine.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cmath>
 #include <mutex>
@@ -38,6 +42,7 @@
 #include "bluetile/voronoi/raster_coverage.h"
 #include "bluetile/voronoi/raster_device.h"
 #include "bluetile/voronoi/raster_reference.h"
+#include "bluetile/voronoi/scene.h"
 
 namespace bluetile {
 namespace {
@@ -57,7 +62,7 @@ double nearest_site_distance(const RasterScene& scene, Point p) {
   const Point cell = grid.cell_size();
   for (double reach = std::max(cell.x, cell.y);; reach *= 2.0) {
     grid.for_each_near(p, reach, [&](std::uint32_t t) {
-      if (!scene.coincident[t]) best = std::min(best, torus_distance(p, scene.sites[t], domain));
+      if (!scene.coincident[t]) best = std::min(best, raster_distance(scene, p, scene.sites[t]));
     });
     if (best <= reach || reach > 2.0 * (domain.size.x + domain.size.y)) return best;
   }
@@ -151,7 +156,7 @@ struct RasterEngine::Impl {
     return group;
   }
 
-  void compute(std::span<const Scene> batch, std::span<SceneCells> out) {
+  void compute(std::span<const Scene* const> batch, std::span<SceneCells> out) {
     if (batch.size() != out.size()) throw Error("raster engine: scenes and results differ in number");
     auto host_start = Clock::now();
     ++stats.computes;
@@ -163,10 +168,17 @@ struct RasterEngine::Impl {
     std::vector<std::size_t> remembered(batch.size(), 0);
     parallel_for(batch.size(), 16, [&](std::size_t begin, std::size_t end) {
       for (std::size_t k = begin; k < end; ++k) {
-        jobs[k] = prepare_raster_scene(batch[k], k, s);
+        jobs[k] = prepare_raster_scene(*batch[k], k, s);
         if (options.adapt_radius) remembered[k] = memory.recall(jobs[k]);
       }
     });
+    // Densities and bounded domains are weighed and clipped by the host's per-pixel work only
+    // (the shaders know neither): a batch holding one runs wholly on the host.
+    bool pixel_work_here = on_device;
+    for (std::size_t k = 0; k < batch.size(); ++k) {
+      if (jobs[k].density) jobs[k].pixel_density = pixel_density_for(*batch[k], jobs[k].rx, jobs[k].ry);
+      if (jobs[k].density || !jobs[k].periodic) pixel_work_here = false;
+    }
     for (std::size_t k = 0; k < batch.size(); ++k) {
       stats.remembered_radii += remembered[k];
       if (jobs[k].size() == 0) {
@@ -199,7 +211,7 @@ struct RasterEngine::Impl {
       stats.host_seconds += seconds_since(host_start);
 
       const bool read_ids = options.keep_id_images || options.keep_pass_data;
-      device.run(group, width, height, read_ids, on_device);
+      device.run(group, width, height, read_ids, pixel_work_here);
       ++stats.submits;
       stats.scene_passes += group.size();
       stats.upload_seconds += device.timing().upload;
@@ -213,19 +225,21 @@ struct RasterEngine::Impl {
       std::vector<std::uint32_t> uncovered(group.size(), 0);
       std::vector<std::uint64_t> boundary(group.size(), 0);
       std::vector<std::vector<gpu::SiteSums>> host_sums(group.size());
+      std::vector<std::vector<WeightedSums>> weighted_sums(group.size());
       // Many scenes: one per thread; a few: each threaded over its rows.
       const bool across_scenes = group.size() >= 2 * thread_count();
       auto finish = [&](std::size_t k) {
         RasterScene& job = *group[k];
         std::span<const gpu::SiteSums> sums;
         std::vector<std::uint32_t> ids;
-        if (on_device) {
+        if (pixel_work_here) {
           sums = device.sums(job);
           uncovered[k] = device.uncovered(k);
         } else {
           ids = device.ids(job);
           host_sums[k].assign(job.size(), gpu::SiteSums{});
-          uncovered[k] = reference_pass(job, ids, host_sums[k], true, !across_scenes, host_pixels[k], boundary[k]);
+          if (job.density) weighted_sums[k].assign(job.size(), WeightedSums{});
+          uncovered[k] = reference_pass(job, ids, host_sums[k], true, !across_scenes, host_pixels[k], boundary[k], weighted_sums[k]);
           sums = host_sums[k];
         }
         accepted[k] = check_coverage(job, sums, uncovered[k]);
@@ -241,7 +255,7 @@ struct RasterEngine::Impl {
           }
         }
         SceneCells& cells = out[job.index];
-        assemble_cells(job, sums, pieces, cells);
+        assemble_cells(job, sums, pieces, cells, weighted_sums[k]);
         finish_scene(job, sums, cells, host_pixels[k], std::move(ids));
       };
       if (across_scenes) {
@@ -251,7 +265,7 @@ struct RasterEngine::Impl {
       } else {
         for (std::size_t k = 0; k < group.size(); ++k) finish(k);
       }
-      if (on_device) {
+      if (pixel_work_here) {
         stats.boundary_pixels += device.boundary_pixels();
       } else {
         for (std::uint64_t b : boundary) stats.boundary_pixels += b;
@@ -303,6 +317,39 @@ struct RasterEngine::Impl {
     }
   }
 
+  // The moments of every pixel under a scene's density, kept for the next calls (a relaxation
+  // measures the same map at the same resolution every iteration). Holding the density keeps its
+  // address from naming another grid; the hash of its texels catches a grid changed in place.
+  struct PixelDensityEntry {
+    std::shared_ptr<const DensityGrid> density;
+    std::uint64_t texel_hash = 0;
+    int rx = 0, ry = 0;
+    Point size;
+    Boundary boundary = Boundary::periodic;
+    std::shared_ptr<const std::vector<WeightedMoments>> table;
+  };
+  std::vector<PixelDensityEntry> pixel_density_cache;
+  // Tables kept: a batch of scenes rarely holds more than a few maps.
+  static constexpr std::size_t kPixelDensityTables = 4;
+
+  static std::uint64_t hash_texels(const DensityGrid& density) {
+    std::uint64_t h = 0xcbf29ce484222325ull ^ (static_cast<std::uint64_t>(density.width) << 32 | static_cast<std::uint32_t>(density.height));
+    for (float t : density.texels) h = (h ^ std::bit_cast<std::uint32_t>(t)) * 0x100000001b3ull;  // FNV-1a, per texel
+    return h;
+  }
+
+  std::shared_ptr<const std::vector<WeightedMoments>> pixel_density_for(const Scene& scene, int rx, int ry) {
+    const std::uint64_t texel_hash = hash_texels(*scene.density);
+    for (const PixelDensityEntry& e : pixel_density_cache)
+      if (e.density == scene.density && e.texel_hash == texel_hash && e.rx == rx && e.ry == ry && e.size == scene.domain.size &&
+          e.boundary == scene.boundary)
+        return e.table;
+    if (pixel_density_cache.size() >= kPixelDensityTables) pixel_density_cache.erase(pixel_density_cache.begin());
+    auto table = std::make_shared<const std::vector<WeightedMoments>>(pixel_density_moments(scene, rx, ry));
+    pixel_density_cache.push_back({scene.density, texel_hash, rx, ry, scene.domain.size, scene.boundary, table});
+    return table;
+  }
+
   void remember(const RasterScene& job, const std::vector<Point>& next) {
     // Guarded: scenes of a group finish in parallel.
     std::lock_guard<std::mutex> lock(memory_mutex);
@@ -315,10 +362,15 @@ RasterEngine::RasterEngine(const RasterOptions& options) : impl_(std::make_uniqu
 RasterEngine::~RasterEngine() = default;
 
 void RasterEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
-  for (const Scene& scene : scenes)
-    if (scene.density || !scene.periodic())
-      throw Error("raster engine: densities and bounded domains are not supported yet (use --engine exact)");
-  impl_->compute(scenes, out);
+  // The contract, checked once per scene; wrapped copies only of scenes that need them.
+  std::vector<Scene> wrapped(scenes.size());
+  std::vector<const Scene*> checked(scenes.size());
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    checked[i] = &validated_scene(scenes[i], wrapped[i]);
+    if (scenes[i].density && impl_->options.coverage == Coverage::point && !is_uniform(*scenes[i].density))
+      throw Error("raster engine: a density weights cells only in area coverage (--coverage area)");
+  }
+  impl_->compute(checked, out);
 }
 const RasterOptions& RasterEngine::options() const { return impl_->options; }
 const RasterStats& RasterEngine::stats() const { return impl_->stats; }

@@ -27,7 +27,9 @@ enum class ConeShape {
   fan,   // the classic tessellated cone (triangle fan), depth interpolated: biased
 };
 
-// Where the per-pixel work (classification, sums, boundary split) runs.
+// Where the per-pixel work (classification, sums, boundary split) runs. Scenes with a varying
+// density or a bounded domain always have it done on the host (the shaders neither weigh pixels
+// nor know a border): a batch holding one runs wholly on the host.
 enum class PixelWork {
   automatic,  // the host on CPU devices (lavapipe runs compute shaders on one thread, 50-100x
               // slower than the same loops natively: docs/BENCHMARKS.md), the device elsewhere
@@ -109,7 +111,7 @@ class RasterEngine final : public CentroidEngine {
   // Whether boundary pixels are split in double precision (the device has shaderFloat64 and
   // force_float32 is off).
   bool float64_split() const;
-  // Whether the per-pixel work runs on the device (see PixelWork).
+  // Whether the per-pixel work runs on the device (see PixelWork) for periodic unweighted scenes.
   bool pixel_work_on_device() const;
 
   // Scene `scene`'s last accepted pass in the last compute (needs keep_pass_data).

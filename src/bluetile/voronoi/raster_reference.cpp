@@ -11,9 +11,11 @@
 namespace bluetile {
 namespace {
 
-// As classify.comp's wrapped_offset: d = i - p wrapped so that d + c - f lies in [-size/2, size/2).
-int wrapped_offset(int i, int p, float c, float f, int size) {
+// As classify.comp's wrapped_offset: d = i - p wrapped so that d + c - f lies in [-size/2, size/2)
+// (on a torus; in a bounded domain nothing wraps).
+int wrapped_offset(int i, int p, float c, float f, int size, bool periodic) {
   int d = i - p;
+  if (!periodic) return d;
   const float t = static_cast<float>(d) + c - f;
   if (t < -0.5f * static_cast<float>(size)) {
     d += size;
@@ -26,6 +28,17 @@ int wrapped_offset(int i, int p, float c, float f, int size) {
 std::int64_t run_sum(std::int64_t d0, std::int64_t n) { return n * d0 + n * (n - 1) / 2; }
 std::int64_t run_sum_squares(std::int64_t d0, std::int64_t n) {
   return n * d0 * d0 + d0 * n * (n - 1) + (n - 1) * n * (2 * n - 1) / 6;
+}
+
+std::int64_t fixed(double v, double scale) { return static_cast<std::int64_t>(std::floor(v * scale + 0.5)); }
+
+void add_weighted(WeightedSums& sums, const WeightedMoments& m, const RasterScene& scene) {
+  const double area = scene.density_scale * scene.scale_area, first = scene.density_scale * scene.scale_first,
+               second = scene.density_scale * scene.scale_second;
+  sums.mass += fixed(m.mass, area);
+  sums.x += fixed(m.first.x, first);
+  sums.y += fixed(m.first.y, first);
+  sums.second += fixed(m.second, second);
 }
 
 void add_run(gpu::SiteSums& s, int dx0, int dy, int n) {
@@ -78,23 +91,26 @@ void add_sums(gpu::SiteSums& a, const gpu::SiteSums& b) {
 namespace {
 
 std::uint32_t classify_rows(const RasterScene& scene, std::span<const std::uint32_t> ids, const std::vector<std::uint32_t>& masks,
-                            int row_begin, int row_end, std::span<gpu::SiteSums> sums, std::vector<std::uint32_t>& boundary);
+                            int row_begin, int row_end, std::span<gpu::SiteSums> sums, std::vector<std::uint32_t>& boundary,
+                            std::span<WeightedSums> weighted);
 
 }  // namespace
 
 std::uint32_t reference_classify(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
-                                 std::vector<std::uint32_t>& boundary) {
+                                 std::vector<std::uint32_t>& boundary, std::span<WeightedSums> weighted) {
   const std::vector<std::uint32_t> masks = scene.area ? raster_site_masks(scene) : std::vector<std::uint32_t>{};
-  return classify_rows(scene, ids, masks, 0, scene.ry, sums, boundary);
+  return classify_rows(scene, ids, masks, 0, scene.ry, sums, boundary, weighted);
 }
 
 std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
-                             bool split, bool parallel, std::vector<std::uint32_t>& host_pixels, std::uint64_t& boundary_count) {
+                             bool split, bool parallel, std::vector<std::uint32_t>& host_pixels, std::uint64_t& boundary_count,
+                             std::span<WeightedSums> weighted) {
   const std::vector<std::uint32_t> masks = scene.area ? raster_site_masks(scene) : std::vector<std::uint32_t>{};
   const std::size_t n = scene.size();
   // One slice of rows per thread, each with its own sums (exact integers: merged in any order).
   const std::size_t slices = parallel ? std::max<std::size_t>(1, std::min<std::size_t>(thread_count(), static_cast<std::size_t>(scene.ry))) : 1;
   std::vector<std::vector<gpu::SiteSums>> slice_sums(slices);
+  std::vector<std::vector<WeightedSums>> slice_weighted(slices);
   std::vector<std::vector<std::uint32_t>> slice_boundary(slices), slice_host(slices);
   std::vector<std::uint32_t> slice_uncovered(slices, 0);
   auto rows = [&](std::size_t k, int& begin, int& end) {
@@ -106,11 +122,16 @@ std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint
       int begin, end;
       rows(k, begin, end);
       std::span<gpu::SiteSums> target = sums;
+      std::span<WeightedSums> weighted_target = weighted;
       if (k > 0) {
         slice_sums[k].assign(n, gpu::SiteSums{});
         target = slice_sums[k];
+        if (!weighted.empty()) {
+          slice_weighted[k].assign(n, WeightedSums{});
+          weighted_target = slice_weighted[k];
+        }
       }
-      slice_uncovered[k] = classify_rows(scene, ids, masks, begin, end, target, slice_boundary[k]);
+      slice_uncovered[k] = classify_rows(scene, ids, masks, begin, end, target, slice_boundary[k], weighted_target);
     }
   });
   std::uint32_t uncovered = 0;
@@ -123,13 +144,21 @@ std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint
     parallel_for(slices, 1, [&](std::size_t first, std::size_t last) {
       for (std::size_t k = first; k < last; ++k) {
         std::span<gpu::SiteSums> target = k > 0 ? std::span<gpu::SiteSums>(slice_sums[k]) : sums;
+        std::span<WeightedSums> weighted_target = k > 0 && !weighted.empty() ? std::span<WeightedSums>(slice_weighted[k]) : weighted;
         for (std::uint32_t pixel : slice_boundary[k])
-          if (!reference_split(scene, ids, pixel, target)) slice_host[k].push_back(pixel);
+          if (!reference_split(scene, ids, pixel, target, weighted_target)) slice_host[k].push_back(pixel);
       }
     });
   }
   for (std::size_t k = 1; k < slices; ++k)
     for (std::size_t i = 0; i < n; ++i) add_sums(sums[i], slice_sums[k][i]);
+  for (std::size_t k = 1; k < slices && !weighted.empty(); ++k)
+    for (std::size_t i = 0; i < n; ++i) {
+      weighted[i].mass += slice_weighted[k][i].mass;
+      weighted[i].x += slice_weighted[k][i].x;
+      weighted[i].y += slice_weighted[k][i].y;
+      weighted[i].second += slice_weighted[k][i].second;
+    }
   for (std::size_t k = 0; k < slices; ++k) host_pixels.insert(host_pixels.end(), slice_host[k].begin(), slice_host[k].end());
   return uncovered;
 }
@@ -137,8 +166,10 @@ std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint
 namespace {
 
 std::uint32_t classify_rows(const RasterScene& scene, std::span<const std::uint32_t> ids, const std::vector<std::uint32_t>& masks,
-                            int row_begin, int row_end, std::span<gpu::SiteSums> sums, std::vector<std::uint32_t>& boundary) {
+                            int row_begin, int row_end, std::span<gpu::SiteSums> sums, std::vector<std::uint32_t>& boundary,
+                            std::span<WeightedSums> weighted) {
   const int rx = scene.rx, ry = scene.ry;
+  const bool periodic = scene.periodic;
   const bool area = scene.area;
   const float hx = static_cast<float>(scene.hx), hy = static_cast<float>(scene.hy);
   std::vector<SiteFrame> frames(scene.size());
@@ -149,10 +180,35 @@ std::uint32_t classify_rows(const RasterScene& scene, std::span<const std::uint3
     frames[s].fy = static_cast<float>(fy);
   }
   const std::size_t words_per_row = static_cast<std::size_t>(rx + 15) / 16;
-  auto id_at = [&](int i, int j) {
+  auto id_at = [&](int i, int j) -> std::uint32_t {
+    // A bounded raster has no samples beyond its last column and row: no pixel there is whole.
+    if (!periodic && (i >= rx || j >= ry)) return 0u;
     i = i >= rx ? i - rx : i;
     j = j >= ry ? j - ry : j;
     return ids[static_cast<std::size_t>(j) * rx + i];
+  };
+  // Whole pixels weighted by their moments under the density (varying densities only).
+  auto add_weighted_run = [&](std::uint32_t id, int dx0, int dy, int length, int i_begin, int j) {
+    const std::size_t s = id - 1;
+    const Point site = scene.sites[s];
+    const double cy = (frames[s].py + 0.5) * scene.hy - site.y + dy * scene.hy;
+    const double ax = (frames[s].px + 0.5) * scene.hx - site.x;
+    const WeightedMoments* pixel = scene.pixel_density->data() + static_cast<std::size_t>(j) * rx + i_begin;
+    WeightedMoments run;
+    for (int k = 0; k < length; ++k) {
+      const WeightedMoments& m = pixel[k];
+      const double cx = ax + (dx0 + k) * scene.hx;
+      run.mass += m.mass;
+      run.first.x += m.mass * cx + m.first.x;
+      run.first.y += m.mass * cy + m.first.y;
+      run.second += m.second + 2.0 * (cx * m.first.x + cy * m.first.y) + m.mass * (cx * cx + cy * cy);
+    }
+    add_weighted(weighted[s], run, scene);
+  };
+  const bool weigh = !weighted.empty() && scene.density;
+  auto add_pixel_run = [&](std::uint32_t id, int dx0, int dy, int length, int i_end, int j) {
+    add_run(sums[id - 1], dx0, dy, length);
+    if (weigh) add_weighted_run(id, dx0, dy, length, i_end - length, j);
   };
   auto distance_squared = [&](const SiteFrame& f, int dx, int dy) {
     const float ox = (static_cast<float>(dx) - f.fx) * hx, oy = (static_cast<float>(dy) - f.fy) * hy;
@@ -186,11 +242,11 @@ std::uint32_t classify_rows(const RasterScene& scene, std::span<const std::uint3
           site_id = a;
           site = frames[a - 1];
           split = scene.split[a - 1] != 0;
-          dy_sample = wrapped_offset(j, site.py, 0.0f, site.fy, ry);
-          dy_pixel = wrapped_offset(j, site.py, 0.5f, site.fy, ry);
+          dy_sample = wrapped_offset(j, site.py, 0.0f, site.fy, ry, periodic);
+          dy_pixel = wrapped_offset(j, site.py, 0.5f, site.fy, ry, periodic);
         }
         if (a != 0) {
-          const int dx = wrapped_offset(i, site.px, 0.0f, site.fx, rx);
+          const int dx = wrapped_offset(i, site.px, 0.0f, site.fx, rx, periodic);
           if (a == sample_site && dx == sample_dx + sample_length) {
             ++sample_length;
           } else {
@@ -211,15 +267,15 @@ std::uint32_t classify_rows(const RasterScene& scene, std::span<const std::uint3
                                        (2u * static_cast<std::uint32_t>(i & 15));
             const bool holds_site = word & 1u, holds_several = word & 2u;
             whole = !holds_site || (!holds_several && site.px == i && site.py == j);
-            dx = wrapped_offset(i, site.px, 0.5f, site.fx, rx);
+            dx = wrapped_offset(i, site.px, 0.5f, site.fx, rx, periodic);
             const float tx = static_cast<float>(dx) + 0.5f - site.fx, ty = static_cast<float>(dy_pixel) + 0.5f - site.fy;
-            whole = whole && std::abs(tx) < 0.5f * static_cast<float>(rx) - 1.0f &&
-                    std::abs(ty) < 0.5f * static_cast<float>(ry) - 1.0f;
+            whole = whole && (!periodic || (std::abs(tx) < 0.5f * static_cast<float>(rx) - 1.0f &&
+                                            std::abs(ty) < 0.5f * static_cast<float>(ry) - 1.0f));
           }
           if (whole && a == pixel_site && dx == pixel_dx + pixel_length) {
             ++pixel_length;
           } else {
-            if (pixel_length > 0) add_run(sums[pixel_site - 1], pixel_dx, pixel_dy, pixel_length);
+            if (pixel_length > 0) add_pixel_run(pixel_site, pixel_dx, pixel_dy, pixel_length, i, j);
             pixel_length = 0;
             if (whole) {
               pixel_site = a;
@@ -235,7 +291,7 @@ std::uint32_t classify_rows(const RasterScene& scene, std::span<const std::uint3
         c = e;
       }
       if (sample_length > 0) flush_samples(sample_site, sample_dx, sample_dy, sample_length, sample_far);
-      if (pixel_length > 0) add_run(sums[pixel_site - 1], pixel_dx, pixel_dy, pixel_length);
+      if (pixel_length > 0) add_pixel_run(pixel_site, pixel_dx, pixel_dy, pixel_length, i1, j);
     }
   }
   return uncovered;
@@ -252,23 +308,57 @@ double corner_owner_distance(const RasterScene& scene, std::span<const std::uint
   double nearest = 1e30;
   for (int corner = 0; corner < 4; ++corner) {
     int ci = i + (corner & 1), cj = j + (corner >> 1);
+    if (!scene.periodic && (ci >= rx || cj >= ry)) continue;  // beyond a bounded raster
     ci = ci >= rx ? ci - rx : ci;
     cj = cj >= ry ? cj - ry : cj;
     const std::uint32_t id = ids[static_cast<std::size_t>(cj) * rx + ci];
     if (id == 0) continue;
     const Point from{scene.sites[id - 1].x - lattice.x, scene.sites[id - 1].y - lattice.y};
     Point o = from - half_pixel;
-    o = {raster_detail::wrap_axis(o.x, domain.x), raster_detail::wrap_axis(o.y, domain.y)};
+    if (scene.periodic) o = {raster_detail::wrap_axis(o.x, domain.x), raster_detail::wrap_axis(o.y, domain.y)};
     nearest = std::min(nearest, std::sqrt(o.x * o.x + o.y * o.y));
   }
   return nearest;
 }
 
+WeightedMoments piece_density(const RasterScene& scene, std::uint32_t site, const PolygonMoments& moments,
+                              const ConvexPolygon& piece) {
+  thread_local std::vector<Point> vertices;
+  vertices.clear();
+  Point lo{HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL};
+  for (const PolygonVertex& v : piece.vertices()) {
+    vertices.push_back(v.p);
+    lo = {std::min(lo.x, v.p.x), std::min(lo.y, v.p.y)};
+    hi = {std::max(hi.x, v.p.x), std::max(hi.y, v.p.y)};
+  }
+  // A piece inside one texel (texels no smaller than pixels, mostly) is its density times its
+  // moments, without the texel walk.
+  const DensityGrid& density = *scene.density;
+  const Point size = scene.scene->domain.size, origin = scene.sites[site];
+  const Point texel{size.x / density.width, size.y / density.height};
+  auto texel_of = [](double x, double side) { return static_cast<long>(std::floor(x / side)); };
+  const long column = texel_of(origin.x + lo.x, texel.x), row = texel_of(origin.y + lo.y, texel.y);
+  if (column == texel_of(origin.x + hi.x, texel.x) && row == texel_of(origin.y + hi.y, texel.y)) {
+    auto index = [&](long i, int count) {
+      if (!scene.periodic) return static_cast<int>(std::clamp<long>(i, 0, count - 1));
+      const long m = i % count;
+      return static_cast<int>(m < 0 ? m + count : m);
+    };
+    const double rho = density.at(index(column, density.width), index(row, density.height));
+    return {rho * moments.area(), rho * moments.first_moment(), rho * moments.second_moment()};
+  }
+  // On a torus the piece may lie around a copy of the site beyond the domain: the density's
+  // texels wrap, so the site itself serves as the origin.
+  return density_moments(vertices, scene.sites[site], *scene.density, scene.scene->domain.size, scene.periodic);
+}
+
 bool reference_split(const RasterScene& scene, std::span<const std::uint32_t> ids, std::uint32_t pixel,
-                     std::span<gpu::SiteSums> sums) {
-  auto fixed = [](double v, double scale) { return static_cast<std::int64_t>(std::floor(v * scale + 0.5)); };
+                     std::span<gpu::SiteSums> sums, std::span<WeightedSums> weighted) {
+  const bool weigh = !weighted.empty() && scene.density;
+  // (split_boundary_pixel reports pieces only once it knows it keeps the pixel.)
   return split_boundary_pixel(scene, corner_owner_distance(scene, ids, pixel), pixel, true,
-                              [&](std::uint32_t site, const PolygonMoments& m) {
+                              [&](std::uint32_t site, const PolygonMoments& m, const ConvexPolygon& polygon) {
+                                if (weigh) add_weighted(weighted[site], piece_density(scene, site, m, polygon), scene);
                                 gpu::SiteSums& s = sums[site];
                                 s.piece_area += fixed(m.area(), scene.scale_area);
                                 s.piece_x += fixed(m.first_moment().x, scene.scale_first);
@@ -278,8 +368,14 @@ bool reference_split(const RasterScene& scene, std::span<const std::uint32_t> id
 }
 
 void host_split(const RasterScene& scene, double nearest, std::uint32_t pixel, std::span<PieceSums> pieces) {
-  split_boundary_pixel(scene, nearest, pixel, false, [&](std::uint32_t site, const PolygonMoments& m) {
+  split_boundary_pixel(scene, nearest, pixel, false, [&](std::uint32_t site, const PolygonMoments& m, const ConvexPolygon& polygon) {
     PieceSums& p = pieces[site];
+    if (scene.density) {
+      const WeightedMoments w = piece_density(scene, site, m, polygon);
+      p.weighted.mass += w.mass;
+      p.weighted.first = p.weighted.first + w.first;
+      p.weighted.second += w.second;
+    }
     p.area += m.area();
     p.x += m.first_moment().x;
     p.y += m.first_moment().y;

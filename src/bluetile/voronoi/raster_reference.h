@@ -6,6 +6,7 @@
 // agree bit for bit.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -21,31 +22,49 @@ namespace bluetile {
 // more than one), rows of (rx + 15) / 16 words.
 std::vector<std::uint32_t> raster_site_masks(const RasterScene& scene);
 
+// Fixed-point sums of a site's whole pixels and device-split pieces weighted by the scene's
+// density (scenes whose density varies; host per-pixel work only): integrals of rho, rho x,
+// rho y, rho |x|^2 relative to the site, at RasterScene's scales times density_scale. Integers,
+// so the sums do not depend on the order of the pixels or the threads.
+struct WeightedSums {
+  std::int64_t mass = 0, x = 0, y = 0, second = 0;
+};
+
 // Classifies one scene's ID image (ids[j * rx + i]: scene-local site index + 1, 0 where no cone
 // reached) as classify.comp does: samples and whole pixels are summed into `sums` (one per
 // site), boundary pixels (j * rx + i) are appended to `boundary` in row order. Returns the
 // number of uncovered samples.
 std::uint32_t reference_classify(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
-                                 std::vector<std::uint32_t>& boundary);
+                                 std::vector<std::uint32_t>& boundary, std::span<WeightedSums> weighted = {});
 
 // The whole per-pixel work of a pass on the host, threaded over rows when `parallel`: classify
 // as reference_classify, then (when no sample is uncovered and `split` is set) split every
 // boundary pixel as reference_split. Pixels the device would leave to the host are appended to
 // `host_pixels` (in increasing order). The sums are exact integers, so they do not depend on the
-// threads. Returns the uncovered samples; sets `boundary_count`.
+// threads. Returns the uncovered samples; sets `boundary_count`. A scene with a varying density
+// also fills `weighted` (one per site; empty otherwise).
 std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
-                             bool split, bool parallel, std::vector<std::uint32_t>& host_pixels, std::uint64_t& boundary_count);
+                             bool split, bool parallel, std::vector<std::uint32_t>& host_pixels, std::uint64_t& boundary_count,
+                             std::span<WeightedSums> weighted = {});
 
 // Adds b's sums into a (farthest: the larger).
 void add_sums(gpu::SiteSums& a, const gpu::SiteSums& b);
 
-// Double sums of pieces (boundary pixels split on the host).
+// Double sums of pieces (boundary pixels split on the host), and the same weighted by the
+// scene's density when it varies.
 struct PieceSums {
   double area = 0.0, x = 0.0, y = 0.0, second = 0.0;
+  WeightedMoments weighted;
 };
 
+// The moments of a piece of `site`'s cell (vertices relative to the site's copy it belongs to)
+// under the scene's varying density, relative to that copy; `moments` are its unweighted ones.
+WeightedMoments piece_density(const RasterScene& scene, std::uint32_t site, const PolygonMoments& moments,
+                              const ConvexPolygon& piece);
+
 // Splits boundary pixel `pixel` of `scene` as split_f64.comp does, calling
-// piece(site, moments relative to the site) for every piece of a wanted site. `nearest` is an
+// piece(site, moments relative to the site, the piece's polygon) for every piece of a wanted
+// site. In a bounded scene only the sites themselves are candidates (no periodic copies). `nearest` is an
 // upper bound on the distance from the pixel centre to its nearest site (the device takes the
 // nearest corner owner). With `device_bounds` it gives up (returns false, no piece reported)
 // where the device would leave the pixel to the host; without, it always splits.
@@ -59,7 +78,7 @@ double corner_owner_distance(const RasterScene& scene, std::span<const std::uint
 // The device's fixed-point piece sums for `pixel` (reference for split_f64.comp). Returns false
 // where the device would leave the pixel to the host.
 bool reference_split(const RasterScene& scene, std::span<const std::uint32_t> ids, std::uint32_t pixel,
-                     std::span<gpu::SiteSums> sums);
+                     std::span<gpu::SiteSums> sums, std::span<WeightedSums> weighted = {});
 // The host's double piece sums for `pixel`, whatever its candidates (pixels the device left).
 void host_split(const RasterScene& scene, double nearest, std::uint32_t pixel, std::span<PieceSums> pieces);
 
@@ -97,6 +116,10 @@ struct Window {
     const long columns = grid.columns(), rows = grid.rows();
     const auto starts = grid.bucket_starts();
     const auto indices = grid.site_indices();
+    if (!scene.periodic) {  // a bounded domain has no copies beyond its grid
+      x0 = std::max(x0, 0L), x1 = std::min(x1, columns - 1);
+      y0 = std::max(y0, 0L), y1 = std::min(y1, rows - 1);
+    }
     for (long by = y0; by <= y1; ++by) {
       const long wy = floor_division(by, rows);
       for (long bx = x0; bx <= x1; ++bx) {
@@ -204,7 +227,7 @@ bool split_boundary_pixel(const RasterScene& scene, double nearest, std::uint32_
     if (polygon.empty()) continue;
     const PolygonMoments m = polygon.moments();
     if (!(m.area() > 0.0)) continue;
-    piece(owner.site, m);
+    piece(owner.site, m, polygon);
   }
   return true;
 }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
 #include "bluetile/voronoi/raster_engine.h"
 
 namespace bluetile {
@@ -23,6 +24,33 @@ constexpr double kSitesPerBucket = 1.0;
 double power_of_two_above(double x) { return std::ldexp(1.0, std::ilogb(x) + 1); }
 
 }  // namespace
+
+double raster_distance(const RasterScene& scene, Point a, Point b) {
+  if (scene.periodic) return torus_distance(a, b, scene.grid().domain());  // the grid's copy of the domain
+  const Point d = b - a;
+  return std::sqrt(d.x * d.x + d.y * d.y);
+}
+
+std::vector<WeightedMoments> pixel_density_moments(const Scene& scene, int rx, int ry) {
+  const Point size = scene.domain.size;
+  const double hx = size.x / rx, hy = size.y / ry;
+  std::vector<WeightedMoments> table(static_cast<std::size_t>(rx) * static_cast<std::size_t>(ry));
+  // Rows are independent and each pixel is written once: the table is the same for any threads.
+  parallel_for(static_cast<std::size_t>(ry), 8, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t j = begin; j < end; ++j) {
+      for (int i = 0; i < rx; ++i) {
+        // Corners as the splits form them, so a whole pixel and its pieces share edges.
+        const Point lo{static_cast<double>(i) * hx, static_cast<double>(j) * hy};
+        const Point centre{(static_cast<double>(i) + 0.5) * hx, (static_cast<double>(j) + 0.5) * hy};
+        const Point pixel[4] = {lo - centre, Point{lo.x + hx, lo.y} - centre, Point{lo.x + hx, lo.y + hy} - centre,
+                                Point{lo.x, lo.y + hy} - centre};
+        table[j * static_cast<std::size_t>(rx) + static_cast<std::size_t>(i)] =
+            density_moments(pixel, centre, *scene.density, size, scene.periodic());
+      }
+    }
+  });
+  return table;
+}
 
 double RasterScene::pixel_diagonal() const { return std::sqrt(hx * hx + hy * hy); }
 
@@ -76,13 +104,26 @@ RasterScene prepare_raster_scene(const Scene& scene, std::size_t index, const Ra
                 std::to_string(settings.max_side) + " pixels per side");
   job.hx = size.x / job.rx;
   job.hy = size.y / job.ry;
-  job.radius_cap = 0.5 * std::sqrt(size.x * size.x + size.y * size.y);
+  job.periodic = scene.periodic();
+  // On a torus no point is farther than half the diagonal from a site's nearest copy; in a
+  // rectangle the farthest point from a corner site is the opposite corner.
+  job.radius_cap = (job.periodic ? 0.5 : 1.0) * std::sqrt(size.x * size.x + size.y * size.y);
+  if (scene.density) {
+    const DensityGrid& density = *scene.density;
+    if (is_uniform(density)) {
+      job.density_constant = density.texels.front();
+    } else {
+      job.density = &density;
+      const float largest = *std::max_element(density.texels.begin(), density.texels.end());
+      job.density_scale = 1.0 / power_of_two_above(largest);
+    }
+  }
 
   job.sites.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Point p = scene.sites[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw Error("raster engine: site " + std::to_string(i) + " is not finite");
-    job.sites[i] = wrap_point(p, scene.domain);
+    job.sites[i] = job.periodic ? wrap_point(p, scene.domain) : p;
   }
   job.coincident.assign(n, 0);
   std::vector<std::uint32_t> order(n);
@@ -127,7 +168,7 @@ void flag_close_sites(RasterScene& job) {
     const double reach = threshold(job.radius[s]);
     grid.for_each_near(job.sites[s], reach, [&](std::uint32_t t) {
       if (t == s || job.coincident[t]) return;
-      if (torus_distance(job.sites[s], job.sites[t], job.scene->domain) <= reach) job.split[s] = job.split[t] = 1;
+      if (raster_distance(job, job.sites[s], job.sites[t]) <= reach) job.split[s] = job.split[t] = 1;
     });
   }
 }
@@ -220,7 +261,7 @@ void RadiusMemory::remember(const RasterScene& job, const std::vector<Point>& ne
     Entry e;
     e.key = key_of(next_position[i], job.scene->domain.size);
     e.radius = radius[i];
-    e.motion = torus_distance(job.sites[i], next_position[i], job.scene->domain);
+    e.motion = raster_distance(job, job.sites[i], next_position[i]);
     pending_.push_back(e);
   }
 }

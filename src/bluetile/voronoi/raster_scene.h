@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "bluetile/voronoi/density_moments.h"
 #include "bluetile/voronoi/engine.h"
 #include "bluetile/voronoi/site_grid.h"
 
@@ -19,9 +20,13 @@ struct RasterScene {
   std::uint64_t serial = 0;  // unique per prepared scene (copies share it): keys per-scene caches
   std::size_t index = 0;  // in the batch
   bool area = true;       // area coverage (else point)
+  // A periodic domain (the scene's boundary): cones drawn with replicas, offsets and windows
+  // wrapped. Bounded: the raster covers exactly the domain, nothing wraps, and the pixels of the
+  // last column and row (whose far corners are no samples) are always split.
+  bool periodic = true;
   int rx = 0, ry = 0;     // samples along x and y
   double hx = 0.0, hy = 0.0;  // pixel size
-  double radius_cap = 0.0;    // a cone this large covers the whole torus
+  double radius_cap = 0.0;    // a cone this large covers the whole domain
   std::vector<Point> sites;   // wrapped into the domain
   std::vector<std::uint8_t> coincident;  // equal to a site of lower index: not drawn
   std::vector<std::uint8_t> split;       // has a site too close for float depths: all its pixels are split
@@ -30,6 +35,14 @@ struct RasterScene {
   // bounds each site's piece sums; the fixed-point scales follow (powers of two).
   double reach_limit = 0.0;
   double scale_area = 1.0, scale_first = 1.0, scale_second = 1.0;
+  // The scene's density, when it varies (else null: a uniform density only scales mass and
+  // second moment). Whole pixels are weighted by their moments in `pixel_density`, pieces by
+  // density_moments; weighted sums are fixed point at the scales above times density_scale
+  // (1 / the least power of two above the largest texel), so the same bounds hold.
+  const DensityGrid* density = nullptr;
+  double density_constant = 1.0;  // the density of a uniform one (1 without)
+  double density_scale = 1.0;
+  std::shared_ptr<const std::vector<WeightedMoments>> pixel_density;
 
   // Per pass.
   int origin_x = 0, origin_y = 0;  // tile corner in the atlas
@@ -92,6 +105,13 @@ struct RasterSettings {
 RasterScene prepare_raster_scene(const Scene& scene, std::size_t index, const RasterSettings& settings);
 // The prepared scene keeps a pointer to `scene`: a temporary would dangle.
 RasterScene prepare_raster_scene(Scene&& scene, std::size_t index, const RasterSettings& settings) = delete;
+
+// The weighted moments of every pixel of an rx x ry raster over `scene`'s domain under its
+// density, relative to each pixel's centre, row by row (the table of RasterScene::pixel_density).
+std::vector<WeightedMoments> pixel_density_moments(const Scene& scene, int rx, int ry);
+
+// The distance from a to b in the scene's domain (on a torus the shortest).
+double raster_distance(const RasterScene& scene, Point a, Point b);
 
 // Flags sites whose nearest other site is closer than float depths can tell apart (see
 // raster_scene.cpp); the radii must be set.
