@@ -83,7 +83,8 @@ python_tests() {
 }
 
 # Each libFuzzer target for a few seconds, under address + undefined sanitizers, from the seed
-# corpus in fuzz/corpus/ (new inputs go to a scratch folder, not into the repository).
+# corpus in fuzz/corpus/ (new inputs go to a scratch folder, not into the repository; an input
+# that fails is kept in build-fuzz/ as crash-*). A fixed seed makes the run repeatable.
 fuzz_readers() {
   local dir="$build_dir-fuzz"
   build "$dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLUETILE_FUZZ=ON \
@@ -94,7 +95,8 @@ fuzz_readers() {
   for reader in point_file tile_set point_table; do
     mkdir -p "$scratch/$reader"
     "$dir/bluetile_fuzz_$reader" -max_total_time="${BLUETILE_FUZZ_SECONDS:-10}" -rss_limit_mb=2048 \
-      -malloc_limit_mb=1024 -timeout=10 -print_final_stats=1 "$scratch/$reader" "fuzz/corpus/$reader" \
+      -malloc_limit_mb=1024 -timeout=10 -seed=1 -print_final_stats=1 -artifact_prefix="$dir/" \
+      "$scratch/$reader" "fuzz/corpus/$reader" \
       2>"$scratch/$reader.log" || { tail -50 "$scratch/$reader.log" >&2; rm -rf "$scratch"; exit 1; }
     grep -h "stat::number_of_executed_units" "$scratch/$reader.log" | sed "s/^/setup: fuzz $reader: /" >&2
   done

@@ -230,6 +230,8 @@ TEST(Formats, DamagedNpyFilesGiveClearErrors) {
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }", data)),
             "d.npy: shape (1, 3, 2) needs 48 data bytes but the file has 32");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'shape': (2, 2), }", data)), "d.npy: bad .npy header: no 'fortran_order'");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (281474976710656, 0, 2), }", "")),
+            "d.npy: the table holds 281474976710656 set(s) of 0 points");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }", data).substr(0, 40)),
             "d.npy: .npy file cut short in its header");
   std::string nan_data = data;
@@ -256,6 +258,8 @@ TEST(Formats, DamagedBinaryFilesGiveClearErrors) {
   EXPECT_EQ(binary_error(binary_by_hand(8, 2, 1ull << 62, 1ull << 62, four)),
             "d.bpt: sizes 4611686018427387904 x 4611686018427387904 x 2 overflow: a damaged file");
   EXPECT_EQ(binary_error(binary_by_hand(8, 4, 1, 1, four)), "d.bpt: 4 columns per point; expected 2 (x y) or 3 (x y level)");
+  // Sets of no points take no bytes: a header may claim 2^48 of them (found by the fuzzer).
+  EXPECT_EQ(binary_error(binary_by_hand(8, 3, 1ull << 48, 0, {})), "d.bpt: the table holds 281474976710656 set(s) of 0 points");
   std::string v2 = good;
   v2[8] = 2;
   EXPECT_EQ(binary_error(v2), "d.bpt: binary point table version 2, this reader knows version 1");

@@ -198,9 +198,17 @@ T load(const char* at, bool big_endian) {
 
 // Builds point sets from decoded values, checking each (shared by npy and binary).
 class SetBuilder {
+  // Sets of no points hold no bytes, so a header may claim any number of them: refused before
+  // they are allocated.
+  static std::size_t checked_set_count(const std::string& name, std::size_t sets, std::size_t rows) {
+    if (sets > 0 && rows == 0)
+      throw Error(name + ": the table holds " + std::to_string(sets) + " set(s) of 0 points");
+    return sets;
+  }
+
  public:
   SetBuilder(const std::string& name, std::size_t sets, std::size_t rows, std::size_t columns)
-      : name_(name), columns_(columns), sets_(sets) {
+      : name_(name), columns_(columns), sets_(checked_set_count(name, sets, rows)) {
     for (PointSet& set : sets_) {
       set.points.reserve(rows);
       if (columns == 3) set.levels.reserve(rows);
