@@ -68,12 +68,25 @@ struct Timing {
   double wall = 0.0, cpu = 0.0;
 };
 
-Timing time_run(CentroidEngine& engine, Scene scene, int iterations) {
+Timing time_run(CentroidEngine& engine, Scene scene, int iterations, Scene* relaxed = nullptr) {
   LloydOptions options;
   options.iterations = iterations;
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   relax_lloyd(engine, scene, options);
+  const Timing t{std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+                 static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC};
+  if (relaxed) *relaxed = std::move(scene);
+  return t;
+}
+
+// `iterations` centroid computations of one fixed scene: what an iteration costs once the
+// sites are where the stipple leaves them, with and without the density (site motion excluded).
+Timing time_measure(CentroidEngine& engine, const Scene& scene, int iterations) {
+  std::vector<SceneCells> cells(1);
+  const auto start = std::chrono::steady_clock::now();
+  const std::clock_t cpu_start = std::clock();
+  for (int k = 0; k < iterations; ++k) engine.compute(std::span<const Scene>(&scene, 1), cells);
   return {std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
           static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC};
 }
@@ -109,7 +122,8 @@ int main(int argc, char** argv) {
               image.empty() ? "a procedural picture" : image.c_str(), iterations, repeats);
   std::printf("Seconds for the whole run, wall clock (CPU time of all threads in brackets).\n\n");
   std::printf("| engine | N | stipple (weighted, bounded) | unweighted bounded | unweighted periodic | "
-              "stipple / unweighted bounded | stipple / unweighted periodic |\n|---|---|---|---|---|---|---|\n");
+              "stipple / unweighted bounded | stipple / unweighted periodic | stipple's sites: weighted / unweighted |\n"
+              "|---|---|---|---|---|---|---|---|\n");
   for (const std::string& name : engines) {
     for (long long n : counts) {
       const auto count = static_cast<std::size_t>(n);
@@ -124,22 +138,29 @@ int main(int argc, char** argv) {
       Scene bounded = make_scene(uniform);
       bounded.boundary = Boundary::bounded;
       Scene periodic = make_scene(uniform);
-      std::vector<Timing> t_stipple, t_bounded, t_periodic;
+      std::vector<Timing> t_stipple, t_bounded, t_periodic, t_weighted_sites, t_unweighted_sites;
       try {
         auto engine = make(name);
         for (int r = 0; r < repeats; ++r) {
-          t_stipple.push_back(time_run(*engine, stipple, iterations));
+          Scene relaxed;
+          t_stipple.push_back(time_run(*engine, stipple, iterations, &relaxed));
           t_bounded.push_back(time_run(*engine, bounded, iterations));
           t_periodic.push_back(time_run(*engine, periodic, iterations));
+          // The same relaxed stipple sites measured with and without the density: the weighting's
+          // own cost, apart from what the sites' uneven spread costs the cell search.
+          t_weighted_sites.push_back(time_measure(*engine, relaxed, iterations));
+          relaxed.density.reset();
+          t_unweighted_sites.push_back(time_measure(*engine, relaxed, iterations));
         }
       } catch (const std::exception& e) {
-        std::printf("| %s | %lld | %s | | | | |\n", name.c_str(), n, e.what());
+        std::printf("| %s | %lld | %s | | | | | |\n", name.c_str(), n, e.what());
         continue;
       }
       const Timing s = median(t_stipple), b = median(t_bounded), p = median(t_periodic);
-      std::printf("| %s | %lld | %.3f (%.3f) | %.3f (%.3f) | %.3f (%.3f) | %.2f (%.2f) | %.2f (%.2f) |\n", name.c_str(), n,
-                  s.wall, s.cpu, b.wall, b.cpu, p.wall, p.cpu, s.wall / b.wall, s.cpu / b.cpu, s.wall / p.wall,
-                  s.cpu / p.cpu);
+      const Timing ws = median(t_weighted_sites), us = median(t_unweighted_sites);
+      std::printf("| %s | %lld | %.3f (%.3f) | %.3f (%.3f) | %.3f (%.3f) | %.2f (%.2f) | %.2f (%.2f) | %.2f (%.2f) |\n",
+                  name.c_str(), n, s.wall, s.cpu, b.wall, b.cpu, p.wall, p.cpu, s.wall / b.wall, s.cpu / b.cpu,
+                  s.wall / p.wall, s.cpu / p.cpu, ws.wall / us.wall, ws.cpu / us.cpu);
       std::fflush(stdout);
     }
   }

@@ -49,6 +49,9 @@ struct Options {
   int iterations = 25;
   int warm = 10;
   double margin = 0.0;
+  int seam_iterations = WangLevelOptions{}.seam_iterations;
+  double seam_spacing = WangLevelOptions{}.seam_spacing;
+  double level_seam_spacing = WangLevelOptions{}.later_seam_spacing;
   int levels = 1;
   double ratio = 2.0;
   int prefixes = 8;   // levels mode: prefixes measured between two level boundaries
@@ -86,6 +89,9 @@ WangOptions wang_options(const Options& o, const std::string& kind, std::size_t 
   w.level.warm_iterations = o.warm;
   w.level.strategy = strategy_of(strategy);
   w.level.edge_margin = o.margin;
+  w.level.seam_iterations = o.seam_iterations;
+  w.level.seam_spacing = o.seam_spacing;
+  w.level.later_seam_spacing = o.level_seam_spacing;
   return w;
 }
 
@@ -322,6 +328,9 @@ int main(int argc, char** argv) {
   app.add_option("--iterations", o.iterations, "Constrained iterations per level");
   app.add_option("--warm", o.warm, "Warm-start iterations per level");
   app.add_option("--margin", o.margin, "Edge margin (tile units)");
+  app.add_option("--seam-steps", o.seam_iterations, "Seam spacing steps after each level (0: none)");
+  app.add_option("--seam-spacing", o.seam_spacing, "Seam spacing of level 0, in hexagonal spacings");
+  app.add_option("--level-seam-spacing", o.level_seam_spacing, "Seam spacing of levels 1 and up, in hexagonal spacings");
   app.add_option("--levels", o.levels, "Levels");
   app.add_option("--ratio", o.ratio, "Level ratio");
   app.add_option("--prefixes", o.prefixes, "levels mode: prefixes per level");

@@ -97,6 +97,49 @@ TEST(DensityMoments, AxisAlignedSquareOverFourTexels) {
   EXPECT_NEAR(m.second, 10.0 * 2.0 * std::pow(0.25, 4) / 3.0, 1e-15);
 }
 
+TEST(DensityMoments, CellsLargerThanOneBandOfTheTexelTable) {
+  // Three sites over a 600 x 450 grid: a cell's box of texels holds more texels than one band of
+  // the integration's table (2^16), so the box is taken in several bands of columns.
+  for (Boundary boundary : {Boundary::periodic, Boundary::bounded}) {
+    const Domain domain{{1.0, 0.75}};
+    Scene scene = weighted_scene(points_in(domain, 3, 11), domain, boundary, random_density(600, 450, 12, 0.2));
+    int banded = 0;  // cells whose box needs more than one band
+    for (std::size_t i = 0; i < scene.sites.size(); ++i) {
+      const std::vector<Point> polygon = test::brute_force_cell(scene, i);
+      Point lo = polygon[0], hi = polygon[0];
+      for (const Point& p : polygon) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+      banded += (hi.x - lo.x) * 600.0 * (hi.y - lo.y) * 600.0 > 65536.0;
+      const WeightedMoments ref = test::brute_force_moments(polygon, scene.sites[i], scene);
+      const WeightedMoments got = density_moments(polygon, scene.sites[i], *scene.density, domain.size, scene.periodic());
+      EXPECT_NEAR(got.mass, ref.mass, 1e-12 * ref.mass) << "site " << i;
+      const Point c = got.first / got.mass, r = ref.first / ref.mass;
+      EXPECT_NEAR(c.x, r.x, 1e-12) << "site " << i;
+      EXPECT_NEAR(c.y, r.y, 1e-12) << "site " << i;
+      EXPECT_NEAR(got.second, ref.second, 1e-12 * ref.second) << "site " << i;
+    }
+    EXPECT_GE(banded, 1) << "the case needs a larger cell";
+  }
+}
+
+TEST(DensityMoments, EdgesLyingOnTexelLines) {
+  // The square [0.25, 0.75]^2 over a 4 x 4 grid: its edges lie on texel lines, and it holds the
+  // four middle texels exactly.
+  DensityGrid grid(4, 4, 100.0f);  // the outer texels must not leak in
+  grid.at(1, 1) = 1.0f;
+  grid.at(2, 1) = 2.0f;
+  grid.at(1, 2) = 3.0f;
+  grid.at(2, 2) = 4.0f;
+  const Point origin{0.5, 0.5};
+  const std::vector<Point> square = {{-0.25, -0.25}, {0.25, -0.25}, {0.25, 0.25}, {-0.25, 0.25}};
+  for (bool periodic : {false, true}) {
+    const WeightedMoments m = density_moments(square, origin, grid, {1.0, 1.0}, periodic);
+    EXPECT_NEAR(m.mass, 0.0625 * 10.0, 1e-15);
+    EXPECT_NEAR(m.first.x, 0.0625 * 0.125 * ((2.0 + 4.0) - (1.0 + 3.0)), 1e-15);
+    EXPECT_NEAR(m.first.y, 0.0625 * 0.125 * ((3.0 + 4.0) - (1.0 + 2.0)), 1e-15);
+    EXPECT_NEAR(m.second, 10.0 * 2.0 * std::pow(0.25, 4) / 3.0, 1e-15);
+  }
+}
+
 TEST(DensityExactEngine, WeightedCentroidsMatchBruteForce) {
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {
     for (Boundary boundary : {Boundary::periodic, Boundary::bounded}) {

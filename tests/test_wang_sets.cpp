@@ -168,6 +168,8 @@ TEST(WangSets, ConstraintsLiftTheSeamFarAboveTilesRelaxedAlone) {
     WangOptions constrained = small_options(TileSetKind::wang8, 13, seed);
     WangOptions alone = constrained;
     alone.level.iterations = 0;
+    alone.level.seam_iterations = 0;  // the seam spacing step alone lifts seams too (next test)
+    constrained.level.seam_iterations = 0;
     TileSet with = relax_wang_tiles(engine, constrained);
     TileSet without = relax_wang_tiles(engine, alone);
     validate_tile_set(with);
@@ -177,6 +179,51 @@ TEST(WangSets, ConstraintsLiftTheSeamFarAboveTilesRelaxedAlone) {
     EXPECT_GT(seam_with, 0.58) << "seed " << seed;
     EXPECT_LT(seam_without, 0.42) << "seed " << seed;
   }
+}
+
+TEST(WangSeams, SpacingLiftsTheSeamAndKeepsTheLowFrequencies) {
+  ExactEngine engine;
+  double lf_with = 0.0, lf_without = 0.0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    WangOptions with_steps = small_options(TileSetKind::wang8, 13, seed);
+    WangOptions without_steps = with_steps;
+    without_steps.level.seam_iterations = 0;
+    const TileSet with = relax_wang_tiles(engine, with_steps);
+    const TileSet without = relax_wang_tiles(engine, without_steps);
+    const SeamLevel seam_with = check_seams(with).levels[0], seam_without = check_seams(without).levels[0];
+    // Measured (seeds 1-3): seamX 0.800 and X/W 1.000 with the default steps (spacing 0.80),
+    // 0.62-0.73 and 0.79-0.94 without.
+    EXPECT_GT(seam_with.cross_relative(), 0.79) << "seed " << seed;
+    EXPECT_GT(seam_with.ratio(), 0.98) << "seed " << seed;
+    EXPECT_LT(seam_without.cross_relative(), 0.76) << "seed " << seed;
+    lf_with += measure_tiling(torus_tiling(with, 8, seed).points, 8, 8).low_frequency;
+    lf_without += measure_tiling(torus_tiling(without, 8, seed).points, 8, 8).low_frequency;
+  }
+  // The steps move only points near seams: the plane's low frequencies stay (measured: within 2 %).
+  EXPECT_LT(lf_with, 1.15 * lf_without) << lf_with / 3 << " vs " << lf_without / 3;
+}
+
+TEST(WangSeams, AMovingPointTakesTheWholeGapFromAFixedOne) {
+  // Every wang8 tile holds a fixed point at (0.05, 0.5) and a moving one at (0.97, 0.5): across
+  // every east seam the moving point is 0.08 from the fixed point of the tile east of it. With a
+  // spacing of 0.2 one step moves it to x = 0.85, exactly 0.2 from it, and the fixed points stay.
+  const TileRules rules(TileSetKind::wang8);
+  WangPoints points;
+  points.moving_begin = 1;
+  points.tiles.assign(static_cast<std::size_t>(rules.tile_count()), {{0.05, 0.5}, {0.97, 0.5}});
+  SeamSpacingOptions options;
+  options.iterations = 10;
+  options.spacing = 0.2;
+  const SeamSpacingResult result = space_seams(rules, points, options);
+  EXPECT_EQ(result.iterations, 1);
+  EXPECT_EQ(result.close_points, 0u);
+  for (const std::vector<Point>& tile : points.tiles) {
+    EXPECT_EQ(tile[0], Point(0.05, 0.5));
+    EXPECT_NEAR(tile[1].x, 0.85, 1e-15);
+    EXPECT_EQ(tile[1].y, 0.5);
+  }
+  options.spacing = 0.0;
+  EXPECT_THROW(space_seams(rules, points, options), Error);
 }
 
 TEST(WangSets, TiledPlaneHasTheLowFrequenciesOfUntiledLloyd) {

@@ -48,8 +48,8 @@ void check_whole(const char* name, long long value, long long low, long long hig
 }
 
 std::string wang_tiles(const std::string& set, long long points, int iterations, int warm, int levels, double ratio,
-                       const std::string& strategy, int period, double margin, std::uint64_t seed,
-                       const std::string& engine) {
+                       const std::string& strategy, int period, double margin, int seam_steps,
+                       double seam_spacing, double level_seam_spacing, std::uint64_t seed, const std::string& engine) {
   const auto kind = bluetile::parse_tile_set_kind(set);
   if (!kind) throw nb::value_error(("set: expected one of 'wang8', 'wang16', 'corner16', got '" + set + "'").c_str());
   check_whole("points", points, 1, 1000000);
@@ -61,6 +61,10 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
     throw nb::value_error(("ratio: expected a finite number above 1, got " + std::to_string(ratio)).c_str());
   if (!(margin >= 0.0 && margin <= 0.25))
     throw nb::value_error(("margin: expected 0 to 0.25 tile units, got " + std::to_string(margin)).c_str());
+  check_whole("seam_steps", seam_steps, 0, 100000);
+  for (auto [name, value] : {std::pair{"seam_spacing", seam_spacing}, std::pair{"level_seam_spacing", level_seam_spacing}})
+    if (!(value >= 0.01 && value <= 2.0))
+      throw nb::value_error((std::string(name) + ": expected 0.01 to 2 hexagonal spacings, got " + std::to_string(value)).c_str());
   EngineChoice choice;
   choice.engine = engine;
   check_engine_choice(choice);
@@ -76,6 +80,9 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
   w.level.strategy = strategy_named(strategy);
   w.level.period = period;
   w.level.edge_margin = margin;
+  w.level.seam_iterations = seam_steps;
+  w.level.seam_spacing = seam_spacing;
+  w.level.later_seam_spacing = level_seam_spacing;
   std::string text;
   {
     nb::gil_scoped_release release;
@@ -84,7 +91,7 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
     tiles.header.push_back("made by: pybluetile.wang_tiles(set='" + set + "', points=" + std::to_string(points) +
                            ", iterations=" + std::to_string(iterations) + ", warm=" + std::to_string(warm) +
                            ", levels=" + std::to_string(levels) + ", strategy='" + strategy +
-                           "', seed=" + std::to_string(seed) + ", engine='" + engine + "')");
+                           "', seam_steps=" + std::to_string(seam_steps) + ", seed=" + std::to_string(seed) + ", engine='" + engine + "')");
     text = bluetile::format_tile_set(tiles);
   }
   return text;
@@ -209,9 +216,11 @@ void bind_tiling(nb::module_& m) {
   m.def("wang_tiles", &wang_tiles,
         nb::sig("def wang_tiles(set: str = 'wang8', *, points: int = 52, iterations: int = 25, warm: int = 10, "
                 "levels: int = 1, ratio: float = 2.0, strategy: str = 'exact', period: int = 16, margin: float = 0.0, "
+                "seam_steps: int = 20, seam_spacing: float = 0.8, level_seam_spacing: float = 0.65, "
                 "seed: int = 1, engine: str = 'exact') -> str"),
         "set"_a = "wang8", nb::kw_only(), "points"_a = 52, "iterations"_a = 25, "warm"_a = 10, "levels"_a = 1,
-        "ratio"_a = 2.0, "strategy"_a = "exact", "period"_a = 16, "margin"_a = 0.0, "seed"_a = 1, "engine"_a = "exact",
+        "ratio"_a = 2.0, "strategy"_a = "exact", "period"_a = 16, "margin"_a = 0.0, "seam_steps"_a = 20,
+        "seam_spacing"_a = 0.8, "level_seam_spacing"_a = 0.65, "seed"_a = 1, "engine"_a = "exact",
         R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same
 points bit for bit), returned as the text of its tile-set file: write it to a file for
 ``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``.)");

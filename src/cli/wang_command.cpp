@@ -41,6 +41,10 @@ struct WangCommandOptions {
   std::string strategy = "exact";
   int period = 16;
   double margin = 0.0;
+  // Defaults of the library (wang_relax.h): the seam spacing step after each level.
+  int seam_steps = WangLevelOptions{}.seam_iterations;
+  double seam_spacing = WangLevelOptions{}.seam_spacing;
+  double level_seam_spacing = WangLevelOptions{}.later_seam_spacing;
   std::uint64_t seed = 1;
   std::string output;
   bool check = false;
@@ -120,6 +124,9 @@ void run_wang(const WangCommandOptions& o) {
   w.level.strategy = parse_strategy(o.strategy);
   w.level.period = o.period;
   w.level.edge_margin = o.margin;
+  w.level.seam_iterations = o.seam_steps;
+  w.level.seam_spacing = o.seam_spacing;
+  w.level.later_seam_spacing = o.level_seam_spacing;
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
 
   auto engine = make_engine(o.engine);
@@ -144,6 +151,11 @@ void run_wang(const WangCommandOptions& o) {
   command << " --strategy " << o.strategy;
   if (o.strategy == "instances") command << " --period " << o.period;
   if (o.margin > 0.0) command << " --margin " << o.margin;
+  command << " --seam-steps " << o.seam_steps;
+  if (o.seam_steps > 0) {
+    command << " --seam-spacing " << o.seam_spacing;
+    if (o.levels > 1) command << " --level-seam-spacing " << o.level_seam_spacing;
+  }
   command << " --seed " << o.seed << " --engine " << engine->name();
   set.header = {"made by: " + command.str()};
   validate_tile_set(set);
@@ -389,6 +401,18 @@ void add_wang_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--margin", o->margin, "Keep points this far inside their tile (tile units)")
       ->check(CLI::Range(0.0, 0.25))
+      ->capture_default_str();
+  cmd->add_option("--seam-steps", o->seam_steps,
+                  "Seam spacing after each level's iterations: repulsion steps for points closer than the spacing to a "
+                  "point they can meet in a tiling (0: none)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_option("--seam-spacing", o->seam_spacing, "Seam spacing of level 0, in hexagonal spacings of the tile's points")
+      ->check(CLI::Range(0.01, 2.0))
+      ->capture_default_str();
+  cmd->add_option("--level-seam-spacing", o->level_seam_spacing,
+                  "Seam spacing of levels 1 and up, in hexagonal spacings of the tile's points")
+      ->check(CLI::Range(0.01, 2.0))
       ->capture_default_str();
   cmd->add_option("-s,--seed", o->seed, "Seed")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "Output tile-set file")->required();

@@ -126,6 +126,15 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
     if (options.on_iteration) options.on_iteration(log);
   }
 
+  if (options.seam_iterations > 0) {
+    SeamSpacingOptions spacing;
+    spacing.iterations = options.seam_iterations;
+    const double relative = level == 0 ? options.seam_spacing : options.later_seam_spacing;
+    spacing.spacing = relative * hexagonal_spacing(static_cast<double>(points.tiles[0].size()));
+    spacing.edge_margin = options.edge_margin;
+    space_seams(rules, points, spacing);
+  }
+
   const std::vector<std::vector<std::uint32_t>> order = rank_level(configurations, points.tiles, existing);
   for (std::size_t t = 0; t < set.tiles.size(); ++t) {
     Tile& tile = set.tiles[t];

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "bluetile/relax/wang_seams.h"
 #include "bluetile/relax/wang_step.h"
 #include "bluetile/tiling/tile_set.h"
 
@@ -37,6 +38,15 @@ struct WangLevelOptions {
   std::uint64_t seed = 1;     // this level's seed (placement, instances, rounds)
   // Points are kept this far inside their tile square (tile units; 0: anywhere in [0,1)).
   double edge_margin = 0.0;
+  // Seam spacing after the constrained iterations (wang_seams.h): this many repulsion steps
+  // (0: none) for pairs closer than the spacing, in hexagonal spacings of the tile's points:
+  // seam_spacing in level 0, later_seam_spacing in the levels after it, whose new points,
+  // squeezed between fixed ones, cannot all reach 0.80 (a target they cannot reach leaves them
+  // worse spread than a lower one). With these defaults wang8 sets of 13 and 52 points reach
+  // seamX 0.80 and X/W 1.00 with their low-frequency power unchanged (docs/RESULTS.md, Wang tiles).
+  int seam_iterations = 20;
+  double seam_spacing = 0.80;
+  double later_seam_spacing = 0.65;
   std::function<void(const WangIteration&)> on_iteration;
 };
 

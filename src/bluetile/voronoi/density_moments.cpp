@@ -3,15 +3,17 @@
 // For any integrand g, the integral over a counter-clockwise polygon P is -(contour integral of
 // G du) with G(u, v) = integral of g(u, t) dt from a reference height up to v (Green's theorem
 // with L = G, M = 0). The reference may change from one texel column to the next: split P into
-// column strips, and the strips' vertical sides have du = 0. Here the reference is the bottom of
-// the lowest texel row the polygon reaches, so within texel (i, r)
-//   G(u, v) = C_i(r)(u) + rho(i, r) * integral of g from V_r up to v,
-// where C_i(r) sums the full texels of column i below row r, per column in one pass. Along a
-// piece of an edge inside one texel, G is a polynomial of degree at most 3 in u for
-// g in {1, u, v, u^2 + v^2}, so Simpson's rule integrates it exactly. The cost is one pass over
-// the texels of the polygon's bounding box plus a constant per edge piece, instead of clipping
-// the polygon by every texel; all coordinates are relative to `origin`, so precision does not
-// depend on where the polygon lies.
+// column strips, and the strips' vertical sides have du = 0. Everything runs in a frame of
+// texel units whose origin is the lower-left corner of the polygon's bounding box of texels,
+// the reference being that box's bottom, so within box texel (c, r)
+//   G(u, v) = K(c, r) + rho(c, r) * integral of g from r up to v,
+// where K(c, r) sums the full texels of column c below row r. One pass over the box's rows
+// (the grid's storage order) builds K; then each edge is cut at the column and row lines it
+// crosses, and along a piece inside one texel G is a polynomial of degree at most 3 in u for
+// g in {1, u, v, u^2, v^2}: its integral is a closed form of the piece's two ends. The cost is
+// the box's texels once plus a constant per edge piece; coordinates relative to the box keep
+// precision independent of where the polygon lies, and the moments are moved to `origin` at
+// the end.
 #include "bluetile/voronoi/density_moments.h"
 
 #include <algorithm>
@@ -26,123 +28,43 @@
 namespace bluetile {
 namespace {
 
+// Contour integrals of G du for g = 1, u, v, u^2 and v^2 (texel units).
 struct Sums {
-  double s0 = 0.0, sx = 0.0, sy = 0.0, s2 = 0.0;
+  double s0 = 0.0, su = 0.0, sv = 0.0, suu = 0.0, svv = 0.0;
 };
 
-// What one row of texels of the polygon's bounding box contributes, the same for every column:
-// its bottom line V (relative to the origin), where its texels start in the grid, and the
-// integrals over its height h of 1, v and v^2 (h, h (V0 + V1) / 2, h (V0^2 + V0 V1 + V1^2) / 3).
-struct Row {
-  double line;
-  std::size_t offset;
-  double k0, k1, k2;
+// A texel of the box: its density and K for g = 1, v, v^2 (the full texels below it).
+struct BoxTexel {
+  double rho, k0, k1, k2;
 };
 
-// The texel columns of the polygon's bounding box while its edges are integrated.
-class ColumnIntegrator {
- public:
-  ColumnIntegrator(const DensityGrid& density, Point origin, Point texel, long row_begin, long row_end, bool periodic,
-                   std::vector<Row>& rows, std::vector<double>& below)
-      : density_(density), origin_(origin), texel_(texel), row_begin_(row_begin), row_end_(row_end),
-        periodic_(periodic), rows_(rows), below_(below) {
-    const std::size_t count = static_cast<std::size_t>(row_end - row_begin + 1);
-    rows_.resize(count + 1);
-    for (std::size_t r = 0; r <= count; ++r) {
-      const long row = row_begin + static_cast<long>(r);
-      rows_[r].line = static_cast<double>(row) * texel.y - origin.y;
-      rows_[r].offset = static_cast<std::size_t>(index(row, density.height)) * static_cast<std::size_t>(density.width);
-    }
-    for (std::size_t r = 0; r < count; ++r) {
-      const double v0 = rows_[r].line, v1 = rows_[r + 1].line, h = v1 - v0;
-      rows_[r].k0 = h;
-      rows_[r].k1 = h * 0.5 * (v0 + v1);
-      rows_[r].k2 = h * (v0 * v0 + v0 * v1 + v1 * v1) * kThird;
-    }
-    below_.resize(3 * count);
-  }
+// The box of texels is processed in bands of columns so that its table stays small however
+// large a cell is (a cell of a few sites can span the whole grid).
+constexpr long kBandTexels = 1L << 16;
 
-  // Prepares the full-texel sums of column i below each row of the box.
-  void start_column(long i) {
-    column_ = density_.texels.data() + index(i, density_.width);
-    double k0 = 0.0, k1 = 0.0, k2 = 0.0;
-    double* below = below_.data();
-    for (std::size_t r = 0; r + 1 < rows_.size(); ++r) {
-      below[3 * r] = k0;
-      below[3 * r + 1] = k1;
-      below[3 * r + 2] = k2;
-      const double rho = column_[rows_[r].offset];
-      k0 += rho * rows_[r].k0;
-      k1 += rho * rows_[r].k1;
-      k2 += rho * rows_[r].k2;
-    }
-  }
+// A texel index of the grid: wrapped on a torus (the box reaches at most one period beyond
+// it), clamped (against rounding) in a rectangle.
+long grid_index(long i, int size, bool periodic) {
+  if (!periodic) return std::clamp<long>(i, 0, size - 1);
+  const long m = i % size;
+  return m < 0 ? m + size : m;
+}
 
-  // Adds the integral of G du along the segment (u1, v1) -> (u2, v2), which lies in the column.
-  void segment(double u1, double v1, double u2, double v2, Sums& sums) const {
-    const long r1 = row_of(v1), r2 = row_of(v2);
-    if (r1 == r2) {
-      piece(u1, v1, u2, v2, r1, sums);
-      return;
-    }
-    const long step = r2 > r1 ? 1 : -1;
-    const double du_dv = (u2 - u1) / (v2 - v1);
-    double pu = u1, pv = v1;
-    for (long r = r1; r != r2; r += step) {
-      const double line = rows_[static_cast<std::size_t>(step > 0 ? r + 1 : r)].line;
-      const double qu = u1 + (line - v1) * du_dv;
-      piece(pu, pv, qu, line, r, sums);
-      pu = qu;
-      pv = line;
-    }
-    piece(pu, pv, u2, v2, r2, sums);
-  }
-
- private:
-  static constexpr double kThird = 1.0 / 3.0;
-
-  // A texel index of the grid: wrapped on a torus (the box reaches at most one period beyond
-  // it), clamped (against rounding) in a rectangle.
-  int index(long i, int size) const {
-    if (!periodic_) return static_cast<int>(std::clamp<long>(i, 0, size - 1));
-    long m = i % size;
-    return static_cast<int>(m < 0 ? m + size : m);
-  }
-
-  // The row of the box (0-based) holding height v.
-  long row_of(double v) const {
-    const long r = static_cast<long>(std::floor((origin_.y + v) / texel_.y));
-    return std::clamp(r, row_begin_, row_end_) - row_begin_;
-  }
-
-  // Simpson's rule on a piece inside the box's texel row r: exact for G's cubic along a straight piece.
-  void piece(double pu, double pv, double qu, double qv, long r, Sums& sums) const {
-    const Row& row = rows_[static_cast<std::size_t>(r)];
-    const double rho = column_[row.offset];
-    const double base = row.line;
-    const double* k = below_.data() + 3 * r;
-    auto add = [&](double u, double v, double weight) {
-      const double d = v - base;
-      const double g0 = k[0] + rho * d;
-      sums.s0 += weight * g0;
-      sums.sx += weight * u * g0;
-      sums.sy += weight * (k[1] + rho * d * 0.5 * (v + base));
-      sums.s2 += weight * (u * u * g0 + k[2] + rho * d * (v * v + v * base + base * base) * kThird);
-    };
-    const double w = (qu - pu) / 6.0;
-    add(pu, pv, w);
-    add(0.5 * (pu + qu), 0.5 * (pv + qv), 4.0 * w);
-    add(qu, qv, w);
-  }
-
-  const DensityGrid& density_;
-  Point origin_, texel_;
-  long row_begin_, row_end_;
-  bool periodic_;
-  std::vector<Row>& rows_;      // the box's rows and the line above its last
-  std::vector<double>& below_;  // per row of the current column: the sums of its full texels below
-  const float* column_ = nullptr;
-};
+// Adds the piece (u1, r + d1) -> (u2, r + d2), inside a texel of row r (0 <= d <= 1 up to
+// rounding): the exact integrals of G du along it.
+inline void add_piece(const BoxTexel& t, double r, double u1, double d1, double u2, double d2, Sums& s) {
+  const double du = u2 - u1;
+  const double g1 = t.k0 + t.rho * d1, g2 = t.k0 + t.rho * d2;  // G for g = 1 at the ends
+  const double d_mean = 0.5 * (d1 + d2);
+  const double d2_mean = (d1 * d1 + d1 * d2 + d2 * d2) * (1.0 / 3.0);
+  const double d3_mean = 0.25 * (d1 + d2) * (d1 * d1 + d2 * d2);
+  const double u_mid = 0.5 * (u1 + u2);
+  s.s0 += du * (t.k0 + t.rho * d_mean);
+  s.su += du * (1.0 / 6.0) * (u1 * (2.0 * g1 + g2) + u2 * (g1 + 2.0 * g2));
+  s.sv += du * (t.k1 + t.rho * (r * d_mean + 0.5 * d2_mean));
+  s.svv += du * (t.k2 + t.rho * (r * (r * d_mean + d2_mean) + d3_mean * (1.0 / 3.0)));
+  s.suu += du * (1.0 / 6.0) * (u1 * u1 * g1 + 2.0 * u_mid * u_mid * (g1 + g2) + u2 * u2 * g2);  // Simpson
+}
 
 }  // namespace
 
@@ -152,44 +74,102 @@ WeightedMoments density_moments(std::span<const Point> polygon, Point origin, co
   const std::size_t n = polygon.size();
   if (n < 3 || density.empty()) return moments;
   const Point texel{domain_size.x / density.width, domain_size.y / density.height};
-  Point lo = polygon[0], hi = polygon[0];
-  for (const Point& p : polygon) {
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-    hi = {std::max(hi.x, p.x), std::max(hi.y, p.y)};
+  Point lo = polygon[0];
+  for (const Point& p : polygon) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+  const long c0 = static_cast<long>(std::floor((origin.x + lo.x) / texel.x));
+  const long r0 = static_cast<long>(std::floor((origin.y + lo.y) / texel.y));
+  // The frame: texel units, (0, 0) at the box's lower-left corner; `site` is the origin in it
+  // in domain units. Frame coordinates are >= 0 up to rounding, so converting one to an integer
+  // truncates as floor would, and the clamps below absorb the rounding.
+  const Point site{origin.x - static_cast<double>(c0) * texel.x, origin.y - static_cast<double>(r0) * texel.y};
+  thread_local std::vector<Point> frame;
+  frame.resize(n);
+  Point hi{0.0, 0.0};
+  for (std::size_t k = 0; k < n; ++k) {
+    frame[k] = {(site.x + polygon[k].x) / texel.x, (site.y + polygon[k].y) / texel.y};
+    hi = {std::max(hi.x, frame[k].x), std::max(hi.y, frame[k].y)};
   }
-  auto texel_of = [](double x, double size) { return static_cast<long>(std::floor(x / size)); };
-  const long column_begin = texel_of(origin.x + lo.x, texel.x), column_end = texel_of(origin.x + hi.x, texel.x);
-  const long row_begin = texel_of(origin.y + lo.y, texel.y), row_end = texel_of(origin.y + hi.y, texel.y);
+  const long columns = static_cast<long>(hi.x) + 1, rows = static_cast<long>(hi.y) + 1;
+  const long band_columns = std::max(1L, kBandTexels / rows);
 
-  thread_local std::vector<Row> rows;
-  thread_local std::vector<double> below;
-  ColumnIntegrator integrator(density, origin, texel, row_begin, row_end, periodic, rows, below);
+  thread_local std::vector<std::size_t> row_start;
+  thread_local std::vector<BoxTexel> table;  // column by column, `rows` texels each
+  row_start.resize(static_cast<std::size_t>(rows));
+  for (long r = 0; r < rows; ++r)
+    row_start[static_cast<std::size_t>(r)] =
+        static_cast<std::size_t>(grid_index(r0 + r, density.height, periodic)) * static_cast<std::size_t>(density.width);
   Sums sums;
-  constexpr double kInfinity = std::numeric_limits<double>::infinity();
-  for (long i = column_begin; i <= column_end; ++i) {
-    // The outer columns reach to infinity, so rounding at the box's edge loses no part of an edge.
-    const double left = i == column_begin ? -kInfinity : static_cast<double>(i) * texel.x - origin.x;
-    const double right = i == column_end ? kInfinity : static_cast<double>(i + 1) * texel.x - origin.x;
-    bool started = false;
-    for (std::size_t e = 0; e < n; ++e) {
-      const Point a = polygon[e], b = polygon[e + 1 == n ? 0 : e + 1];
-      if (a.x == b.x) continue;  // du = 0
-      const double from = std::max(std::min(a.x, b.x), left), to = std::min(std::max(a.x, b.x), right);
-      if (!(from < to)) continue;
-      if (!started) {
-        integrator.start_column(i);
-        started = true;
+  for (long band = 0; band < columns; band += band_columns) {
+    const long band_end = std::min(columns, band + band_columns);
+    const long width = band_end - band;
+    // K for the band's columns, row by row as the grid is stored.
+    table.resize(static_cast<std::size_t>(width * rows));
+    for (long c = 0; c < width; ++c) {
+      const long column = grid_index(c0 + band + c, density.width, periodic);
+      double k0 = 0.0, k1 = 0.0, k2 = 0.0;
+      BoxTexel* t = table.data() + c * rows;
+      for (long r = 0; r < rows; ++r) {
+        const double rho = density.texels[row_start[static_cast<std::size_t>(r)] + static_cast<std::size_t>(column)];
+        const double rd = static_cast<double>(r);
+        t[r] = {rho, k0, k1, k2};
+        k0 += rho;
+        k1 += rho * (rd + 0.5);
+        k2 += rho * (rd * rd + rd + 1.0 / 3.0);
       }
+    }
+    // Each edge, cut by the band's column lines, then by the row lines.
+    constexpr double kFar = std::numeric_limits<double>::infinity();
+    for (std::size_t e = 0; e < n; ++e) {
+      const Point a = frame[e], b = frame[e + 1 == n ? 0 : e + 1];
+      if (a.x == b.x) continue;  // du = 0
       const bool rightwards = a.x < b.x;
-      const double u1 = rightwards ? from : to, u2 = rightwards ? to : from;
-      const double slope = (b.y - a.y) / (b.x - a.x);
-      auto height_at = [&](double u) { return u == a.x ? a.y : u == b.x ? b.y : a.y + (u - a.x) * slope; };
-      integrator.segment(u1, height_at(u1), u2, height_at(u2), sums);
+      const Point left_end = rightwards ? a : b, right_end = rightwards ? b : a;
+      const long c_first = std::max(band, std::min(static_cast<long>(left_end.x), columns - 1));
+      const long c_last = std::min(band_end - 1, std::max(0L, static_cast<long>(right_end.x)));
+      if (c_first > c_last) continue;
+      const double slope = (right_end.y - left_end.y) / (right_end.x - left_end.x);
+      const double du_dv = (right_end.x - left_end.x) / (right_end.y - left_end.y);  // where it crosses rows
+      auto height_at = [&](double u) { return left_end.y + (u - left_end.x) * slope; };
+      for (long c = c_first; c <= c_last; ++c) {
+        // The box's outer columns reach to infinity, so rounding loses no part of an edge.
+        const double lu = c == 0 ? -kFar : static_cast<double>(c), ru = c == columns - 1 ? kFar : static_cast<double>(c + 1);
+        const double from = std::max(left_end.x, lu), to = std::min(right_end.x, ru);
+        if (!(from < to)) continue;
+        const double pu = from == left_end.x ? left_end.x : from, pv = from == left_end.x ? left_end.y : height_at(from);
+        const double qu = to == right_end.x ? right_end.x : to, qv = to == right_end.x ? right_end.y : height_at(to);
+        // From (pu, pv) to (qu, qv), rows split; pieces oriented as the polygon runs. A piece
+        // ending exactly on a row line has length 0 in the next row.
+        const BoxTexel* column = table.data() + (c - band) * rows;
+        long r = std::clamp(static_cast<long>(pv), 0L, rows - 1);
+        const long r_end = std::clamp(static_cast<long>(qv), 0L, rows - 1);
+        auto piece = [&](double u1, double v1, double u2, double v2, long row) {
+          const double base = static_cast<double>(row);
+          if (rightwards) {
+            add_piece(column[row], base, u1, v1 - base, u2, v2 - base, sums);
+          } else {
+            add_piece(column[row], base, u2, v2 - base, u1, v1 - base, sums);
+          }
+        };
+        double su = pu, sv = pv;
+        const long step = r_end > r ? 1 : -1;
+        for (; r != r_end; r += step) {
+          const double line = static_cast<double>(step > 0 ? r + 1 : r);
+          const double u = left_end.x + (line - left_end.y) * du_dv;
+          piece(su, sv, u, line, r);
+          su = u;
+          sv = line;
+        }
+        piece(su, sv, qu, qv, r);
+      }
     }
   }
-  moments.mass = -sums.s0;
-  moments.first = {-sums.sx, -sums.sy};
-  moments.second = -sums.s2;
+  // Back to domain units, moments about the box's corner, then about `origin` (x - site).
+  const double area = texel.x * texel.y;
+  moments.mass = -sums.s0 * area;
+  const Point first{-sums.su * area * texel.x, -sums.sv * area * texel.y};
+  const double second = -(sums.suu * texel.x * texel.x + sums.svv * texel.y * texel.y) * area;
+  moments.first = first - moments.mass * site;
+  moments.second = second - 2.0 * (first.x * site.x + first.y * site.y) + moments.mass * (site.x * site.x + site.y * site.y);
   return moments;
 }
 
