@@ -48,7 +48,7 @@ class MeetingGrid {
     std::uint32_t index;
   };
 
-  MeetingGrid(double spacing) : spacing_(spacing), side_(static_cast<int>(std::ceil((1.0 + 2.0 * spacing) / spacing))) {}
+  explicit MeetingGrid(double spacing) : spacing_(spacing), side_(static_cast<int>(std::ceil((1.0 + 2.0 * spacing) / spacing))) {}
 
   void fill(const std::vector<Neighbour>& neighbours, const TilePoints& tiles) {
     buckets_.assign(static_cast<std::size_t>(side_ * side_), {});

@@ -5,7 +5,10 @@
 // that can meet in a tiling (the same tile, or two tiles of an admissible 2x2 block at their
 // offset in it) closer than `spacing` is pushed apart along the line joining them, Jacobi, a
 // moving point taking half of the gap when its partner moves too and all of it when the partner
-// is a fixed point of an earlier level. Only the level's moving points move, inside their tile.
+// is a fixed point of an earlier level. Pushes from one tile at one position, and from different
+// positions, add up (those points coexist in a tiling); tiles that are alternatives at one
+// position (a tiling holds one of them there) push by the strongest. Only the level's moving
+// points move, inside their tile.
 #pragma once
 
 #include <cstddef>
