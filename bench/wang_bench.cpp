@@ -46,9 +46,11 @@ struct Options {
   std::vector<int> periods{16};
   int seeds = 4;
   std::uint64_t first_seed = 1;
-  int iterations = 25;
+  int iterations = WangLevelOptions{}.iterations;
   int warm = 10;
   double margin = 0.0;
+  int lattice_iterations = WangLevelOptions{}.lattice_iterations;
+  double lattice_step = WangLevelOptions{}.lattice_step;
   int seam_iterations = WangLevelOptions{}.seam_iterations;
   double seam_spacing = WangLevelOptions{}.seam_spacing;
   double level_seam_spacing = WangLevelOptions{}.later_seam_spacing;
@@ -90,6 +92,8 @@ WangOptions wang_options(const Options& o, const std::string& kind, std::size_t 
   w.level.strategy = strategy_of(strategy);
   w.level.edge_margin = o.margin;
   w.level.seam_iterations = o.seam_iterations;
+  w.level.lattice_iterations = o.lattice_iterations;
+  w.level.lattice_step = o.lattice_step;
   w.level.seam_spacing = o.seam_spacing;
   w.level.later_seam_spacing = o.level_seam_spacing;
   return w;
@@ -328,6 +332,8 @@ int main(int argc, char** argv) {
   app.add_option("--iterations", o.iterations, "Constrained iterations per level");
   app.add_option("--warm", o.warm, "Warm-start iterations per level");
   app.add_option("--margin", o.margin, "Edge margin (tile units)");
+  app.add_option("--lattice-steps", o.lattice_iterations, "Lattice decorrelation steps after each level (0: none)");
+  app.add_option("--lattice-step", o.lattice_step, "Largest move of a lattice step, in hexagonal spacings");
   app.add_option("--seam-steps", o.seam_iterations, "Seam spacing steps after each level (0: none)");
   app.add_option("--seam-spacing", o.seam_spacing, "Seam spacing of level 0, in hexagonal spacings");
   app.add_option("--level-seam-spacing", o.level_seam_spacing, "Seam spacing of levels 1 and up, in hexagonal spacings");

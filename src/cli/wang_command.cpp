@@ -32,7 +32,7 @@ struct WangCommandOptions {
   // 16-tile sets only win on diffuse anisotropy (docs/RESULTS.md, Wang tiles).
   std::string kind = "wang8";
   long long points = 52;
-  int iterations = 25;
+  int iterations = WangLevelOptions{}.iterations;
   int warm = 10;
   int levels = 1;
   double ratio = 2.0;
@@ -42,6 +42,8 @@ struct WangCommandOptions {
   int period = 16;
   double margin = 0.0;
   // Defaults of the library (wang_relax.h): the seam spacing step after each level.
+  int lattice_steps = WangLevelOptions{}.lattice_iterations;
+  double lattice_step = WangLevelOptions{}.lattice_step;
   int seam_steps = WangLevelOptions{}.seam_iterations;
   double seam_spacing = WangLevelOptions{}.seam_spacing;
   double level_seam_spacing = WangLevelOptions{}.later_seam_spacing;
@@ -124,6 +126,8 @@ void run_wang(const WangCommandOptions& o) {
   w.level.strategy = parse_strategy(o.strategy);
   w.level.period = o.period;
   w.level.edge_margin = o.margin;
+  w.level.lattice_iterations = o.lattice_steps;
+  w.level.lattice_step = o.lattice_step;
   w.level.seam_iterations = o.seam_steps;
   w.level.seam_spacing = o.seam_spacing;
   w.level.later_seam_spacing = o.level_seam_spacing;
@@ -151,6 +155,8 @@ void run_wang(const WangCommandOptions& o) {
   command << " --strategy " << o.strategy;
   if (o.strategy == "instances") command << " --period " << o.period;
   if (o.margin > 0.0) command << " --margin " << o.margin;
+  command << " --lattice-steps " << o.lattice_steps;
+  if (o.lattice_steps > 0) command << " --lattice-step " << o.lattice_step;
   command << " --seam-steps " << o.seam_steps;
   if (o.seam_steps > 0) {
     command << " --seam-spacing " << o.seam_spacing;
@@ -401,6 +407,14 @@ void add_wang_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--margin", o->margin, "Keep points this far inside their tile (tile units)")
       ->check(CLI::Range(0.0, 0.25))
+      ->capture_default_str();
+  cmd->add_option("--lattice-steps", o->lattice_steps,
+                  "Lattice decorrelation after each level's iterations: gradient steps that lower the tile-lattice "
+                  "peaks C_LF (and, in level 0, C_mid) (0: none)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_option("--lattice-step", o->lattice_step, "Largest move of one lattice step, in hexagonal spacings")
+      ->check(CLI::Range(0.0001, 0.1))
       ->capture_default_str();
   cmd->add_option("--seam-steps", o->seam_steps,
                   "Seam spacing after each level's iterations: repulsion steps for points closer than the spacing to a "

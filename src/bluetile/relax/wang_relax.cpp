@@ -126,6 +126,14 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
     if (options.on_iteration) options.on_iteration(log);
   }
 
+  if (options.lattice_iterations > 0) {
+    LatticeDecorrelationOptions lattice;
+    lattice.iterations = options.lattice_iterations;
+    lattice.step = options.lattice_step;
+    lattice.mid_band = level == 0;
+    lattice.edge_margin = options.edge_margin;
+    decorrelate_lattice(points, lattice);
+  }
   if (options.seam_iterations > 0) {
     SeamSpacingOptions spacing;
     spacing.iterations = options.seam_iterations;

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <functional>
 
+#include "bluetile/relax/wang_lattice.h"
 #include "bluetile/relax/wang_seams.h"
 #include "bluetile/relax/wang_step.h"
 #include "bluetile/tiling/tile_set.h"
@@ -31,7 +32,9 @@ struct WangIteration {
 
 struct WangLevelOptions {
   std::size_t add = 0;        // points each tile gains in this level (>= 1)
-  int iterations = 25;        // constrained iterations
+  // Constrained iterations: 50 bring the low frequencies of 52-point tiles to untiled Lloyd's
+  // level; more make the tiles phase-lock (lattice peaks grow), which the lattice step offsets.
+  int iterations = 50;
   int warm_iterations = 10;   // periodic iterations of each tile alone before them (0: none)
   WangStrategy strategy = WangStrategy::exact;
   int period = 16;            // instances: torus tiling size
@@ -44,6 +47,10 @@ struct WangLevelOptions {
   // squeezed between fixed ones, cannot all reach 0.80 (a target they cannot reach leaves them
   // worse spread than a lower one). With these defaults wang8 sets of 13 and 52 points reach
   // seamX 0.80 and X/W 1.00 with their low-frequency power unchanged (docs/RESULTS.md, Wang tiles).
+  // Lattice decorrelation before it (wang_lattice.h): this many gradient steps (0: none) of
+  // at most lattice_step hexagonal spacings, over the low band and, in level 0, the mid band.
+  int lattice_iterations = 10;
+  double lattice_step = 0.005;
   int seam_iterations = 20;
   double seam_spacing = 0.80;
   double later_seam_spacing = 0.65;
