@@ -49,7 +49,7 @@ void check_whole(const char* name, long long value, long long low, long long hig
 
 std::string wang_tiles(const std::string& set, long long points, int iterations, int warm, int levels, double ratio,
                        const std::string& strategy, int period, double margin, int lattice_steps,
-                       double lattice_step, int seam_steps,
+                       int lattice_steps_per_iteration, double lattice_step, int seam_steps,
                        double seam_spacing, double level_seam_spacing, std::uint64_t seed, const std::string& engine) {
   const auto kind = bluetile::parse_tile_set_kind(set);
   if (!kind) throw nb::value_error(("set: expected one of 'wang8', 'wang16', 'corner16', got '" + set + "'").c_str());
@@ -63,6 +63,7 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
   if (!(margin >= 0.0 && margin <= 0.25))
     throw nb::value_error(("margin: expected 0 to 0.25 tile units, got " + std::to_string(margin)).c_str());
   check_whole("lattice_steps", lattice_steps, 0, 100000);
+  check_whole("lattice_steps_per_iteration", lattice_steps_per_iteration, 0, 1000);
   if (!(lattice_step >= 0.0001 && lattice_step <= 0.1))
     throw nb::value_error(("lattice_step: expected 0.0001 to 0.1 hexagonal spacings, got " + std::to_string(lattice_step)).c_str());
   check_whole("seam_steps", seam_steps, 0, 100000);
@@ -85,6 +86,7 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
   w.level.period = period;
   w.level.edge_margin = margin;
   w.level.lattice_iterations = lattice_steps;
+  w.level.lattice_steps_per_iteration = lattice_steps_per_iteration;
   w.level.lattice_step = lattice_step;
   w.level.seam_iterations = seam_steps;
   w.level.seam_spacing = seam_spacing;
@@ -97,7 +99,8 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
     tiles.header.push_back("made by: pybluetile.wang_tiles(set='" + set + "', points=" + std::to_string(points) +
                            ", iterations=" + std::to_string(iterations) + ", warm=" + std::to_string(warm) +
                            ", levels=" + std::to_string(levels) + ", strategy='" + strategy +
-                           "', lattice_steps=" + std::to_string(lattice_steps) + ", seam_steps=" + std::to_string(seam_steps) + ", seed=" + std::to_string(seed) + ", engine='" + engine + "')");
+                           "', lattice_steps=" + std::to_string(lattice_steps) +
+                           ", lattice_steps_per_iteration=" + std::to_string(lattice_steps_per_iteration) + ", seam_steps=" + std::to_string(seam_steps) + ", seed=" + std::to_string(seed) + ", engine='" + engine + "')");
     text = bluetile::format_tile_set(tiles);
   }
   return text;
@@ -222,10 +225,10 @@ void bind_tiling(nb::module_& m) {
   m.def("wang_tiles", &wang_tiles,
         nb::sig("def wang_tiles(set: str = 'wang8', *, points: int = 52, iterations: int = 50, warm: int = 10, "
                 "levels: int = 1, ratio: float = 2.0, strategy: str = 'exact', period: int = 16, margin: float = 0.0, "
-                "lattice_steps: int = 10, lattice_step: float = 0.005, seam_steps: int = 20, seam_spacing: float = 0.8, level_seam_spacing: float = 0.65, "
+                "lattice_steps: int = 5, lattice_steps_per_iteration: int = 1, lattice_step: float = 0.005, seam_steps: int = 20, seam_spacing: float = 0.8, level_seam_spacing: float = 0.65, "
                 "seed: int = 1, engine: str = 'exact') -> str"),
         "set"_a = "wang8", nb::kw_only(), "points"_a = 52, "iterations"_a = 50, "warm"_a = 10, "levels"_a = 1,
-        "ratio"_a = 2.0, "strategy"_a = "exact", "period"_a = 16, "margin"_a = 0.0, "lattice_steps"_a = 10, "lattice_step"_a = 0.005, "seam_steps"_a = 20,
+        "ratio"_a = 2.0, "strategy"_a = "exact", "period"_a = 16, "margin"_a = 0.0, "lattice_steps"_a = 5, "lattice_steps_per_iteration"_a = 1, "lattice_step"_a = 0.005, "seam_steps"_a = 20,
         "seam_spacing"_a = 0.8, "level_seam_spacing"_a = 0.65, "seed"_a = 1, "engine"_a = "exact",
         R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same
 points bit for bit), returned as the text of its tile-set file: write it to a file for

@@ -43,6 +43,7 @@ struct WangCommandOptions {
   double margin = 0.0;
   // Defaults of the library (wang_relax.h): the seam spacing step after each level.
   int lattice_steps = WangLevelOptions{}.lattice_iterations;
+  int lattice_per_iteration = WangLevelOptions{}.lattice_steps_per_iteration;
   double lattice_step = WangLevelOptions{}.lattice_step;
   int seam_steps = WangLevelOptions{}.seam_iterations;
   double seam_spacing = WangLevelOptions{}.seam_spacing;
@@ -127,6 +128,7 @@ void run_wang(const WangCommandOptions& o) {
   w.level.period = o.period;
   w.level.edge_margin = o.margin;
   w.level.lattice_iterations = o.lattice_steps;
+  w.level.lattice_steps_per_iteration = o.lattice_per_iteration;
   w.level.lattice_step = o.lattice_step;
   w.level.seam_iterations = o.seam_steps;
   w.level.seam_spacing = o.seam_spacing;
@@ -155,8 +157,8 @@ void run_wang(const WangCommandOptions& o) {
   command << " --strategy " << o.strategy;
   if (o.strategy == "instances") command << " --period " << o.period;
   if (o.margin > 0.0) command << " --margin " << o.margin;
-  command << " --lattice-steps " << o.lattice_steps;
-  if (o.lattice_steps > 0) command << " --lattice-step " << o.lattice_step;
+  command << " --lattice-steps " << o.lattice_steps << " --lattice-steps-per-iteration " << o.lattice_per_iteration;
+  if (o.lattice_steps > 0 || o.lattice_per_iteration > 0) command << " --lattice-step " << o.lattice_step;
   command << " --seam-steps " << o.seam_steps;
   if (o.seam_steps > 0) {
     command << " --seam-spacing " << o.seam_spacing;
@@ -412,6 +414,11 @@ void add_wang_command(CLI::App& app) {
                   "Lattice decorrelation after each level's iterations: gradient steps that lower the tile-lattice "
                   "peaks C_LF (and, in level 0, C_mid) (0: none)")
       ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_option("--lattice-steps-per-iteration", o->lattice_per_iteration,
+                  "Lattice steps after each constrained iteration of the second half, which Lloyd's next iteration "
+                  "repairs (0: none)")
+      ->check(CLI::Range(0, 1000))
       ->capture_default_str();
   cmd->add_option("--lattice-step", o->lattice_step, "Largest move of one lattice step, in hexagonal spacings")
       ->check(CLI::Range(0.0001, 0.1))

@@ -96,6 +96,10 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
 
   WangReach reach;
   const std::size_t moving = points.moving_count();
+  LatticeDecorrelationOptions lattice;
+  lattice.step = options.lattice_step;
+  lattice.mid_band = level == 0;
+  lattice.edge_margin = options.edge_margin;
   for (int it = 1; it <= options.iterations; ++it) {
     WangStepOptions step_options;
     step_options.strategy = options.strategy;
@@ -123,15 +127,17 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
       }
     }
     log.mean_displacement = moved_sum / static_cast<double>(moving * points.tiles.size());
+    // Interleaved lattice steps in the second half: Lloyd's next iteration repairs what they
+    // cost in low frequencies.
+    if (2 * it > options.iterations && options.lattice_steps_per_iteration > 0) {
+      lattice.iterations = options.lattice_steps_per_iteration;
+      decorrelate_lattice(points, lattice);
+    }
     if (options.on_iteration) options.on_iteration(log);
   }
 
   if (options.lattice_iterations > 0) {
-    LatticeDecorrelationOptions lattice;
     lattice.iterations = options.lattice_iterations;
-    lattice.step = options.lattice_step;
-    lattice.mid_band = level == 0;
-    lattice.edge_margin = options.edge_margin;
     decorrelate_lattice(points, lattice);
   }
   if (options.seam_iterations > 0) {

@@ -47,9 +47,12 @@ struct WangLevelOptions {
   // squeezed between fixed ones, cannot all reach 0.80 (a target they cannot reach leaves them
   // worse spread than a lower one). With these defaults wang8 sets of 13 and 52 points reach
   // seamX 0.80 and X/W 1.00 with their low-frequency power unchanged (docs/RESULTS.md, Wang tiles).
-  // Lattice decorrelation before it (wang_lattice.h): this many gradient steps (0: none) of
-  // at most lattice_step hexagonal spacings, over the low band and, in level 0, the mid band.
-  int lattice_iterations = 10;
+  // Lattice decorrelation (wang_lattice.h): gradient steps of at most lattice_step hexagonal
+  // spacings over the low band and, in level 0, the mid band: lattice_steps_per_iteration after
+  // each constrained iteration of the second half, then lattice_iterations after the last
+  // (0: none), before the seam spacing.
+  int lattice_steps_per_iteration = 1;
+  int lattice_iterations = 5;
   double lattice_step = 0.005;
   int seam_iterations = 20;
   double seam_spacing = 0.80;
