@@ -41,7 +41,7 @@ struct WangCommandOptions {
   std::string strategy = "exact";
   int period = 16;
   double margin = 0.0;
-  // Defaults of the library (wang_relax.h): the seam spacing step after each level.
+  // Defaults of the library (wang_relax.h): the lattice and seam spacing steps of each level.
   int lattice_steps = WangLevelOptions{}.lattice_iterations;
   int lattice_per_iteration = WangLevelOptions{}.lattice_steps_per_iteration;
   double lattice_step = WangLevelOptions{}.lattice_step;

@@ -41,19 +41,19 @@ struct WangLevelOptions {
   std::uint64_t seed = 1;     // this level's seed (placement, instances, rounds)
   // Points are kept this far inside their tile square (tile units; 0: anywhere in [0,1)).
   double edge_margin = 0.0;
-  // Seam spacing after the constrained iterations (wang_seams.h): this many repulsion steps
-  // (0: none) for pairs closer than the spacing, in hexagonal spacings of the tile's points:
-  // seam_spacing in level 0, later_seam_spacing in the levels after it, whose new points,
-  // squeezed between fixed ones, cannot all reach 0.80 (a target they cannot reach leaves them
-  // worse spread than a lower one). With these defaults wang8 sets of 13 and 52 points reach
-  // seamX 0.80 and X/W 1.00 with their low-frequency power unchanged (docs/RESULTS.md, Wang tiles).
   // Lattice decorrelation (wang_lattice.h): gradient steps of at most lattice_step hexagonal
   // spacings over the low band and, in level 0, the mid band: lattice_steps_per_iteration after
   // each constrained iteration of the second half, then lattice_iterations after the last
-  // (0: none), before the seam spacing.
+  // (0: none). At 52 points per tile they take C_mid from 30 to 17 (docs/RESULTS.md, Wang tiles).
   int lattice_steps_per_iteration = 1;
   int lattice_iterations = 5;
   double lattice_step = 0.005;
+  // Seam spacing after them (wang_seams.h): this many repulsion steps (0: none) for pairs closer
+  // than the spacing, in hexagonal spacings of the tile's points: seam_spacing in level 0,
+  // later_seam_spacing in the levels after it, whose new points, squeezed between fixed ones,
+  // cannot all reach 0.80 (a target they cannot reach leaves them worse spread than a lower
+  // one). With these defaults wang8 sets of 13 and 52 points reach seamX 0.80 and X/W 1.00 with
+  // their low-frequency power unchanged.
   int seam_iterations = 20;
   double seam_spacing = 0.80;
   double later_seam_spacing = 0.65;
