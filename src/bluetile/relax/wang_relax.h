@@ -2,7 +2,10 @@
 // 2001, section 3). Every tile of a set holds a point set; the sets are relaxed together, each
 // point moving by the mean of its Lloyd displacements over the configurations of neighbouring
 // tiles its tile can be placed in (wang_step.h), so that any two tiles whose edges fit sit side by
-// side without a seam. Jacobi steps; a point never leaves its own tile square.
+// side without a seam. Jacobi steps; a point never leaves its own tile square. Two short steps
+// refine what the averaging leaves: lattice decorrelation (wang_lattice.h) against the peaks a
+// tiling puts on the tile lattice, and seam spacing (wang_seams.h) for the closest pairs across
+// seams.
 //
 // Levels (hierarchical sets that tile): level 0 is relaxed as above; each further level adds
 // points to every tile, relaxed around the fixed earlier levels of its own tile and of its
