@@ -35,9 +35,10 @@ struct WangIteration {
 
 struct WangLevelOptions {
   std::size_t add = 0;        // points each tile gains in this level (>= 1)
-  // Constrained iterations: 50 bring the low frequencies of 52-point tiles to untiled Lloyd's
-  // level; more make the tiles phase-lock (lattice peaks grow), which the lattice step offsets.
-  int iterations = 50;
+  // Constrained iterations: 100 bring the low frequencies of 52-point tiles below untiled
+  // Lloyd's; they also make the tiles phase-lock (lattice peaks grow), which the interleaved
+  // lattice steps offset (docs/RESULTS.md, Wang tiles).
+  int iterations = 100;
   int warm_iterations = 10;   // periodic iterations of each tile alone before them (0: none)
   WangStrategy strategy = WangStrategy::exact;
   int period = 16;            // instances: torus tiling size
@@ -47,8 +48,8 @@ struct WangLevelOptions {
   // Lattice decorrelation (wang_lattice.h): gradient steps of at most lattice_step hexagonal
   // spacings over the low band and, in level 0, the mid band: lattice_steps_per_iteration after
   // each constrained iteration of the second half, then lattice_iterations after the last
-  // (0: none). At 52 points per tile they take C_mid from 30 to 17 (docs/RESULTS.md, Wang tiles).
-  int lattice_steps_per_iteration = 1;
+  // (0: none). At 52 points per tile they take C_mid from 30-40 to 8 (docs/RESULTS.md, Wang tiles).
+  int lattice_steps_per_iteration = 3;
   int lattice_iterations = 5;
   double lattice_step = 0.005;
   // Seam spacing after them (wang_seams.h): this many repulsion steps (0: none) for pairs closer
