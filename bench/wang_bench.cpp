@@ -49,12 +49,7 @@ struct Options {
   int iterations = WangLevelOptions{}.iterations;
   int warm = 10;
   double margin = 0.0;
-  int lattice_iterations = WangLevelOptions{}.lattice_iterations;
-  int lattice_per_iteration = WangLevelOptions{}.lattice_steps_per_iteration;
-  double lattice_step = WangLevelOptions{}.lattice_step;
-  int seam_iterations = WangLevelOptions{}.seam_iterations;
-  double seam_spacing = WangLevelOptions{}.seam_spacing;
-  double level_seam_spacing = WangLevelOptions{}.later_seam_spacing;
+  WangRefinement refine;  // the library's defaults
   int levels = 1;
   double ratio = 2.0;
   int prefixes = 8;   // levels mode: prefixes measured between two level boundaries
@@ -92,12 +87,7 @@ WangOptions wang_options(const Options& o, const std::string& kind, std::size_t 
   w.level.warm_iterations = o.warm;
   w.level.strategy = strategy_of(strategy);
   w.level.edge_margin = o.margin;
-  w.level.seam_iterations = o.seam_iterations;
-  w.level.lattice_iterations = o.lattice_iterations;
-  w.level.lattice_steps_per_iteration = o.lattice_per_iteration;
-  w.level.lattice_step = o.lattice_step;
-  w.level.seam_spacing = o.seam_spacing;
-  w.level.later_seam_spacing = o.level_seam_spacing;
+  w.level.refine = o.refine;
   return w;
 }
 
@@ -334,13 +324,13 @@ int main(int argc, char** argv) {
   app.add_option("--iterations", o.iterations, "Constrained iterations per level");
   app.add_option("--warm", o.warm, "Warm-start iterations per level");
   app.add_option("--margin", o.margin, "Edge margin (tile units)");
-  app.add_option("--lattice-steps", o.lattice_iterations, "Lattice decorrelation steps after each level (0: none)");
-  app.add_option("--lattice-steps-per-iteration", o.lattice_per_iteration,
+  app.add_option("--lattice-steps", o.refine.lattice_iterations, "Lattice decorrelation steps after each level (0: none)");
+  app.add_option("--lattice-steps-per-iteration", o.refine.lattice_steps_per_iteration,
                  "Lattice steps after each constrained iteration of the second half (0: none)");
-  app.add_option("--lattice-step", o.lattice_step, "Largest move of a lattice step, in hexagonal spacings");
-  app.add_option("--seam-steps", o.seam_iterations, "Seam spacing steps after each level (0: none)");
-  app.add_option("--seam-spacing", o.seam_spacing, "Seam spacing of level 0, in hexagonal spacings");
-  app.add_option("--level-seam-spacing", o.level_seam_spacing, "Seam spacing of levels 1 and up, in hexagonal spacings");
+  app.add_option("--lattice-step", o.refine.lattice_step, "Largest move of a lattice step, in hexagonal spacings");
+  app.add_option("--seam-steps", o.refine.seam_iterations, "Seam spacing steps after each level (0: none)");
+  app.add_option("--seam-spacing", o.refine.seam_spacing, "Seam spacing of level 0, in hexagonal spacings");
+  app.add_option("--level-seam-spacing", o.refine.later_seam_spacing, "Seam spacing of levels 1 and up, in hexagonal spacings");
   app.add_option("--levels", o.levels, "Levels");
   app.add_option("--ratio", o.ratio, "Level ratio");
   app.add_option("--prefixes", o.prefixes, "levels mode: prefixes per level");

@@ -126,8 +126,8 @@ WangPoints started_points(TileSetKind kind, std::size_t n, std::uint64_t seed, i
   level.add = n;
   level.iterations = 0;
   level.warm_iterations = warm;
-  level.lattice_iterations = 0;  // tiles relaxed alone, nothing after
-  level.seam_iterations = 0;
+  level.refine.lattice_iterations = 0;  // tiles relaxed alone, nothing after
+  level.refine.seam_iterations = 0;
   level.seed = seed;
   add_wang_level(engine, set, level);
   WangPoints points;

@@ -168,8 +168,8 @@ TEST(WangSets, ConstraintsLiftTheSeamFarAboveTilesRelaxedAlone) {
     WangOptions constrained = small_options(TileSetKind::wang8, 13, seed);
     WangOptions alone = constrained;
     alone.level.iterations = 0;
-    alone.level.seam_iterations = 0;  // the seam spacing step alone lifts seams too (next test)
-    constrained.level.seam_iterations = 0;
+    alone.level.refine.seam_iterations = 0;  // the seam spacing step alone lifts seams too (next test)
+    constrained.level.refine.seam_iterations = 0;
     TileSet with = relax_wang_tiles(engine, constrained);
     TileSet without = relax_wang_tiles(engine, alone);
     validate_tile_set(with);
@@ -187,7 +187,7 @@ TEST(WangSeams, SpacingLiftsTheSeamAndKeepsTheLowFrequencies) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     WangOptions with_steps = small_options(TileSetKind::wang8, 13, seed);
     WangOptions without_steps = with_steps;
-    without_steps.level.seam_iterations = 0;
+    without_steps.level.refine.seam_iterations = 0;
     const TileSet with = relax_wang_tiles(engine, with_steps);
     const TileSet without = relax_wang_tiles(engine, without_steps);
     const SeamLevel seam_with = check_seams(with).levels[0], seam_without = check_seams(without).levels[0];
@@ -246,8 +246,8 @@ TEST(WangLattice, StepsLowerTheLatticePeaksAndKeepTheSeams) {
   for (std::uint64_t seed = 1; seed <= 3; ++seed) {
     WangOptions with_steps = small_options(TileSetKind::wang8, 52, seed);
     WangOptions without_steps = with_steps;
-    without_steps.level.lattice_iterations = 0;
-    without_steps.level.lattice_steps_per_iteration = 0;
+    without_steps.level.refine.lattice_iterations = 0;
+    without_steps.level.refine.lattice_steps_per_iteration = 0;
     const TileSet with = relax_wang_tiles(engine, with_steps);
     const TileSet without = relax_wang_tiles(engine, without_steps);
     auto level_points = [](const TileSet& set) {

@@ -85,12 +85,12 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
   w.level.strategy = strategy_named(strategy);
   w.level.period = period;
   w.level.edge_margin = margin;
-  w.level.lattice_iterations = lattice_steps;
-  w.level.lattice_steps_per_iteration = lattice_steps_per_iteration;
-  w.level.lattice_step = lattice_step;
-  w.level.seam_iterations = seam_steps;
-  w.level.seam_spacing = seam_spacing;
-  w.level.later_seam_spacing = level_seam_spacing;
+  w.level.refine = {.lattice_steps_per_iteration = lattice_steps_per_iteration,
+                    .lattice_iterations = lattice_steps,
+                    .lattice_step = lattice_step,
+                    .seam_iterations = seam_steps,
+                    .seam_spacing = seam_spacing,
+                    .later_seam_spacing = level_seam_spacing};
   std::string text;
   {
     nb::gil_scoped_release release;

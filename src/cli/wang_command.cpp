@@ -41,13 +41,7 @@ struct WangCommandOptions {
   std::string strategy = "exact";
   int period = 16;
   double margin = 0.0;
-  // Defaults of the library (wang_relax.h): the lattice and seam spacing steps of each level.
-  int lattice_steps = WangLevelOptions{}.lattice_iterations;
-  int lattice_per_iteration = WangLevelOptions{}.lattice_steps_per_iteration;
-  double lattice_step = WangLevelOptions{}.lattice_step;
-  int seam_steps = WangLevelOptions{}.seam_iterations;
-  double seam_spacing = WangLevelOptions{}.seam_spacing;
-  double level_seam_spacing = WangLevelOptions{}.later_seam_spacing;
+  WangRefinement refine;  // the lattice and seam spacing steps, the library's defaults
   std::uint64_t seed = 1;
   std::string output;
   bool check = false;
@@ -127,12 +121,7 @@ void run_wang(const WangCommandOptions& o) {
   w.level.strategy = parse_strategy(o.strategy);
   w.level.period = o.period;
   w.level.edge_margin = o.margin;
-  w.level.lattice_iterations = o.lattice_steps;
-  w.level.lattice_steps_per_iteration = o.lattice_per_iteration;
-  w.level.lattice_step = o.lattice_step;
-  w.level.seam_iterations = o.seam_steps;
-  w.level.seam_spacing = o.seam_spacing;
-  w.level.later_seam_spacing = o.level_seam_spacing;
+  w.level.refine = o.refine;
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
 
   auto engine = make_engine(o.engine);
@@ -157,12 +146,14 @@ void run_wang(const WangCommandOptions& o) {
   command << " --strategy " << o.strategy;
   if (o.strategy == "instances") command << " --period " << o.period;
   if (o.margin > 0.0) command << " --margin " << o.margin;
-  command << " --lattice-steps " << o.lattice_steps << " --lattice-steps-per-iteration " << o.lattice_per_iteration;
-  if (o.lattice_steps > 0 || o.lattice_per_iteration > 0) command << " --lattice-step " << o.lattice_step;
-  command << " --seam-steps " << o.seam_steps;
-  if (o.seam_steps > 0) {
-    command << " --seam-spacing " << o.seam_spacing;
-    if (o.levels > 1) command << " --level-seam-spacing " << o.level_seam_spacing;
+  const WangRefinement& r = o.refine;
+  command << " --lattice-steps " << r.lattice_iterations << " --lattice-steps-per-iteration "
+          << r.lattice_steps_per_iteration;
+  if (r.lattice_iterations > 0 || r.lattice_steps_per_iteration > 0) command << " --lattice-step " << r.lattice_step;
+  command << " --seam-steps " << r.seam_iterations;
+  if (r.seam_iterations > 0) {
+    command << " --seam-spacing " << r.seam_spacing;
+    if (o.levels > 1) command << " --level-seam-spacing " << r.later_seam_spacing;
   }
   command << " --seed " << o.seed << " --engine " << engine->name();
   set.header = {"made by: " + command.str()};
@@ -410,28 +401,28 @@ void add_wang_command(CLI::App& app) {
   cmd->add_option("--margin", o->margin, "Keep points this far inside their tile (tile units)")
       ->check(CLI::Range(0.0, 0.25))
       ->capture_default_str();
-  cmd->add_option("--lattice-steps", o->lattice_steps,
+  cmd->add_option("--lattice-steps", o->refine.lattice_iterations,
                   "Lattice decorrelation after each level's iterations: gradient steps that lower the tile-lattice "
                   "peaks C_LF (and, in level 0, C_mid) (0: none)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
-  cmd->add_option("--lattice-steps-per-iteration", o->lattice_per_iteration,
+  cmd->add_option("--lattice-steps-per-iteration", o->refine.lattice_steps_per_iteration,
                   "Lattice steps after each constrained iteration of the second half, which Lloyd's next iteration "
                   "repairs (0: none)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-  cmd->add_option("--lattice-step", o->lattice_step, "Largest move of one lattice step, in hexagonal spacings")
+  cmd->add_option("--lattice-step", o->refine.lattice_step, "Largest move of one lattice step, in hexagonal spacings")
       ->check(CLI::Range(0.0001, 0.1))
       ->capture_default_str();
-  cmd->add_option("--seam-steps", o->seam_steps,
+  cmd->add_option("--seam-steps", o->refine.seam_iterations,
                   "Seam spacing after each level's iterations: repulsion steps for points closer than the spacing to a "
                   "point they can meet in a tiling (0: none)")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
-  cmd->add_option("--seam-spacing", o->seam_spacing, "Seam spacing of level 0, in hexagonal spacings of the tile's points")
+  cmd->add_option("--seam-spacing", o->refine.seam_spacing, "Seam spacing of level 0, in hexagonal spacings of the tile's points")
       ->check(CLI::Range(0.01, 2.0))
       ->capture_default_str();
-  cmd->add_option("--level-seam-spacing", o->level_seam_spacing,
+  cmd->add_option("--level-seam-spacing", o->refine.later_seam_spacing,
                   "Seam spacing of levels 1 and up, in hexagonal spacings of the tile's points")
       ->check(CLI::Range(0.01, 2.0))
       ->capture_default_str();

@@ -97,7 +97,7 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
   WangReach reach;
   const std::size_t moving = points.moving_count();
   LatticeDecorrelationOptions lattice;
-  lattice.step = options.lattice_step;
+  lattice.step = options.refine.lattice_step;
   lattice.mid_band = level == 0;
   lattice.edge_margin = options.edge_margin;
   for (int it = 1; it <= options.iterations; ++it) {
@@ -129,21 +129,21 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
     log.mean_displacement = moved_sum / static_cast<double>(moving * points.tiles.size());
     // Interleaved lattice steps in the second half: Lloyd's next iteration repairs what they
     // cost in low frequencies.
-    if (2 * it > options.iterations && options.lattice_steps_per_iteration > 0) {
-      lattice.iterations = options.lattice_steps_per_iteration;
+    if (2 * it > options.iterations && options.refine.lattice_steps_per_iteration > 0) {
+      lattice.iterations = options.refine.lattice_steps_per_iteration;
       decorrelate_lattice(points, lattice);
     }
     if (options.on_iteration) options.on_iteration(log);
   }
 
-  if (options.lattice_iterations > 0) {
-    lattice.iterations = options.lattice_iterations;
+  if (options.refine.lattice_iterations > 0) {
+    lattice.iterations = options.refine.lattice_iterations;
     decorrelate_lattice(points, lattice);
   }
-  if (options.seam_iterations > 0) {
+  if (options.refine.seam_iterations > 0) {
     SeamSpacingOptions spacing;
-    spacing.iterations = options.seam_iterations;
-    const double relative = level == 0 ? options.seam_spacing : options.later_seam_spacing;
+    spacing.iterations = options.refine.seam_iterations;
+    const double relative = level == 0 ? options.refine.seam_spacing : options.refine.later_seam_spacing;
     spacing.spacing = relative * hexagonal_spacing(static_cast<double>(points.tiles[0].size()));
     spacing.edge_margin = options.edge_margin;
     space_seams(rules, points, spacing);

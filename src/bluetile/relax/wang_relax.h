@@ -33,18 +33,8 @@ struct WangIteration {
   std::size_t scenes = 0, cells = 0, regrown = 0;
 };
 
-struct WangLevelOptions {
-  std::size_t add = 0;        // points each tile gains in this level (>= 1)
-  // Constrained iterations: 100 bring the low frequencies of 52-point tiles below untiled
-  // Lloyd's; they also make the tiles phase-lock (lattice peaks grow), which the interleaved
-  // lattice steps offset (docs/RESULTS.md, Wang tiles).
-  int iterations = 100;
-  int warm_iterations = 10;   // periodic iterations of each tile alone before them (0: none)
-  WangStrategy strategy = WangStrategy::exact;
-  int period = 16;            // instances: torus tiling size
-  std::uint64_t seed = 1;     // this level's seed (placement, instances, rounds)
-  // Points are kept this far inside their tile square (tile units; 0: anywhere in [0,1)).
-  double edge_margin = 0.0;
+// The two steps that refine a level after (and during) its constrained iterations.
+struct WangRefinement {
   // Lattice decorrelation (wang_lattice.h): gradient steps of at most lattice_step hexagonal
   // spacings over the low band and, in level 0, the mid band: lattice_steps_per_iteration after
   // each constrained iteration of the second half, then lattice_iterations after the last
@@ -61,6 +51,21 @@ struct WangLevelOptions {
   int seam_iterations = 20;
   double seam_spacing = 0.80;
   double later_seam_spacing = 0.65;
+};
+
+struct WangLevelOptions {
+  std::size_t add = 0;        // points each tile gains in this level (>= 1)
+  // Constrained iterations: 100 bring the low frequencies of 52-point tiles below untiled
+  // Lloyd's; they also make the tiles phase-lock (lattice peaks grow), which the interleaved
+  // lattice steps offset (docs/RESULTS.md, Wang tiles).
+  int iterations = 100;
+  int warm_iterations = 10;   // periodic iterations of each tile alone before them (0: none)
+  WangStrategy strategy = WangStrategy::exact;
+  int period = 16;            // instances: torus tiling size
+  std::uint64_t seed = 1;     // this level's seed (placement, instances, rounds)
+  // Points are kept this far inside their tile square (tile units; 0: anywhere in [0,1)).
+  double edge_margin = 0.0;
+  WangRefinement refine;  // the lattice and seam spacing steps
   std::function<void(const WangIteration&)> on_iteration;
 };
 
