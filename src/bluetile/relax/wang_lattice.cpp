@@ -107,8 +107,6 @@ void decorrelate_lattice(WangPoints& points, const LatticeDecorrelationOptions& 
   const std::vector<Frequency> fs = frequencies(n, options.mid_band);
   const double norm = 1.0 / static_cast<double>(points.tiles.size() * n);
   const double largest_move = options.step * hexagonal_spacing(static_cast<double>(n));
-  const double below_one = std::nextafter(1.0, 0.0);
-  auto clamp = [&](double x) { return std::clamp(x, options.edge_margin, std::min(1.0 - options.edge_margin, below_one)); };
   Phases phases(reach_of(fs));
   std::vector<Complex> weight(fs.size());
   std::vector<Point> gradient(points.tiles.size() * points.moving_count());
@@ -140,7 +138,7 @@ void decorrelate_lattice(WangPoints& points, const LatticeDecorrelationOptions& 
       for (std::size_t m = 0; m < points.moving_count(); ++m) {
         Point& p = points.tiles[t][points.moving_begin + m];
         const Point g = gradient[t * points.moving_count() + m];
-        p = {clamp(p.x - scale * g.x), clamp(p.y - scale * g.y)};
+        p = inside_tile(p - scale * g, options.edge_margin);
       }
   }
 }

@@ -14,13 +14,6 @@
 namespace bluetile {
 namespace {
 
-// The largest double below 1: tile-local coordinates live in [0, 1).
-const double kBelowOne = std::nextafter(1.0, 0.0);
-
-double clamp_coordinate(double x, double margin) {
-  return std::clamp(x, margin, std::min(1.0 - margin, kBelowOne));
-}
-
 int next_level(const TileSet& set) {
   int level = 0;
   for (const Tile& tile : set.tiles)
@@ -88,7 +81,7 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
   for (std::size_t t = 0; t < set.tiles.size(); ++t) {
     std::vector<Point> tile = set.tiles[t].points;
     std::vector<Point> added = place_new_points(tile, options.add, Placement::gaps, derive_seed(options.seed, t));
-    for (Point& p : added) p = {clamp_coordinate(p.x, options.edge_margin), clamp_coordinate(p.y, options.edge_margin)};
+    for (Point& p : added) p = inside_tile(p, options.edge_margin);
     tile.insert(tile.end(), added.begin(), added.end());
     points.tiles.push_back(std::move(tile));
   }
@@ -118,7 +111,7 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
       for (std::size_t m = 0; m < moving; ++m) {
         Point& p = points.tiles[t][existing + m];
         const Point target = p + step.displacement[t][m];
-        const Point moved{clamp_coordinate(target.x, options.edge_margin), clamp_coordinate(target.y, options.edge_margin)};
+        const Point moved = inside_tile(target, options.edge_margin);
         const Point d = moved - p;
         const double distance = std::sqrt(d.x * d.x + d.y * d.y);
         log.max_displacement = std::max(log.max_displacement, distance);

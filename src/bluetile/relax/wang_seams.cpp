@@ -51,7 +51,8 @@ class MeetingGrid {
   explicit MeetingGrid(double spacing) : spacing_(spacing), side_(static_cast<int>(std::ceil((1.0 + 2.0 * spacing) / spacing))) {}
 
   void fill(const std::vector<Neighbour>& neighbours, const TilePoints& tiles) {
-    buckets_.assign(static_cast<std::size_t>(side_ * side_), {});
+    buckets_.resize(static_cast<std::size_t>(side_ * side_));
+    for (std::vector<Entry>& bucket : buckets_) bucket.clear();  // keeps their storage for the next fill
     for (const Neighbour& n : neighbours) {
       const std::vector<Point>& pts = tiles[static_cast<std::size_t>(n.tile)];
       for (std::size_t k = 0; k < pts.size(); ++k) {
@@ -90,8 +91,6 @@ SeamSpacingResult space_seams(const TileRules& rules, WangPoints& points, const 
   const std::vector<std::vector<Neighbour>> neighbours = meeting_tiles(rules);
   const double tau = options.spacing;
   const double close_below = tau * (1.0 - 1e-9);
-  const double below_one = std::nextafter(1.0, 0.0);
-  auto clamp = [&](double x) { return std::clamp(x, options.edge_margin, std::min(1.0 - options.edge_margin, below_one)); };
   MeetingGrid grid(tau);
   std::vector<std::vector<Point>> push(points.tiles.size());
   // One point's pushes per (position, tile): points at one position in different tiles are
@@ -149,7 +148,7 @@ SeamSpacingResult space_seams(const TileRules& rules, WangPoints& points, const 
     for (std::size_t t = 0; t < points.tiles.size(); ++t)
       for (std::size_t m = 0; m < points.moving_count(); ++m) {
         Point& p = points.tiles[t][points.moving_begin + m];
-        p = {clamp(p.x + push[t][m].x), clamp(p.y + push[t][m].y)};
+        p = inside_tile(p + push[t][m], options.edge_margin);
       }
   }
   return result;

@@ -16,6 +16,9 @@
 // All scenes of a step go to the engine in one call (a second one only for regrown cells).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+
 #include <cstdint>
 #include <string_view>
 #include <vector>
@@ -29,6 +32,13 @@ namespace bluetile {
 enum class WangStrategy : std::uint8_t { exact, instances, rounds };
 
 std::string_view wang_strategy_name(WangStrategy strategy);
+
+// A tile-local coordinate kept in [margin, 1 - margin] and below 1 (tiles cover [0, 1)): where
+// every step of a level's relaxation leaves its moving points.
+inline Point inside_tile(Point p, double margin) {
+  const double top = std::min(1.0 - margin, std::nextafter(1.0, 0.0));
+  return {std::clamp(p.x, margin, top), std::clamp(p.y, margin, top)};
+}
 
 // The tiles' points while a level is relaxed, tile-local in [0,1)^2, one list per tile id, all of
 // the same size: points [moving_begin, size) of each tile move (the level being relaxed), earlier
