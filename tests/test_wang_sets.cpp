@@ -450,6 +450,16 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
   EXPECT_NE(ratio.exit_code, 0);
   EXPECT_NE(ratio.err.find("--ratio"), std::string::npos) << ratio.err;
   EXPECT_FALSE(std::filesystem::exists(never));
+  // The refining steps' options refuse nonsense by name, and nothing is written.
+  for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
+           {"--seam-spacing", "5"}, {"--level-seam-spacing", "0"}, {"--seam-steps", "-1"},
+           {"--lattice-step", "0.5"}, {"--lattice-steps", "-2"}, {"--lattice-steps-per-iteration", "x"}}) {
+    test::CommandResult refused_option =
+        test::run_bluetile({"wang", "--points", "4", option, value, "--engine", "exact", "--output", never});
+    EXPECT_NE(refused_option.exit_code, 0) << option;
+    EXPECT_NE(refused_option.err.find(option), std::string::npos) << refused_option.err;
+    EXPECT_FALSE(std::filesystem::exists(never)) << option;
+  }
 }
 
 }  // namespace

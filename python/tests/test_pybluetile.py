@@ -172,6 +172,12 @@ def test_bad_input_raises_clear_exceptions(tool, tmp_path):
         bt.relax(count=10, engine="gpu")
     with pytest.raises(ValueError, match="give either points or count"):
         bt.relax()
+    with pytest.raises(ValueError, match="seam_spacing: expected 0.01 to 2 hexagonal spacings, got 5"):
+        bt.wang_tiles(points=4, seam_spacing=5)
+    with pytest.raises(ValueError, match="lattice_step: expected 0.0001 to 0.1 hexagonal spacings, got 0.5"):
+        bt.wang_tiles(points=4, lattice_step=0.5)
+    with pytest.raises(ValueError, match="lattice_steps_per_iteration"):
+        bt.wang_tiles(points=4, lattice_steps_per_iteration=-1)
     # float32 input is taken exactly; a strided view is read as it is.
     pts32 = bt.random_points(30).astype(np.float32)
     assert np.array_equal(bt.relax(pts32, iterations=0, engine="exact"), pts32.astype(np.float64))
