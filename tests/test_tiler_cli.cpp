@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <sstream>
 
@@ -153,6 +154,46 @@ TEST(TileCommand, DensityMapFromAnImageSetsTheCountsPerRegion) {
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 96; ++x) dark_left += 1.0 - png.pixel(x, y).r, dark_right += 1.0 - png.pixel(255 - x, y).r;
   EXPECT_GT(dark_left, 2.5 * dark_right);
+}
+
+TEST(TileCommand, SvgDotsFillTheViewBoxAtTheWindowsPlace) {
+  // A 16 x 4 window not at the origin: every dot, mapped through its group's matrix, lies inside
+  // the view box 0 0 16 4 at (x - x0, y1 - y), and the dots reach all four sides.
+  TempDir dir;
+  auto r = run_bluetile({"tile", "--region", "-3", "2", "13", "6", "--density", "40", "-o", dir.file("out.txt"),
+                         "-o", dir.file("out.svg")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto rows = data_rows(read_text(dir.file("out.txt")));
+  std::string error;
+  auto svg = test::parse_xml(read_text(dir.file("out.svg")), &error);
+  ASSERT_TRUE(svg) << error;
+  ASSERT_EQ(svg->attributes.at("viewBox"), "0 0 16 4");
+  const test::XmlElement* group = nullptr;
+  for (const auto* g : svg->find_all("g"))
+    if (!g->find_all("circle").empty()) group = g;
+  ASSERT_NE(group, nullptr);
+  double m[6];
+  ASSERT_EQ(std::sscanf(group->attributes.at("transform").c_str(), "matrix(%lf %lf %lf %lf %lf %lf)", &m[0], &m[1],
+                        &m[2], &m[3], &m[4], &m[5]),
+            6);
+  auto circles = group->find_all("circle");
+  ASSERT_EQ(circles.size(), rows.size());
+  double min_x = 1e9, max_x = -1e9, min_y = 1e9, max_y = -1e9;
+  for (std::size_t k = 0; k < circles.size(); ++k) {
+    double cx = circles[k]->number("cx"), cy = circles[k]->number("cy");
+    double x = m[0] * cx + m[2] * cy + m[4], y = m[1] * cx + m[3] * cy + m[5];
+    ASSERT_NEAR(x, rows[k][0] + 3.0, 1e-3) << k;
+    ASSERT_NEAR(y, 6.0 - rows[k][1], 1e-3) << k;
+    min_x = std::min(min_x, x), max_x = std::max(max_x, x), min_y = std::min(min_y, y), max_y = std::max(max_y, y);
+  }
+  EXPECT_GE(min_x, 0.0);
+  EXPECT_LT(min_x, 0.5);
+  EXPECT_LE(max_x, 16.0);
+  EXPECT_GT(max_x, 15.5);
+  EXPECT_GE(min_y, 0.0);
+  EXPECT_LT(min_y, 0.5);
+  EXPECT_LE(max_y, 4.0);
+  EXPECT_GT(max_y, 3.5);
 }
 
 TEST(TileCommand, DefaultTileSetIsBuiltInAndValid) {

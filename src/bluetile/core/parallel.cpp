@@ -137,7 +137,11 @@ class Pool {
 
 std::size_t thread_count() {
   std::size_t n = configured_threads.load();
-  return n ? n : default_thread_count();
+  if (n) return n;
+  // Asked once: glibc reads the online-CPU list from /proc on every hardware_concurrency() call,
+  // which cost 3x on runs with many short loops. An invalid BLUETILE_THREADS throws every time.
+  static const std::size_t machine_default = default_thread_count();
+  return machine_default;
 }
 
 void set_thread_count(std::size_t count) { configured_threads = std::max<std::size_t>(1, count); }

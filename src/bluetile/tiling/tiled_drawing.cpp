@@ -49,7 +49,8 @@ std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* t
   svg.set_title("bluetile tile");
   svg.rect(0.0, 0.0, window.width(), window.height(), SvgStyle::filled(colours::white));
   svg.begin_group(SvgStyle::filled(colours::black),
-                  SvgTransform::fit_y_up(window.x0, window.y0, window.width(), window.height(), 0.0, 0.0, 1.0, 1.0));
+                  SvgTransform::fit_y_up(window.x0, window.y0, window.width(), window.height(), 0.0, 0.0,
+                                         window.width(), window.height()));
   for_each_dot(tiler, window, thinning, style, [&](Point p, double r) { svg.circle(p, r); });
   svg.end_group();
   return svg.str();
