@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "bluetile/analysis/bond_order.h"
@@ -160,48 +161,73 @@ TEST(RadialDistribution, BitIdenticalWhateverTheThreadCount) {
   EXPECT_EQ(one.g, four.g);
 }
 
+// A spectrum on psa's sampling of N = 1024 points (du = sqrt(N) / 200, nu = u / sqrt(N)).
+RdfPowerSpectrum hand_made(const std::function<double(double)>& power_of_nu) {
+  RdfPowerSpectrum s;
+  s.count = 1024;
+  const std::size_t bins = psa_bins(s.count);
+  s.step = 0.5 * 1024.0 / static_cast<double>(bins);
+  for (std::size_t i = 0; i < bins; ++i) s.power.push_back(power_of_nu(s.nu(i)));
+  return s;
+}
+
 TEST(SpectralMeasures, HandMadeSpectra) {
-  std::vector<double> nu, step, peak, flat;
-  for (int i = 0; i <= 10000; ++i) {
-    const double v = i * 0.001;
-    nu.push_back(v);
-    step.push_back(v < 1.2 ? 0.0 : 1.0);                        // step blue noise, edge at 1.2
-    peak.push_back(v < 1.6 ? 0.0 : v < 2.0 ? 3.0 : 1.0);        // a zero region and one box peak
-    flat.push_back(1.0);                                         // white noise
-  }
-  SpectralMeasures s = spectral_measures(nu, step);
-  EXPECT_NEAR(s.nu_eff, 0.6, 1e-3);            // half the edge
-  EXPECT_NEAR(s.omega, 0.5 * 1.2, 2e-3);       // (0 - 1)^2 over the zero region, in nu / 2
-  EXPECT_DOUBLE_EQ(s.omega_range, 10.0);
-  s = spectral_measures(nu, peak);
-  EXPECT_NEAR(s.nu_eff, 0.8, 1e-3);
-  EXPECT_NEAR(s.omega, 0.5 * (1.6 + 4.0 * 0.4), 5e-3);
-  s = spectral_measures(nu, flat);
+  EXPECT_EQ(psa_bins(1024), 3200u);
+  // Step blue noise, edge at nu = 0.6: the disc's mean power 1 - (0.6 / nu)^2 is below 0.1 up to
+  // nu = 0.6 / sqrt(0.9); beyond the edge P = 1, so Omega = 0.
+  SpectralMeasures s = spectral_measures(hand_made([](double nu) { return nu < 0.6 ? 0.0 : 1.0; }));
+  // psa's left-sample sum of the disc's power runs ahead of the integral by about a sample.
+  EXPECT_NEAR(s.nu_eff, 0.6 / std::sqrt(0.9), 0.01);
+  EXPECT_NEAR(s.omega_from_nu, 0.6, 0.005);
+  EXPECT_NEAR(s.omega_to_nu, 5.6, 0.005);
+  EXPECT_NEAR(s.omega, 0.0, 1e-12);
+  // A box peak P = 3 over nu in [0.6, 0.8): Omega = 10 sqrt(4 (0.8^2 - 0.6^2) / (5.6^2 - 0.6^2)).
+  s = spectral_measures(hand_made([](double nu) { return nu < 0.6 ? 0.0 : nu < 0.8 ? 3.0 : 1.0; }));
+  EXPECT_NEAR(s.omega, 10.0 * std::sqrt(4.0 * (0.64 - 0.36) / (5.6 * 5.6 - 0.36)), 0.02 * 1.9);
+  // White noise: no zero region.
+  s = spectral_measures(hand_made([](double) { return 1.0; }));
   EXPECT_EQ(s.nu_eff, 0.0);
   EXPECT_EQ(s.omega, 0.0);
-  EXPECT_THROW(spectral_measures(std::vector<double>{1.0}, std::vector<double>{1.0}), Error);
+  RdfPowerSpectrum tiny;
+  tiny.count = 1024;
+  tiny.power = {1.0};
+  EXPECT_THROW(spectral_measures(tiny), Error);
+  EXPECT_THROW(rdf_power_spectrum(std::vector<Point>{{0.5, 0.5}}), Error);
   EXPECT_DOUBLE_EQ(normalised_frequency(16.0, 1024), 1.0);
 }
 
-TEST(SpectralMeasures, LatticesAndWhiteNoise) {
-  // A square lattice's spectrum is 0 up to its first peaks at |k| = sqrt(N): nu_eff = 1, within
-  // the half annulus the radial binning leaves (1 / 16 here).
-  Summary s = summarize_one(square_lattice(16), 48);
-  EXPECT_NEAR(s.measures.nu_eff, 1.0, 1.0 / 16.0);
+TEST(SpectralMeasures, BesselJ0AgreesWithTheStandardLibrary) {
+  double worst = 0.0;
+  for (int i = 0; i <= 20000; ++i) {
+    const double x = 0.01 * i;
+    worst = std::max(worst, std::abs(bessel_j0(x) - std::cyl_bessel_j(0.0, x)));
+  }
+  EXPECT_LT(worst, 1e-7);
+}
+
+TEST(SpectralMeasures, SameWhateverTheThreadCount) {
+  const auto points = uniform_points(900, 5);
+  set_thread_count(1);
+  const RdfPowerSpectrum one = rdf_power_spectrum(points);
+  set_thread_count(4);
+  const RdfPowerSpectrum four = rdf_power_spectrum(points);
+  set_thread_count(0);
+  EXPECT_EQ(one.power, four.power);
+}
+
+TEST(SpectralMeasures, LatticesAgreeWithPsa) {
+  // psa v1.1a (built from source, make HAVE_CGAL=0) on the same lattices written as psa .txt
+  // files (count line, then "x y" with 9 decimals): `psa square256.txt hex780.txt --stats`
+  // prints E-Nyq. 0.815 and 0.960, Osci. 5.088 and 9.747. psa's window blurs the first peak,
+  // so a square lattice's nu_eff is below the 1 of its zero region.
+  Summary s = summarize_one(square_lattice(16), 16);
+  EXPECT_NEAR(s.measures.nu_eff, 0.815, 0.01);
+  EXPECT_NEAR(s.measures.omega, 5.088, 0.02 * 5.088);
   EXPECT_NEAR(s.nn.rho(), std::sqrt(std::sqrt(3.0) / 2.0), 1e-12);  // a / d_hex
-  // The hexagonal lattice: first ring at |k| = sqrt(2 N / sqrt 3): nu_eff = 1.0746.
-  s = summarize_one(hexagonal_lattice(), 90);
-  EXPECT_NEAR(s.measures.nu_eff, std::sqrt(2.0 / std::sqrt(3.0)), 1.0 / std::sqrt(780.0));
+  s = summarize_one(hexagonal_lattice(), 16);
+  EXPECT_NEAR(s.measures.nu_eff, 0.960, 0.01);
+  EXPECT_NEAR(s.measures.omega, 9.747, 0.02 * 9.747);
   EXPECT_NEAR(s.nn.rho(), 1.0, 2e-3);
-  // White noise: no zero region, and Omega only the estimator's scatter.
-  SummaryOptions o;
-  o.centroids = false;
-  std::vector<std::vector<Point>> noise;
-  for (std::uint64_t seed = 1; seed <= 4; ++seed) noise.push_back(uniform_points(256, seed));
-  s = summarize(noise, o);
-  EXPECT_EQ(s.measures.nu_eff, 0.0);
-  EXPECT_DOUBLE_EQ(s.measures.omega_range, 10.0 - 0.5 / 8.0);  // the last annulus centre
-  EXPECT_LT(s.measures.omega, 0.05);
 }
 
 TEST(SpectralMeasures, RdfSpectrumAgreesWithThePeriodogram) {
@@ -217,18 +243,19 @@ TEST(SpectralMeasures, RdfSpectrumAgreesWithThePeriodogram) {
   RdfOptions fine;
   fine.bins = 256;
   const RadialDistribution rdf = radial_distribution(scene.sites, fine);
-  const SpectrumCurve implied = spectrum_from_rdf(rdf);
-  SpectralMeasures from_rdf = spectral_measures(implied.nu, implied.power);
-  EXPECT_GT(s.measures.omega, 1.5);
-  EXPECT_NEAR(from_rdf.omega, s.measures.omega, 0.08 * s.measures.omega);
-  // Beyond the peak both sit near 1: compare annulus by annulus over nu in [3, 9].
-  double worst = 0.0;
+  // Beyond the peak both sit near 1: compare annulus by annulus over nu in [3, 9], for the
+  // implied spectrum of the RDF above and for psa's windowed one (summary's rdf_power).
+  double worst = 0.0, worst_psa = 0.0;
   for (std::size_t i = 1; i < s.radial.size(); ++i) {
-    const double nu = s.nu(s.radial[i].frequency + 0.5);
+    const double f = s.radial[i].frequency + 0.5, nu = s.nu(f);
     if (nu < 3.0 || nu > 9.0) continue;
-    worst = std::max(worst, std::abs(power_from_rdf(rdf, s.radial[i].frequency + 0.5) - s.radial[i].power));
+    worst = std::max(worst, std::abs(power_from_rdf(rdf, f) - s.radial[i].power));
+    const auto sample = static_cast<std::size_t>(std::lround(f / s.rdf_power.step));
+    worst_psa = std::max(worst_psa, std::abs(s.rdf_power.power[sample] - s.radial[i].power));
   }
   EXPECT_LT(worst, 0.35);
+  EXPECT_LT(worst_psa, 0.35);
+  EXPECT_GT(s.measures.omega, 1.0);
 }
 
 TEST(BondOrder, LatticesHaveClosedFormOrder) {

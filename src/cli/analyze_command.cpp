@@ -134,9 +134,12 @@ nlohmann::json summary_json(const Summary& s) {
     j["mean_centroid_distance"] = s.centroid_distance;
     j["mean_centroid_distance_relative"] = s.centroid_distance / h;
   }
-  j["nu_eff"] = s.measures.nu_eff;
-  j["omega"] = s.measures.omega;
-  j["omega_range_nu"] = s.measures.omega_range;
+  if (s.has_spectral_measures) {
+    // psa's definitions, from the RDF-derived radial power (spectral_measures.h).
+    j["nu_eff"] = number(s.measures.nu_eff);
+    j["omega"] = number(s.measures.omega);
+    j["omega_range_nu"] = {s.measures.omega_from_nu, s.measures.omega_to_nu};
+  }
   if (s.has_bond_order) j["bond_order"] = {{"local", s.bond_order.local}, {"global", s.bond_order.global}};
   j["rdf_range_relative"] = s.rdf.range() / h;
   j["rdf_bins"] = s.rdf.g.size();
@@ -200,9 +203,11 @@ std::vector<std::pair<std::string, std::string>> measure_rows(const Summary& s) 
       {"rho = min NN distance / d_hex", fixed(s.nn.rho(), 4)},
       {"average min distance / d_hex", fixed(s.nn.rho_mean(), 4)},
       {"max NN distance / d_hex", fixed(s.nn.max / s.nn.hexagonal_spacing, 4)},
-      {"effective Nyquist frequency nu_eff", fixed(s.measures.nu_eff, 3)},
-      {"oscillations Omega", fixed(s.measures.omega, 3)},
   };
+  if (s.has_spectral_measures) {
+    rows.push_back({"effective Nyquist frequency nu_eff", fixed(s.measures.nu_eff, 3)});
+    rows.push_back({"oscillations Omega", fixed(s.measures.omega, 3)});
+  }
   if (s.has_bond_order) {
     rows.push_back({"bond order |psi6| (local)", fixed(s.bond_order.local, 3)});
     rows.push_back({"bond order |<psi6>| (global)", fixed(s.bond_order.global, 3)});
@@ -238,8 +243,11 @@ void report_series(std::ostringstream& out, const Series& series) {
         << fixed(1000 * s.nn_min_highest, 2) << " (x1000)\n";
   out << "  rho " << fixed(s.nn.rho(), 4) << ", average minimum distance " << fixed(s.nn.rho_mean(), 4)
       << " (in hexagonal spacings)\n";
-  out << "  effective Nyquist frequency nu_eff " << fixed(s.measures.nu_eff, 3) << ", oscillations Omega "
-      << fixed(s.measures.omega, 3) << " (nu = |k| / (sqrt(N) / 2); square lattice nu_eff = 1)\n";
+  if (s.has_spectral_measures)
+    out << "  effective Nyquist frequency nu_eff " << fixed(s.measures.nu_eff, 3) << ", oscillations Omega "
+        << fixed(s.measures.omega, 3) << " (psa's definitions, from the RDF)\n";
+  else
+    out << "  nu_eff, Omega: periodic sets only (psa's definitions measure torus distances)\n";
   if (s.has_bond_order)
     out << "  bond-orientational order: local |psi6| " << fixed(s.bond_order.local, 3) << ", global |<psi6>| "
         << fixed(s.bond_order.global, 3) << " (1 = hexagonal lattice)\n";
@@ -274,8 +282,10 @@ void report_table(std::ostringstream& out, const std::vector<Series>& series) {
   out << row;
   for (const Series& s : series) {
     const Summary& m = s.summary;
-    std::snprintf(row, sizeof row, "%-*s %8zu %8.4f %8.4f %8.3f %8.3f %8s\n", static_cast<int>(width), s.label.c_str(),
-                  m.count, m.nn.rho(), m.nn.rho_mean(), m.measures.nu_eff, m.measures.omega,
+    const std::string nu_eff = m.has_spectral_measures ? fixed(m.measures.nu_eff, 3) : "-";
+    const std::string omega = m.has_spectral_measures ? fixed(m.measures.omega, 3) : "-";
+    std::snprintf(row, sizeof row, "%-*s %8zu %8.4f %8.4f %8s %8s %8s\n", static_cast<int>(width), s.label.c_str(),
+                  m.count, m.nn.rho(), m.nn.rho_mean(), nu_eff.c_str(), omega.c_str(),
                   m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
     out << row;
   }

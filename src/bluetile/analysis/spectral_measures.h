@@ -1,53 +1,81 @@
 // Scalar measures of a radial power spectrum, after Heck, Schlömer and Deussen, "Blue noise
-// sampling with controlled aliasing" (ACM TOG 32(3), 2013), and psa, their analysis tool.
+// sampling with controlled aliasing" (ACM TOG 32(3), 2013), computed the way their analysis
+// tool psa (v1.1a, `psa --stats`) computes them, so figures paste beside psa's. The definitions
+// were read from psa's source (src/statistics.cpp); this is our own code. psa assumes the unit
+// torus, and so do these functions.
 //
-// Frequencies are normalised the way psa plots them: nu = f / (sqrt(N / A) / 2), f in integer
-// frequencies of the unit torus. nu = 1 is the Nyquist frequency of a square lattice of N
-// points, so curves of sets of different N overlay.
+// The spectrum is not the periodogram: psa derives it from a fine radial distribution function
+// (RDF) by a windowed Hankel transform. For N points, with B = int(100 sqrt N):
+// - RDF: pair distances on the torus in B bins of width dr = 0.5 / B over [0, 0.5), bin j
+//   divided by (N (N - 1) / 2) pi dr^2 (2 j + 1) (1 for white noise);
+// - power at B frequencies u_i = i du, du = sqrt(N) / 200 (integer frequencies, 0 to N / 2):
+//   P(u) = |1 + 2 pi N sum_j dr (g_j - 1) J0(2 pi u r_j) r_j w(r_j)|, r_j = j dr, and w a
+//   Blackman window of half-width L = 0.5 clamp(4 u / sqrt N, 0.2, 0.5) (it tames the RDF's
+//   truncation and noise: narrow at low frequencies, where nu_eff is decided).
+// Frequencies are reported as nu = u / sqrt(N): a square lattice's first peak lies at nu = 1.
 //
-// - Effective Nyquist frequency nu_eff: half the radius of the zero region (where the radial
-//   power stays below 0.1), as the Nyquist frequency is half the sampling rate: a signal below
-//   nu_eff is sampled without aliasing onto itself. A square lattice has nu_eff = 1 and the
-//   hexagonal lattice 1.0746 (its first ring of peaks lies at f = sqrt(2 N / sqrt 3)); white
-//   noise has 0. Step blue noise cannot exceed 1/sqrt(pi) = 0.564 (TOG 2013, section 5).
-// - Oscillations Omega: how far the spectrum strays from the flat white-noise level 1,
-//   Omega = integral of (P - 1)^2 over the signal frequency nu / 2 from 0 to 5 (psa's range,
-//   nu up to 10; fixed, so it does not depend on nu_eff, as in psa 1.1). White noise gives about
-//   0; peaks (structured aliasing) raise it.
-// Both are our reading of the published definitions; psa's code (GPL) was not consulted. See
-// docs/RESULTS.md ("Analysis measures") for how they compare with published values.
+// - Effective Nyquist frequency nu_eff: with C(u) the mean power over the disc of radius u,
+//   take the first u >= sqrt(N) / 2 where C exceeds 0.5; nu_eff is the last u' <= u where C is
+//   below 0.1, as nu (0 when there is none). White noise gives 0; a step spectrum with its edge
+//   at nu_e gives nu_e / sqrt(0.9); the window blurs a lattice's first peak, so a square
+//   lattice of 256 points gives 0.815, not the 1 of its zero region.
+// - Oscillations Omega: from u0, where the running maximum of P first reaches 0.98, to
+//   u1 = min(u0 + 5 sqrt N, N / 2): Omega = 10 sqrt(2 pi integral (P - 1)^2 u du / (pi (u1^2 -
+//   u0^2))), ten times the RMS deviation of P from 1 over that ring. psa's sampling of the
+//   grid (single-precision bin indices, its trapezoid rule) is kept, so figures agree to a bin.
+// See docs/RESULTS.md ("Analysis measures") for figures beside psa's.
 #pragma once
 
 #include <cstddef>
 #include <span>
 #include <vector>
 
-#include "bluetile/analysis/radial_power.h"
+#include "bluetile/core/torus.h"
 
 namespace bluetile {
 
-constexpr double kZeroRegionPower = 0.1;      // radial power that ends the zero region
-constexpr double kOscillationRangeNu = 10.0;  // Omega integrates up to nu = 10 (psa's frange)
-
-// f / (sqrt(N / A) / 2).
+// The Nyquist frequency of a square lattice: |k| = sqrt(N / A) / 2 in integer frequencies is
+// nu = 1 on the periodogram plots' axis (f / (sqrt(N / A) / 2)).
 double normalised_frequency(double frequency, std::size_t count, double area = 1.0);
+
+// psa's number of RDF bins and of spectrum samples, int(100 sqrt N).
+std::size_t psa_bins(std::size_t count);
+
+// The radial power spectrum of psa's statistics: power[i] at u_i = i * step (integer
+// frequencies of the unit torus), i < psa_bins(count).
+struct RdfPowerSpectrum {
+  std::size_t count = 0;  // points per set
+  std::size_t sets = 1;   // sets averaged
+  double step = 0.0;      // du = (N / 2) / psa_bins(N)
+  std::vector<double> power;
+
+  double frequency(std::size_t i) const { return static_cast<double>(i) * step; }
+  // u_i / sqrt(N): psa's normalisation of nu_eff.
+  double nu(std::size_t i) const;
+};
+
+// From one set on the unit torus (coordinates wrapped into [0, 1)). Throws Error for fewer than
+// 2 points. Same result whatever the thread count.
+RdfPowerSpectrum rdf_power_spectrum(std::span<const Point> points);
+
+// The mean power of several spectra of equal count (psa --avg). Throws Error for none or for
+// different counts.
+RdfPowerSpectrum average_spectra(std::span<const RdfPowerSpectrum> spectra);
 
 struct SpectralMeasures {
   double nu_eff = 0.0;
   double omega = 0.0;
-  double omega_range = 0.0;  // the nu up to which Omega could integrate (10 unless the curve ends earlier)
+  double omega_from_nu = 0.0;  // the ring Omega integrates over, u0 / sqrt(N) and u1 / sqrt(N)
+  double omega_to_nu = 0.0;
 };
 
-// From samples of a radial power curve: normalised frequencies `nu` (increasing, >= 0) and
-// powers. nu_eff interpolates linearly where the curve first reaches kZeroRegionPower (0 when
-// the first sample does; the last nu when none does). Omega integrates by the trapezoid rule
-// over the samples up to kOscillationRangeNu. Throws Error for fewer than 2 samples or
-// mismatched sizes.
-SpectralMeasures spectral_measures(std::span<const double> nu, std::span<const double> power);
+// nu_eff and Omega as psa --stats prints them. Throws Error for a spectrum of fewer than 2
+// samples.
+SpectralMeasures spectral_measures(const RdfPowerSpectrum& spectrum);
 
-// The same from annuli of a periodogram of `count` points (annulus 0, k = 0, left out; each
-// annulus taken at its centre frequency).
-SpectralMeasures spectral_measures(std::span<const Annulus> radial, double bin_width, std::size_t count,
-                                   double area = 1.0);
+// J0, the Bessel function of the first kind of order 0 (Abramowitz and Stegun 9.4.1 and 9.4.3,
+// absolute error below 1e-7): std::cyl_bessel_j is some ten times slower, and the spectrum
+// takes N B / 2 of them.
+double bessel_j0(double x);
 
 }  // namespace bluetile

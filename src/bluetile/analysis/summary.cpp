@@ -3,6 +3,7 @@
 #include "bluetile/analysis/summary.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "bluetile/core/error.h"
@@ -54,6 +55,8 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
   const int size = options.size > 0 ? options.size : default_periodogram_size(n);
   std::vector<Periodogram> periodograms;
   std::vector<RadialDistribution> distributions;
+  std::vector<RdfPowerSpectrum> spectra;
+  s.has_spectral_measures = periodic;
   const std::size_t total_work = sets.size();
   for (std::size_t k = 0; k < sets.size(); ++k) {
     NearestNeighbourStats nn = nearest_neighbour_stats(sets[k], Domain{}, options.boundary);
@@ -74,6 +77,7 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
       s.bond_order.global += b.global;
     }
     distributions.push_back(radial_distribution(sets[k], rdf_options));
+    if (s.has_spectral_measures) spectra.push_back(rdf_power_spectrum(sets[k]));
     std::function<void(std::size_t, std::size_t)> progress;
     if (options.progress) {
       progress = [&](std::size_t done, std::size_t total) {
@@ -92,7 +96,10 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
   s.periodogram = sets.size() == 1 ? std::move(periodograms[0]) : average_periodograms(periodograms);
   s.radial = radial_power(s.periodogram, options.bin_width);
   s.rdf = sets.size() == 1 ? std::move(distributions[0]) : average_distributions(distributions);
-  s.measures = spectral_measures(s.radial, options.bin_width, n);
+  if (s.has_spectral_measures) {
+    s.rdf_power = sets.size() == 1 ? std::move(spectra[0]) : average_spectra(spectra);
+    s.measures = spectral_measures(s.rdf_power);
+  }
   return s;
 }
 

@@ -49,10 +49,12 @@ struct Summary {
   Periodogram periodogram;        // mean over sets
   std::vector<Annulus> radial;
   RadialDistribution rdf;         // mean over sets
-  // nu_eff and Omega of the radial power spectrum (`radial`). The spectrum the RDF implies
-  // (spectrum_from_rdf) gives nearly the same Omega, but its truncation at the RDF's range
-  // blurs the lowest frequencies, where nu_eff is decided: the direct sum is exact there.
+  // nu_eff and Omega by psa's definitions (spectral_measures.h): from the radial power psa
+  // derives from a fine RDF (mean power over sets), not from the periodogram. Periodic sets
+  // only: psa measures torus distances.
+  RdfPowerSpectrum rdf_power;
   SpectralMeasures measures;
+  bool has_spectral_measures = false;
 
   // Normalised frequency nu = |k| / (sqrt(N) / 2) of an integer frequency.
   double nu(double frequency) const { return normalised_frequency(frequency, count); }
@@ -62,11 +64,11 @@ struct Summary {
 double mean_centroid_distance(std::span<const Point> points);
 
 // The radial power spectrum the RDF implies, sampled every `step` in nu from 0 to `nu_max`
-// (nu and power, for spectral_measures and plots).
+// (nu and power, for plots).
 struct SpectrumCurve {
   std::vector<double> nu, power;
 };
-SpectrumCurve spectrum_from_rdf(const RadialDistribution& rdf, double nu_max = kOscillationRangeNu,
+SpectrumCurve spectrum_from_rdf(const RadialDistribution& rdf, double nu_max = 10.0,
                                 double step = 0.005);
 
 // Analyses one set, or the mean over several sets of equal size (periodograms and RDFs
