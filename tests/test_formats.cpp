@@ -275,6 +275,56 @@ TEST(Formats, DamagedBinaryFilesGiveClearErrors) {
   EXPECT_EQ(wrapped[0].points[0], Point(0.75, 0.5));
 }
 
+// psa's .rps bytes, built by hand: little-endian float32 x y pairs, nothing else.
+std::string rps_bytes(const std::vector<float>& values) {
+  std::string bytes;
+  for (float v : values) {
+    std::uint32_t u;
+    std::memcpy(&u, &v, sizeof u);
+    for (int b = 0; b < 4; ++b) bytes += static_cast<char>((u >> (8 * b)) & 0xffu);
+  }
+  return bytes;
+}
+
+TEST(Formats, PsaRpsIsRawLittleEndianFloatPairs) {
+  const std::vector<float> values = {0.25f, 0.5f, 0.1f, 0.9999999f, 0.0f, 0.75f};
+  PointSet set = parse_rps_points(rps_bytes(values), "three.rps");
+  ASSERT_EQ(set.points.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(set.points[i].x, static_cast<double>(values[2 * i]));
+    EXPECT_EQ(set.points[i].y, static_cast<double>(values[2 * i + 1]));
+  }
+  EXPECT_FALSE(set.has_levels());
+  EXPECT_TRUE(parse_rps_points("", "empty.rps").points.empty());
+  // Outside [0, 1): wrapped, or refused when asked.
+  EXPECT_EQ(parse_rps_points(rps_bytes({1.25f, -0.25f}), "out.rps").points[0].x, 0.25);
+  EXPECT_EQ(parse_rps_points(rps_bytes({1.25f, -0.25f}), "out.rps").points[0].y, 0.75);
+  EXPECT_EQ(error_of([] { parse_rps_points(rps_bytes({0.5f, 0.5f, 0.5f, 1.5f}), "out.rps", {.wrap = false}); }),
+            "out.rps: point 1: y = 1.5 is outside [0, 1)");
+  // The extension decides, in any case.
+  EXPECT_TRUE(is_rps_path("dir.x/points.RPS"));
+  EXPECT_FALSE(is_rps_path("points.rps.txt"));
+  EXPECT_FALSE(is_rps_path("rps"));
+  test::TempDir dir;
+  const std::string path = dir.write("psa.rps", rps_bytes(values));
+  std::vector<PointSet> sets = read_point_table(path);
+  ASSERT_EQ(sets.size(), 1u);
+  EXPECT_EQ(sets[0].points.size(), 3u);
+  EXPECT_EQ(sets[0].points[2].y, 0.75);
+}
+
+TEST(Formats, DamagedRpsFilesGiveClearErrors) {
+  std::string bytes = rps_bytes({0.5f, 0.5f});
+  EXPECT_EQ(error_of([&] { parse_rps_points(bytes + "abc", "cut.rps"); }),
+            "cut.rps: 11 bytes is not a whole number of points (.rps holds 8-byte pairs of float32 x y)");
+  EXPECT_EQ(error_of([] { parse_rps_points(rps_bytes({0.5f, std::nanf("")}), "nan.rps"); }),
+            "nan.rps: point 0: not a finite number 'nan'");
+  EXPECT_NE(error_of([] { parse_rps_points(rps_bytes({0.5f, 0.5f, INFINITY, 0.5f}), "inf.rps"); })
+                .find("inf.rps: point 1: not a finite number"),
+            std::string::npos);
+  EXPECT_NE(error_of([] { read_rps_file("/nonexistent/x.rps"); }).find("/nonexistent/x.rps"), std::string::npos);
+}
+
 TEST(Formats, FilesAreRecognisedByTheirFirstBytes) {
   test::TempDir dir;
   std::vector<PointSet> sets = sample_sets(2, 10, true);

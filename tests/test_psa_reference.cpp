@@ -23,6 +23,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -134,6 +135,29 @@ TEST(PsaReference, MeanOverSetsAsPsaAvg) {
   EXPECT_DOUBLE_EQ(stats["nu_eff"].get<double>(), mean.nu_eff);
   EXPECT_DOUBLE_EQ(stats["omega"].get<double>(), mean.omega);
   EXPECT_NE(r.out.find("nu_eff 0.825, oscillations Omega 1.901"), std::string::npos) << r.out;
+}
+
+TEST(PsaReference, AnalyzeReadsPsaRps) {
+  // dart256 as psa's .rps (float32 x y pairs): the float rounding moves no figure off psa's.
+  test::TempDir dir;
+  std::string bytes;
+  for (const Point& p : darts(256, 11)) {
+    const float xy[2] = {static_cast<float>(p.x), static_cast<float>(p.y)};
+    bytes.append(reinterpret_cast<const char*>(xy), sizeof xy);  // little-endian machines
+  }
+  const std::string input = dir.write("dart256.rps", bytes);
+  auto r = test::run_bluetile({"analyze", "--no-centroids", "-i", input, "-o", dir.file("out")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto stats = nlohmann::json::parse(test::read_text(dir.file("out/stats.json")));
+  EXPECT_EQ(stats["n"], 256);
+  EXPECT_NEAR(stats["nu_eff"].get<double>(), 0.630, 0.01);
+  EXPECT_NEAR(stats["omega"].get<double>(), 0.947, 0.02 * 0.947);
+
+  const std::string cut = dir.write("cut.rps", bytes.substr(0, 1001));
+  r = test::run_bluetile({"analyze", "-i", cut, "-o", dir.file("bad")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find(cut + ": 1001 bytes is not a whole number of points"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad/stats.json")));
 }
 
 }  // namespace

@@ -22,6 +22,7 @@
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/tiling/tiled_output.h"
 #include "bluetile/io/figures.h"
 #include "bluetile/io/pdf.h"
@@ -89,7 +90,7 @@ std::vector<PointSet> read_sets(const std::string& path, const ReadOptions& read
   if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a point file");
   std::vector<PointSet> sets;
   try {
-    sets = read_point_sets(path, read);
+    sets = is_rps_path(path) ? std::vector<PointSet>{read_rps_file(path, read)} : read_point_sets(path, read);
   } catch (const Error& e) {
     throw Error(append_wrap_hint(e.what()));
   }

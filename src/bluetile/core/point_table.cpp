@@ -532,8 +532,39 @@ std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string&
   return builder.finish();
 }
 
+bool is_rps_path(const std::string& path) { return extension_of(path) == ".rps"; }
+
+PointSet parse_rps_points(std::string_view bytes, const std::string& name, const ReadOptions& options) {
+  constexpr std::size_t kPointBytes = 2 * sizeof(float);
+  if (bytes.size() % kPointBytes != 0)
+    throw Error(name + ": " + std::to_string(bytes.size()) +
+                " bytes is not a whole number of points (.rps holds 8-byte pairs of float32 x y)");
+  PointSet set;
+  const std::size_t count = bytes.size() / kPointBytes;
+  set.points.reserve(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    double value[2];
+    for (int axis = 0; axis < 2; ++axis) {
+      value[axis] = load<float>(bytes.data() + i * kPointBytes + axis * sizeof(float), false);
+      char text[32];
+      std::snprintf(text, sizeof text, "%.9g", value[axis]);
+      const std::string where = name + ": point " + std::to_string(i) + ": ";
+      if (!std::isfinite(value[axis])) throw Error(where + "not a finite number '" + text + "'");
+      if (!options.wrap && !(value[axis] >= 0.0 && value[axis] < 1.0))
+        throw Error(where + (axis == 0 ? "x" : "y") + " = " + text + " is outside [0, 1)");
+    }
+    set.points.push_back(wrap_point(Point{value[0], value[1]}, Domain{}));
+  }
+  return set;
+}
+
+PointSet read_rps_file(const std::string& path, const ReadOptions& options) {
+  return parse_rps_points(read_bytes(path), input_name(path), options);
+}
+
 std::vector<PointSet> read_point_table(const std::string& path) {
   if (path == "-") return read_point_sets(path);
+  if (is_rps_path(path)) return {read_rps_file(path)};
   char start[sizeof kBinaryMagic] = {};
   {
     std::ifstream in(path, std::ios::binary);

@@ -92,7 +92,7 @@ void write_point_table(TableFormat format, std::span<const PointSet> sets, const
 std::string table_name_for_path(const std::string& path);
 
 // Reads every set of a file in any readable format, recognised by its first bytes: npy,
-// binary, else text (point_file.h; sets apart at '#' lines, UTK's convention). Throws
+// binary, psa's .rps by its extension, else text (point_file.h; sets apart at '#' lines, UTK's convention). Throws
 // Error("<path>: <what>") for a damaged file: short, wrong magic, sizes that do not match,
 // unknown value types, non-finite values, levels that are not whole numbers.
 std::vector<PointSet> read_point_table(const std::string& path);
@@ -100,5 +100,14 @@ std::vector<PointSet> read_point_table(const std::string& path);
 // The same decoders over bytes in memory; `name` stands for the file in messages.
 std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string& name);
 std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::string& name);
+
+// psa's raw point sets (.rps, Heck, Schlömer and Deussen's analysis tool): no header, one set of
+// little-endian float32 pairs x y, so a file of B bytes holds B / 8 points. It has no magic:
+// read_point_table and `bluetile analyze` take it by its extension, .rps in any case.
+bool is_rps_path(const std::string& path);
+// Throws Error("<name>: ...") for a size not a multiple of 8, a non-finite value ("point i" from
+// 0), and (options.wrap false) a coordinate outside [0, 1); else such coordinates are wrapped.
+PointSet parse_rps_points(std::string_view bytes, const std::string& name, const ReadOptions& options = {});
+PointSet read_rps_file(const std::string& path, const ReadOptions& options = {});
 
 }  // namespace bluetile
