@@ -152,6 +152,11 @@ TEST(PsaReference, AnalyzeReadsPsaRps) {
   EXPECT_EQ(stats["n"], 256);
   EXPECT_NEAR(stats["nu_eff"].get<double>(), 0.630, 0.01);
   EXPECT_NEAR(stats["omega"].get<double>(), 0.947, 0.02 * 0.947);
+  // psa's stats table, as `psa dart256.psa.txt --stats` prints it (G-MD 0.699, A-MD 0.819).
+  EXPECT_NE(r.out.find("File            \tG-MD\tA-MD\tE-Nyq.\tOsci.\n"
+                       "dart256           \t0.699\t0.819\t0.630\t0.947\n"),
+            std::string::npos)
+      << r.out;
 
   const std::string cut = dir.write("cut.rps", bytes.substr(0, 1001));
   r = test::run_bluetile({"analyze", "-i", cut, "-o", dir.file("bad")});

@@ -293,6 +293,24 @@ void report_table(std::ostringstream& out, const std::vector<Series>& series) {
   out << "\n";
 }
 
+// The table `psa --stats` prints (without CGAL), so figures paste beside psa's: its header, then
+// per series the label and global and average minimum distance in hexagonal spacings, nu_eff
+// and Omega, tab-separated with 3 decimals ("-" where a measure does not apply); psa's rows
+// also carry two spaces before the first tab (its setw(3) pads the tab).
+void report_psa_table(std::ostringstream& out, const std::vector<Series>& series) {
+  char row[256];
+  std::snprintf(row, sizeof row, "%-16s\tG-MD\tA-MD\tE-Nyq.\tOsci.\n", "File");
+  out << row;
+  for (const Series& s : series) {
+    const Summary& m = s.summary;
+    const bool spectral = m.has_spectral_measures;
+    std::snprintf(row, sizeof row, "%-16s  \t%.3f\t%.3f\t%s\t%s\n", s.label.c_str(), m.nn.rho(), m.nn.rho_mean(),
+                  spectral ? fixed(m.measures.nu_eff, 3).c_str() : "-", spectral ? fixed(m.measures.omega, 3).c_str() : "-");
+    out << row;
+  }
+  out << "\n";
+}
+
 // Boundary of the analysis: --bounded, or what the files declare ("# domain ..."), else periodic.
 Boundary choose_boundary(const AnalyzeOptions& o, const std::vector<std::vector<PointSet>>& inputs) {
   std::optional<Boundary> declared;
@@ -541,6 +559,8 @@ void run_analyze(const AnalyzeOptions& o) {
               "min 24.86 max 32.33. Compare minima and the ordering; its max column does not reproduce\n"
               "(docs/DESIGN.md, section 5: we get about 36).\n\n";
   }
+  report << "As psa --stats prints them:\n";
+  report_psa_table(report, series);
   if (!o.by_level && series[0].sets > 1 && !o.compare)
     report << "points.png and points.svg show the first of the " << series[0].sets << " sets.\n";
   report << "written: stats.json radial.csv rdf.csv report.txt points spectrum radial rdf (.png .svg)";
