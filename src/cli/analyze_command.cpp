@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <sstream>
@@ -135,12 +136,12 @@ nlohmann::json summary_json(const Summary& s) {
     j["mean_centroid_distance"] = s.centroid_distance;
     j["mean_centroid_distance_relative"] = s.centroid_distance / h;
   }
-  if (s.has_spectral_measures) {
-    // psa's definitions, from the RDF-derived radial power (spectral_measures.h).
-    j["nu_eff"] = number(s.measures.nu_eff);
-    j["omega"] = number(s.measures.omega);
-    j["omega_range_nu"] = {s.measures.omega_from_nu, s.measures.omega_to_nu};
-  }
+  // psa's definitions, from the RDF-derived radial power (spectral_measures.h); null for a
+  // bounded set, whose torus distances psa's measures would need.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  j["nu_eff"] = number(s.has_spectral_measures ? s.measures.nu_eff : nan);
+  j["omega"] = number(s.has_spectral_measures ? s.measures.omega : nan);
+  if (s.has_spectral_measures) j["omega_range_nu"] = {s.measures.omega_from_nu, s.measures.omega_to_nu};
   if (s.has_bond_order) j["bond_order"] = {{"local", s.bond_order.local}, {"global", s.bond_order.global}};
   j["rdf_range_relative"] = s.rdf.range() / h;
   j["rdf_bins"] = s.rdf.g.size();
