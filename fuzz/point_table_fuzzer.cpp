@@ -1,4 +1,4 @@
-// libFuzzer target for the binary point tables (core/point_table.h: npy and .bpt): no crash, no
+// libFuzzer target for the binary point tables (core/point_table.h: npy, .bpt, psa's .rps): no crash, no
 // undefined behaviour, no allocation beyond what the bytes can hold, only bluetile::Error; every
 // value read is finite.
 #include <cmath>
@@ -15,6 +15,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     try {
       for (const bluetile::PointSet& set : parse(bytes, "fuzz"))
         for (const auto& p : set.points) BLUETILE_FUZZ_CHECK(std::isfinite(p.x) && std::isfinite(p.y));
+    } catch (const bluetile::Error&) {
+    }
+  }
+  for (bool wrap : {true, false}) {
+    try {
+      for (const auto& p : bluetile::parse_rps_points(bytes, "fuzz", {.wrap = wrap}).points)
+        BLUETILE_FUZZ_CHECK(p.x >= 0.0 && p.x < 1.0 && p.y >= 0.0 && p.y < 1.0);
     } catch (const bluetile::Error&) {
     }
   }
