@@ -55,7 +55,8 @@ struct RdfPowerSpectrum {
 };
 
 // From one set on the unit torus (coordinates wrapped into [0, 1)). Throws Error for fewer than
-// 2 points. Same result whatever the thread count.
+// 2 points. Same result whatever the thread count. Cost: the pairs closer than 0.25 (about
+// N^2 / 5, as psa's RDF) and B^2 / 2 Bessel functions; N = 16384 takes about 4 s on 2 cores.
 RdfPowerSpectrum rdf_power_spectrum(std::span<const Point> points);
 
 // The mean power of several spectra of equal count (psa --avg). Throws Error for none or for
