@@ -2,6 +2,7 @@
 // the accepted range, never clamped; whole numbers in scientific notation accepted.
 #include <gtest/gtest.h>
 
+#include "bluetile/io/image_file.h"
 #include "robustness_support.h"
 #include "test_support.h"
 
@@ -89,6 +90,53 @@ TEST(Options, RunsTooLargeForTheMachineAreRefusedUpFront) {
         << r.err;
   }
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{});
+}
+
+TEST(Options, TilingsTooLargeAreRefusedUpFront) {
+  // Issue 24, item 1: a tiled window's count is known before any point is made (cells x points x
+  // thinning), and nothing bounded it: 10^12 points were written until the disk was full.
+  TempDir dir;
+  const std::string map = dir.file("map.png");
+  write_image_file(map, 2, 2, 1, std::vector<std::uint8_t>(4, 128));  // uniform: mean = largest
+  const std::string limit = ", more than the limit of 100000000 ";
+  const std::string too_many = limit + "points: use a smaller region or a lower density";
+  const std::vector<Refusal> cases = {
+      {{"tile", "--region", "0", "0", "1000000", "1000000", "--density", "1", "-o", dir.file("p.txt")},
+       "--region 0 0 1000000 1000000 holds about 1000000000000 points (1 per unit area)" + too_many},
+      {{"tile", "--region", "0", "0", "1000000", "1000000", "--density", "1", "-o", dir.file("p.svg")},
+       "--region 0 0 1000000 1000000 holds about 1000000000000 points (1 per unit area)" + too_many},
+      {{"tile", "--region", "0", "0", "1000000", "1000000", "--density", "1", "-o", dir.file("p.png")},
+       "--region 0 0 1000000 1000000 holds about 1000000000000 points (1 per unit area)" + too_many},
+      {{"tile", "--region", "0", "0", "1", "1", "--density-map", map, "--count", "1e12", "-o", dir.file("p.txt")},
+       "--region 0 0 1 1 holds about 1000000000000 points (1000000000000 per unit area)" + too_many},
+      {{"tile", "--region", "0", "0", "1", "1", "--density-map", map, "--max-density", "1e10", "-o", "-"},
+       "--region 0 0 1 1 holds about 10000000000 points (10000000000 per unit area)" + too_many},
+      {{"tile", "--region", "0", "0", "1000", "1000", "--tile-size", "1e-3", "-o", dir.file("p.txt")},
+       "--region 0 0 1000 1000 holds about 2048000000000000 points (2048000000 per unit area)" + too_many},
+      // Few points, but 10^12 tiles to visit.
+      {{"tile", "--region", "0", "0", "1000", "1000", "--tile-size", "1e-3", "--density", "1", "-o", dir.file("p.txt")},
+       "--region 0 0 1000 1000 spans about 1000006000009 tiles of size 0.001" + limit +
+           "tiles: use a larger --tile-size or a smaller region"},
+  };
+  for (const Refusal& c : cases) {
+    // Limits that turn a run which does start into a quick failure of this test, not a full disk.
+    Invocation limited{c.arguments};
+    limited.file_size_bytes = 1L << 20;
+    if (!sanitized()) limited.address_space_bytes = 2L << 30;
+    Outcome r = run(limited);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err, "bluetile: " + c.message + "\n");
+    EXPECT_EQ(r.out, "");
+  }
+  if (!sanitized()) {  // an SVG is built whole: 5 x 10^7 dots do not fit in 1 GiB
+    Invocation limited{{"tile", "--region", "0", "0", "10000", "5000", "--density", "1", "-o", dir.file("p.svg")}};
+    limited.address_space_bytes = 1L << 30;
+    Outcome r = run(limited);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err.rfind("bluetile: " + dir.file("p.svg") + ": an SVG of about 50000000 dots needs about 7.5 GiB of memory, "
+                          "more than the ", 0), 0u) << r.err;
+  }
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"map.png"});
 }
 
 }  // namespace
