@@ -171,12 +171,12 @@ std::string region_text(const Window& w) {
 // The run's size, known before any point is made (cells x points x thinning): refused past the
 // limits the other commands keep, instead of filling a disk or running for hours.
 void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files) {
+  const CellRange range = plan.tiler->cells(plan.window);  // first: refuses windows off the plane's range
   const double points = plan.window.area() * plan.mean_density;
   if (!(points <= static_cast<double>(kMaxCount)))
     throw Error("--region " + region_text(plan.window) + " holds about " + rounded(points) + " points (" +
                 number(plan.mean_density) + " per unit area), more than the limit of " + std::to_string(kMaxCount) +
                 " points: use a smaller region or a lower density");
-  const CellRange range = plan.tiler->cells(plan.window);
   const double cells = static_cast<double>(range.columns()) * static_cast<double>(range.rows());
   if (!(cells <= static_cast<double>(kMaxCount)))
     throw Error("--region " + region_text(plan.window) + " spans about " + rounded(cells) + " tiles of size " +
