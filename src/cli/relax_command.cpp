@@ -57,6 +57,7 @@ void run_relax(const RelaxOptions& o) {
   }
   OutputSet outputs;
   if (!o.input.empty()) outputs.add_input(o.input);
+  if (!o.density_map.empty()) outputs.add_input(o.density_map);
   // The input's sets (UTK's '#' lines, .npy, .bpt: each set is relaxed on its own), or the
   // random starts below.
   std::vector<PointSet> inputs;

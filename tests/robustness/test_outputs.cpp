@@ -16,6 +16,7 @@
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
+#include "bluetile/io/image_file.h"
 #include "robustness_support.h"
 #include "test_support.h"
 
@@ -137,6 +138,29 @@ TEST(Outputs, OutputsThatAreInputsOrEachOtherAreRefused) {
   expect_failure(r, input + ": is the same file as the input " + input);
   EXPECT_EQ(read_text(input), before);
   EXPECT_EQ(entries(dir.path()), (Names{"alias.txt@", "p.txt"}));
+}
+
+TEST(Outputs, ImagesACommandReadsAreInputsToo) {
+  // Issue 24, item 3: relax --density-map m.png --id-image m.png overwrote the map and exited 0.
+  TempDir dir;
+  const std::string map = dir.file("m.png");
+  write_image_file(map, 4, 4, 1, std::vector<std::uint8_t>(16, 100));
+  const std::string before = read_text(map);
+  for (const char* flag : {"--id-image", "-o", "--log"}) {
+    std::vector<std::string> args = {"--density-map", map, flag, map};
+    if (std::string(flag) == "-o")
+      args.insert(args.end(), {"--format", "text"});
+    else
+      args.insert(args.end(), {"-o", dir.file("p.txt")});
+    expect_failure(run(relax(args)), map + ": is the same file as the input " + map);
+  }
+  // Every other command that reads a file registers it the same way.
+  expect_failure(run({"stipple", "--image", map, "-n", "10", "-k", "1", "-o", dir.file("p.txt"), "--png", map}),
+                 map + ": is the same file as the input " + map);
+  expect_failure(run({"tile", "--region", "0", "0", "1", "1", "--density-map", map, "--count", "10", "-o", map}),
+                 map + ": is the same file as the input " + map);
+  EXPECT_EQ(read_text(map), before);
+  EXPECT_EQ(entries(dir.path()), Names{"m.png"});
 }
 
 TEST(Outputs, EveryPathIsCheckedBeforeTheWork) {
