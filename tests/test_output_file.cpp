@@ -135,6 +135,16 @@ TEST(OutputFile, DescriptorPathsWriteThatDescriptor) {
   EXPECT_NE(error_of([] { write_output("-", "x"); }).find("cannot be standard output"), std::string::npos);
 }
 
+TEST(OutputFile, StandardOutputIsKnownAsSuch) {
+  // Issue 24, item 2: "-" is kept as a copy of descriptor 1, and is_stdout() tested for 1 itself.
+  TempDir dir;
+  OutputSet outputs;
+  EXPECT_TRUE(outputs.add("-", {.allow_stdout = true}).is_stdout());
+  EXPECT_TRUE(outputs.add("/dev/stdout").is_stdout());
+  EXPECT_FALSE(outputs.add(dir.file("p.txt")).is_stdout());
+  EXPECT_FALSE(outputs.add("/dev/stderr").is_stdout());
+}
+
 TEST(OutputFile, RefusedBeforeAnyWork) {
   TempDir dir;
   fs::create_directory(dir.file("folder"));

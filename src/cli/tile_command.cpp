@@ -208,27 +208,11 @@ void write_points(OutputFile& file, const Plan& plan, const TiledFormat& format,
   Progress progress("tile", plan.tiler->cells(plan.window).rows());
   auto on_rows = [&](std::int64_t done, std::int64_t) { progress.update(done); };
   StreamTimes times;
-  auto stream_to = [&](std::FILE* out) {
-    times = stream_tiled_points(*plan.tiler, plan.window, plan.thinning.get(), format, out,
-                                file.is_stdout() ? "stdout" : file.path(), on_rows);
-  };
-  if (file.is_stdout()) {
-    stream_to(stdout);
-    if (std::fflush(stdout) != 0) throw Error("stdout: write failed: " + std::string(std::strerror(errno)));
-  } else {
-    // Streamed through stdio into the output's file (staged, or the device itself).
-    file.write_through_path([&](const std::string& path) {
-      std::FILE* out = std::fopen(path.c_str(), "wb");
-      if (out == nullptr) throw Error(file.path() + ": cannot write: " + std::strerror(errno));
-      try {
-        stream_to(out);
-      } catch (...) {
-        std::fclose(out);
-        throw;
-      }
-      if (std::fclose(out) != 0) throw Error(file.path() + ": write failed: " + std::strerror(errno));
-    });
-  }
+  // Straight into the output: a staged file renamed into place at the end, or the device, FIFO
+  // or standard output itself.
+  file.write([&](OutputStream& out) {
+    times = stream_tiled_points(*plan.tiler, plan.window, plan.thinning.get(), format, out, on_rows);
+  });
   progress.finish();
   if (verbose)
     std::fprintf(stderr, "bluetile tile: %s: %zu points, %zu bytes; generate %.3f s, format %.3f s, write %.3f s\n",

@@ -91,6 +91,58 @@ TEST(Outputs, FifoGetsTheBytesAndStaysAFifo) {
   EXPECT_EQ(entries(dir.path()), Names{"pipe|"});
 }
 
+TEST(Outputs, TiledPointsStreamIntoAFifoWithoutATemporaryCopy) {
+  // Issue 24, item 2: tile wrote a FIFO's (or a device's) points into a temporary file in $TMPDIR
+  // first, whole, and copied it over: as large as the output, and nothing reached the reader
+  // before the end.
+  TempDir dir, tmp;
+  const std::vector<std::string> tile = {"tile", "--region", "0", "0", "4", "4", "--columns", "x,y,i,j,rank"};
+  for (const char* name : {"pipe.txt", "pipe.bin"}) {
+    std::vector<std::string> args = tile;
+    args.insert(args.end(), {"-o", dir.file(std::string("reference") + (name + 4))});
+    ASSERT_EQ(run(args).exit_code, 0);
+    const std::string reference = read_text(dir.file(std::string("reference") + (name + 4)));
+    ASSERT_GT(reference.size(), 300000u);  // more than a pipe holds: the writer must stream
+
+    const std::string fifo = dir.file(name);
+    ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+    std::string received;
+    Names temporary_while_reading = {"(not read)"};
+    std::thread reader([&] {
+      int fd = open(fifo.c_str(), O_RDONLY);
+      if (fd < 0) return;
+      char buffer[4096];
+      bool first = true;
+      for (ssize_t n; (n = read(fd, buffer, sizeof buffer)) != 0;) {
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) break;
+        // The writer is not done: the rest of the output is still to come through the pipe.
+        if (first) temporary_while_reading = entries(tmp.path());
+        first = false;
+        received.append(buffer, static_cast<std::size_t>(n));
+      }
+      close(fd);
+    });
+    Invocation streamed{tile};
+    streamed.arguments.insert(streamed.arguments.end(), {"-o", fifo});
+    streamed.environment = {{"TMPDIR", tmp.path()}};
+    Outcome r = run(streamed);
+    release_reader(fifo);
+    reader.join();
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(temporary_while_reading, Names{}) << name;
+    EXPECT_TRUE(received == reference) << name << ": " << received.size() << " bytes, expected " << reference.size();
+    EXPECT_EQ(entries(tmp.path()), Names{});
+  }
+  // Standard output, "-" and /dev/stdout, gets the same bytes as a file.
+  std::vector<std::string> args = tile;
+  args.insert(args.end(), {"-o", "-"});
+  EXPECT_TRUE(run(args).out == read_text(dir.file("reference.txt")));
+  args.back() = "/dev/stdout";
+  EXPECT_TRUE(run(args).out == read_text(dir.file("reference.txt")));
+  EXPECT_EQ(entries(dir.path()), (Names{"pipe.bin|", "pipe.txt|", "reference.bin", "reference.txt"}));
+}
+
 TEST(Outputs, StandardOutput) {
   const std::string expected = reference_output({});
   EXPECT_EQ(run(relax({"-o", "-"})).out, expected);

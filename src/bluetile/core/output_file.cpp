@@ -483,6 +483,7 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
   if (path == "-") {
     if (!options.allow_stdout) throw Error("-: this output cannot be standard output");
     int fd = open_descriptor_for_writing(1, "standard output");
+    output->stdout_ = true;
     struct stat st {};
     fstat(fd, &st);
     return direct(fd, &st);
@@ -503,6 +504,7 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
   switch (r.type) {
     case Resolved::Type::descriptor: {
       int fd = open_descriptor_for_writing(r.descriptor, path);
+      output->stdout_ = r.descriptor == 1;
       struct stat st {};
       fstat(fd, &st);
       return direct(fd, &st);

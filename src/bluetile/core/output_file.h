@@ -93,7 +93,8 @@ struct OutputOptions {
 class OutputFile {
  public:
   const std::string& path() const { return path_; }  // as the user gave it
-  bool is_stdout() const { return kind_ == Kind::descriptor && descriptor_ == 1; }
+  // Whether this output is the process's standard output ("-", /dev/stdout, /dev/fd/1).
+  bool is_stdout() const { return stdout_; }
 
   // Writes the whole output: opens it, calls writer, flushes, closes; throws Error on failure.
   void write(const OutputWriter& writer);
@@ -112,6 +113,7 @@ class OutputFile {
   std::string path_;
   Kind kind_ = Kind::staged;
   int descriptor_ = -1;    // Kind::descriptor: open fd (ours, closed after writing)
+  bool stdout_ = false;     // Kind::descriptor: a copy of descriptor 1
   std::string name_;        // Kind::staged: file name in the staging folder and the target's
   std::string target_;      // Kind::staged: the resolved target path
   std::string staged_;      // Kind::staged: the staged file

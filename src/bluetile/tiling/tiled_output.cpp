@@ -109,12 +109,6 @@ void format_binary(const Chunk& chunk, std::size_t begin, std::size_t end, const
   }
 }
 
-void write_bytes(std::FILE* out, std::string_view bytes, const std::string& name) {
-  if (bytes.empty()) return;
-  if (std::fwrite(bytes.data(), 1, bytes.size(), out) != bytes.size())
-    throw Error(name + ": write failed: " + std::strerror(errno));
-}
-
 }  // namespace
 
 std::vector<TiledColumn> parse_tiled_columns(std::string_view list) {
@@ -145,7 +139,7 @@ std::string tiled_column_names(const std::vector<TiledColumn>& columns) {
 }
 
 StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const Thinning* thinning,
-                                const TiledFormat& format, std::FILE* out, const std::string& name,
+                                const TiledFormat& format, OutputStream& out,
                                 const std::function<void(std::int64_t, std::int64_t)>& progress,
                                 std::size_t chunk_points) {
   using Clock = std::chrono::steady_clock;
@@ -155,7 +149,7 @@ StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const 
   if (!format.binary) {
     std::string header;
     for (const std::string& line : format.header) header += "# " + line + "\n";
-    write_bytes(out, header, name);
+    out.write(header);
     times.bytes += header.size();
   }
   // One piece of text per thread and chunk: formatting is pure, so the bytes do not depend on
@@ -184,7 +178,7 @@ StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const 
     times.format += seconds_since(start);
     start = Clock::now();
     for (const std::string& text : texts) {
-      write_bytes(out, text, name);
+      out.write(text);
       times.bytes += text.size();
     }
     times.write += seconds_since(start);
@@ -211,9 +205,6 @@ StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const 
     if (progress) progress(j - range.j0 + 1, range.rows());
   }
   flush();
-  auto start = Clock::now();
-  if (std::fflush(out) != 0) throw Error(name + ": write failed: " + std::strerror(errno));
-  times.write += seconds_since(start);
   return times;
 }
 

@@ -4,13 +4,13 @@
 #pragma once
 
 #include <cstdint>
-#include <cstdio>
 #include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/tiling/density_thinning.h"
 #include "bluetile/tiling/tiler.h"
 
@@ -45,11 +45,13 @@ struct StreamTimes {
   std::size_t bytes = 0;
 };
 
-// Streams every kept point of `window` to `out` in the tiler's fixed order. Holds at most about
-// `chunk_points` points and their text at a time. `progress(done_rows, total_rows)` is called
-// after each chunk when given. Throws Error("<name>: write failed ...") when a write fails.
+// Streams every kept point of `window` to `out` in the tiler's fixed order: straight into the
+// output (a staged file, a device, a FIFO, standard output), never through a copy. Holds at most
+// about `chunk_points` points and their text at a time. `progress(done_rows, total_rows)` is
+// called after each row of cells when given. A failed write throws the stream's Error ("<path>:
+// cannot write: ..."); the caller closes the stream.
 StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const Thinning* thinning,
-                                const TiledFormat& format, std::FILE* out, const std::string& name,
+                                const TiledFormat& format, OutputStream& out,
                                 const std::function<void(std::int64_t, std::int64_t)>& progress = {},
                                 std::size_t chunk_points = 1u << 18);
 
