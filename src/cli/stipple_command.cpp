@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/density_options.h"
 #include "cli/engine_options.h"
+#include "cli/memory_budget.h"
 #include "cli/relax_log.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
@@ -68,9 +69,31 @@ void write_svg(OutputFile& out, const std::vector<Point>& points, const Domain& 
   out.write(svg.str());
 }
 
+// The render's height in pixels, in double: a tall image's does not fit an int.
+double render_height(const Domain& domain, int width) {
+  const double scale = width / domain.size.x;
+  return std::max(1.0, std::round(domain.size.y * scale));
+}
+
+// Refuses, before the relaxation, a render taller than an image may be or larger than the memory.
+void check_render(const OutputFile& out, const DensityGrid& map, const Domain& domain, int width) {
+  const double height = render_height(domain, width);
+  if (!(height <= kMaxCanvasSide)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "--png-width %d: a render of the %d x %d image would be %.0f pixels tall, more than the limit of "
+                  "%d: use a smaller --png-width",
+                  width, map.width, map.height, height, kMaxCanvasSide);
+    throw Error(text);
+  }
+  check_memory(width * height * kCanvasBytesPerPixel,
+               out.path() + ": a render of " + std::to_string(width) + " x " + std::to_string(static_cast<int>(height)) +
+                   " pixels");
+}
+
 void write_render(OutputFile& out, const std::vector<Point>& points, const Domain& domain, double radius, int width) {
   const double scale = width / domain.size.x;
-  const int height = std::max(1, static_cast<int>(std::lround(domain.size.y * scale)));
+  const int height = static_cast<int>(render_height(domain, width));
   Canvas canvas(width, height, colours::white);
   for (const Point& p : points) canvas.disc({p.x * scale, (domain.size.y - p.y) * scale}, radius * scale, colours::black);
   write_image(out, canvas);
@@ -86,6 +109,7 @@ void run_stipple(const StippleOptions& o) {
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
   auto map = std::make_shared<DensityGrid>(load_density_map(o.image, density_transfer(o.transfer, true)));
   const Domain domain = image_domain(*map);
+  if (png_file) check_render(*png_file, *map, domain, o.png_width);
   const auto count = static_cast<std::size_t>(o.count);
   Rng rng(derive_seed(o.seed, 0));
   Scene scene = make_scene(sample_density(*map, domain, count, rng), domain);

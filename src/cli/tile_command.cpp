@@ -170,7 +170,8 @@ std::string region_text(const Window& w) {
 
 // The run's size, known before any point is made (cells x points x thinning): refused past the
 // limits the other commands keep, instead of filling a disk or running for hours.
-void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files) {
+void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files, int width_pixels,
+                    double height_pixels) {
   const CellRange range = plan.tiler->cells(plan.window);  // first: refuses windows off the plane's range
   const double points = plan.window.area() * plan.mean_density;
   if (!(points <= static_cast<double>(kMaxCount)))
@@ -182,9 +183,35 @@ void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files) {
     throw Error("--region " + region_text(plan.window) + " spans about " + rounded(cells) + " tiles of size " +
                 number(plan.tiler->tile_size()) + ", more than the limit of " + std::to_string(kMaxCount) +
                 " tiles: use a larger --tile-size or a smaller region");
-  for (const OutputFile* file : files)
+  for (const OutputFile* file : files) {
     if (output_kind(file->path()) == OutputKind::svg)
       check_memory(points * kSvgBytesPerDot, file->path() + ": an SVG of about " + rounded(points) + " dots");
+    if (output_kind(file->path()) == OutputKind::image)
+      check_memory(static_cast<double>(width_pixels) * height_pixels * kCanvasBytesPerPixel,
+                   file->path() + ": a render of " + std::to_string(width_pixels) + " x " + rounded(height_pixels) +
+                       " pixels");
+  }
+}
+
+// The height of a render `width_pixels` wide of the region, computed in double (it may not fit
+// an int), as render_dots rounds it.
+double render_height(const TileOptions& o, int width_pixels) {
+  const double width = o.region[2] - o.region[0], height = o.region[3] - o.region[1];
+  return std::max(1.0, std::round(height * (width_pixels / width)));
+}
+
+// A render's height, refused before any work when it is beyond what an image may be.
+void check_render_height(const TileOptions& o, const std::vector<OutputFile*>& files) {
+  bool render = false;
+  for (const OutputFile* file : files) render = render || output_kind(file->path()) == OutputKind::image;
+  const double width = o.region[2] - o.region[0], height = o.region[3] - o.region[1];
+  if (!render || !(width > 0.0) || !(height > 0.0)) return;  // a bad region is make_plan's to report
+  const double pixels = render_height(o, o.image_size);
+  if (!(pixels <= kMaxCanvasSide))
+    throw Error("--image-size " + std::to_string(o.image_size) + ": a render of the region " + number(o.region[0]) +
+                " " + number(o.region[1]) + " " + number(o.region[2]) + " " + number(o.region[3]) + " would be " +
+                rounded(pixels) + " pixels tall, more than the limit of " + std::to_string(kMaxCanvasSide) +
+                ": use a smaller --image-size or a wider region");
 }
 
 std::vector<std::string> header_lines(const TileOptions& o, const Plan& plan, const TiledFormat& format) {
@@ -235,8 +262,9 @@ void run_tile(const TileOptions& o) {
   if (o.normalize && o.region[2] - o.region[0] != o.region[3] - o.region[1])
     throw Error("--normalize maps a square region onto the unit square; this region is " +
                 number(o.region[2] - o.region[0]) + " x " + number(o.region[3] - o.region[1]));
+  check_render_height(o, files);
   Plan plan = make_plan(o);
-  check_run_size(plan, files);
+  check_run_size(plan, files, o.image_size, render_height(o, o.image_size));
   format.header = header_lines(o, plan, format);
 
   DotStyle dots;

@@ -139,5 +139,24 @@ TEST(Options, TilingsTooLargeAreRefusedUpFront) {
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"map.png"});
 }
 
+TEST(Options, RendersTallerThanAnImageMayBeAreRefusedUpFront) {
+  // Issue 24, item 4: the render's height went through static_cast<int> of 1.6e10 and came out a
+  // 16384 x 1 PNG, exit 0.
+  TempDir dir;
+  Outcome r = run({"tile", "--region", "0", "0", "1", "1000000", "--density", "1", "--image-size", "16384", "-o",
+                   dir.file("p.png")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --image-size 16384: a render of the region 0 0 1 1000000 would be 16384000000 pixels "
+                   "tall, more than the limit of 32768: use a smaller --image-size or a wider region\n");
+  // stipple's drawing has the image's aspect: a 1 x 100000 image rendered 32768 wide.
+  write_image_file(dir.file("tall.png"), 1, 100000, 1, std::vector<std::uint8_t>(100000, 100));
+  r = run({"stipple", "--image", dir.file("tall.png"), "-n", "10", "-k", "1", "-o", dir.file("p.txt"), "--png",
+           dir.file("p.png"), "--png-width", "32768"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --png-width 32768: a render of the 1 x 100000 image would be 3276800000 pixels tall, "
+                   "more than the limit of 32768: use a smaller --png-width\n");
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"tall.png"});
+}
+
 }  // namespace
 }  // namespace bluetile::robustness

@@ -26,7 +26,7 @@ Colour series_colour(std::size_t i) {
 }
 
 Canvas::Canvas(int width, int height, Colour background) : width_(width), height_(height) {
-  if (width <= 0 || height <= 0 || width > 32768 || height > 32768)
+  if (width <= 0 || height <= 0 || width > kMaxCanvasSide || height > kMaxCanvasSide)
     throw Error("image size " + std::to_string(width) + "x" + std::to_string(height) + " is out of range");
   pixels_.resize(static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
   for (std::size_t i = 0; i < pixels_.size(); i += 3) {

@@ -30,9 +30,17 @@ Colour series_colour(std::size_t i);
 
 enum class Align { start, centre, end };
 
+// The largest width and height of a Canvas, in pixels: a 32768 x 32768 canvas already holds
+// 12 GiB of float RGB.
+inline constexpr int kMaxCanvasSide = 32768;
+// Bytes a canvas takes per pixel while it is drawn and written: float RGB, and the 8-bit copy
+// handed to the image writer.
+inline constexpr double kCanvasBytesPerPixel = 15.0;
+
 class Canvas {
  public:
   Canvas() = default;
+  // Throws Error for a width or height outside 1..kMaxCanvasSide.
   Canvas(int width, int height, Colour background = colours::white);
 
   int width() const { return width_; }

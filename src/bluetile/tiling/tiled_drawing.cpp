@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 
+#include "bluetile/core/error.h"
 #include "bluetile/io/svg.h"
 
 namespace bluetile {
@@ -30,7 +32,17 @@ double default_dot_radius(double max_density) { return std::sqrt(0.35 / (std::nu
 Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style,
                    int width_pixels) {
   const double scale = width_pixels / window.width();
-  const int height_pixels = std::max(1, static_cast<int>(std::lround(window.height() * scale)));
+  // In double first: a tall window's height does not fit an int (it became 1 pixel).
+  const double height = std::max(1.0, std::round(window.height() * scale));
+  if (!(height <= kMaxCanvasSide)) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "a render %d pixels wide of a window %.17g x %.17g would be %.0f pixels tall, more than the limit "
+                  "of %d",
+                  width_pixels, window.width(), window.height(), height, kMaxCanvasSide);
+    throw Error(text);
+  }
+  const int height_pixels = static_cast<int>(height);
   Canvas canvas(width_pixels, height_pixels, colours::white);
   for_each_dot(tiler, window, thinning, style, [&](Point p, double r) {
     canvas.disc({(p.x - window.x0) * scale, (window.y1 - p.y) * scale}, r * scale, colours::black);

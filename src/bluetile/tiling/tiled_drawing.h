@@ -23,7 +23,7 @@ struct DotStyle {
 double default_dot_radius(double max_density);
 
 // The kept points of `window` as black discs on white, `width_pixels` wide and as tall as the
-// window's aspect asks (y up).
+// window's aspect asks (y up). Throws Error when that height is beyond kMaxCanvasSide.
 Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style,
                    int width_pixels);
 
