@@ -100,6 +100,8 @@ void write_render(OutputFile& out, const std::vector<Point>& points, const Domai
 }
 
 void run_stipple(const StippleOptions& o) {
+  // Refused at once, as relax does, rather than after the start is drawn.
+  check_memory(static_cast<double>(o.count) * kRelaxBytesPerSite, "--count " + std::to_string(o.count));
   // Every output is declared, and so checked, before any work; they appear together at the end.
   OutputSet outputs;
   outputs.add_input(o.image);

@@ -158,5 +158,18 @@ TEST(Options, RendersTallerThanAnImageMayBeAreRefusedUpFront) {
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"tall.png"});
 }
 
+TEST(Options, StipplesTooLargeForTheMachineAreRefusedUpFront) {
+  // Issue 24, item 5: stipple -n 1e8 failed after 20 s where relax -n 1e8 is refused at once.
+  if (sanitized()) GTEST_SKIP() << "ulimit -v stands in for a small machine, and the sanitizer needs terabytes of it";
+  TempDir dir;
+  write_image_file(dir.file("map.png"), 2, 2, 1, std::vector<std::uint8_t>(4, 100));
+  Invocation limited{{"stipple", "--image", dir.file("map.png"), "-n", "100000000", "-o", dir.file("p.txt")}};
+  limited.address_space_bytes = 1L << 30;
+  Outcome r = run(limited);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 needs about 14.9 GiB of memory, more than the ", 0), 0u) << r.err;
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"map.png"});
+}
+
 }  // namespace
 }  // namespace bluetile::robustness
