@@ -1,5 +1,6 @@
 // bluetile wang: Wang-tile sample sets by Lloyd relaxation with multiple edge constraints (the
 // paper, section 3); bluetile wang-check: the seam check and the analysis of a tiled plane.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -107,6 +108,21 @@ std::string metrics_row(const std::string& label, const TilingMetrics& m, bool t
   return row;
 }
 
+// The points of a tile once every level is added (each brings the count to round(R x count), as
+// relax_wang_tiles does), refused up front past kMaxPointsPerTile: --levels 32 or --ratio 1e7
+// otherwise ran on for hours towards an out-of-memory kill.
+void check_points_per_tile(const WangCommandOptions& o, int tiles) {
+  double total = static_cast<double>(o.points);
+  for (int l = 1; l < o.levels; ++l) total = std::max(total, std::round(o.ratio * total));
+  if (total <= static_cast<double>(kMaxPointsPerTile)) return;
+  char text[300];
+  std::snprintf(text, sizeof text,
+                "--points %lld --levels %d --ratio %.17g makes about %.0f points per tile (%.0f in the %d tiles), more "
+                "than the limit of %lld per tile: use fewer levels or a smaller ratio",
+                o.points, o.levels, o.ratio, total, total * tiles, tiles, kMaxPointsPerTile);
+  throw Error(text);
+}
+
 void run_wang(const WangCommandOptions& o) {
   OutputSet outputs;  // checked before the work, written at the end
   OutputFile& output = outputs.add(o.output, {.allow_stdout = true});
@@ -123,6 +139,7 @@ void run_wang(const WangCommandOptions& o) {
   w.level.edge_margin = o.margin;
   w.level.refine = o.refine;
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
+  check_points_per_tile(o, TileRules(w.kind).tile_count());
 
   auto engine = make_engine(o.engine);
   Progress progress("wang", static_cast<long long>(o.levels) * (o.warm + o.iterations));

@@ -171,5 +171,27 @@ TEST(Options, StipplesTooLargeForTheMachineAreRefusedUpFront) {
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"map.png"});
 }
 
+TEST(Options, WangSetsTooLargeAreRefusedUpFront) {
+  // Issue 24, item 6: the levels' counts are known before any relaxation; --ratio 1e7 (1.3e8
+  // points per tile) and --levels 32 ran on.
+  TempDir dir;
+  const std::vector<Refusal> cases = {
+      {{"wang", "--points", "13", "--levels", "2", "--ratio", "1e7", "-o", dir.file("t.txt")},
+       "--points 13 --levels 2 --ratio 10000000 makes about 130000000 points per tile (1040000000 in the 8 tiles), "
+       "more than the limit of 1000000 per tile: use fewer levels or a smaller ratio"},
+      {{"wang", "--levels", "32", "--set", "wang16", "-o", dir.file("t.txt")},
+       "--points 52 --levels 32 --ratio 2 makes about 111669149696 points per tile (1786706395136 in the 16 tiles), "
+       "more than the limit of 1000000 per tile: use fewer levels or a smaller ratio"},
+  };
+  for (const Refusal& c : cases) {
+    Invocation limited{c.arguments};
+    if (!sanitized()) limited.address_space_bytes = 2L << 30;  // without the check: out of memory, not hours
+    Outcome r = run(limited);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err, "bluetile: " + c.message + "\n");
+  }
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>{});
+}
+
 }  // namespace
 }  // namespace bluetile::robustness
