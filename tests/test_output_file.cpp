@@ -137,12 +137,12 @@ TEST(OutputFile, DescriptorPathsWriteThatDescriptor) {
 
 TEST(OutputFile, StandardOutputIsKnownAsSuch) {
   // Issue 24, item 2: "-" is kept as a copy of descriptor 1, and is_stdout() tested for 1 itself.
+  // One set each: where standard output is a file, "-" and /dev/stdout are the same output.
   TempDir dir;
-  OutputSet outputs;
-  EXPECT_TRUE(outputs.add("-", {.allow_stdout = true}).is_stdout());
-  EXPECT_TRUE(outputs.add("/dev/stdout").is_stdout());
-  EXPECT_FALSE(outputs.add(dir.file("p.txt")).is_stdout());
-  EXPECT_FALSE(outputs.add("/dev/stderr").is_stdout());
+  EXPECT_TRUE(OutputSet().add("-", {.allow_stdout = true}).is_stdout());
+  EXPECT_TRUE(OutputSet().add("/dev/stdout").is_stdout());
+  EXPECT_FALSE(OutputSet().add(dir.file("p.txt")).is_stdout());
+  EXPECT_FALSE(OutputSet().add("/dev/stderr").is_stdout());
 }
 
 TEST(OutputFile, RefusedBeforeAnyWork) {
