@@ -158,9 +158,10 @@ Plan make_plan(const TileOptions& o) {
   return plan;
 }
 
+// A count, whole up to 10^18 and in scientific notation beyond (where its digits are noise).
 std::string rounded(double v) {
   char text[40];
-  std::snprintf(text, sizeof text, "%.0f", v);
+  std::snprintf(text, sizeof text, v < 1e18 ? "%.0f" : "%.3g", v);
   return text;
 }
 
@@ -205,7 +206,9 @@ void check_render_height(const TileOptions& o, const std::vector<OutputFile*>& f
   bool render = false;
   for (const OutputFile* file : files) render = render || output_kind(file->path()) == OutputKind::image;
   const double width = o.region[2] - o.region[0], height = o.region[3] - o.region[1];
-  if (!render || !(width > 0.0) || !(height > 0.0)) return;  // a bad region is make_plan's to report
+  for (double v : o.region)
+    if (!std::isfinite(v)) return;  // a bad region is make_plan's to report
+  if (!render || !(width > 0.0) || !(height > 0.0)) return;
   const double pixels = render_height(o, o.image_size);
   if (!(pixels <= kMaxCanvasSide))
     throw Error("--image-size " + std::to_string(o.image_size) + ": a render of the region " + number(o.region[0]) +
