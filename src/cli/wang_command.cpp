@@ -325,14 +325,38 @@ void run_check(const CheckOptions& o) {
                              {"diffuse_anisotropy_db", m.diffuse_anisotropy_db}}}});
     total = prefix;
   }
-  (void)total;
+  // The prefix sweep: the first k points by rank of every tile, k at fixed fractions of the top
+  // count and at every level boundary.
+  std::vector<std::uint32_t> sweep;
+  for (int num : {2, 3, 4, 6, 8, 12, 16, 24, 32}) {
+    const std::uint32_t k = static_cast<std::uint32_t>(std::lround(static_cast<double>(total) * num / 32.0));
+    if (k >= 1) sweep.push_back(k);
+  }
+  for (const SeamLevel& level : seams.levels) sweep.push_back(static_cast<std::uint32_t>(level.points_per_tile));
+  std::sort(sweep.begin(), sweep.end());
+  sweep.erase(std::unique(sweep.begin(), sweep.end()), sweep.end());
+  std::printf("\nprefix sweep (%dx%d torus tiling):\n  %8s %8s %7s %8s %9s %8s %8s\n", o.period, o.period, "k/tile", "N",
+              "rho", "LF", "lattice", "C_LF", "C_mid");
+  nlohmann::json sweep_json = nlohmann::json::array();
+  for (std::uint32_t k : sweep) {
+    TiledPlane p = torus_tiling(set, o.period, o.seed, k);
+    if (p.points.size() < 2) continue;
+    Periodogram periodogram = tiled_periodogram(tile_prefixes(set, k), p.cell_tiles, o.period,
+                                                tiling_periodogram_size(p.points.size(), o.period));
+    TilingMetrics m = measure_tiling(p.points, periodogram, o.period, tiles);
+    std::printf("  %8u %8zu %7.3f %8.4f %9.2f %8.3f %8.3f\n", k, m.count, m.rho, m.low_frequency, m.lattice_peak,
+                m.coherence_low, m.coherence_mid);
+    sweep_json.push_back({{"k", k}, {"N", m.count}, {"rho", m.rho}, {"LF", m.low_frequency},
+                          {"lattice_peak", m.lattice_peak}, {"C_LF", m.coherence_low}, {"C_mid", m.coherence_mid}});
+  }
   nlohmann::json stats = {{"input", o.input},
                           {"set", tile_set_kind_name(set.kind)},
                           {"tiles", tiles},
                           {"blocks", seams.blocks},
                           {"period", o.period},
                           {"seed", o.seed},
-                          {"levels", levels_json}};
+                          {"levels", levels_json},
+                          {"prefix_sweep", sweep_json}};
 
   std::vector<Point> untiled;
   if (o.untiled) {

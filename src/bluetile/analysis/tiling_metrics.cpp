@@ -51,8 +51,8 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
   // Mean tile-lattice power of a set whose T tiles each occur M^2 / T times.
   const double lattice_scale = period > 0 ? static_cast<double>(period) * period / tile_count : 1.0;
 
-  double low_sum = 0.0;
-  std::size_t low_count = 0;
+  double low_sum = 0.0, lattice_sum = 0.0;
+  std::size_t low_count = 0, lattice_count = 0;
   const int first_annulus = static_cast<int>(std::ceil(kLowBand * root));
   const int end_annulus = static_cast<int>(std::floor(kAnisotropyBandEnd * root));  // annuli [i, i+1) below it
   const std::size_t annuli = static_cast<std::size_t>(std::max(0, end_annulus - first_annulus));
@@ -67,6 +67,10 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
         ++low_count;
       }
       if (lattice(kx, ky) && k2 > 0.0) {
+        if (k2 < n) {
+          lattice_sum += p;
+          ++lattice_count;
+        }
         const int mx = kx / period, my = ky / period;
         if (mx * mx + my * my <= kCoherenceLowNorm) m.coherence_low = std::max(m.coherence_low, p / lattice_scale);
         if (k2 >= kLowBand * kLowBand * n && k2 < kMidBandEnd * kMidBandEnd * n)
@@ -83,6 +87,7 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
     }
   }
   m.low_frequency = low_count ? low_sum / static_cast<double>(low_count) : 0.0;
+  m.lattice_peak = lattice_count ? lattice_sum / static_cast<double>(lattice_count) : 0.0;
   double db_sum = 0.0;
   std::size_t db_count = 0;
   for (std::size_t i = 0; i < annuli; ++i) {

@@ -26,6 +26,7 @@ struct TilingMetrics {
   double low_frequency = 0.0;       // LF
   double coherence_low = 0.0;       // C_LF (0 for an untiled set)
   double coherence_mid = 0.0;       // C_mid (0 for an untiled set)
+  double lattice_peak = 0.0;        // mean P over k = M m, 0 < |k| < sqrt(N) (0 for an untiled set)
   double diffuse_anisotropy_db = 0.0;
 };
 
