@@ -43,6 +43,8 @@ struct WangCommandOptions {
   int period = 16;
   double margin = 0.0;
   WangRefinement refine;  // the lattice and seam spacing steps, the library's defaults
+  std::string rank_order = "farthest";
+  double void_sigma = WangLevelOptions{}.void_sigma;
   std::uint64_t seed = 1;
   std::string output;
   bool check = false;
@@ -138,6 +140,8 @@ void run_wang(const WangCommandOptions& o) {
   w.level.period = o.period;
   w.level.edge_margin = o.margin;
   w.level.refine = o.refine;
+  w.level.rank_order = o.rank_order == "voids" ? RankOrder::voids : RankOrder::farthest;
+  w.level.void_sigma = o.void_sigma;
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
   check_points_per_tile(o, TileRules(w.kind).tile_count());
 
@@ -172,6 +176,7 @@ void run_wang(const WangCommandOptions& o) {
     command << " --seam-spacing " << r.seam_spacing;
     if (o.levels > 1) command << " --level-seam-spacing " << r.later_seam_spacing;
   }
+  if (o.rank_order == "voids") command << " --rank-order voids --void-sigma " << o.void_sigma;
   command << " --seed " << o.seed << " --engine " << engine->name();
   set.header = {"made by: " + command.str()};
   validate_tile_set(set);
@@ -466,6 +471,15 @@ void add_wang_command(CLI::App& app) {
   cmd->add_option("--level-seam-spacing", o->refine.later_seam_spacing,
                   "Seam spacing of levels 1 and up, in hexagonal spacings of the tile's points")
       ->check(CLI::Range(0.01, 2.0))
+      ->capture_default_str();
+  cmd->add_option("--rank-order", o->rank_order,
+                  "Progressive order inside each level: farthest (greedy farthest point) or voids (tiled "
+                  "void-and-cluster: lower low-frequency power and tile-lattice coherence between level boundaries, "
+                  "closer nearest pairs)")
+      ->check(CLI::IsMember({"farthest", "voids"}))
+      ->capture_default_str();
+  cmd->add_option("--void-sigma", o->void_sigma, "voids: kernel width in hexagonal spacings of the prefix")
+      ->check(CLI::Range(0.1, 4.0))
       ->capture_default_str();
   cmd->add_option("-s,--seed", o->seed, "Seed")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "Output tile-set file")->required();
