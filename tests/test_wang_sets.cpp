@@ -21,6 +21,8 @@
 #include "bluetile/voronoi/exact_engine.h"
 #include "test_support.h"
 
+#include <nlohmann/json.hpp>
+
 namespace bluetile {
 namespace {
 
@@ -492,6 +494,14 @@ TEST(WangRanks, VoidsSpreadALevelsFirstPointsOverTheTiles) {
   EXPECT_LT(lf_voids, 0.85 * lf_far);       // 0.128 against 0.189
 }
 
+TEST(TilingMetrics, PrefixSweepIsTheFractionsAndTheLevelBoundaries) {
+  const std::vector<std::size_t> boundaries{32, 64, 128};
+  EXPECT_EQ(prefix_sweep(128, boundaries), (std::vector<std::size_t>{8, 12, 16, 24, 32, 48, 64, 96, 128}));
+  const std::vector<std::size_t> odd{13, 26, 52};  // 52 x 3/32 = 4.875 -> 5, 52 / 16 = 3.25 -> 3
+  EXPECT_EQ(prefix_sweep(52, odd), (std::vector<std::size_t>{3, 5, 7, 10, 13, 20, 26, 39, 52}));
+  EXPECT_EQ(prefix_sweep(4, std::vector<std::size_t>{4}), (std::vector<std::size_t>{1, 2, 3, 4}));
+}
+
 TEST(WangSets, BadOptionsAreErrors) {
   ExactEngine engine;
   WangOptions o = small_options(TileSetKind::wang8, 0, 1);
@@ -528,6 +538,17 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
   test::CommandResult checked = test::run_bluetile({"wang-check", tiles, "--period", "4", "--output", dir.file("check")});
   ASSERT_EQ(checked.exit_code, 0) << checked.err;
   EXPECT_NE(checked.out.find("levels 0-1"), std::string::npos) << checked.out;
+  EXPECT_NE(checked.out.find("prefix sweep (4x4 torus tiling)"), std::string::npos) << checked.out;
+  // The sweep: 1/16 .. 1 of the 16 points per tile and the boundary 8, each plane measured once,
+  // so a boundary's row is its level's.
+  const nlohmann::json stats = nlohmann::json::parse(test::read_text(dir.file("check/stats.json")));
+  std::vector<std::size_t> ks;
+  for (const auto& row : stats["prefix_sweep"]) ks.push_back(row["k"].get<std::size_t>());
+  EXPECT_EQ(ks, (std::vector<std::size_t>{1, 2, 3, 4, 6, 8, 12, 16}));
+  for (const auto& row : stats["prefix_sweep"]) EXPECT_EQ(row["N"].get<std::size_t>(), 16 * row["k"].get<std::size_t>());
+  EXPECT_EQ(stats["prefix_sweep"][5]["LF"], stats["levels"][0]["plane"]["LF"]);
+  EXPECT_EQ(stats["prefix_sweep"][5]["lattice_peak"], stats["levels"][0]["plane"]["lattice_peak"]);
+  EXPECT_GT(stats["prefix_sweep"][5]["lattice_peak"].get<double>(), 0.0);
   for (const char* name : {"stats.json", "plane.txt", "spectrum.png", "radial.png", "points.png", "tiles.png"})
     EXPECT_TRUE(std::filesystem::exists(dir.file("check/") + name)) << name;
   // The plots hold their curves and colours, not only frames: the radial curve in the first
@@ -566,7 +587,8 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
   // The refining steps' options refuse nonsense by name, and nothing is written.
   for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
            {"--seam-spacing", "5"}, {"--level-seam-spacing", "0"}, {"--seam-steps", "-1"},
-           {"--lattice-step", "0.5"}, {"--lattice-steps", "-2"}, {"--lattice-steps-per-iteration", "x"}}) {
+           {"--lattice-step", "0.5"}, {"--lattice-steps", "-2"}, {"--lattice-steps-per-iteration", "x"},
+           {"--rank-order", "random"}, {"--void-sigma", "0"}}) {
     test::CommandResult refused_option =
         test::run_bluetile({"wang", "--points", "4", option, value, "--engine", "exact", "--output", never});
     EXPECT_NE(refused_option.exit_code, 0) << option;

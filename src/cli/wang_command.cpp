@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -176,7 +177,7 @@ void run_wang(const WangCommandOptions& o) {
     command << " --seam-spacing " << r.seam_spacing;
     if (o.levels > 1) command << " --level-seam-spacing " << r.later_seam_spacing;
   }
-  if (o.rank_order == "voids") command << " --rank-order voids --void-sigma " << o.void_sigma;
+  if (o.rank_order != "farthest") command << " --rank-order " << o.rank_order << " --void-sigma " << o.void_sigma;
   command << " --seed " << o.seed << " --engine " << engine->name();
   set.header = {"made by: " + command.str()};
   validate_tile_set(set);
@@ -305,14 +306,22 @@ void run_check(const CheckOptions& o) {
   std::snprintf(head, sizeof head, "  %-28s %8s %7s %8s %8s %8s %9s\n", "prefix", "N", "rho", "LF", "C_LF", "C_mid",
                 "aniso dB");
   std::printf("%s", head);
-  nlohmann::json levels_json = nlohmann::json::array();
-  std::uint32_t total = 0;
-  for (const SeamLevel& level : seams.levels) {
-    const std::uint32_t prefix = static_cast<std::uint32_t>(level.points_per_tile);
+  // The plane of the first k ranks of every tile, each measured once (level boundaries are in
+  // the sweep too).
+  std::map<std::size_t, TilingMetrics> measured;
+  auto metrics_at = [&](std::size_t k) -> const TilingMetrics& {
+    auto found = measured.find(k);
+    if (found != measured.end()) return found->second;
+    const auto prefix = static_cast<std::uint32_t>(k);
     TiledPlane p = torus_tiling(set, o.period, o.seed, prefix);
     Periodogram periodogram = tiled_periodogram(tile_prefixes(set, prefix), p.cell_tiles, o.period,
                                                 tiling_periodogram_size(p.points.size(), o.period));
-    TilingMetrics m = measure_tiling(p.points, periodogram, o.period, tiles);
+    return measured.emplace(k, measure_tiling(p.points, periodogram, o.period, tiles)).first->second;
+  };
+  nlohmann::json levels_json = nlohmann::json::array();
+  std::size_t total = 0;
+  for (const SeamLevel& level : seams.levels) {
+    const TilingMetrics& m = metrics_at(level.points_per_tile);
     std::printf("%s", metrics_row("levels 0-" + std::to_string(level.level), m, true).c_str());
     levels_json.push_back({{"level", level.level},
                            {"points_per_tile", level.points_per_tile},
@@ -327,29 +336,22 @@ void run_check(const CheckOptions& o) {
                              {"LF", m.low_frequency},
                              {"C_LF", m.coherence_low},
                              {"C_mid", m.coherence_mid},
+                             {"lattice_peak", m.lattice_peak},
                              {"diffuse_anisotropy_db", m.diffuse_anisotropy_db}}}});
-    total = prefix;
+    total = level.points_per_tile;
   }
   // The prefix sweep: the first k points by rank of every tile, k at fixed fractions of the top
   // count and at every level boundary.
-  std::vector<std::uint32_t> sweep;
-  for (int num : {2, 3, 4, 6, 8, 12, 16, 24, 32}) {
-    const std::uint32_t k = static_cast<std::uint32_t>(std::lround(static_cast<double>(total) * num / 32.0));
-    if (k >= 1) sweep.push_back(k);
-  }
-  for (const SeamLevel& level : seams.levels) sweep.push_back(static_cast<std::uint32_t>(level.points_per_tile));
-  std::sort(sweep.begin(), sweep.end());
-  sweep.erase(std::unique(sweep.begin(), sweep.end()), sweep.end());
+  std::vector<std::size_t> boundaries;
+  for (const SeamLevel& level : seams.levels) boundaries.push_back(level.points_per_tile);
+  const std::vector<std::size_t> sweep = prefix_sweep(total, boundaries);
   std::printf("\nprefix sweep (%dx%d torus tiling):\n  %8s %8s %7s %8s %9s %8s %8s\n", o.period, o.period, "k/tile", "N",
               "rho", "LF", "lattice", "C_LF", "C_mid");
   nlohmann::json sweep_json = nlohmann::json::array();
-  for (std::uint32_t k : sweep) {
-    TiledPlane p = torus_tiling(set, o.period, o.seed, k);
-    if (p.points.size() < 2) continue;
-    Periodogram periodogram = tiled_periodogram(tile_prefixes(set, k), p.cell_tiles, o.period,
-                                                tiling_periodogram_size(p.points.size(), o.period));
-    TilingMetrics m = measure_tiling(p.points, periodogram, o.period, tiles);
-    std::printf("  %8u %8zu %7.3f %8.4f %9.2f %8.3f %8.3f\n", k, m.count, m.rho, m.low_frequency, m.lattice_peak,
+  for (const std::size_t k : sweep) {
+    if (k * static_cast<std::size_t>(o.period) * static_cast<std::size_t>(o.period) < 2) continue;
+    const TilingMetrics& m = metrics_at(k);
+    std::printf("  %8zu %8zu %7.3f %8.4f %9.2f %8.3f %8.3f\n", k, m.count, m.rho, m.low_frequency, m.lattice_peak,
                 m.coherence_low, m.coherence_mid);
     sweep_json.push_back({{"k", k}, {"N", m.count}, {"rho", m.rho}, {"LF", m.low_frequency},
                           {"lattice_peak", m.lattice_peak}, {"C_LF", m.coherence_low}, {"C_mid", m.coherence_mid}});

@@ -29,6 +29,19 @@ int tiling_metrics_periodogram_size(std::size_t count) {
   return 2 * (static_cast<int>(std::ceil(kAnisotropyBandEnd * root)) + 2);
 }
 
+std::vector<std::size_t> prefix_sweep(std::size_t top, std::span<const std::size_t> boundaries) {
+  std::vector<std::size_t> sweep;
+  for (int in_32nds : {2, 3, 4, 6, 8, 12, 16, 24, 32}) {
+    const auto k = static_cast<std::size_t>(std::llround(static_cast<double>(top) * in_32nds / 32.0));
+    if (k >= 1) sweep.push_back(k);
+  }
+  for (std::size_t b : boundaries)
+    if (b >= 1 && b <= top) sweep.push_back(b);
+  std::sort(sweep.begin(), sweep.end());
+  sweep.erase(std::unique(sweep.begin(), sweep.end()), sweep.end());
+  return sweep;
+}
+
 double relative_min_distance(std::span<const Point> points) {
   NearestNeighbourStats nn = nearest_neighbour_stats(std::vector<Point>(points.begin(), points.end()));
   return nn.min / nn.hexagonal_spacing;
