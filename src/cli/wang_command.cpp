@@ -389,7 +389,7 @@ void run_check(const CheckOptions& o) {
   }
   std::printf("  (rho: min NN distance / hexagonal spacing; LF: mean periodogram for 0 < |k| < 0.5 sqrt(N);\n"
               "   C_LF, C_mid: tile-lattice coherence for M = %d; anisotropy: mean over annuli 0.5-1.6 sqrt(N),\n"
-              "   lattice frequencies left out)\n",
+              "   lattice frequencies left out; lattice: mean periodogram at k = M m, 0 < |k| < sqrt(N))\n",
               o.period);
 
   if (o.output.empty()) return;

@@ -9,8 +9,8 @@ namespace {
 
 // The voids order takes its point among those at least this fraction of the farthest one's
 // distance from every ranked point: the smooth energy alone let close pairs into early prefixes
-// (rho 0.45 at the first eighth of a level, against 0.57 with this floor and 0.54 for farthest
-// point; 16 to 128 points per tile, docs/RESULTS.md).
+// (rho 0.40 at the first quarter of level 0 against 0.48 with this floor and 0.54 for farthest
+// point; wang8, 32 to 128 points per tile, seed 1, docs/RESULTS.md).
 constexpr double kVoidSpacingFloor = 0.7;
 
 }  // namespace
