@@ -241,6 +241,14 @@ def test_wang_tiles_match_the_tool(tool, tmp_path):
         assert np.all((t["points"] >= 0) & (t["points"] < 1))
     # A path reads the same set.
     assert np.array_equal(bt.tile_set(str(out))["tiles"][5]["points"], tiles["tiles"][5]["points"])
+    # The voids order too, and bad orders are refused by name.
+    tool("wang", "--set", "wang8", "--points", 8, "--iterations", 3, "--warm", 2, "--levels", 2, "--ratio", 2,
+         "--rank-order", "voids", "--void-sigma", 0.6, "--engine", "exact", "--seed", 3, "--output", out)
+    voids = bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, rank_order="voids", void_sigma=0.6, seed=3)
+    assert tile_set_body(voids) == tile_set_body(out.read_text())
+    assert tile_set_body(voids) != tile_set_body(bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, seed=3))
+    with pytest.raises(ValueError, match="rank_order"):
+        bt.wang_tiles("wang8", points=8, rank_order="random")
 
 
 def test_tile_matches_the_tool(tool, tmp_path):
