@@ -179,14 +179,19 @@ void check_density(const Scene& scene) {
   if (d.width <= 0 || d.height <= 0 || d.texels.size() != static_cast<std::size_t>(d.width) * static_cast<std::size_t>(d.height))
     throw Error("density grid of " + std::to_string(d.width) + " x " + std::to_string(d.height) + " texels holds " +
                 std::to_string(d.texels.size()) + " values");
-  bool any_positive = false;
-  for (std::size_t k = 0; k < d.texels.size(); ++k) {
+  // One branch-free pass first (engines check the density on every call): the loop that names
+  // the bad texel runs only when there is one.
+  bool all_valid = true, any_positive = false;
+  for (const float t : d.texels) {
+    all_valid &= (t >= 0.0f) & (t <= std::numeric_limits<float>::max());  // false for NaN
+    any_positive |= t > 0.0f;
+  }
+  for (std::size_t k = 0; !all_valid && k < d.texels.size(); ++k) {
     const float t = d.texels[k];
     if (!std::isfinite(t) || t < 0.0f)
       throw Error("density texel (" + std::to_string(k % static_cast<std::size_t>(d.width)) + ", " +
                   std::to_string(k / static_cast<std::size_t>(d.width)) + ") is " + std::to_string(t) +
                   ": densities must be finite and non-negative");
-    any_positive |= t > 0.0f;
   }
   if (!any_positive) throw Error("the density is zero everywhere: no cell has a centre of mass");
 }

@@ -47,7 +47,7 @@ struct Sums {
 
 // Up to this many texels F is summed texel by texel: exact for cells a few texels wide, where
 // the table's block shifts would cost relative precision.
-constexpr long kDirectTexels = 3;
+constexpr long kDirectTexels = 6;
 
 }  // namespace
 
@@ -116,36 +116,47 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
   const long g0 = column_index[0];
   const float* texels = density.texels.data();
   const Entry* table = table_.data();
-
-  // F_0, F_1, F_2 at column line c of the frame (the texels [0, c) of a row).
-  auto prefix = [&](const float* rho, const Entry* row, long c, double f[3]) {
-    f[0] = f[1] = f[2] = 0.0;
-    if (c <= kDirectTexels) {
-      for (long k = 0; k < c; ++k) {
-        const double r = rho[column_index[static_cast<std::size_t>(k)]], i = static_cast<double>(k);
-        f[0] += r;
-        f[1] += r * (i + 0.5);
-        f[2] += r * (i * i + i + 1.0 / 3.0);
-      }
-      return;
+  // Each row piece reads a row of its own, so the rows' loads are issued up front: one after
+  // another they would each wait out a cache miss (the box's rows lie a grid row apart).
+  {
+    const long last = std::min(width, g0 + columns);
+    for (long r = 0; r < rows; ++r) {
+      const float* rho = texels + row_start[static_cast<std::size_t>(r)];
+      const Entry* row = table + row_block[static_cast<std::size_t>(r)];
+      for (long g = g0; g < last; g += 16) __builtin_prefetch(rho + g);
+      __builtin_prefetch(rho + last - 1);
+      for (long b = g0 / kBlock; b <= (last - 1) / kBlock; b += 2) __builtin_prefetch(row + b);
     }
-    auto add_texel = [&](long k, double r) {
+  }
+
+  // F_0, F_1, F_2 at column line c of the frame (the texels [0, c) of a row). Accumulated in
+  // locals: through a pointer they could alias the table, and every add would go through memory.
+  struct Prefix {
+    double f0 = 0.0, f1 = 0.0, f2 = 0.0;
+    void add(long k, double r) {
       const double i = static_cast<double>(k);
-      f[0] += r;
-      f[1] += r * (i + 0.5);
-      f[2] += r * (i * i + i + 1.0 / 3.0);
-    };
+      f0 += r;
+      f1 += r * (i + 0.5);
+      f2 += r * (i * i + i + 1.0 / 3.0);
+    }
+  };
+  auto prefix = [&](const float* rho, const Entry* row, long c) {
+    Prefix f;
+    if (c <= kDirectTexels) {
+      for (long k = 0; k < c; ++k) f.add(k, rho[column_index[static_cast<std::size_t>(k)]]);
+      return f;
+    }
     long x = 0, g = c0;
     if (periodic) {
       g = g0;
     } else {
       // A bounded box reaches past the grid only by rounding: those columns are clamped texels.
-      for (; x < c && g < 0; ++x, ++g) add_texel(x, rho[0]);
+      for (; x < c && g < 0; ++x, ++g) f.add(x, rho[0]);
     }
     while (x < c) {
       if (g >= width) {
         if (!periodic) {
-          for (; x < c; ++x) add_texel(x, rho[width - 1]);
+          for (; x < c; ++x) f.add(x, rho[width - 1]);
           break;
         }
         g -= width;
@@ -156,19 +167,20 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
       const long block_end = std::min(block + kBlock, width);
       const long len = std::min(block_end - g, c - x);
       if (2 * len <= block_end - block) {
-        for (long i = 0; i < len; ++i) add_texel(x + i, rho[g + i]);
+        for (long i = 0; i < len; ++i) f.add(x + i, rho[g + i]);
       } else {
-        const Entry& e = row[block / kBlock];
+        const Entry e = row[block / kBlock];
         const double d = static_cast<double>(x - (g - block));  // the block's start in the frame
-        f[2] += e.q2 + d * (2.0 * e.q1 + d * e.q0);
-        f[1] += e.q1 + d * e.q0;
-        f[0] += e.q0;
-        for (long i = block; i < g; ++i) add_texel(x - (g - i), -rho[i]);
-        for (long i = g + len; i < block_end; ++i) add_texel(x + (i - g), -rho[i]);
+        f.f2 += e.q2 + d * (2.0 * e.q1 + d * e.q0);
+        f.f1 += e.q1 + d * e.q0;
+        f.f0 += e.q0;
+        for (long i = block; i < g; ++i) f.add(x - (g - i), -rho[i]);
+        for (long i = g + len; i < block_end; ++i) f.add(x + (i - g), -rho[i]);
       }
       x += len;
       g += len;
     }
+    return f;
   };
 
   Sums sums;
@@ -183,20 +195,29 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
     const Entry* row = table + row_block[static_cast<std::size_t>(r)];
     const long c1 = std::clamp(static_cast<long>(u1), 0L, columns - 1);
     const long c2 = std::clamp(static_cast<long>(u2), 0L, columns - 1);
-    double f[3];
-    prefix(rho, row, c1, f);
+    Prefix f;
+    if (c1 > 0) f = prefix(rho, row, c1);
     {
       const double rw = rho[column_index[static_cast<std::size_t>(c1)]] * (u1 - static_cast<double>(c1));
       const double c = static_cast<double>(c1);
-      f[0] += rw;
-      f[1] += rw * (u1 + c) * 0.5;
-      f[2] += rw * (u1 * u1 + u1 * c + c * c) * (1.0 / 3.0);
+      f.f0 += rw;
+      f.f1 += rw * (u1 + c) * 0.5;
+      f.f2 += rw * (u1 * u1 + u1 * c + c * c) * (1.0 / 3.0);
     }
     const double dv = v2 - v1;
-    double s0 = dv * f[0], su = dv * f[1], suu = dv * f[2];
-    double sv = dv * 0.5 * (v1 + v2) * f[0];
-    double svv = dv * (v1 * v1 + v1 * v2 + v2 * v2) * (1.0 / 3.0) * f[0];
-    if (u2 > u1) {
+    double s0 = dv * f.f0, su = dv * f.f1, suu = dv * f.f2;
+    double sv = dv * 0.5 * (v1 + v2) * f.f0;
+    double svv = dv * (v1 * v1 + v1 * v2 + v2 * v2) * (1.0 / 3.0) * f.f0;
+    if (c1 == c2) {
+      // Inside one texel: N_j = rho du^(j + 1) / (j + 1), so with q = rho dv du the terms
+      // m N_j lose their division (and vanish for a vertical piece).
+      const double du = u2 - u1, q = rho[column_index[static_cast<std::size_t>(c1)]] * dv * du;
+      s0 += 0.5 * q;
+      su += q * (0.5 * u2 - du * (1.0 / 3.0));
+      suu += q * (u2 * (0.5 * u2 - du * (2.0 / 3.0)) + 0.25 * du * du);
+      sv += q * (0.5 * v2 - dv * (1.0 / 6.0));
+      svv += q * (v2 * (0.5 * v2 - dv * (1.0 / 3.0)) + dv * dv * (1.0 / 12.0));
+    } else {
       // N_j times (j + 1), texel by texel from the right end leftwards.
       double n1 = 0.0, n2 = 0.0, n3 = 0.0;
       double t0 = 0.0;  // s at the texel's right side
