@@ -30,7 +30,8 @@ class ExactEngine final : public CentroidEngine {
 
   // How a density weights cells: whether it is uniform, and its prefix tables when it is not
   // (density_prefix.h). Kept per map across calls (a relaxation measures the same map every
-  // iteration); the tables of the few maps seen last are kept.
+  // iteration); the tables of the few maps seen last are kept. The cache makes compute unsafe
+  // to call from two threads at once on one engine (one engine per thread instead).
   struct DensityEntry;
 
  private:
