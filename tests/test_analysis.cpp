@@ -17,6 +17,8 @@
 #include "bluetile/analysis/summary.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/voronoi/exact_engine.h"
 #include "test_support.h"
 
 namespace bluetile {
@@ -46,7 +48,7 @@ TEST(Periodogram, MatchesPlainComplexSumEverywhere) {
   // 300 points span two blocks of the kernel; F = 150 spans tiles that straddle k = 0 unevenly.
   auto points = uniform_points(300, 11);
   const int f = 150;
-  Periodogram p = compute_periodogram(points, f);
+  Periodogram p = compute_periodogram_direct(points, f);
   ASSERT_EQ(p.size, f);
   double worst = 0.0;
   for (int ky = -f / 2; ky < f / 2; ++ky) {
@@ -105,6 +107,87 @@ TEST(Periodogram, BitIdenticalWhateverTheThreadCount) {
   set_thread_count(before);
   EXPECT_TRUE(serial.power == two.power);
   EXPECT_TRUE(serial.power == five.power);
+}
+
+// The non-uniform FFT against the direct sum (its oracle): every value within 1e-9 of the
+// largest power, P(0) = N.
+double worst_relative_difference(const std::vector<Point>& points, int f) {
+  const Periodogram fast = compute_periodogram_nufft(points, f);
+  const Periodogram direct = compute_periodogram_direct(points, f);
+  EXPECT_EQ(fast.size, f);
+  EXPECT_EQ(fast.at(0, 0), static_cast<double>(points.size()));
+  double worst = 0.0, highest = 0.0;
+  for (std::size_t i = 0; i < direct.power.size(); ++i) {
+    worst = std::max(worst, std::abs(fast.power[i] - direct.power[i]));
+    highest = std::max(highest, direct.power[i]);
+  }
+  return worst / highest;
+}
+
+std::vector<Point> relaxed_points(std::size_t n, std::uint64_t seed, int iterations) {
+  Scene scene = make_scene(uniform_points(n, seed));
+  ExactEngine engine;
+  LloydOptions options;
+  options.iterations = iterations;
+  relax_lloyd(engine, scene, options);
+  return scene.sites;
+}
+
+std::vector<Point> hexagonal_lattice(int columns, int rows) {
+  std::vector<Point> points;
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i) points.push_back(wrap_point({(i + 0.5 * (j % 2) + 0.1) / columns, (j + 0.3) / rows}, Domain{}));
+  return points;
+}
+
+TEST(PeriodogramNufft, MatchesTheDirectSumOnRandomSets) {
+  for (auto [n, f] : {std::pair{3000, 0}, std::pair{500, 150}, std::pair{64, 2}, std::pair{40, 6}}) {
+    auto points = uniform_points(static_cast<std::size_t>(n), 21 + static_cast<std::uint64_t>(n));
+    const int size = f ? f : default_periodogram_size(points.size());
+    const double error = worst_relative_difference(points, size);
+    EXPECT_LT(error, 1e-9) << "N = " << n << ", F = " << size;
+  }
+}
+
+TEST(PeriodogramNufft, MatchesTheDirectSumOnARelaxedSet) {
+  auto points = relaxed_points(2048, 4, 30);
+  const double error = worst_relative_difference(points, default_periodogram_size(points.size()));
+  EXPECT_LT(error, 1e-9);
+}
+
+TEST(PeriodogramNufft, MatchesTheDirectSumOnLattices) {
+  // Lattices put all their power on a few frequencies (P = N there, 0 elsewhere): the error at
+  // the zeros is relative to those peaks.
+  auto square = square_lattice(40, {0.013, 0.007});
+  EXPECT_LT(worst_relative_difference(square, 400), 1e-9);
+  auto hexagonal = hexagonal_lattice(36, 42);
+  EXPECT_LT(worst_relative_difference(hexagonal, default_periodogram_size(hexagonal.size())), 1e-9);
+  // Points on grid lines of the upsampled grid and on the torus seam (x = 0, 1 - 2^-53, -0).
+  std::vector<Point> seam = {{0.0, 0.0}, {1.0 - 0x1p-53, 0.5}, {-0.0, 0.25}, {0.5, 1.0 - 0x1p-53}, {0.25, 0.75}};
+  EXPECT_LT(worst_relative_difference(seam, 64), 1e-9);
+}
+
+TEST(PeriodogramNufft, BitIdenticalWhateverTheThreadCount) {
+  auto points = uniform_points(5000, 8);
+  const std::size_t before = thread_count();
+  set_thread_count(1);
+  Periodogram serial = compute_periodogram_nufft(points, 300);
+  set_thread_count(2);
+  Periodogram two = compute_periodogram_nufft(points, 300);
+  set_thread_count(7);
+  Periodogram seven = compute_periodogram_nufft(points, 300);
+  set_thread_count(before);
+  EXPECT_TRUE(serial.power == two.power);
+  EXPECT_TRUE(serial.power == seven.power);
+}
+
+TEST(PeriodogramNufft, ChosenForLargeSetsOnly) {
+  EXPECT_FALSE(periodogram_uses_nufft(64, 64));
+  EXPECT_TRUE(periodogram_uses_nufft(1000, default_periodogram_size(1000)));
+  EXPECT_TRUE(periodogram_uses_nufft(100000, default_periodogram_size(100000)));
+  EXPECT_EQ(periodogram_nufft_grid(10000), 16384u);  // the power of two >= 1.5 F
+  EXPECT_THROW(compute_periodogram_nufft(std::vector<Point>{}, 16), Error);
+  EXPECT_THROW(compute_periodogram_nufft(uniform_points(3, 1), 15), Error);
 }
 
 TEST(Periodogram, RejectsBadArguments) {
