@@ -1,7 +1,8 @@
 // The periodogram's two methods side by side (docs/BENCHMARKS.md, "Periodogram at scale"):
 // seconds for the direct sum and the non-uniform FFT at psa's default F for each N, and the
 // largest difference between them relative to P(0) = N. The direct sum is skipped above
-// --direct-max points (it grows as N^2).
+// --direct-max points (it grows as N^2). Then, for --rdf-count, the seconds of psa's
+// RDF-derived radial power (spectral_measures.h), whose pair histogram out to 0.25 is O(N^2).
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -11,6 +12,7 @@
 #include <CLI/CLI.hpp>
 
 #include "bluetile/analysis/periodogram.h"
+#include "bluetile/analysis/spectral_measures.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 
@@ -29,6 +31,8 @@ int main(int argc, char** argv) {
   int threads = 0;
   app.add_option("-n,--count", counts, "Point counts");
   app.add_option("--direct-max", direct_max, "Largest N for the direct sum");
+  std::vector<std::size_t> rdf_counts;
+  app.add_option("--rdf-count", rdf_counts, "Point counts for psa's RDF spectrum (none by default)");
   app.add_option("--threads", threads, "Threads (default: all cores)");
   CLI11_PARSE(app, argc, argv);
   if (threads > 0) bluetile::set_thread_count(static_cast<std::size_t>(threads));
@@ -55,6 +59,16 @@ int main(int argc, char** argv) {
     }
     std::printf("| %zu | %d | %zu | %s | %.3f | %s | %s |\n", n, f, bluetile::periodogram_nufft_grid(f), direct_s.c_str(),
                 fast_s, diff.c_str(), bluetile::periodogram_uses_nufft(n, f) ? "NUFFT" : "direct");
+    std::fflush(stdout);
+  }
+  if (!rdf_counts.empty()) std::printf("\n| N | RDF spectrum s | pairs < 0.25 |\n|---|---|---|\n");
+  for (std::size_t n : rdf_counts) {
+    bluetile::Rng rng(n);
+    std::vector<bluetile::Point> points(n);
+    for (auto& p : points) p = {rng.uniform(), rng.uniform()};
+    const auto start = std::chrono::steady_clock::now();
+    const bluetile::RdfPowerSpectrum spectrum = bluetile::rdf_power_spectrum(points);
+    std::printf("| %zu | %.3f | %.3g |\n", n, seconds_since(start), bluetile::rdf_power_spectrum_pairs(n));
     std::fflush(stdout);
   }
   return 0;

@@ -67,13 +67,15 @@ RadialDistribution radial_distribution(std::span<const Point> points, const RdfO
         // On the torus the grid visits every copy once; a bounded set ignores the wrap-around
         // buckets it also visits, by measuring plain distances.
         grid.for_each_near(p, range, [&](std::uint32_t j) {
-          if (j == i) return;
+          // On the torus each pair is counted once, twice over (the weight is 1 both ways and
+          // integer sums are exact, so the histogram is the same): half the distances.
+          if (periodic ? j <= i : j == i) return;
           const Point d = periodic ? torus_offset(p, inside[j], domain) : inside[j] - p;
           const double r2 = d.x * d.x + d.y * d.y;
           if (r2 >= range_squared) return;
           const auto bin = static_cast<std::size_t>(std::sqrt(r2) / rdf.bin_width);
           if (bin >= bins) return;  // r just below the range, rounded up
-          histogram[bin] += periodic ? 1.0 : (width * height) / ((width - std::abs(d.x)) * (height - std::abs(d.y)));
+          histogram[bin] += periodic ? 2.0 : (width * height) / ((width - std::abs(d.x)) * (height - std::abs(d.y)));
         });
       }
     }
