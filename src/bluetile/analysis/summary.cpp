@@ -56,7 +56,7 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
   std::vector<Periodogram> periodograms;
   std::vector<RadialDistribution> distributions;
   std::vector<RdfPowerSpectrum> spectra;
-  s.has_spectral_measures = periodic;
+  s.has_spectral_measures = periodic && options.spectral_measures;
   const std::size_t total_work = sets.size();
   for (std::size_t k = 0; k < sets.size(); ++k) {
     NearestNeighbourStats nn = nearest_neighbour_stats(sets[k], Domain{}, options.boundary);
