@@ -411,6 +411,35 @@ TEST(AnalyzeCommand, BadInputFailsCleanlyAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
 }
 
+TEST(AnalyzeCommand, RefusesUpFrontWithTheEstimate) {
+  // psa's measures are what takes the time (their RDF is O(N^2)): the refusal says so, names the
+  // way to skip them and the way to raise the limit, and writes nothing.
+  test::TempDir dir;
+  std::string input = write_points(dir, "uniform.txt", uniform_points(5000, 3));
+  auto r = test::run_bluetile({"analyze", "--input", input, "--output", dir.file("out"), "--threads", "1",
+                               "--time-limit", "0.001"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("analyze of 5000 points would take about"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("psa's nu_eff and Omega"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("2.5e+06 pairs closer than 0.25"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--no-psa-measures skips them"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--time-limit 0.001 minutes"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+  // Without them the rest is still over this limit: only raising it is offered.
+  r = test::run_bluetile({"analyze", "--input", input, "--output", dir.file("out"), "--threads", "1", "--time-limit",
+                          "0.0001", "--no-psa-measures"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err.find("--no-psa-measures skips"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("raise --time-limit"), std::string::npos) << r.err;
+  // Skipped measures are null in stats.json and said so in the report.
+  r = test::run_bluetile({"analyze", "--input", input, "--output", dir.file("out"), "--no-psa-measures", "--no-centroids"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto stats = nlohmann::json::parse(test::read_text(dir.file("out") + "/stats.json"));
+  EXPECT_TRUE(stats["nu_eff"].is_null());
+  EXPECT_TRUE(stats["omega"].is_null());
+  EXPECT_NE(r.out.find("skipped (--no-psa-measures)"), std::string::npos);
+}
+
 TEST(AnalyzeCommand, AverageCompareAndLevels) {
   test::TempDir dir;
   std::string a = write_points(dir, "a.txt", uniform_points(300, 1));

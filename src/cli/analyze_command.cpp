@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bluetile/analysis/summary.h"
+#include "cli/analysis_budget.h"
 #include "cli/commands.h"
 #include "cli/numeric_options.h"
 #include "cli/progress.h"
@@ -403,6 +404,22 @@ void run_analyze(const AnalyzeOptions& o) {
       throw Error(o.from + ": --from has " + std::to_string(from.size()) + " points but the input has " +
                   std::to_string(inputs[0][0].points.size()));
   }
+  // The estimate, before any work: a set too large for psa's O(N^2) measures or for the memory
+  // is refused with what it would take.
+  std::vector<AnalysisJob> jobs;
+  if (o.compare) {
+    for (const auto& sets : inputs) jobs.push_back({sets[0].points.size(), sets.size(), o.size});
+  } else if (o.by_level) {
+    std::vector<int> levels = inputs[0][0].levels;
+    std::sort(levels.begin(), levels.end());
+    for (std::size_t i = 0; i < levels.size(); ++i)
+      if (i + 1 == levels.size() || levels[i + 1] != levels[i]) jobs.push_back({i + 1, 1, o.size});
+  } else {
+    jobs.push_back({inputs[0][0].points.size(), total_sets, o.size});
+  }
+  if (boundary == Boundary::periodic) check_analysis_budget(jobs, !o.no_psa_measures, o.time_limit_minutes);
+  else check_analysis_budget(jobs, false, o.time_limit_minutes);
+
   auto label_of = [&](std::size_t i) {
     return o.labels.empty() ? std::filesystem::path(o.inputs[i]).stem().string() : o.labels[i];
   };
@@ -416,8 +433,18 @@ void run_analyze(const AnalyzeOptions& o) {
   options.rdf.range = o.rdf_range;
   options.rdf.bins = static_cast<std::size_t>(o.rdf_bins);
   std::unique_ptr<Progress> bar;
+  // On a terminal: the step under way, and the periodogram's progress.
+  std::string step;
+  options.step = [&](const char* name) {
+    step = name;
+    bar = std::make_unique<Progress>("analyze:", 0);
+    bar->update(0, step);
+  };
   options.progress = [&](std::size_t done, std::size_t total) {
-    if (!bar) bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
+    if (!bar || step != "periodogram ") {
+      step = "periodogram ";
+      bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
+    }
     bar->update(static_cast<long long>(done));
   };
 

@@ -58,7 +58,11 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
   std::vector<RdfPowerSpectrum> spectra;
   s.has_spectral_measures = periodic && options.spectral_measures;
   const std::size_t total_work = sets.size();
+  auto step = [&](const char* name) {
+    if (options.step) options.step(name);
+  };
   for (std::size_t k = 0; k < sets.size(); ++k) {
+    step("nearest neighbours");
     NearestNeighbourStats nn = nearest_neighbour_stats(sets[k], Domain{}, options.boundary);
     if (k == 0) {
       s.nn = nn;
@@ -70,13 +74,17 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
       s.nn_min_lowest = std::min(s.nn_min_lowest, nn.min);
       s.nn_min_highest = std::max(s.nn_min_highest, nn.min);
     }
+    if (s.has_centroid_distance) step("centroids");
     if (s.has_centroid_distance) s.centroid_distance += mean_centroid_distance(sets[k]);
     if (s.has_bond_order) {
+      step("bond order");
       BondOrder b = bond_orientational_order(sets[k]);
       s.bond_order.local += b.local;
       s.bond_order.global += b.global;
     }
+    step("RDF");
     distributions.push_back(radial_distribution(sets[k], rdf_options));
+    if (s.has_spectral_measures) step("psa's RDF spectrum");
     if (s.has_spectral_measures) spectra.push_back(rdf_power_spectrum(sets[k]));
     std::function<void(std::size_t, std::size_t)> progress;
     if (options.progress) {
@@ -84,6 +92,7 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
         options.progress(k * total + done, total_work * total);
       };
     }
+    step("periodogram");
     periodograms.push_back(compute_periodogram(sets[k], size, progress));
   }
   const double count = static_cast<double>(sets.size());

@@ -35,6 +35,8 @@ struct SummaryOptions {
   bool spectral_measures = true;
   RdfOptions rdf;          // range and bins (its boundary is taken from `boundary`)
   std::function<void(std::size_t, std::size_t)> progress;  // periodogram progress
+  // Called with the name of each step as it starts ("nearest neighbours", "periodogram", ...).
+  std::function<void(const char*)> step;
 };
 
 struct Summary {
