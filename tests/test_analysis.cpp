@@ -15,6 +15,7 @@
 #include "bluetile/analysis/periodogram.h"
 #include "bluetile/analysis/radial_power.h"
 #include "bluetile/analysis/summary.h"
+#include "bluetile/analysis/summary_record.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/relax/lloyd.h"
@@ -299,6 +300,35 @@ TEST(Summary, LatticeSitesAreTheirCentroids) {
   // Uniform random sites are far from their centroids: a sizeable fraction of the spacing.
   auto points = uniform_points(500, 4);
   EXPECT_GT(mean_centroid_distance(points) / hexagonal_spacing(500.0), 0.1);
+}
+
+TEST(Summary, RecordHoldsStatsJsonFieldsWithTheSummarysNumbers) {
+  std::vector<std::vector<Point>> sets = {relaxed_points(256, 2, 20)};
+  SummaryOptions options;
+  const Summary s = summarize(sets, options);
+  const Record r = summary_record(s);
+  ASSERT_EQ(r.kind, Record::Kind::object);
+  for (const char* key : {"n", "sets", "boundary", "nn_min", "nn_max", "nn_mean", "nn_x1000", "nn_relative",
+                          "hexagonal_spacing", "rho", "average_min_distance", "mean_centroid_distance",
+                          "mean_centroid_distance_relative", "nu_eff", "omega", "omega_range_nu", "bond_order",
+                          "rdf_range_relative", "rdf_bins", "periodogram_size", "radial"})
+    EXPECT_NE(r.find(key), nullptr) << key;
+  EXPECT_EQ(r.find("n")->integer, 256);
+  EXPECT_EQ(r.find("rho")->real, s.nn.rho());
+  EXPECT_EQ(r.find("nu_eff")->real, s.measures.nu_eff);
+  EXPECT_EQ(r.find("omega")->real, s.measures.omega);
+  EXPECT_EQ(r.find("bond_order")->find("local")->real, s.bond_order.local);
+  EXPECT_EQ(r.find("radial")->find("power")->reals.size(), s.radial.size());
+  EXPECT_EQ(r.find("nn_min_lowest"), nullptr);  // one set
+  // Skipped psa measures are null (NaN), bounded sets have no bond order or centroid distance.
+  options.spectral_measures = false;
+  options.boundary = Boundary::bounded;
+  const Record b = summary_record(summarize(sets, options));
+  EXPECT_TRUE(std::isnan(b.find("nu_eff")->real));
+  EXPECT_EQ(b.find("omega_range_nu"), nullptr);
+  EXPECT_EQ(b.find("bond_order"), nullptr);
+  EXPECT_EQ(b.find("mean_centroid_distance"), nullptr);
+  EXPECT_EQ(b.find("boundary")->text, "bounded");
 }
 
 TEST(Summary, PrefixesOfALeveledSet) {

@@ -16,6 +16,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bluetile/analysis/summary.h"
+#include "bluetile/analysis/summary_record.h"
 #include "cli/analysis_budget.h"
 #include "cli/commands.h"
 #include "cli/numeric_options.h"
@@ -117,50 +118,30 @@ nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 
 const char* boundary_name(Boundary b) { return b == Boundary::periodic ? "periodic" : "bounded"; }
 
-nlohmann::json summary_json(const Summary& s) {
-  const double h = s.nn.hexagonal_spacing;
-  nlohmann::json j;
-  j["n"] = s.count;
-  j["sets"] = s.sets;
-  j["boundary"] = boundary_name(s.boundary);
-  j["nn_min"] = s.nn.min;
-  j["nn_max"] = s.nn.max;
-  j["nn_mean"] = s.nn.mean;
-  j["nn_x1000"] = {{"min", 1000.0 * s.nn.min}, {"max", 1000.0 * s.nn.max}, {"mean", 1000.0 * s.nn.mean}};
-  j["nn_relative"] = {{"min", s.nn.min / h}, {"max", s.nn.max / h}, {"mean", s.nn.mean / h}};
-  j["hexagonal_spacing"] = h;
-  j["rho"] = s.nn.rho();
-  j["average_min_distance"] = s.nn.rho_mean();
-  if (s.sets > 1) {
-    j["nn_min_lowest"] = s.nn_min_lowest;
-    j["nn_min_highest"] = s.nn_min_highest;
+// stats.json's value of a record (the library's serializer, summary_record.h): non-finite
+// numbers as null.
+nlohmann::json to_json(const Record& r) {
+  switch (r.kind) {
+    case Record::Kind::null: return nullptr;
+    case Record::Kind::integer: return r.integer;
+    case Record::Kind::real: return number(r.real);
+    case Record::Kind::text: return r.text;
+    case Record::Kind::reals: {
+      nlohmann::json list = nlohmann::json::array();
+      for (double v : r.reals) list.push_back(number(v));
+      return list;
+    }
+    case Record::Kind::integers: return r.integers;
+    case Record::Kind::object: {
+      nlohmann::json object = nlohmann::json::object();
+      for (std::size_t i = 0; i < r.keys.size(); ++i) object[r.keys[i]] = to_json(r.values[i]);
+      return object;
+    }
   }
-  if (s.has_centroid_distance) {
-    j["mean_centroid_distance"] = s.centroid_distance;
-    j["mean_centroid_distance_relative"] = s.centroid_distance / h;
-  }
-  // psa's definitions, from the RDF-derived radial power (spectral_measures.h); null for a
-  // bounded set, whose torus distances psa's measures would need.
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  j["nu_eff"] = number(s.has_spectral_measures ? s.measures.nu_eff : nan);
-  j["omega"] = number(s.has_spectral_measures ? s.measures.omega : nan);
-  if (s.has_spectral_measures) j["omega_range_nu"] = {s.measures.omega_from_nu, s.measures.omega_to_nu};
-  if (s.has_bond_order) j["bond_order"] = {{"local", s.bond_order.local}, {"global", s.bond_order.global}};
-  j["rdf_range_relative"] = s.rdf.range() / h;
-  j["rdf_bins"] = s.rdf.g.size();
-  j["periodogram_size"] = s.periodogram.size;
-  nlohmann::json f = nlohmann::json::array(), nu = nlohmann::json::array(), p = nlohmann::json::array(),
-                 a = nlohmann::json::array(), c = nlohmann::json::array();
-  for (const Annulus& an : s.radial) {
-    f.push_back(an.frequency);
-    nu.push_back(s.nu(an.frequency));
-    p.push_back(number(an.power));
-    a.push_back(number(an.anisotropy_db));
-    c.push_back(an.count);
-  }
-  j["radial"] = {{"frequency", f}, {"nu", nu}, {"power", p}, {"anisotropy_db", a}, {"count", c}};
-  return j;
+  return nullptr;
 }
+
+nlohmann::json summary_json(const Summary& s) { return to_json(summary_record(s)); }
 
 std::string csv_number(double v) {
   if (!std::isfinite(v)) return "nan";
