@@ -11,6 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bluetile/analysis/fft.h"
 #include "bluetile/analysis/nearest_neighbour.h"
 #include "bluetile/analysis/periodogram.h"
 #include "bluetile/analysis/radial_power.h"
@@ -18,6 +19,7 @@
 #include "bluetile/analysis/summary_record.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "test_support.h"
@@ -108,6 +110,28 @@ TEST(Periodogram, BitIdenticalWhateverTheThreadCount) {
   set_thread_count(before);
   EXPECT_TRUE(serial.power == two.power);
   EXPECT_TRUE(serial.power == five.power);
+}
+
+TEST(Fft, MatchesTheDiscreteFourierTransform) {
+  for (std::size_t n : {1u, 2u, 8u, 64u, 1024u}) {
+    Rng rng(n);
+    std::vector<double> re(n), im(n);
+    for (std::size_t i = 0; i < n; ++i) re[i] = rng.uniform() - 0.5, im[i] = rng.uniform() - 0.5;
+    std::vector<double> out_re = re, out_im = im;
+    Fft(n).forward(out_re.data(), out_im.data());
+    double worst = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      std::complex<long double> sum = 0.0L;
+      for (std::size_t l = 0; l < n; ++l) {
+        const long double angle = -2.0L * std::numbers::pi_v<long double> * static_cast<long double>((k * l) % n) / n;
+        sum += std::complex<long double>(re[l], im[l]) * std::polar(1.0L, angle);
+      }
+      worst = std::max(worst, static_cast<double>(std::abs(sum - std::complex<long double>(out_re[k], out_im[k]))));
+    }
+    EXPECT_LT(worst, 1e-13 * std::sqrt(static_cast<double>(n)) + 1e-15) << "n = " << n;
+  }
+  EXPECT_THROW(Fft(12), Error);
+  EXPECT_THROW(Fft(0), Error);
 }
 
 // The non-uniform FFT against the direct sum (its oracle): every value within 1e-9 of the
