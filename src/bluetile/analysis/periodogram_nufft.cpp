@@ -5,9 +5,10 @@
 //
 // Each point is spread onto an M x M grid (M a power of two >= 1.5 F) with the separable kernel
 // psi(t) = exp(beta (sqrt(1 - (2 t / w)^2) - 1)), |t| <= w / 2 grid cells; the grid's FFT at
-// integer frequency k is then sum_j exp(-2 pi i k.x_j) psi^(kx / M) psi^(ky / M) up to aliasing
-// of relative size about exp(-beta (1 - 1/(2 sigma)) ...) (the paper's estimate, section 3), and
-// dividing by the kernel's Fourier transform psi^ (by Gauss-Legendre quadrature) gives the sums.
+// integer frequency k is then sum_j exp(-2 pi i k.x_j) psi^(kx / M) psi^(ky / M), up to the
+// aliased tails of psi^ beyond M / 2 (which the paper's choice of w and beta for the upsampling
+// sigma = M / F keeps near the tolerance, section 3), and dividing by the kernel's Fourier
+// transform psi^ (by Gauss-Legendre quadrature) gives the sums.
 //
 // Determinism: the grid is cut into stripes of rows; each stripe is spread by one task from the
 // points whose kernel touches it, in point order, and transformed along x by the same task, so
@@ -134,11 +135,13 @@ std::size_t periodogram_nufft_grid(int size) { return grid_size(size); }
 std::size_t periodogram_memory_bytes(std::size_t count, int size) {
   const auto f = static_cast<double>(size);
   const auto m = static_cast<double>(grid_size(size));
-  // The result (F^2 doubles), the half-spectrum after the x pass (M (F/2 + 1) complex), the
-  // stripe lists (two indices per point) and per-thread stripes and columns.
+  // The result (F^2 doubles), the half spectrum after the x pass ((M + 8) (F/2 + 1) complex),
+  // the stripe lists (up to four indices per point) and per thread a stripe, a row pair and the
+  // stripe's spectrum.
   const double threads = static_cast<double>(thread_count());
-  return static_cast<std::size_t>(8.0 * f * f + 16.0 * m * (f / 2.0 + 1.0) + 16.0 * static_cast<double>(count) +
-                                  threads * (8.0 * kStripeRows * m + 16.0 * kColumnBlock * m + 32.0 * m));
+  const double columns = f / 2.0 + 1.0;
+  return static_cast<std::size_t>(8.0 * f * f + 16.0 * (m + 8.0) * columns + 16.0 * static_cast<double>(count) +
+                                  threads * (8.0 * kStripeRows * m + 16.0 * m + 16.0 * kStripeRows * columns));
 }
 
 Periodogram compute_periodogram_nufft(std::span<const Point> points, int size,
@@ -147,6 +150,7 @@ Periodogram compute_periodogram_nufft(std::span<const Point> points, int size,
   if (size < 2 || size % 2 != 0 || size > 65536)
     throw Error("periodogram size must be even, 2 to 65536, got " + std::to_string(size));
   const std::size_t n = points.size();
+  if (n > std::size_t{0xffffffff}) throw Error("periodogram: more than 2^32 - 1 points");
   const int half = size / 2;
   const std::size_t m = grid_size(size), mask = m - 1;
   const EsKernel kernel = choose_kernel(static_cast<double>(m) / size);
@@ -162,6 +166,8 @@ Periodogram compute_periodogram_nufft(std::span<const Point> points, int size,
   std::vector<std::size_t> offsets(stripes + 1, 0);
   std::vector<std::uint32_t> first_stripe(n), second_stripe(n);
   for (std::size_t j = 0; j < n; ++j) {
+    if (!std::isfinite(points[j].x) || !std::isfinite(points[j].y))
+      throw Error("periodogram: point " + std::to_string(j) + " is not finite");
     const double u = unit_coordinate(points[j].y) * static_cast<double>(m);
     const auto first = static_cast<long long>(std::ceil(u - 0.5 * w));
     const std::size_t a = (static_cast<std::size_t>(first) & mask) / kStripeRows;
