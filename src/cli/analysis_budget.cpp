@@ -49,10 +49,10 @@ AnalysisEstimate estimate_analysis(const std::vector<AnalysisJob>& jobs, bool ps
       psa_cpu += sets * (kPairSeconds * pairs + kBesselSeconds * rdf_power_spectrum_bessels(job.count));
       e.psa_pairs = std::max(e.psa_pairs, pairs);
     }
-    // The periodograms of all sets are kept until averaged; one set's working space at a time.
+    // The sets' points, the periodograms' running sum and one set's working space at a time.
     const double periodogram = 8.0 * static_cast<double>(f) * f;
-    const double working = static_cast<double>(periodogram_memory_bytes(job.count, f)) - periodogram;
-    e.bytes = std::max(e.bytes, sets * (periodogram + kBytesPerPoint * n) + working);
+    const double working = static_cast<double>(periodogram_memory_bytes(job.count, f));
+    e.bytes = std::max(e.bytes, sets * 16.0 * n + kBytesPerPoint * n + (job.sets > 1 ? periodogram : 0.0) + working);
   }
   e.seconds = (cpu + psa_cpu) / threads;
   e.psa_seconds = psa_cpu / threads;
