@@ -415,15 +415,15 @@ void run_analyze(const AnalyzeOptions& o) {
   options.rdf.bins = static_cast<std::size_t>(o.rdf_bins);
   std::unique_ptr<Progress> bar;
   // On a terminal: the step under way, and the periodogram's progress.
-  std::string step;
+  bool counting = false;  // the bar counts the periodogram's work (else it names a step)
   options.step = [&](const char* name) {
-    step = name;
+    counting = false;
     bar = std::make_unique<Progress>("analyze:", 0);
-    bar->update(0, step);
+    bar->update(0, name);
   };
   options.progress = [&](std::size_t done, std::size_t total) {
-    if (!bar || step != "periodogram ") {
-      step = "periodogram ";
+    if (!bar || !counting) {
+      counting = true;
       bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
     }
     bar->update(static_cast<long long>(done));
