@@ -98,14 +98,7 @@ WangOptions wang_options(const Options& o, const std::string& kind, std::size_t 
 TilingMetrics plane_metrics(const TileSet& set, int period, std::uint64_t seed,
                             std::uint32_t prefix = std::numeric_limits<std::uint32_t>::max()) {
   TiledPlane plane = torus_tiling(set, period, seed, prefix);
-  std::vector<std::vector<Point>> tiles;
-  for (const Tile& tile : set.tiles) {
-    std::vector<Point> points;
-    for (std::size_t k = 0; k < tile.points.size(); ++k)
-      if (tile.ranks[k] < prefix) points.push_back(tile.points[k]);
-    tiles.push_back(points);
-  }
-  Periodogram p = tiled_periodogram(tiles, plane.cell_tiles, period, tiling_periodogram_size(plane.points.size(), period));
+  Periodogram p = compute_periodogram(plane.points, tiling_periodogram_size(plane.points.size(), period));
   return measure_tiling(plane.points, p, period, static_cast<int>(set.tiles.size()));
 }
 
