@@ -562,8 +562,26 @@ PointSet read_rps_file(const std::string& path, const ReadOptions& options) {
   return parse_rps_points(read_bytes(path), input_name(path), options);
 }
 
+namespace {
+
+// A text file's sets as one table: the level column in every set or in none, refused when the
+// file is read (before any work) rather than when the result is written.
+std::vector<PointSet> read_text_table(const std::string& path) {
+  std::vector<PointSet> sets = read_point_sets(path);
+  for (std::size_t k = 1; k < sets.size(); ++k) {
+    if (sets[k].has_levels() != sets[0].has_levels())
+      throw Error(input_name(path) + ": set " + std::to_string(k) +
+                  (sets[0].has_levels() ? " has no level column but set 0 has one"
+                                        : " has a level column but set 0 has none") +
+                  ": a table's sets have one set of columns");
+  }
+  return sets;
+}
+
+}  // namespace
+
 std::vector<PointSet> read_point_table(const std::string& path) {
-  if (path == "-") return read_point_sets(path);
+  if (path == "-") return read_text_table(path);
   if (is_rps_path(path)) return {read_rps_file(path)};
   char start[sizeof kBinaryMagic] = {};
   {
@@ -574,7 +592,7 @@ std::vector<PointSet> read_point_table(const std::string& path) {
   std::string_view head(start, sizeof start);
   if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(read_bytes(path), path);
   if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(read_bytes(path), path);
-  return read_point_sets(path);
+  return read_text_table(path);
 }
 
 }  // namespace bluetile

@@ -1,0 +1,162 @@
+// Checks that come before the work (issue 24, items 5, 6, 7 and 8): a run that would take hours
+// (-k 100000000) is refused in seconds with one line naming the file or option, and leaves
+// nothing behind.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+#include "bluetile/io/image_file.h"
+#include "bluetile/io/pdf.h"
+#include "robustness_support.h"
+#include "test_support.h"
+
+namespace bluetile::robustness {
+namespace {
+
+using test::read_text;
+using test::TempDir;
+using Names = std::vector<std::string>;
+
+// Runs `invocation`, killing it after a minute: a check that comes only after the work ends so,
+// with signal 9, instead of holding the suite for hours.
+Outcome run_or_kill(const Invocation& invocation) {
+  Child child(invocation);
+  std::atomic<bool> done{false};
+  std::thread guard([&] {
+    for (int tenths = 0; tenths < 600 && !done; ++tenths) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (!done) kill(child.pid(), SIGKILL);
+  });
+  Outcome outcome = child.wait();
+  done = true;
+  guard.join();
+  return outcome;
+}
+
+// `count` points of a jittered grid, as text, and its path.
+std::string point_file(const TempDir& dir, const std::string& name, int side) {
+  std::string text;
+  char line[64];
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i) {
+      std::snprintf(line, sizeof line, "%.6f %.6f\n", (i + 0.25 + 0.5 * ((i * 7 + j * 3) % 5) / 5.0) / side,
+                    (j + 0.25 + 0.5 * ((i * 3 + j * 7) % 5) / 5.0) / side);
+      text += line;
+    }
+  return dir.write(name, text);
+}
+
+TEST(ChecksFirst, AnUnknownImageFormatIsRefusedBeforeTheRelaxation) {
+  // Issue 24, item 7: --id-image a.xyz was found unknown after the relaxation (5 s there).
+  TempDir dir;
+  Outcome r = run_or_kill({{"relax", "-n", "200", "-k", "100000000", "--engine", "exact", "-o", dir.file("a.txt"),
+                            "--id-image", dir.file("a.xyz")}});
+  EXPECT_EQ(r.signal, 0) << "not refused before the relaxation";
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("bluetile: " + dir.file("a.xyz") + ": cannot write image: ", 0), 0u) << r.err;
+  // stipple's --png the same.
+  write_image_file(dir.file("map.png"), 2, 2, 1, std::vector<std::uint8_t>(4, 100));
+  r = run_or_kill({{"stipple", "--image", dir.file("map.png"), "-n", "200", "-k", "100000000", "-o", dir.file("s.txt"),
+                    "--png", dir.file("s.xyz")}});
+  EXPECT_EQ(r.signal, 0) << "not refused before the relaxation";
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("bluetile: " + dir.file("s.xyz") + ": cannot write image: ", 0), 0u) << r.err;
+  EXPECT_EQ(entries(dir.path()), Names{"map.png"});
+}
+
+TEST(ChecksFirst, MixedLevelColumnsAreRefusedWhenTheFileIsRead) {
+  // Issue 24, item 7: found when the result was written, after the relaxation, naming no file.
+  TempDir dir;
+  const std::string mixed = dir.write("mixed.txt", "0.1 0.2 0\n0.3 0.4 1\n#\n0.5 0.6\n0.7 0.8\n");
+  Outcome r = run_or_kill({{"relax", "-i", mixed, "-k", "100000000", "--engine", "exact", "-o", dir.file("o.txt")}});
+  EXPECT_EQ(r.signal, 0) << "not refused before the relaxation";
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: " + mixed + ": set 1 has no level column but set 0 has one: a table's sets have one set "
+                   "of columns\n");
+  dir.write("other.txt", "0.1 0.2\n0.3 0.4\n#\n0.5 0.6 0\n0.7 0.8 1\n");
+  r = run_or_kill({{"centroids", "-i", dir.file("other.txt"), "--engine", "exact", "-o", dir.file("o.txt")}});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: " + dir.file("other.txt") +
+                       ": set 1 has a level column but set 0 has none: a table's sets have one set of columns\n");
+  EXPECT_EQ(entries(dir.path()), (Names{"mixed.txt", "other.txt"}));
+}
+
+TEST(ChecksFirst, TextThatIsNotUtf8IsWrittenWithReplacementCharacters) {
+  // Issue 24, items 7 and 8: a title not in UTF-8 failed the PDF after the whole analysis, and a
+  // file name or label not in UTF-8 failed stats.json with the JSON library's message.
+  TempDir dir;
+  const std::string input = point_file(dir, "p\xff.txt", 12);
+  std::vector<std::string> args = {"analyze", "-i", input, "-o", dir.file("a"), "--no-centroids", "--title", "t\xfe"};
+  const bool pdf = pdf_unavailable_reason().empty();
+  if (pdf) args.insert(args.end(), {"--summary", dir.file("s.pdf")});
+  Outcome r = run(args);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string stats = read_text(dir.file("a/stats.json"));
+  EXPECT_NE(stats.find("\"label\": \"p\xEF\xBF\xBD\""), std::string::npos) << stats;
+  EXPECT_NE(stats.find("p\xEF\xBF\xBD.txt\""), std::string::npos) << stats;
+  if (pdf) {
+    EXPECT_EQ(read_text(dir.file("s.pdf")).rfind("%PDF", 0), 0u);
+  }
+  r = run({"analyze", "-i", input, "-o", dir.file("b"), "--no-centroids", "--label", "l\xc3"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(dir.file("b/stats.json")).find("\"label\": \"l\xEF\xBF\xBD\""), std::string::npos);
+}
+
+TEST(ChecksFirst, AnnulusWidthsAreCheckedAgainstTheLimitAndTheMemory) {
+  // Issue 24, item 6: --bin-width 1e-6 took 7 GB before failing; 1e-300 was "wider than half the
+  // periodogram size". 144 points: F = 2 floor(5 sqrt(144)) = 120.
+  TempDir dir;
+  const std::string input = point_file(dir, "p.txt", 12);
+  Outcome r = run({"analyze", "-i", input, "-o", dir.file("a"), "--bin-width", "1e-300"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --bin-width 1e-300 is too narrow: 6e+301 annuli (F / 2 = 60 over the width), more than "
+                   "the limit of 1e+09\n");
+  r = run({"analyze", "-i", input, "-o", dir.file("a"), "--bin-width", "100"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --bin-width 100 is wider than half the periodogram size F / 2 = 60: no annulus fits\n");
+  if (!sanitized()) {  // ulimit -v stands in for a small machine; the sanitizer needs terabytes of it
+    Invocation limited{{"analyze", "-i", input, "-o", dir.file("a"), "--bin-width", "1e-6"}};
+    limited.address_space_bytes = 1L << 30;
+    r = run_or_kill(limited);
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err.rfind("bluetile: --bin-width 1e-06 (60000000 annuli) needs about 22.4 GiB of memory, more than the ",
+                          0),
+              0u)
+        << r.err;
+  }
+  EXPECT_EQ(entries(dir.path()), Names{"p.txt"});
+}
+
+TEST(ChecksFirst, TooLittleMemoryForTheImagePluginOrThreadsIsSaid) {
+  // Issue 24, item 5: under ulimit -v 400000-450000 KiB stipple aborted (rc 134) while the image
+  // plugin loaded, leaving its staging folder; under 30 MB tile said "internal error: Resource
+  // temporarily unavailable".
+  if (sanitized()) GTEST_SKIP() << "the address sanitizer reserves terabytes of address space: ulimit -v cannot apply";
+  TempDir dir;
+  write_image_file(dir.file("map.png"), 2, 2, 1, std::vector<std::uint8_t>(4, 100));
+  for (long kib : {300000L, 420000L, 450000L}) {
+    Invocation limited{{"stipple", "--image", dir.file("map.png"), "-n", "100", "-k", "2", "-o", dir.file("s.txt")}};
+    limited.address_space_bytes = kib << 10;
+    Outcome r = run_or_kill(limited);
+    EXPECT_EQ(r.exit_code, 1) << kib << " KiB: " << r.err;
+    EXPECT_EQ(r.err.rfind("bluetile: cannot load the image plugin libbluetile_oiio.so: OpenImageIO needs about ", 0), 0u)
+        << r.err;
+    EXPECT_NE(r.err.find("(ulimit -v " + std::to_string(kib) + ")"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("out of memory"), std::string::npos) << r.err;
+  }
+  Invocation tile{{"tile", "--region", "0", "0", "4", "4", "-o", dir.file("t.txt")}};
+  tile.address_space_bytes = 30L << 20;
+  tile.environment = {{"BLUETILE_THREADS", "4"}};
+  Outcome r = run_or_kill(tile);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind("bluetile: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("out of memory or threads (ulimit -v, ulimit -u)"), std::string::npos) << r.err;
+  EXPECT_EQ(entries(dir.path()), Names{"map.png"});
+}
+
+}  // namespace
+}  // namespace bluetile::robustness
