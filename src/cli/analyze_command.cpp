@@ -101,8 +101,8 @@ std::vector<PointSet> read_sets(const std::string& path, const ReadOptions& read
   if (sets.empty()) throw Error(path + ": no points");
   for (const PointSet& s : sets) {
     if (s.points.size() < 2)
-      throw Error(path + ": " + std::to_string(s.points.size()) +
-                  " point; analysis needs at least 2 points per set");
+      throw Error(path + ": " + std::to_string(s.points.size()) + (s.points.size() == 1 ? " point" : " points") +
+                  "; analysis needs at least 2 points per set");
   }
   return sets;
 }

@@ -1,4 +1,4 @@
-// Checks that come before the work (issue 24, items 5, 6, 7 and 8): a run that would take hours
+// Checks that come before the work, and smaller findings (issue 24, items 5, 6, 7 and 8): a run that would take hours
 // (-k 100000000) is refused in seconds with one line naming the file or option, and leaves
 // nothing behind.
 #include <gtest/gtest.h>
@@ -7,7 +7,12 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <fstream>
 #include <thread>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "bluetile/io/image_file.h"
 #include "bluetile/io/pdf.h"
@@ -156,6 +161,73 @@ TEST(ChecksFirst, TooLittleMemoryForTheImagePluginOrThreadsIsSaid) {
   EXPECT_EQ(r.err.find("internal error"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("out of memory or threads (ulimit -v, ulimit -u)"), std::string::npos) << r.err;
   EXPECT_EQ(entries(dir.path()), Names{"map.png"});
+}
+
+TEST(ChecksFirst, HeaderArrayNamesAreCheckedBeforeTheWork) {
+  // Issue 24, item 8: a C keyword was accepted as the array name, and a name that is no C name
+  // was found only when the header was written, after the relaxation.
+  TempDir dir;
+  Outcome r = run_or_kill({{"relax", "-n", "50", "-k", "100000000", "--engine", "exact", "-o", dir.file("p.h"),
+                            "--name", "while"}});
+  EXPECT_EQ(r.signal, 0) << "not refused before the relaxation";
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: " + dir.file("p.h") + ": 'while' is a C or C++ keyword, not a name for the array\n");
+  r = run_or_kill({{"relax", "-n", "50", "-k", "100000000", "--engine", "exact", "-o", dir.file("p.h"), "--name", "2x"}});
+  EXPECT_EQ(r.signal, 0) << "not refused before the relaxation";
+  EXPECT_EQ(r.err, "bluetile: " + dir.file("p.h") + ": '2x' is not a C identifier (letters, digits, '_')\n");
+  // A name taken from the file name is made a name, as one starting with a digit already was.
+  r = run({"relax", "-n", "50", "-k", "1", "--engine", "exact", "-o", dir.file("int.h")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(dir.file("int.h")).find("static const float points_int[1][50][2] = {"), std::string::npos);
+  EXPECT_EQ(entries(dir.path()), Names{"int.h"});
+}
+
+TEST(ChecksFirst, TwoOutputsIntoOnePipeAreRefused) {
+  // Issue 24, item 8: two outputs into one pipe interleaved their bytes, where two into one
+  // regular standard output are refused.
+  TempDir dir;
+  const std::string fifo = dir.file("pipe");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  const int reader = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // lets the tool open its end
+  ASSERT_GE(reader, 0);
+  Outcome r = run_or_kill({{"relax", "-n", "50", "-k", "100000000", "--engine", "exact", "-o", fifo, "--log", fifo}});
+  close(reader);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: " + fifo + ": is the same file as the output " + fifo + "\n");
+  EXPECT_EQ(entries(dir.path()), Names{"pipe|"});
+}
+
+TEST(ChecksFirst, SmallWordingsAndMinusZero) {
+  // Issue 24, item 8: "0 point"; "-0" written back as it was read.
+  TempDir dir;
+  dir.write("zero.txt", "0\n");
+  Outcome r = run({"analyze", "-i", dir.file("zero.txt"), "-o", dir.file("a")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: " + dir.file("zero.txt") + ": 0 points; analysis needs at least 2 points per set\n");
+  dir.write("minus.txt", "-0 0.5\n0.25 -0.0\n");
+  r = run({"relax", "-i", dir.file("minus.txt"), "-k", "0", "--engine", "exact", "-o", dir.file("o.txt")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = read_text(dir.file("o.txt"));
+  EXPECT_NE(text.find("\n0 0.5\n0.25 0\n"), std::string::npos) << text;
+  EXPECT_EQ(text.find("-0"), std::string::npos) << text;
+}
+
+TEST(ChecksFirst, AFifoInputWithoutAWriterIsSaidAndThenRead) {
+  // Issue 24, item 8: an input FIFO nobody writes to held the run without a word; and its first
+  // bytes, read to tell the format, were lost to a second open, which then waited for ever.
+  TempDir dir;
+  const std::string fifo = dir.file("in");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  Child child(Invocation{{"relax", "-i", fifo, "-k", "1", "--engine", "exact", "-o", dir.file("o.txt")}});
+  std::this_thread::sleep_for(std::chrono::seconds(3));  // the tool waits in open() meanwhile
+  {
+    std::ofstream writer(fifo);
+    writer << "0.1 0.2\n0.6 0.7\n0.3 0.9\n";
+  }
+  Outcome r = child.wait();
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "bluetile: " + fifo + ": waiting for a writer to open this FIFO\n");
+  EXPECT_NE(read_text(dir.file("o.txt")).find("3 points, 1 iterations"), std::string::npos);
 }
 
 }  // namespace
