@@ -218,13 +218,15 @@ TEST(ChecksFirst, AFifoInputWithoutAWriterIsSaidAndThenRead) {
   TempDir dir;
   const std::string fifo = dir.file("in");
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  Child child(Invocation{{"relax", "-i", fifo, "-k", "1", "--engine", "exact", "-o", dir.file("o.txt")}});
-  std::this_thread::sleep_for(std::chrono::seconds(3));  // the tool waits in open() meanwhile
-  {
-    std::ofstream writer(fifo);
-    writer << "0.1 0.2\n0.6 0.7\n0.3 0.9\n";
-  }
-  Outcome r = child.wait();
+  std::thread writer([&] {
+    std::this_thread::sleep_for(std::chrono::seconds(3));  // the tool waits in open() meanwhile
+    std::ofstream out(fifo);
+    out << "0.1 0.2\n0.6 0.7\n0.3 0.9\n";
+  });
+  Outcome r = run_or_kill({{"relax", "-i", fifo, "-k", "1", "--engine", "exact", "-o", dir.file("o.txt")}});
+  const int release = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);  // a writer still waiting for a reader
+  writer.join();
+  if (release >= 0) close(release);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "bluetile: " + fifo + ": waiting for a writer to open this FIFO\n");
   EXPECT_NE(read_text(dir.file("o.txt")).find("3 points, 1 iterations"), std::string::npos);
