@@ -108,6 +108,12 @@ TEST(ChecksFirst, TextThatIsNotUtf8IsWrittenWithReplacementCharacters) {
   r = run({"analyze", "-i", input, "-o", dir.file("b"), "--no-centroids", "--label", "l\xc3"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(read_text(dir.file("b/stats.json")).find("\"label\": \"l\xEF\xBF\xBD\""), std::string::npos);
+  // wang-check's stats.json names its tile-set file.
+  r = run({"wang", "--points", "8", "-k", "2", "-o", dir.file("w\xff.txt")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run({"wang-check", dir.file("w\xff.txt"), "--period", "2", "--untiled-iterations", "0", "-o", dir.file("c")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(dir.file("c/stats.json")).find("w\xEF\xBF\xBD.txt\","), std::string::npos);
 }
 
 TEST(ChecksFirst, AnnulusWidthsAreCheckedAgainstTheLimitAndTheMemory) {
@@ -195,6 +201,11 @@ TEST(ChecksFirst, TwoOutputsIntoOnePipeAreRefused) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "bluetile: " + fifo + ": is the same file as the output " + fifo + "\n");
   EXPECT_EQ(entries(dir.path()), Names{"pipe|"});
+  // Standard output a pipe: -o - --log - as for a regular standard output.
+  test::CommandResult piped = test::run_command(
+      "(timeout 60 '" BLUETILE_BINARY "' relax -n 50 -k 100000000 --engine exact -o - --log - | cat)");
+  EXPECT_EQ(piped.out, "");
+  EXPECT_EQ(piped.err, "bluetile: -: is the same file as the output -\n");
 }
 
 TEST(ChecksFirst, SmallWordingsAndMinusZero) {
