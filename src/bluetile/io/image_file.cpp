@@ -29,11 +29,12 @@ struct Plugin {
   bluetile_oiio_check_fn check = nullptr;
 };
 
-// OpenImageIO's static initialisers start a thread pool while the module is being loaded. Where
-// the memory or thread limit (ulimit -v, -u) leaves no room for it, the exception they throw
-// cannot pass through dlopen and ends the process in std::terminate (an abort, exit status 134).
-// While dlopen runs, that end says why on one line instead; callers load the plugin before they
-// stage any output (load_image_plugin), so nothing is left behind.
+// The static initialisers of OpenImageIO and its dependencies start thread pools while the module
+// is being loaded. Where the memory or thread limit (ulimit -v, -u) leaves no room for them, the
+// exception they throw cannot pass through dlopen and ends the process in std::terminate (an
+// abort, exit status 134). While dlopen runs, that end says why on one line instead; callers load
+// the plugin before they stage any output (load_image_plugin), so nothing is left behind. The
+// address-space check below keeps most runs from getting there at all.
 [[noreturn]] void plugin_load_terminated() {
   std::string why = "no reason given";
   if (std::exception_ptr failure = std::current_exception()) {
