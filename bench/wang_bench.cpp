@@ -6,7 +6,8 @@
 //            (rho, LF, C_LF, C_mid, diffuse anisotropy), each seed's row, then worst and mean;
 //            with --untiled, the same plane metrics of untiled Lloyd sets of the same N.
 //   time:    the time to build a set with each engine, interleaved repeats side by side.
-//   levels:  a hierarchical set: level boundaries and prefixes between them on the plane.
+//   levels:  a hierarchical set: the prefix sweep (fractions of the top count and every level
+//            boundary) on the plane, per seed and worst over the seeds, rank orders side by side.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -15,6 +16,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -52,7 +54,8 @@ struct Options {
   WangRefinement refine;  // the library's defaults
   int levels = 1;
   double ratio = 2.0;
-  int prefixes = 8;   // levels mode: prefixes measured between two level boundaries
+  std::vector<std::string> rank_orders{"farthest"};  // levels mode: orders side by side
+  int prefixes = 0;   // levels mode: also this many evenly spaced steps between level boundaries
   int repeats = 3;    // time mode
   std::vector<std::string> engines{"exact"};
   bool untiled = false;
@@ -269,41 +272,62 @@ void timing(const Options& o) {
   }
 }
 
+// The prefix sweep of hierarchical sets (prefix_sweep: fixed fractions of the top count and every
+// level boundary), per seed, and the worst over the seeds of each prefix, one rank order beside
+// the other. Every order ranks the same positions of level 0; later levels are relaxed around
+// points stored in rank order, so they differ in rounding.
 void levels(const Options& o) {
   ExactEngine engine;
-  std::printf("| set | n0 | levels | seed | prefix per tile | level boundary | rho | LF | seamX | C_LF | C_mid |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|\n");
+  struct Worst {
+    double rho = HUGE_VAL, lf = 0.0, lattice = 0.0, c_lf = 0.0;
+  };
+  std::map<std::tuple<std::string, std::string, std::size_t, std::string, std::size_t>, Worst> worst;
+  std::printf("| set | n0 | order | seed | prefix per tile | level boundary | rho | LF | lattice peak | seamX | C_LF | C_mid |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& kind : o.kinds) {
     for (std::size_t n : o.points) {
       for (const std::string& strategy : o.strategies) {
-        for (int s = 0; s < o.seeds; ++s) {
-          const std::uint64_t seed = o.first_seed + static_cast<std::uint64_t>(s);
-          TileSet set = relax_wang_tiles(engine, wang_options(o, kind, n, strategy, seed));
-          SeamCheck seams = check_seams(set);
-          // Level boundaries and `prefixes` evenly spaced counts between them.
-          std::vector<std::pair<std::size_t, int>> counts;  // (prefix, level or -1)
-          std::size_t previous = 0;
-          for (const SeamLevel& level : seams.levels) {
-            std::size_t boundary = level.points_per_tile;
-            if (previous > 0)
+        for (const std::string& order : o.rank_orders) {
+          for (int s = 0; s < o.seeds; ++s) {
+            const std::uint64_t seed = o.first_seed + static_cast<std::uint64_t>(s);
+            WangOptions w = wang_options(o, kind, n, strategy, seed);
+            w.level.rank_order = order == "voids" ? RankOrder::voids : RankOrder::farthest;
+            TileSet set = relax_wang_tiles(engine, w);
+            SeamCheck seams = check_seams(set);
+            std::vector<std::size_t> boundaries;
+            for (const SeamLevel& level : seams.levels) boundaries.push_back(level.points_per_tile);
+            std::vector<std::size_t> counts = boundaries;
+            for (std::size_t l = 1; l < boundaries.size(); ++l)
               for (int i = 1; i < o.prefixes; ++i)
-                counts.push_back({previous + (boundary - previous) * static_cast<std::size_t>(i) /
-                                                 static_cast<std::size_t>(o.prefixes), -1});
-            counts.push_back({boundary, level.level});
-            previous = boundary;
-          }
-          for (const auto& [prefix, level] : counts) {
-            TilingMetrics m = plane_metrics(set, o.periods[0], derive_seed(seed, 1000), static_cast<std::uint32_t>(prefix));
-            double seam = level >= 0 ? seams.levels[static_cast<std::size_t>(level)].cross_relative() : 0.0;
-            std::printf("| %s | %zu | %d | %llu | %zu | %s | %.3f | %.4f | %s | %.4f | %.1f |\n", kind.c_str(), n,
-                        o.levels, static_cast<unsigned long long>(seed), prefix,
-                        level >= 0 ? std::to_string(level).c_str() : "", m.rho, m.low_frequency,
-                        level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "", m.coherence_low, m.coherence_mid);
-            std::fflush(stdout);
+                counts.push_back(boundaries[l - 1] + (boundaries[l] - boundaries[l - 1]) * static_cast<std::size_t>(i) /
+                                                         static_cast<std::size_t>(o.prefixes));
+            for (const std::size_t prefix : prefix_sweep(boundaries.back(), counts)) {
+              const auto at = std::find(boundaries.begin(), boundaries.end(), prefix);
+              const int level = at == boundaries.end() ? -1 : static_cast<int>(at - boundaries.begin());
+              TilingMetrics m = plane_metrics(set, o.periods[0], derive_seed(seed, 1000), static_cast<std::uint32_t>(prefix));
+              double seam = level >= 0 ? seams.levels[static_cast<std::size_t>(level)].cross_relative() : 0.0;
+              std::printf("| %s | %zu | %s | %llu | %zu | %s | %.3f | %.4f | %.1f | %s | %.4f | %.1f |\n", kind.c_str(), n,
+                          order.c_str(), static_cast<unsigned long long>(seed), prefix,
+                          level >= 0 ? std::to_string(level).c_str() : "", m.rho, m.low_frequency, m.lattice_peak,
+                          level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "", m.coherence_low, m.coherence_mid);
+              std::fflush(stdout);
+              Worst& w = worst[{kind, strategy, n, order, prefix}];
+              w.rho = std::min(w.rho, m.rho);
+              w.lf = std::max(w.lf, m.low_frequency);
+              w.lattice = std::max(w.lattice, m.lattice_peak);
+              w.c_lf = std::max(w.c_lf, m.coherence_low);
+            }
           }
         }
       }
     }
+  }
+  std::printf("\nworst over %d seeds:\n\n| set | strategy | n0 | order | prefix per tile | rho | LF | lattice peak | C_LF |\n"
+              "|---|---|---|---|---|---|---|---|---|\n", o.seeds);
+  for (const auto& [key, w] : worst) {
+    const auto& [kind, strategy, n, order, prefix] = key;
+    std::printf("| %s | %s | %zu | %s | %zu | %.3f | %.4f | %.1f | %.3f |\n", kind.c_str(), strategy.c_str(), n,
+                order.c_str(), prefix, w.rho, w.lf, w.lattice, w.c_lf);
   }
 }
 
@@ -333,7 +357,9 @@ int main(int argc, char** argv) {
   app.add_option("--level-seam-spacing", o.refine.later_seam_spacing, "Seam spacing of levels 1 and up, in hexagonal spacings");
   app.add_option("--levels", o.levels, "Levels");
   app.add_option("--ratio", o.ratio, "Level ratio");
-  app.add_option("--prefixes", o.prefixes, "levels mode: prefixes per level");
+  app.add_option("--prefixes", o.prefixes, "levels mode: also this many evenly spaced steps between level boundaries");
+  app.add_option("--rank-order", o.rank_orders, "levels mode: rank orders side by side (farthest, voids)")
+      ->check(CLI::IsMember({"farthest", "voids"}));
   app.add_option("--repeats", o.repeats, "time mode: interleaved repeats");
   app.add_option("--engine", o.engines, "time mode: engines side by side")->check(CLI::IsMember({"exact", "raster"}));
   app.add_flag("--diagnose", o.diagnose, "quality mode: split C_mid into tile crystallinity and coherence");

@@ -11,12 +11,17 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bluetile/analysis/fft.h"
 #include "bluetile/analysis/nearest_neighbour.h"
 #include "bluetile/analysis/periodogram.h"
 #include "bluetile/analysis/radial_power.h"
 #include "bluetile/analysis/summary.h"
+#include "bluetile/analysis/summary_record.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/voronoi/exact_engine.h"
 #include "test_support.h"
 
 namespace bluetile {
@@ -46,7 +51,7 @@ TEST(Periodogram, MatchesPlainComplexSumEverywhere) {
   // 300 points span two blocks of the kernel; F = 150 spans tiles that straddle k = 0 unevenly.
   auto points = uniform_points(300, 11);
   const int f = 150;
-  Periodogram p = compute_periodogram(points, f);
+  Periodogram p = compute_periodogram_direct(points, f);
   ASSERT_EQ(p.size, f);
   double worst = 0.0;
   for (int ky = -f / 2; ky < f / 2; ++ky) {
@@ -105,6 +110,111 @@ TEST(Periodogram, BitIdenticalWhateverTheThreadCount) {
   set_thread_count(before);
   EXPECT_TRUE(serial.power == two.power);
   EXPECT_TRUE(serial.power == five.power);
+}
+
+TEST(Fft, MatchesTheDiscreteFourierTransform) {
+  for (std::size_t n : {1u, 2u, 8u, 64u, 1024u}) {
+    Rng rng(n);
+    std::vector<double> re(n), im(n);
+    for (std::size_t i = 0; i < n; ++i) re[i] = rng.uniform() - 0.5, im[i] = rng.uniform() - 0.5;
+    std::vector<double> out_re = re, out_im = im;
+    Fft(n).forward(out_re.data(), out_im.data());
+    double worst = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      std::complex<long double> sum = 0.0L;
+      for (std::size_t l = 0; l < n; ++l) {
+        const long double angle = -2.0L * std::numbers::pi_v<long double> * static_cast<long double>((k * l) % n) / n;
+        sum += std::complex<long double>(re[l], im[l]) * std::polar(1.0L, angle);
+      }
+      worst = std::max(worst, static_cast<double>(std::abs(sum - std::complex<long double>(out_re[k], out_im[k]))));
+    }
+    EXPECT_LT(worst, 1e-13 * std::sqrt(static_cast<double>(n)) + 1e-15) << "n = " << n;
+  }
+  EXPECT_THROW(Fft(12), Error);
+  EXPECT_THROW(Fft(0), Error);
+}
+
+// The non-uniform FFT against the direct sum (its oracle): every value within 1e-9 of the
+// largest power, P(0) = N.
+double worst_relative_difference(const std::vector<Point>& points, int f) {
+  const Periodogram fast = compute_periodogram_nufft(points, f);
+  const Periodogram direct = compute_periodogram_direct(points, f);
+  EXPECT_EQ(fast.size, f);
+  EXPECT_EQ(fast.at(0, 0), static_cast<double>(points.size()));
+  double worst = 0.0, highest = 0.0;
+  for (std::size_t i = 0; i < direct.power.size(); ++i) {
+    worst = std::max(worst, std::abs(fast.power[i] - direct.power[i]));
+    highest = std::max(highest, direct.power[i]);
+  }
+  return worst / highest;
+}
+
+std::vector<Point> relaxed_points(std::size_t n, std::uint64_t seed, int iterations) {
+  Scene scene = make_scene(uniform_points(n, seed));
+  ExactEngine engine;
+  LloydOptions options;
+  options.iterations = iterations;
+  relax_lloyd(engine, scene, options);
+  return scene.sites;
+}
+
+std::vector<Point> hexagonal_lattice(int columns, int rows) {
+  std::vector<Point> points;
+  for (int j = 0; j < rows; ++j)
+    for (int i = 0; i < columns; ++i) points.push_back(wrap_point({(i + 0.5 * (j % 2) + 0.1) / columns, (j + 0.3) / rows}, Domain{}));
+  return points;
+}
+
+TEST(PeriodogramNufft, MatchesTheDirectSumOnRandomSets) {
+  // One point is the worst case (many points average the kernel's errors down).
+  for (auto [n, f] : {std::pair{3000, 0}, std::pair{500, 150}, std::pair{64, 2}, std::pair{40, 6}, std::pair{1, 6},
+                      std::pair{1, 64}, std::pair{2, 1000}}) {
+    auto points = uniform_points(static_cast<std::size_t>(n), 21 + static_cast<std::uint64_t>(n));
+    const int size = f ? f : default_periodogram_size(points.size());
+    const double error = worst_relative_difference(points, size);
+    EXPECT_LT(error, 1e-9) << "N = " << n << ", F = " << size;
+  }
+}
+
+TEST(PeriodogramNufft, MatchesTheDirectSumOnARelaxedSet) {
+  auto points = relaxed_points(2048, 4, 30);
+  const double error = worst_relative_difference(points, default_periodogram_size(points.size()));
+  EXPECT_LT(error, 1e-9);
+}
+
+TEST(PeriodogramNufft, MatchesTheDirectSumOnLattices) {
+  // Lattices put all their power on a few frequencies (P = N there, 0 elsewhere): the error at
+  // the zeros is relative to those peaks.
+  auto square = square_lattice(40, {0.013, 0.007});
+  EXPECT_LT(worst_relative_difference(square, 400), 1e-9);
+  auto hexagonal = hexagonal_lattice(36, 42);
+  EXPECT_LT(worst_relative_difference(hexagonal, default_periodogram_size(hexagonal.size())), 1e-9);
+  // Points on grid lines of the upsampled grid and on the torus seam (x = 0, 1 - 2^-53, -0).
+  std::vector<Point> seam = {{0.0, 0.0}, {1.0 - 0x1p-53, 0.5}, {-0.0, 0.25}, {0.5, 1.0 - 0x1p-53}, {0.25, 0.75}};
+  EXPECT_LT(worst_relative_difference(seam, 64), 1e-9);
+}
+
+TEST(PeriodogramNufft, BitIdenticalWhateverTheThreadCount) {
+  auto points = uniform_points(5000, 8);
+  const std::size_t before = thread_count();
+  set_thread_count(1);
+  Periodogram serial = compute_periodogram_nufft(points, 300);
+  set_thread_count(2);
+  Periodogram two = compute_periodogram_nufft(points, 300);
+  set_thread_count(7);
+  Periodogram seven = compute_periodogram_nufft(points, 300);
+  set_thread_count(before);
+  EXPECT_TRUE(serial.power == two.power);
+  EXPECT_TRUE(serial.power == seven.power);
+}
+
+TEST(PeriodogramNufft, ChosenForLargeSetsOnly) {
+  EXPECT_FALSE(periodogram_uses_nufft(64, 64));
+  EXPECT_TRUE(periodogram_uses_nufft(1000, default_periodogram_size(1000)));
+  EXPECT_TRUE(periodogram_uses_nufft(100000, default_periodogram_size(100000)));
+  EXPECT_EQ(periodogram_nufft_grid(10000), 16384u);  // the power of two >= 1.5 F
+  EXPECT_THROW(compute_periodogram_nufft(std::vector<Point>{}, 16), Error);
+  EXPECT_THROW(compute_periodogram_nufft(uniform_points(3, 1), 15), Error);
 }
 
 TEST(Periodogram, RejectsBadArguments) {
@@ -218,6 +328,35 @@ TEST(Summary, LatticeSitesAreTheirCentroids) {
   EXPECT_GT(mean_centroid_distance(points) / hexagonal_spacing(500.0), 0.1);
 }
 
+TEST(Summary, RecordHoldsStatsJsonFieldsWithTheSummarysNumbers) {
+  std::vector<std::vector<Point>> sets = {relaxed_points(256, 2, 20)};
+  SummaryOptions options;
+  const Summary s = summarize(sets, options);
+  const Record r = summary_record(s);
+  ASSERT_EQ(r.kind, Record::Kind::object);
+  for (const char* key : {"n", "sets", "boundary", "nn_min", "nn_max", "nn_mean", "nn_x1000", "nn_relative",
+                          "hexagonal_spacing", "rho", "average_min_distance", "mean_centroid_distance",
+                          "mean_centroid_distance_relative", "nu_eff", "omega", "omega_range_nu", "bond_order",
+                          "rdf_range_relative", "rdf_bins", "periodogram_size", "radial"})
+    EXPECT_NE(r.find(key), nullptr) << key;
+  EXPECT_EQ(r.find("n")->integer, 256);
+  EXPECT_EQ(r.find("rho")->real, s.nn.rho());
+  EXPECT_EQ(r.find("nu_eff")->real, s.measures.nu_eff);
+  EXPECT_EQ(r.find("omega")->real, s.measures.omega);
+  EXPECT_EQ(r.find("bond_order")->find("local")->real, s.bond_order.local);
+  EXPECT_EQ(r.find("radial")->find("power")->reals.size(), s.radial.size());
+  EXPECT_EQ(r.find("nn_min_lowest"), nullptr);  // one set
+  // Skipped psa measures are null (NaN), bounded sets have no bond order or centroid distance.
+  options.spectral_measures = false;
+  options.boundary = Boundary::bounded;
+  const Record b = summary_record(summarize(sets, options));
+  EXPECT_TRUE(std::isnan(b.find("nu_eff")->real));
+  EXPECT_EQ(b.find("omega_range_nu"), nullptr);
+  EXPECT_EQ(b.find("bond_order"), nullptr);
+  EXPECT_EQ(b.find("mean_centroid_distance"), nullptr);
+  EXPECT_EQ(b.find("boundary")->text, "bounded");
+}
+
 TEST(Summary, PrefixesOfALeveledSet) {
   // Level 0: a 4x4 lattice; level 1: its cell centres (together a lattice turned 45 degrees);
   // level 2: the edge midpoints (together an 8x8 lattice).
@@ -326,6 +465,35 @@ TEST(AnalyzeCommand, BadInputFailsCleanlyAndWritesNothing) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("missing.txt"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
+TEST(AnalyzeCommand, RefusesUpFrontWithTheEstimate) {
+  // psa's measures are what takes the time (their RDF is O(N^2)): the refusal says so, names the
+  // way to skip them and the way to raise the limit, and writes nothing.
+  test::TempDir dir;
+  std::string input = write_points(dir, "uniform.txt", uniform_points(5000, 3));
+  auto r = test::run_bluetile({"analyze", "--input", input, "--output", dir.file("out"), "--threads", "1",
+                               "--time-limit", "0.001"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("analyze of 5000 points would take about"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("psa's nu_eff and Omega"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("2.5e+06 pairs closer than 0.25"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--no-psa-measures skips them"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--time-limit 0.001 minutes"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+  // Without them the rest is still over this limit: only raising it is offered.
+  r = test::run_bluetile({"analyze", "--input", input, "--output", dir.file("out"), "--threads", "1", "--time-limit",
+                          "0.0001", "--no-psa-measures"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err.find("--no-psa-measures skips"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("raise --time-limit"), std::string::npos) << r.err;
+  // Skipped measures are null in stats.json and said so in the report.
+  r = test::run_bluetile({"analyze", "--input", input, "--output", dir.file("out"), "--no-psa-measures", "--no-centroids"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto stats = nlohmann::json::parse(test::read_text(dir.file("out") + "/stats.json"));
+  EXPECT_TRUE(stats["nu_eff"].is_null());
+  EXPECT_TRUE(stats["omega"].is_null());
+  EXPECT_NE(r.out.find("skipped (--no-psa-measures)"), std::string::npos);
 }
 
 TEST(AnalyzeCommand, AverageCompareAndLevels) {

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <tuple>
+#include <utility>
 
 #include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/error.h"
@@ -18,6 +20,8 @@
 #include "bluetile/tiling/seam_check.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "test_support.h"
+
+#include <nlohmann/json.hpp>
 
 namespace bluetile {
 namespace {
@@ -134,6 +138,26 @@ TEST(TilingMetrics, PerTilePeriodogramEqualsTheDirectSum) {
   for (std::size_t i = 0; i < direct.power.size(); ++i) worst = std::max(worst, std::abs(direct.power[i] - tiled.power[i]));
   EXPECT_LT(worst, 1e-9);
   EXPECT_EQ(tiled.at(0, 0), static_cast<double>(plane.points.size()));
+
+  // The tile-lattice peak is the mean of the direct periodogram over k = M (a, b), 0 < |k|^2 < N.
+  const int period = 5;
+  const double n = static_cast<double>(plane.points.size());
+  const int big = tiling_periodogram_size(plane.points.size(), period);
+  Periodogram full = compute_periodogram(plane.points, big);
+  double sum = 0.0;
+  int count = 0;
+  for (int a = -big / 2 / period; a * period < big / 2; ++a)
+    for (int b = -big / 2 / period; b * period < big / 2; ++b) {
+      const double k2 = static_cast<double>(period * period * (a * a + b * b));
+      if (k2 > 0.0 && k2 < n) {
+        sum += full.at(a * period, b * period);
+        ++count;
+      }
+    }
+  ASSERT_GT(count, 4);
+  TilingMetrics m = measure_tiling(plane.points, full, period, 16);
+  EXPECT_NEAR(m.lattice_peak, sum / count, 1e-9 * sum / count);
+  EXPECT_GT(m.lattice_peak, 0.0);
 }
 
 TEST(TilingMetrics, LatticeCoherenceOfIdenticalTilesIsTheirPeriodogram) {
@@ -379,6 +403,105 @@ TEST(WangRanks, EveryRankIsTheFarthestPointFromThoseBeforeIt) {
   }
 }
 
+TEST(WangRanks, VoidsOrderTakesTheDeepestVoidAboveTheDistanceFloor) {
+  // Brute force over the same rule: the point of rank s of tile t has, among its level's points
+  // not ranked yet and at least 0.7 times the farthest one's distance from every ranked point
+  // that can lie near it, the least Gaussian energy (1 per own point, 1 / the number of fitting
+  // tiles at a neighbour position), sigma 0.5 hexagonal spacings of the prefix at its last update.
+  ExactEngine engine;
+  TileSet set = empty_tile_set(TileSetKind::wang8);
+  WangLevelOptions level;
+  level.add = 6;
+  level.iterations = 3;
+  level.warm_iterations = 2;
+  level.rank_order = RankOrder::voids;
+  add_wang_level(engine, set, level);
+  level.add = 10;
+  level.seed = 9;
+  add_wang_level(engine, set, level);
+  validate_tile_set(set);
+  TileRules rules(TileSetKind::wang8);
+  BlockConfigurations configurations(rules);
+  const std::size_t tiles = set.tiles.size(), begin = 6, end = 16;
+  std::size_t sigma_prefix = 0;
+  for (std::size_t s = begin; s < end; ++s) {
+    if (sigma_prefix == 0 || static_cast<double>(s + 1) > 1.25 * static_cast<double>(sigma_prefix)) sigma_prefix = s + 1;
+    const double sigma = 0.5 * hexagonal_spacing(static_cast<double>(sigma_prefix));
+    for (std::size_t t = 0; t < tiles; ++t) {
+      auto measure = [&](Point x) {
+        double nearest = HUGE_VAL, energy = 0.0;
+        for (int p = 0; p < kBlockPositions; ++p) {
+          const Point shift{static_cast<double>(block_dx(p)), static_cast<double>(block_dy(p))};
+          const std::vector<int>& fits = configurations.candidates(static_cast<int>(t), p);
+          for (int u : fits) {
+            const std::size_t ranked = s + (static_cast<std::size_t>(u) < t ? 1 : 0);
+            for (std::size_t r = 0; r < ranked; ++r) {
+              const Point d = x - (set.tiles[static_cast<std::size_t>(u)].points[r] + shift);
+              const double d2 = d.x * d.x + d.y * d.y;
+              nearest = std::min(nearest, d2);
+              if (d2 < 16.0 * sigma * sigma) energy += std::exp(-d2 / (2.0 * sigma * sigma)) / static_cast<double>(fits.size());
+            }
+          }
+        }
+        return std::pair{nearest, energy};
+      };
+      double farthest = 0.0;
+      for (std::size_t c = s; c < end; ++c) farthest = std::max(farthest, measure(set.tiles[t].points[c]).first);
+      const auto chosen = measure(set.tiles[t].points[s]);
+      EXPECT_GE(chosen.first, 0.49 * farthest * (1 - 1e-12)) << "tile " << t << " rank " << s;
+      for (std::size_t later = s + 1; later < end; ++later) {
+        const auto other = measure(set.tiles[t].points[later]);
+        if (other.first >= 0.49 * farthest) EXPECT_GE(other.second, chosen.second * (1 - 1e-9)) << "tile " << t << " rank " << s;
+      }
+    }
+  }
+}
+
+TEST(WangRanks, VoidsSpreadALevelsFirstPointsOverTheTiles) {
+  // The first half of level 1 (24 of 32 points per tile), worst of 3 seeds: farthest point puts
+  // it in the same parts of every tile (high tile-lattice coherence C_LF); voids spread it, with
+  // less low-frequency power too. Level 0 holds the same points in another order.
+  ExactEngine engine;
+  double worst_far = 0.0, worst_voids = 0.0, lf_far = 0.0, lf_voids = 0.0;
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+    WangOptions o = small_options(TileSetKind::wang8, 16, seed);
+    o.levels = 2;
+    o.level.iterations = 15;
+    TileSet farthest = relax_wang_tiles(engine, o);
+    o.level.rank_order = RankOrder::voids;
+    TileSet voids = relax_wang_tiles(engine, o);
+    auto by_position = [](const Point& a, const Point& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); };
+    for (std::size_t t = 0; t < voids.tiles.size(); ++t) {
+      std::vector<Point> a(farthest.tiles[t].points.begin(), farthest.tiles[t].points.begin() + 16);
+      std::vector<Point> b(voids.tiles[t].points.begin(), voids.tiles[t].points.begin() + 16);
+      std::sort(a.begin(), a.end(), by_position);
+      std::sort(b.begin(), b.end(), by_position);
+      ASSERT_EQ(a, b) << "tile " << t;
+    }
+    for (const auto& [set, worst, lf] : {std::tuple{&farthest, &worst_far, &lf_far}, std::tuple{&voids, &worst_voids, &lf_voids}}) {
+      TiledPlane plane = torus_tiling(*set, 16, seed, 24);
+      std::vector<std::vector<Point>> prefixes;
+      for (const Tile& tile : set->tiles) prefixes.emplace_back(tile.points.begin(), tile.points.begin() + 24);
+      Periodogram p = tiled_periodogram(prefixes, plane.cell_tiles, 16, tiling_periodogram_size(plane.points.size(), 16));
+      TilingMetrics m = measure_tiling(plane.points, p, 16, 8);
+      *worst = std::max(*worst, m.coherence_low);
+      *lf = std::max(*lf, m.low_frequency);
+    }
+  }
+  SCOPED_TRACE("C_LF farthest " + std::to_string(worst_far) + " voids " + std::to_string(worst_voids) + ", LF farthest " +
+               std::to_string(lf_far) + " voids " + std::to_string(lf_voids));
+  EXPECT_LT(worst_voids, 0.5 * worst_far);  // measured 0.61 against 1.72
+  EXPECT_LT(lf_voids, 0.85 * lf_far);       // 0.128 against 0.189
+}
+
+TEST(TilingMetrics, PrefixSweepIsTheFractionsAndTheLevelBoundaries) {
+  const std::vector<std::size_t> boundaries{32, 64, 128};
+  EXPECT_EQ(prefix_sweep(128, boundaries), (std::vector<std::size_t>{8, 12, 16, 24, 32, 48, 64, 96, 128}));
+  const std::vector<std::size_t> odd{13, 26, 52};  // 52 x 3/32 = 4.875 -> 5, 52 / 16 = 3.25 -> 3
+  EXPECT_EQ(prefix_sweep(52, odd), (std::vector<std::size_t>{3, 5, 7, 10, 13, 20, 26, 39, 52}));
+  EXPECT_EQ(prefix_sweep(4, std::vector<std::size_t>{4}), (std::vector<std::size_t>{1, 2, 3, 4}));
+}
+
 TEST(WangSets, BadOptionsAreErrors) {
   ExactEngine engine;
   WangOptions o = small_options(TileSetKind::wang8, 0, 1);
@@ -415,6 +538,17 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
   test::CommandResult checked = test::run_bluetile({"wang-check", tiles, "--period", "4", "--output", dir.file("check")});
   ASSERT_EQ(checked.exit_code, 0) << checked.err;
   EXPECT_NE(checked.out.find("levels 0-1"), std::string::npos) << checked.out;
+  EXPECT_NE(checked.out.find("prefix sweep (4x4 torus tiling)"), std::string::npos) << checked.out;
+  // The sweep: 1/16 .. 1 of the 16 points per tile and the boundary 8, each plane measured once,
+  // so a boundary's row is its level's.
+  const nlohmann::json stats = nlohmann::json::parse(test::read_text(dir.file("check/stats.json")));
+  std::vector<std::size_t> ks;
+  for (const auto& row : stats["prefix_sweep"]) ks.push_back(row["k"].get<std::size_t>());
+  EXPECT_EQ(ks, (std::vector<std::size_t>{1, 2, 3, 4, 6, 8, 12, 16}));
+  for (const auto& row : stats["prefix_sweep"]) EXPECT_EQ(row["N"].get<std::size_t>(), 16 * row["k"].get<std::size_t>());
+  EXPECT_EQ(stats["prefix_sweep"][5]["LF"], stats["levels"][0]["plane"]["LF"]);
+  EXPECT_EQ(stats["prefix_sweep"][5]["lattice_peak"], stats["levels"][0]["plane"]["lattice_peak"]);
+  EXPECT_GT(stats["prefix_sweep"][5]["lattice_peak"].get<double>(), 0.0);
   for (const char* name : {"stats.json", "plane.txt", "spectrum.png", "radial.png", "points.png", "tiles.png"})
     EXPECT_TRUE(std::filesystem::exists(dir.file("check/") + name)) << name;
   // The plots hold their curves and colours, not only frames: the radial curve in the first
@@ -453,7 +587,8 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
   // The refining steps' options refuse nonsense by name, and nothing is written.
   for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
            {"--seam-spacing", "5"}, {"--level-seam-spacing", "0"}, {"--seam-steps", "-1"},
-           {"--lattice-step", "0.5"}, {"--lattice-steps", "-2"}, {"--lattice-steps-per-iteration", "x"}}) {
+           {"--lattice-step", "0.5"}, {"--lattice-steps", "-2"}, {"--lattice-steps-per-iteration", "x"},
+           {"--rank-order", "random"}, {"--void-sigma", "0"}}) {
     test::CommandResult refused_option =
         test::run_bluetile({"wang", "--points", "4", option, value, "--engine", "exact", "--output", never});
     EXPECT_NE(refused_option.exit_code, 0) << option;

@@ -7,6 +7,7 @@
 #include "arrays.h"
 #include "bindings.h"
 #include "bluetile/analysis/summary.h"
+#include "bluetile/analysis/summary_record.h"
 
 namespace pybluetile {
 
@@ -50,35 +51,36 @@ nb::dict radial_dict(const std::vector<bluetile::Annulus>& radial) {
   return d;
 }
 
-// The keys and values of `bluetile analyze`'s stats.json for one series (its top level).
+// A record of the library's serializer (summary_record.h) as Python values: objects as dicts,
+// arrays as NumPy arrays (NaN where stats.json has null), a non-finite number as None (null).
+nb::object to_python(bluetile::Record&& r) {
+  using Kind = bluetile::Record::Kind;
+  switch (r.kind) {
+    case Kind::null: return nb::none();
+    case Kind::integer: return nb::int_(r.integer);
+    case Kind::real: return std::isfinite(r.real) ? nb::object(nb::float_(r.real)) : nb::object(nb::none());
+    case Kind::text: return nb::str(r.text.c_str());
+    case Kind::reals: {
+      const std::size_t n = r.reals.size();
+      return nb::cast(to_numpy(std::move(r.reals), {n}));
+    }
+    case Kind::integers: {
+      const std::size_t n = r.integers.size();
+      return nb::cast(to_numpy(std::move(r.integers), {n}));
+    }
+    case Kind::object: {
+      nb::dict d;
+      for (std::size_t i = 0; i < r.keys.size(); ++i) d[r.keys[i].c_str()] = to_python(std::move(r.values[i]));
+      return d;
+    }
+  }
+  return nb::none();
+}
+
+// The keys and values of `bluetile analyze`'s stats.json for one series (its top level), from
+// the same serializer, and the periodogram.
 nb::dict summary_dict(bluetile::Summary&& s) {
-  const double h = s.nn.hexagonal_spacing;
-  nb::dict d;
-  d["n"] = s.count;
-  d["sets"] = s.sets;
-  d["nn_min"] = s.nn.min;
-  d["nn_max"] = s.nn.max;
-  d["nn_mean"] = s.nn.mean;
-  nb::dict x1000, relative;
-  x1000["min"] = 1000.0 * s.nn.min;
-  x1000["max"] = 1000.0 * s.nn.max;
-  x1000["mean"] = 1000.0 * s.nn.mean;
-  relative["min"] = s.nn.min / h;
-  relative["max"] = s.nn.max / h;
-  relative["mean"] = s.nn.mean / h;
-  d["nn_x1000"] = x1000;
-  d["nn_relative"] = relative;
-  d["hexagonal_spacing"] = h;
-  if (s.sets > 1) {
-    d["nn_min_lowest"] = s.nn_min_lowest;
-    d["nn_min_highest"] = s.nn_min_highest;
-  }
-  if (s.has_centroid_distance) {
-    d["mean_centroid_distance"] = s.centroid_distance;
-    d["mean_centroid_distance_relative"] = s.centroid_distance / h;
-  }
-  d["periodogram_size"] = s.periodogram.size;
-  d["radial"] = radial_dict(s.radial);
+  nb::dict d = nb::cast<nb::dict>(to_python(bluetile::summary_record(s)));
   d["periodogram"] = periodogram_array(std::move(s.periodogram));
   return d;
 }
@@ -88,13 +90,14 @@ nb::dict summary_dict(bluetile::Summary&& s) {
 void bind_analysis(nb::module_& m) {
   m.def(
       "analyze",
-      [](const AnyArray& points, int size, double bin_width, bool centroids) {
+      [](const AnyArray& points, int size, double bin_width, bool centroids, bool psa_measures) {
         check_spectrum_options(size, bin_width);
         PointSets input = analysed_sets(points);
         bluetile::SummaryOptions options;
         options.size = size;
         options.bin_width = bin_width;
         options.centroids = centroids;
+        options.spectral_measures = psa_measures;
         bluetile::Summary summary;
         {
           nb::gil_scoped_release release;
@@ -102,17 +105,21 @@ void bind_analysis(nb::module_& m) {
         }
         return summary_dict(std::move(summary));
       },
-      nb::sig("def analyze(points: NDArray[numpy.float64], *, size: int = 0, bin_width: float = 1.0, centroids: bool = True) "
-              "-> dict[str, typing.Any]"),
-      "points"_a, nb::kw_only(), "size"_a = 0, "bin_width"_a = 1.0, "centroids"_a = true,
-      R"(Statistics of a point set, as ``bluetile analyze`` writes them to stats.json.
+      nb::sig("def analyze(points: NDArray[numpy.float64], *, size: int = 0, bin_width: float = 1.0, centroids: bool = True, "
+              "psa_measures: bool = True) -> dict[str, typing.Any]"),
+      "points"_a, nb::kw_only(), "size"_a = 0, "bin_width"_a = 1.0, "centroids"_a = true, "psa_measures"_a = true,
+      R"(Statistics of a point set on the unit torus, as ``bluetile analyze`` writes them to stats.json.
 
 ``points``: shape (N, 2), or (K, N, 2) for the mean over K sets (``--average``). Returns a dict
-with the same keys as stats.json (n, sets, nn_min, nn_max, nn_mean, nn_x1000, nn_relative,
-hexagonal_spacing, mean_centroid_distance[_relative] unless ``centroids=False``,
-periodogram_size, radial) where radial holds arrays frequency, power, anisotropy_db, count;
-and "periodogram", the (F, F) array of ``periodogram``. size: the periodogram's F (0: 2
-floor(5 sqrt(N))); bin_width: the annulus width.)");
+with stats.json's keys and numbers (one serializer in the library makes both): n, sets,
+boundary, nn_min, nn_max, nn_mean, nn_x1000, nn_relative, hexagonal_spacing, rho,
+average_min_distance, nn_min_lowest/highest (K > 1), mean_centroid_distance[_relative] unless
+``centroids=False``, nu_eff and omega by psa's definitions (None when ``psa_measures=False``;
+their RDF is O(N^2), about half an hour at 10^6 points on 2 cores) with omega_range_nu,
+bond_order (local, global), rdf_range_relative, rdf_bins, periodogram_size and radial (arrays
+frequency, nu, power, anisotropy_db, count; NaN where stats.json has null); and "periodogram",
+the (F, F) array of ``periodogram``. size: the periodogram's F (0: 2 floor(5 sqrt(N)));
+bin_width: the annulus width.)");
 
   m.def(
       "periodogram",
@@ -129,7 +136,8 @@ floor(5 sqrt(N))); bin_width: the annulus width.)");
         return periodogram_array(std::move(p));
       },
       "points"_a, "size"_a = 0,
-      R"(The periodogram P(k) = |sum_j exp(-2 pi i k.x_j)|^2 / N by the direct sum, shape (F, F):
+      R"(The periodogram P(k) = |sum_j exp(-2 pi i k.x_j)|^2 / N, shape (F, F) (the direct sum for
+small sets, a non-uniform FFT within 1e-9 of it for larger ones):
 element [ky + F/2, kx + F/2] is P at integer frequency (kx, ky), for kx, ky in [-F/2, F/2).
 White noise gives about 1; P(0) = N. size: F, even (0: 2 floor(5 sqrt(N))).)");
 

@@ -50,7 +50,8 @@ void check_whole(const char* name, long long value, long long low, long long hig
 std::string wang_tiles(const std::string& set, long long points, int iterations, int warm, int levels, double ratio,
                        const std::string& strategy, int period, double margin, int lattice_steps,
                        int lattice_steps_per_iteration, double lattice_step, int seam_steps,
-                       double seam_spacing, double level_seam_spacing, std::uint64_t seed, const std::string& engine) {
+                       double seam_spacing, double level_seam_spacing, const std::string& rank_order, double void_sigma,
+                       std::uint64_t seed, const std::string& engine) {
   const auto kind = bluetile::parse_tile_set_kind(set);
   if (!kind) throw nb::value_error(("set: expected one of 'wang8', 'wang16', 'corner16', got '" + set + "'").c_str());
   check_whole("points", points, 1, 1000000);
@@ -70,6 +71,10 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
   for (auto [name, value] : {std::pair{"seam_spacing", seam_spacing}, std::pair{"level_seam_spacing", level_seam_spacing}})
     if (!(value >= 0.01 && value <= 2.0))
       throw nb::value_error((std::string(name) + ": expected 0.01 to 2 hexagonal spacings, got " + std::to_string(value)).c_str());
+  if (rank_order != "farthest" && rank_order != "voids")
+    throw nb::value_error(("rank_order: expected 'farthest' or 'voids', got '" + rank_order + "'").c_str());
+  if (!(void_sigma >= 0.1 && void_sigma <= 4.0))
+    throw nb::value_error(("void_sigma: expected 0.1 to 4 hexagonal spacings, got " + std::to_string(void_sigma)).c_str());
   EngineChoice choice;
   choice.engine = engine;
   check_engine_choice(choice);
@@ -91,6 +96,8 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
                     .seam_iterations = seam_steps,
                     .seam_spacing = seam_spacing,
                     .later_seam_spacing = level_seam_spacing};
+  w.level.rank_order = rank_order == "voids" ? bluetile::RankOrder::voids : bluetile::RankOrder::farthest;
+  w.level.void_sigma = void_sigma;
   std::string text;
   {
     nb::gil_scoped_release release;
@@ -100,7 +107,7 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
                            ", iterations=" + std::to_string(iterations) + ", warm=" + std::to_string(warm) +
                            ", levels=" + std::to_string(levels) + ", strategy='" + strategy +
                            "', lattice_steps=" + std::to_string(lattice_steps) +
-                           ", lattice_steps_per_iteration=" + std::to_string(lattice_steps_per_iteration) + ", seam_steps=" + std::to_string(seam_steps) + ", seed=" + std::to_string(seed) + ", engine='" + engine + "')");
+                           ", lattice_steps_per_iteration=" + std::to_string(lattice_steps_per_iteration) + ", seam_steps=" + std::to_string(seam_steps) + ", rank_order='" + rank_order + "', seed=" + std::to_string(seed) + ", engine='" + engine + "')");
     text = bluetile::format_tile_set(tiles);
   }
   return text;
@@ -226,10 +233,11 @@ void bind_tiling(nb::module_& m) {
         nb::sig("def wang_tiles(set: str = 'wang8', *, points: int = 52, iterations: int = 100, warm: int = 10, "
                 "levels: int = 1, ratio: float = 2.0, strategy: str = 'exact', period: int = 16, margin: float = 0.0, "
                 "lattice_steps: int = 5, lattice_steps_per_iteration: int = 3, lattice_step: float = 0.005, seam_steps: int = 20, seam_spacing: float = 0.8, level_seam_spacing: float = 0.65, "
-                "seed: int = 1, engine: str = 'exact') -> str"),
+                "rank_order: str = 'farthest', void_sigma: float = 0.5, seed: int = 1, engine: str = 'exact') -> str"),
         "set"_a = "wang8", nb::kw_only(), "points"_a = 52, "iterations"_a = 100, "warm"_a = 10, "levels"_a = 1,
         "ratio"_a = 2.0, "strategy"_a = "exact", "period"_a = 16, "margin"_a = 0.0, "lattice_steps"_a = 5, "lattice_steps_per_iteration"_a = 3, "lattice_step"_a = 0.005, "seam_steps"_a = 20,
-        "seam_spacing"_a = 0.8, "level_seam_spacing"_a = 0.65, "seed"_a = 1, "engine"_a = "exact",
+        "seam_spacing"_a = 0.8, "level_seam_spacing"_a = 0.65, "rank_order"_a = "farthest", "void_sigma"_a = 0.5,
+        "seed"_a = 1, "engine"_a = "exact",
         R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same
 points bit for bit), returned as the text of its tile-set file: write it to a file for
 ``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``.)");

@@ -103,19 +103,35 @@ def test_dart_matches_the_tool(tool, tmp_path):
     assert info["final_radius"] <= info["initial_radius"]
 
 
+# stats.json's keys that describe the run rather than the set (mode, inputs, the plots).
+TOOL_ONLY_KEYS = {"mode", "label", "inputs", "bin_width", "frequency_axis", "images"}
+
+
+def assert_same_values(mine, theirs, where):
+    if isinstance(theirs, dict):
+        assert isinstance(mine, dict) and set(mine) == set(theirs), (where, set(mine) ^ set(theirs))
+        for key in theirs:
+            assert_same_values(mine[key], theirs[key], f"{where}.{key}")
+    elif isinstance(theirs, list):
+        reference = np.array([np.nan if v is None else v for v in theirs])
+        assert np.array_equal(np.asarray(mine), reference, equal_nan=True), where
+    else:
+        assert mine == theirs, (where, mine, theirs)
+
+
 def test_analyze_matches_stats_json(tool, tmp_path):
     points = bt.relax(count=200, iterations=20, seed=1, engine="exact")
     np.savetxt(tmp_path / "p.txt", points, fmt="%.17g")
     tool("analyze", "--input", tmp_path / "p.txt", "--output", tmp_path / "a")
     stats = json.loads((tmp_path / "a" / "stats.json").read_text())
-    mine = bt.analyze(points)
-    for key in ("n", "sets", "nn_min", "nn_max", "nn_mean", "hexagonal_spacing", "mean_centroid_distance",
-                "periodogram_size"):
-        assert mine[key] == stats[key], key
-    assert mine["nn_x1000"] == stats["nn_x1000"] and mine["nn_relative"] == stats["nn_relative"]
-    for column in ("frequency", "power", "anisotropy_db", "count"):
-        reference = np.array([np.nan if v is None else v for v in stats["radial"][column]])
-        assert np.array_equal(mine["radial"][column], reference, equal_nan=True), column
+    # The same file read back, as a user would: the tool and the module see the same numbers.
+    mine = bt.analyze(np.loadtxt(tmp_path / "p.txt"))
+    series = {k: v for k, v in stats.items() if k not in TOOL_ONLY_KEYS}
+    assert set(mine) - {"periodogram"} == set(series)
+    for key in ("rho", "average_min_distance", "nu_eff", "omega", "bond_order", "boundary"):
+        assert key in mine, key
+    assert mine["nu_eff"] > 0.5 and mine["bond_order"]["local"] > 0.5  # a relaxed set
+    assert_same_values({k: v for k, v in mine.items() if k != "periodogram"}, series, "stats")
     f = stats["periodogram_size"]
     spectrum = bt.periodogram(points)
     assert spectrum.shape == (f, f) and spectrum[f // 2, f // 2] == pytest.approx(200.0)
@@ -123,6 +139,18 @@ def test_analyze_matches_stats_json(tool, tmp_path):
     assert np.array_equal(bt.radial_power(points)["power"], mine["radial"]["power"])
     distances = bt.nearest_neighbour_distances(points)
     assert distances.min() == stats["nn_min"]
+
+
+def test_analyze_averages_sets_and_skips_psa_measures_like_the_tool(tool, tmp_path):
+    sets = np.stack([bt.relax(count=128, iterations=10, seed=s, engine="exact") for s in (3, 4)])
+    text = "\n#\n".join("\n".join(f"{x:.17g} {y:.17g}" for x, y in points) for points in sets)
+    (tmp_path / "two.txt").write_text(text + "\n")
+    tool("analyze", "--input", tmp_path / "two.txt", "--output", tmp_path / "a", "--average", "--no-psa-measures")
+    stats = json.loads((tmp_path / "a" / "stats.json").read_text())
+    mine = bt.analyze(sets, psa_measures=False)
+    assert mine["sets"] == 2 and mine["nu_eff"] is None and mine["omega"] is None
+    assert_same_values({k: v for k, v in mine.items() if k != "periodogram"},
+                       {k: v for k, v in stats.items() if k not in TOOL_ONLY_KEYS}, "stats")
 
 
 def test_tables_round_trip_and_numpy_reads_them(tmp_path):
@@ -241,6 +269,14 @@ def test_wang_tiles_match_the_tool(tool, tmp_path):
         assert np.all((t["points"] >= 0) & (t["points"] < 1))
     # A path reads the same set.
     assert np.array_equal(bt.tile_set(str(out))["tiles"][5]["points"], tiles["tiles"][5]["points"])
+    # The voids order too, and bad orders are refused by name.
+    tool("wang", "--set", "wang8", "--points", 8, "--iterations", 3, "--warm", 2, "--levels", 2, "--ratio", 2,
+         "--rank-order", "voids", "--void-sigma", 0.6, "--engine", "exact", "--seed", 3, "--output", out)
+    voids = bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, rank_order="voids", void_sigma=0.6, seed=3)
+    assert tile_set_body(voids) == tile_set_body(out.read_text())
+    assert tile_set_body(voids) != tile_set_body(bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, seed=3))
+    with pytest.raises(ValueError, match="rank_order"):
+        bt.wang_tiles("wang8", points=8, rank_order="random")
 
 
 def test_tile_matches_the_tool(tool, tmp_path):

@@ -18,6 +18,8 @@
 
 #include "bluetile/analysis/radial_power.h"
 #include "bluetile/analysis/summary.h"
+#include "bluetile/analysis/summary_record.h"
+#include "cli/analysis_budget.h"
 #include "cli/commands.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
@@ -46,6 +48,8 @@ struct AnalyzeOptions {
   bool cells = false;
   std::string from;
   bool no_centroids = false;
+  bool no_psa_measures = false;
+  double time_limit_minutes = 10.0;
   bool bounded = false;
   bool wrap = false;
   std::string axis = "normalised";
@@ -117,50 +121,30 @@ nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : 
 
 const char* boundary_name(Boundary b) { return b == Boundary::periodic ? "periodic" : "bounded"; }
 
-nlohmann::json summary_json(const Summary& s) {
-  const double h = s.nn.hexagonal_spacing;
-  nlohmann::json j;
-  j["n"] = s.count;
-  j["sets"] = s.sets;
-  j["boundary"] = boundary_name(s.boundary);
-  j["nn_min"] = s.nn.min;
-  j["nn_max"] = s.nn.max;
-  j["nn_mean"] = s.nn.mean;
-  j["nn_x1000"] = {{"min", 1000.0 * s.nn.min}, {"max", 1000.0 * s.nn.max}, {"mean", 1000.0 * s.nn.mean}};
-  j["nn_relative"] = {{"min", s.nn.min / h}, {"max", s.nn.max / h}, {"mean", s.nn.mean / h}};
-  j["hexagonal_spacing"] = h;
-  j["rho"] = s.nn.rho();
-  j["average_min_distance"] = s.nn.rho_mean();
-  if (s.sets > 1) {
-    j["nn_min_lowest"] = s.nn_min_lowest;
-    j["nn_min_highest"] = s.nn_min_highest;
+// stats.json's value of a record (the library's serializer, summary_record.h): non-finite
+// numbers as null.
+nlohmann::json to_json(const Record& r) {
+  switch (r.kind) {
+    case Record::Kind::null: return nullptr;
+    case Record::Kind::integer: return r.integer;
+    case Record::Kind::real: return number(r.real);
+    case Record::Kind::text: return r.text;
+    case Record::Kind::reals: {
+      nlohmann::json list = nlohmann::json::array();
+      for (double v : r.reals) list.push_back(number(v));
+      return list;
+    }
+    case Record::Kind::integers: return r.integers;
+    case Record::Kind::object: {
+      nlohmann::json object = nlohmann::json::object();
+      for (std::size_t i = 0; i < r.keys.size(); ++i) object[r.keys[i]] = to_json(r.values[i]);
+      return object;
+    }
   }
-  if (s.has_centroid_distance) {
-    j["mean_centroid_distance"] = s.centroid_distance;
-    j["mean_centroid_distance_relative"] = s.centroid_distance / h;
-  }
-  // psa's definitions, from the RDF-derived radial power (spectral_measures.h); null for a
-  // bounded set, whose torus distances psa's measures would need.
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  j["nu_eff"] = number(s.has_spectral_measures ? s.measures.nu_eff : nan);
-  j["omega"] = number(s.has_spectral_measures ? s.measures.omega : nan);
-  if (s.has_spectral_measures) j["omega_range_nu"] = {s.measures.omega_from_nu, s.measures.omega_to_nu};
-  if (s.has_bond_order) j["bond_order"] = {{"local", s.bond_order.local}, {"global", s.bond_order.global}};
-  j["rdf_range_relative"] = s.rdf.range() / h;
-  j["rdf_bins"] = s.rdf.g.size();
-  j["periodogram_size"] = s.periodogram.size;
-  nlohmann::json f = nlohmann::json::array(), nu = nlohmann::json::array(), p = nlohmann::json::array(),
-                 a = nlohmann::json::array(), c = nlohmann::json::array();
-  for (const Annulus& an : s.radial) {
-    f.push_back(an.frequency);
-    nu.push_back(s.nu(an.frequency));
-    p.push_back(number(an.power));
-    a.push_back(number(an.anisotropy_db));
-    c.push_back(an.count);
-  }
-  j["radial"] = {{"frequency", f}, {"nu", nu}, {"power", p}, {"anisotropy_db", a}, {"count", c}};
-  return j;
+  return nullptr;
 }
+
+nlohmann::json summary_json(const Summary& s) { return to_json(summary_record(s)); }
 
 std::string csv_number(double v) {
   if (!std::isfinite(v)) return "nan";
@@ -251,6 +235,8 @@ void report_series(std::ostringstream& out, const Series& series) {
   if (s.has_spectral_measures)
     out << "  effective Nyquist frequency nu_eff " << fixed(s.measures.nu_eff, 3) << ", oscillations Omega "
         << fixed(s.measures.omega, 3) << " (psa's definitions, from the RDF)\n";
+  else if (s.boundary == Boundary::periodic)
+    out << "  nu_eff, Omega: skipped (--no-psa-measures)\n";
   else
     out << "  nu_eff, Omega: periodic sets only (psa's definitions measure torus distances)\n";
   if (s.has_bond_order)
@@ -437,6 +423,22 @@ void run_analyze(const AnalyzeOptions& o) {
                   std::to_string(inputs[0][0].points.size()));
   }
   check_annuli(o, inputs);
+  // The estimate, before any work: a set too large for psa's O(N^2) measures or for the memory
+  // is refused with what it would take.
+  std::vector<AnalysisJob> jobs;
+  if (o.compare) {
+    for (const auto& sets : inputs) jobs.push_back({sets[0].points.size(), sets.size(), o.size});
+  } else if (o.by_level) {
+    std::vector<int> levels = inputs[0][0].levels;
+    std::sort(levels.begin(), levels.end());
+    for (std::size_t i = 0; i < levels.size(); ++i)
+      if (i + 1 == levels.size() || levels[i + 1] != levels[i]) jobs.push_back({i + 1, 1, o.size});
+  } else {
+    jobs.push_back({inputs[0][0].points.size(), total_sets, o.size});
+  }
+  if (boundary == Boundary::periodic) check_analysis_budget(jobs, !o.no_psa_measures, o.time_limit_minutes);
+  else check_analysis_budget(jobs, false, o.time_limit_minutes);
+
   auto label_of = [&](std::size_t i) {
     return o.labels.empty() ? std::filesystem::path(o.inputs[i]).stem().string() : o.labels[i];
   };
@@ -445,12 +447,23 @@ void run_analyze(const AnalyzeOptions& o) {
   options.size = o.size;
   options.bin_width = o.bin_width;
   options.centroids = !o.no_centroids;
+  options.spectral_measures = !o.no_psa_measures;
   options.boundary = boundary;
   options.rdf.range = o.rdf_range;
   options.rdf.bins = static_cast<std::size_t>(o.rdf_bins);
   std::unique_ptr<Progress> bar;
+  // On a terminal: the step under way, and the periodogram's progress.
+  bool counting = false;  // the bar counts the periodogram's work (else it names a step)
+  options.step = [&](const char* name) {
+    counting = false;
+    bar = std::make_unique<Progress>("analyze:", 0);
+    bar->update(0, name);
+  };
   options.progress = [&](std::size_t done, std::size_t total) {
-    if (!bar) bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
+    if (!bar || !counting) {
+      counting = true;
+      bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
+    }
     bar->update(static_cast<long long>(done));
   };
 
@@ -662,6 +675,11 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--cells", o->cells, "Draw the periodic Voronoi cells in points.png");
   cmd->add_option("--from", o->from, "Draw each point's move from its position in this file (same count and order)");
   cmd->add_flag("--no-centroids", o->no_centroids, "Skip the mean distance of the sites to their exact cell centroids");
+  cmd->add_flag("--no-psa-measures", o->no_psa_measures,
+                "Skip nu_eff and Omega by psa's definitions: their RDF takes every pair closer than 0.25, O(N^2) (about "
+                "half an hour at 10^6 points on 2 cores)");
+  add_real_option(cmd, "--time-limit", o->time_limit_minutes, {0.0, 1e7, true, false},
+                  "Refuse up front when the estimated analysis time exceeds this many minutes");
   cmd->add_option("--title", o->title, "Title of radial.png and of the summary");
   add_integer_option(cmd, "--image-size", o->image_size, 64, 8192,
                      "Side of points.png in pixels (two thirds of it per set side by side)");

@@ -17,7 +17,8 @@ void Progress::update(long long done, const std::string& detail) {
   if (drawn_ && done < total_ && now - last_draw_ < std::chrono::milliseconds(100)) return;
   last_draw_ = now;
   drawn_ = true;
-  std::fprintf(stderr, "\r\033[K%s %lld/%lld %s", label_.c_str(), done, total_, detail.c_str());
+  if (total_ <= 0) std::fprintf(stderr, "\r\033[K%s %s", label_.c_str(), detail.c_str());  // a step, no count
+  else std::fprintf(stderr, "\r\033[K%s %lld/%lld %s", label_.c_str(), done, total_, detail.c_str());
   std::fflush(stderr);
 }
 

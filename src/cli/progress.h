@@ -8,6 +8,7 @@ namespace bluetile::cli {
 
 class Progress {
  public:
+  // total <= 0: a step without a count, shown as its label and detail.
   Progress(std::string label, long long total);
   ~Progress();
   // Shows `done` of total; redraws at most a few times a second.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -43,6 +44,8 @@ struct WangCommandOptions {
   int period = 16;
   double margin = 0.0;
   WangRefinement refine;  // the lattice and seam spacing steps, the library's defaults
+  std::string rank_order = "farthest";
+  double void_sigma = WangLevelOptions{}.void_sigma;
   std::uint64_t seed = 1;
   std::string output;
   bool check = false;
@@ -138,6 +141,8 @@ void run_wang(const WangCommandOptions& o) {
   w.level.period = o.period;
   w.level.edge_margin = o.margin;
   w.level.refine = o.refine;
+  w.level.rank_order = o.rank_order == "voids" ? RankOrder::voids : RankOrder::farthest;
+  w.level.void_sigma = o.void_sigma;
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
   check_points_per_tile(o, TileRules(w.kind).tile_count());
 
@@ -172,6 +177,7 @@ void run_wang(const WangCommandOptions& o) {
     command << " --seam-spacing " << r.seam_spacing;
     if (o.levels > 1) command << " --level-seam-spacing " << r.later_seam_spacing;
   }
+  if (o.rank_order != "farthest") command << " --rank-order " << o.rank_order << " --void-sigma " << o.void_sigma;
   command << " --seed " << o.seed << " --engine " << engine->name();
   set.header = {"made by: " + command.str()};
   validate_tile_set(set);
@@ -300,14 +306,22 @@ void run_check(const CheckOptions& o) {
   std::snprintf(head, sizeof head, "  %-28s %8s %7s %8s %8s %8s %9s\n", "prefix", "N", "rho", "LF", "C_LF", "C_mid",
                 "aniso dB");
   std::printf("%s", head);
-  nlohmann::json levels_json = nlohmann::json::array();
-  std::uint32_t total = 0;
-  for (const SeamLevel& level : seams.levels) {
-    const std::uint32_t prefix = static_cast<std::uint32_t>(level.points_per_tile);
+  // The plane of the first k ranks of every tile, each measured once (level boundaries are in
+  // the sweep too).
+  std::map<std::size_t, TilingMetrics> measured;
+  auto metrics_at = [&](std::size_t k) -> const TilingMetrics& {
+    auto found = measured.find(k);
+    if (found != measured.end()) return found->second;
+    const auto prefix = static_cast<std::uint32_t>(k);
     TiledPlane p = torus_tiling(set, o.period, o.seed, prefix);
     Periodogram periodogram = tiled_periodogram(tile_prefixes(set, prefix), p.cell_tiles, o.period,
                                                 tiling_periodogram_size(p.points.size(), o.period));
-    TilingMetrics m = measure_tiling(p.points, periodogram, o.period, tiles);
+    return measured.emplace(k, measure_tiling(p.points, periodogram, o.period, tiles)).first->second;
+  };
+  nlohmann::json levels_json = nlohmann::json::array();
+  std::size_t total = 0;
+  for (const SeamLevel& level : seams.levels) {
+    const TilingMetrics& m = metrics_at(level.points_per_tile);
     std::printf("%s", metrics_row("levels 0-" + std::to_string(level.level), m, true).c_str());
     levels_json.push_back({{"level", level.level},
                            {"points_per_tile", level.points_per_tile},
@@ -322,17 +336,34 @@ void run_check(const CheckOptions& o) {
                              {"LF", m.low_frequency},
                              {"C_LF", m.coherence_low},
                              {"C_mid", m.coherence_mid},
+                             {"lattice_peak", m.lattice_peak},
                              {"diffuse_anisotropy_db", m.diffuse_anisotropy_db}}}});
-    total = prefix;
+    total = level.points_per_tile;
   }
-  (void)total;
+  // The prefix sweep: the first k points by rank of every tile, k at fixed fractions of the top
+  // count and at every level boundary.
+  std::vector<std::size_t> boundaries;
+  for (const SeamLevel& level : seams.levels) boundaries.push_back(level.points_per_tile);
+  const std::vector<std::size_t> sweep = prefix_sweep(total, boundaries);
+  std::printf("\nprefix sweep (%dx%d torus tiling):\n  %8s %8s %7s %8s %9s %8s %8s\n", o.period, o.period, "k/tile", "N",
+              "rho", "LF", "lattice", "C_LF", "C_mid");
+  nlohmann::json sweep_json = nlohmann::json::array();
+  for (const std::size_t k : sweep) {
+    if (k * static_cast<std::size_t>(o.period) * static_cast<std::size_t>(o.period) < 2) continue;
+    const TilingMetrics& m = metrics_at(k);
+    std::printf("  %8zu %8zu %7.3f %8.4f %9.2f %8.3f %8.3f\n", k, m.count, m.rho, m.low_frequency, m.lattice_peak,
+                m.coherence_low, m.coherence_mid);
+    sweep_json.push_back({{"k", k}, {"N", m.count}, {"rho", m.rho}, {"LF", m.low_frequency},
+                          {"lattice_peak", m.lattice_peak}, {"C_LF", m.coherence_low}, {"C_mid", m.coherence_mid}});
+  }
   nlohmann::json stats = {{"input", o.input},
                           {"set", tile_set_kind_name(set.kind)},
                           {"tiles", tiles},
                           {"blocks", seams.blocks},
                           {"period", o.period},
                           {"seed", o.seed},
-                          {"levels", levels_json}};
+                          {"levels", levels_json},
+                          {"prefix_sweep", sweep_json}};
 
   std::vector<Point> untiled;
   if (o.untiled) {
@@ -358,7 +389,7 @@ void run_check(const CheckOptions& o) {
   }
   std::printf("  (rho: min NN distance / hexagonal spacing; LF: mean periodogram for 0 < |k| < 0.5 sqrt(N);\n"
               "   C_LF, C_mid: tile-lattice coherence for M = %d; anisotropy: mean over annuli 0.5-1.6 sqrt(N),\n"
-              "   lattice frequencies left out)\n",
+              "   lattice frequencies left out; lattice: mean periodogram at k = M m, 0 < |k| < sqrt(N))\n",
               o.period);
 
   if (o.output.empty()) return;
@@ -442,6 +473,15 @@ void add_wang_command(CLI::App& app) {
   cmd->add_option("--level-seam-spacing", o->refine.later_seam_spacing,
                   "Seam spacing of levels 1 and up, in hexagonal spacings of the tile's points")
       ->check(CLI::Range(0.01, 2.0))
+      ->capture_default_str();
+  cmd->add_option("--rank-order", o->rank_order,
+                  "Progressive order inside each level: farthest (greedy farthest point) or voids (tiled "
+                  "void-and-cluster: lower low-frequency power and tile-lattice coherence between level boundaries, "
+                  "closer nearest pairs)")
+      ->check(CLI::IsMember({"farthest", "voids"}))
+      ->capture_default_str();
+  cmd->add_option("--void-sigma", o->void_sigma, "voids: kernel width in hexagonal spacings of the prefix")
+      ->check(CLI::Range(0.1, 4.0))
       ->capture_default_str();
   cmd->add_option("-s,--seed", o->seed, "Seed")->capture_default_str();
   cmd->add_option("-o,--output", o->output, "Output tile-set file")->required();

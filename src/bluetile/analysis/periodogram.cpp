@@ -118,6 +118,26 @@ int default_periodogram_size(std::size_t count) {
 
 Periodogram compute_periodogram(std::span<const Point> points, int size,
                                 const std::function<void(std::size_t, std::size_t)>& progress) {
+  if (periodogram_uses_nufft(points.size(), size)) return compute_periodogram_nufft(points, size, progress);
+  return compute_periodogram_direct(points, size, progress);
+}
+
+bool periodogram_uses_nufft(std::size_t count, int size) {
+  if (size < 2) return false;
+  // Measured on one thread (docs/BENCHMARKS.md, "Periodogram at scale"): the direct sum costs
+  // about 0.6 ns per point and frequency (half the plane is summed), the non-uniform FFT about
+  // 4 ns per butterfly of its two passes plus 400 ns to spread a point. The direct sum wins
+  // below about 100 points, where both take a millisecond.
+  constexpr double kDirectNsPerTerm = 0.6, kFftNsPerButterfly = 4.0, kSpreadNsPerPoint = 400.0;
+  const double f = size, n = static_cast<double>(count);
+  const double m = static_cast<double>(periodogram_nufft_grid(size));
+  const double direct = kDirectNsPerTerm * n * f * f / 2.0;
+  const double fast = kFftNsPerButterfly * m * (m + f / 2.0) * std::log2(m) / 2.0 + kSpreadNsPerPoint * n;
+  return fast < direct;
+}
+
+Periodogram compute_periodogram_direct(std::span<const Point> points, int size,
+                                       const std::function<void(std::size_t, std::size_t)>& progress) {
   if (points.empty()) throw Error("periodogram of an empty point set");
   if (size < 2 || size % 2 != 0 || size > 65536)
     throw Error("periodogram size must be even, 2 to 65536, got " + std::to_string(size));

@@ -29,13 +29,35 @@ struct Periodogram {
 // frequency of the hexagonal lattice of N points.
 int default_periodogram_size(std::size_t count);
 
-// Direct sum over all points for every k, in double precision, on all threads. The result is
-// bit-identical whatever the thread count (each value is summed over the points in a fixed
-// order). P(0) = N exactly. `size` must be even and >= 2; points must not be empty. `progress`
-// (optional) is called with (done, total) work units, serialised, from any thread. Throws Error
-// on bad arguments.
+// The periodogram by whichever of the two methods below is faster for N and F: the direct sum
+// for small sets, the non-uniform FFT above a few thousand points (their values agree to 1e-9 of
+// P(0) = N). Bit-identical whatever the thread count. P(0) = N exactly. `size` must be even, 2
+// to 65536; points must not be empty. `progress` (optional) is called with (done, total) work
+// units, serialised, from any thread. Throws Error on bad arguments.
 Periodogram compute_periodogram(std::span<const Point> points, int size,
                                 const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// Direct sum over all points for every k, in double precision, on all threads (each value is
+// summed over the points in a fixed order): O(N F^2), the oracle of the fast method. Points off
+// [0, 1) are taken modulo 1. Errors as compute_periodogram.
+Periodogram compute_periodogram_direct(std::span<const Point> points, int size,
+                                       const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// Type-1 non-uniform FFT (exponential-of-semicircle kernel, upsampled grid M = the power of two
+// >= 1.5 F, periodogram_nufft.cpp): O(N w^2 + M^2 log M) with w about 14. Every value within
+// 1e-9 N of the direct sum (in practice about 1e-12 N). Errors as compute_periodogram.
+Periodogram compute_periodogram_nufft(std::span<const Point> points, int size,
+                                      const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+// Whether compute_periodogram takes the non-uniform FFT for `count` points and size F.
+bool periodogram_uses_nufft(std::size_t count, int size);
+
+// Side M of the non-uniform FFT's grid for size F.
+std::size_t periodogram_nufft_grid(int size);
+
+// Bytes compute_periodogram allocates at its peak for `count` points and size F (on the
+// current thread count), for up-front memory checks.
+std::size_t periodogram_memory_bytes(std::size_t count, int size);
 
 // Mean of several periodograms of the same size (the usual way spectra are shown: psa
 // --avg). Throws Error when sizes differ or the list is empty.

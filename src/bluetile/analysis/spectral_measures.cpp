@@ -119,6 +119,18 @@ RdfPowerSpectrum rdf_power_spectrum(std::span<const Point> points) {
   return spectrum;
 }
 
+double rdf_power_spectrum_pairs(std::size_t count) {
+  const double bins = static_cast<double>(psa_bins(count));
+  const double reach = 0.5 / bins * std::min(bins, std::floor(bins / 2.0) + 2.0);  // the histogram's range
+  const double n = static_cast<double>(count);
+  return kPi * reach * reach * n * (n - 1.0) / 2.0;
+}
+
+double rdf_power_spectrum_bessels(std::size_t count) {
+  const double bins = static_cast<double>(psa_bins(count));
+  return bins * std::min(bins, std::floor(bins / 2.0) + 2.0);
+}
+
 RdfPowerSpectrum average_spectra(std::span<const RdfPowerSpectrum> spectra) {
   if (spectra.empty()) throw Error("no spectra to average");
   RdfPowerSpectrum mean = spectra[0];

@@ -59,6 +59,13 @@ struct RdfPowerSpectrum {
 // N^2 / 5, as psa's RDF) and B^2 / 2 Bessel functions; N = 16384 takes about 4 s on 2 cores.
 RdfPowerSpectrum rdf_power_spectrum(std::span<const Point> points);
 
+// The work of rdf_power_spectrum for `count` points, for estimates before it runs: the point
+// pairs it histograms (those closer than the window's reach, about 0.25: pi 0.25^2 N^2 / 2, so
+// O(N^2) by psa's definition: its RDF must reach a quarter of the torus) and the Bessel
+// functions of its transform (about B^2 / 2 = 5000 N).
+double rdf_power_spectrum_pairs(std::size_t count);
+double rdf_power_spectrum_bessels(std::size_t count);
+
 // The mean power of several spectra of equal count (psa --avg). Throws Error for none or for
 // different counts.
 RdfPowerSpectrum average_spectra(std::span<const RdfPowerSpectrum> spectra);

@@ -31,8 +31,12 @@ struct SummaryOptions {
   Boundary boundary = Boundary::periodic;
   bool centroids = true;   // measure the distance of each site to its exact cell centroid
   bool bond_order = true;  // psi_6 from exact periodic Voronoi neighbours
+  // nu_eff and Omega by psa's definitions: O(N^2) (rdf_power_spectrum_pairs), hours at 10^6.
+  bool spectral_measures = true;
   RdfOptions rdf;          // range and bins (its boundary is taken from `boundary`)
   std::function<void(std::size_t, std::size_t)> progress;  // periodogram progress
+  // Called with the name of each step as it starts ("nearest neighbours", "periodogram", ...).
+  std::function<void(const char*)> step;
 };
 
 struct Summary {

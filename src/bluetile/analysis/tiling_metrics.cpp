@@ -29,6 +29,19 @@ int tiling_metrics_periodogram_size(std::size_t count) {
   return 2 * (static_cast<int>(std::ceil(kAnisotropyBandEnd * root)) + 2);
 }
 
+std::vector<std::size_t> prefix_sweep(std::size_t top, std::span<const std::size_t> boundaries) {
+  std::vector<std::size_t> sweep;
+  for (int in_32nds : {2, 3, 4, 6, 8, 12, 16, 24, 32}) {
+    const auto k = static_cast<std::size_t>(std::llround(static_cast<double>(top) * in_32nds / 32.0));
+    if (k >= 1) sweep.push_back(k);
+  }
+  for (std::size_t b : boundaries)
+    if (b >= 1 && b <= top) sweep.push_back(b);
+  std::sort(sweep.begin(), sweep.end());
+  sweep.erase(std::unique(sweep.begin(), sweep.end()), sweep.end());
+  return sweep;
+}
+
 double relative_min_distance(std::span<const Point> points) {
   NearestNeighbourStats nn = nearest_neighbour_stats(std::vector<Point>(points.begin(), points.end()));
   return nn.min / nn.hexagonal_spacing;
@@ -51,8 +64,8 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
   // Mean tile-lattice power of a set whose T tiles each occur M^2 / T times.
   const double lattice_scale = period > 0 ? static_cast<double>(period) * period / tile_count : 1.0;
 
-  double low_sum = 0.0;
-  std::size_t low_count = 0;
+  double low_sum = 0.0, lattice_sum = 0.0;
+  std::size_t low_count = 0, lattice_count = 0;
   const int first_annulus = static_cast<int>(std::ceil(kLowBand * root));
   const int end_annulus = static_cast<int>(std::floor(kAnisotropyBandEnd * root));  // annuli [i, i+1) below it
   const std::size_t annuli = static_cast<std::size_t>(std::max(0, end_annulus - first_annulus));
@@ -67,6 +80,10 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
         ++low_count;
       }
       if (lattice(kx, ky) && k2 > 0.0) {
+        if (k2 < n) {
+          lattice_sum += p;
+          ++lattice_count;
+        }
         const int mx = kx / period, my = ky / period;
         if (mx * mx + my * my <= kCoherenceLowNorm) m.coherence_low = std::max(m.coherence_low, p / lattice_scale);
         if (k2 >= kLowBand * kLowBand * n && k2 < kMidBandEnd * kMidBandEnd * n)
@@ -83,6 +100,7 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
     }
   }
   m.low_frequency = low_count ? low_sum / static_cast<double>(low_count) : 0.0;
+  m.lattice_peak = lattice_count ? lattice_sum / static_cast<double>(lattice_count) : 0.0;
   double db_sum = 0.0;
   std::size_t db_count = 0;
   for (std::size_t i = 0; i < annuli; ++i) {

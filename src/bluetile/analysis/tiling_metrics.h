@@ -8,12 +8,14 @@
 //    k = M m: C_LF = max over 0 < |m|^2 <= 5 of P(M m) / (M^2 / T), and C_mid = max of the same
 //    over 0.5 sqrt(N) <= |k| < 1.5 sqrt(N) (P(M m) M^2 / T is |sum over the T tiles' points of
 //    exp(-2 pi i m.x)|^2 / (T n) when every tile occurs equally often);
+//  - tile-lattice peak: the mean of P(M m) over 0 < |M m| < sqrt(N) (untiled sets about 1);
 //  - diffuse anisotropy: the mean over width-1 annuli with 0.5 sqrt(N) <= |k| < 1.6 sqrt(N) of the
 //    annulus anisotropy in dB, the lattice frequencies left out.
 #pragma once
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 #include "bluetile/analysis/periodogram.h"
 #include "bluetile/core/torus.h"
@@ -26,6 +28,7 @@ struct TilingMetrics {
   double low_frequency = 0.0;       // LF
   double coherence_low = 0.0;       // C_LF (0 for an untiled set)
   double coherence_mid = 0.0;       // C_mid (0 for an untiled set)
+  double lattice_peak = 0.0;        // mean P over k = M m, 0 < |k| < sqrt(N) (0 for an untiled set)
   double diffuse_anisotropy_db = 0.0;
 };
 
@@ -52,6 +55,11 @@ TilingMetrics measure_tiling(std::span<const Point> points, int period, int tile
 
 // The periodogram size measure_tiling uses for N points and a period M.
 int tiling_periodogram_size(std::size_t count, int period);
+
+// The prefix sweep of a progressive tile set of `top` points per tile (issue 19): k at 1/16, 3/32,
+// 1/8, 3/16, 1/4, 3/8, 1/2, 3/4 and 1 of the top count, rounded, and every level boundary in
+// `boundaries`; sorted, distinct, each at least 1.
+std::vector<std::size_t> prefix_sweep(std::size_t top, std::span<const std::size_t> boundaries);
 
 // rho alone (minimum nearest-neighbour distance on the torus / hexagonal spacing).
 double relative_min_distance(std::span<const Point> points);

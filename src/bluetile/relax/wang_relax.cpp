@@ -142,7 +142,9 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
     space_seams(rules, points, spacing);
   }
 
-  const std::vector<std::vector<std::uint32_t>> order = rank_level(configurations, points.tiles, existing);
+  const std::vector<std::vector<std::uint32_t>> order =
+      options.rank_order == RankOrder::voids ? rank_level_by_voids(configurations, points.tiles, existing, options.void_sigma)
+                                             : rank_level(configurations, points.tiles, existing);
   for (std::size_t t = 0; t < set.tiles.size(); ++t) {
     Tile& tile = set.tiles[t];
     for (std::uint32_t k : order[t]) {

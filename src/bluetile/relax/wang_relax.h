@@ -23,6 +23,8 @@
 
 namespace bluetile {
 
+enum class RankOrder : std::uint8_t { farthest, voids };
+
 struct WangIteration {
   int level = 0;
   int iteration = 0;       // 1-based; warm-start iterations come first, counted in `warm`
@@ -66,6 +68,10 @@ struct WangLevelOptions {
   // Points are kept this far inside their tile square (tile units; 0: anywhere in [0,1)).
   double edge_margin = 0.0;
   WangRefinement refine;  // the lattice and seam spacing steps
+  // The order of the level's points (wang_ranks.h): farthest point, or by voids with a kernel of
+  // void_sigma hexagonal spacings of the prefix.
+  RankOrder rank_order = RankOrder::farthest;
+  double void_sigma = 0.5;
   std::function<void(const WangIteration&)> on_iteration;
 };
 

@@ -2,6 +2,7 @@
 #include "bluetile/voronoi/exact_engine.h"
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
 #include <cmath>
 #include <limits>
@@ -10,6 +11,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/voronoi/density_moments.h"
+#include "bluetile/voronoi/density_prefix.h"
 #include "bluetile/voronoi/polygon.h"
 #include "bluetile/voronoi/scene.h"
 #include "bluetile/voronoi/site_grid.h"
@@ -179,21 +181,46 @@ bool build_cell(const Scene& scene, const CellSearch& search, std::uint32_t site
   return build_cell_by_rings(scene, grid, site, cell_polygon, scratch.candidates);
 }
 
-// How a scene's density weights its cells: not at all (no density, or a constant one, whose
-// weights cancel in the centroid), or texel by texel.
-struct Weighting {
-  const DensityGrid* texels = nullptr;  // non-null: a varying density
-  double constant = 1.0;                // otherwise: the density everywhere
+}  // namespace
 
-  explicit Weighting(const Scene& scene) {
-    if (!scene.density) return;
-    if (is_uniform(*scene.density)) {
-      constant = scene.density->texels.front();
-    } else {
-      texels = scene.density.get();
-    }
-  }
+struct ExactEngine::DensityEntry {
+  std::shared_ptr<const DensityGrid> density;  // held, so that its address names no other grid
+  std::uint64_t texel_hash = 0;                // catches a grid changed in place
+  bool uniform = false;
+  std::unique_ptr<const DensityPrefix> prefix;  // for a varying density
 };
+
+namespace {
+
+// How a scene's density weights its cells: not at all (no density, or a constant one, whose
+// weights cancel in the centroid), or texel by texel through its prefix tables.
+struct Weighting {
+  const DensityPrefix* prefix = nullptr;  // non-null: a varying density
+  double constant = 1.0;                  // otherwise: the density everywhere
+};
+
+// FNV-1a over the texels, two at a time, in four interleaved streams (one chain of multiplies
+// per texel would cost a millisecond a call on a 1024^2 map, and the hash runs on every call).
+std::uint64_t hash_texels(const DensityGrid& density) {
+  constexpr std::uint64_t kPrime = 0x100000001b3ull;
+  std::uint64_t h[4];
+  for (std::uint64_t k = 0; k < 4; ++k)
+    h[k] = (0xcbf29ce484222325ull + k) ^ (static_cast<std::uint64_t>(density.width) << 32 | static_cast<std::uint32_t>(density.height));
+  const float* t = density.texels.data();
+  const std::size_t n = density.texels.size();
+  auto pair = [t](std::size_t i) {
+    return static_cast<std::uint64_t>(std::bit_cast<std::uint32_t>(t[i])) << 32 | std::bit_cast<std::uint32_t>(t[i + 1]);
+  };
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8) {
+    h[0] = (h[0] ^ pair(i)) * kPrime;
+    h[1] = (h[1] ^ pair(i + 2)) * kPrime;
+    h[2] = (h[2] ^ pair(i + 4)) * kPrime;
+    h[3] = (h[3] ^ pair(i + 6)) * kPrime;
+  }
+  for (; i < n; ++i) h[0] = (h[0] ^ std::bit_cast<std::uint32_t>(t[i])) * kPrime;
+  return ((h[0] * kPrime ^ h[1]) * kPrime ^ h[2]) * kPrime ^ h[3];
+}
 
 Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const ConvexPolygon& cell_polygon,
                   const Weighting& weighting) {
@@ -210,11 +237,11 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   cell.radius = std::sqrt(cell_polygon.max_radius_squared());
   cell.second_moment = moments.second_moment();
   Point offset = moments.centroid();
-  if (weighting.texels) {
+  if (weighting.prefix) {
     thread_local std::vector<Point> polygon;
     polygon.clear();
     for (const PolygonVertex& v : cell_polygon.vertices()) polygon.push_back(v.p);
-    const WeightedMoments m = density_moments(polygon, origin, *weighting.texels, scene.domain.size, scene.periodic());
+    const WeightedMoments m = weighting.prefix->moments(polygon, origin, scene.domain.size, scene.periodic());
     cell.mass = m.mass;
     cell.second_moment = m.second;
     offset = m.mass > 0.0 ? m.first / m.mass : Point{0.0, 0.0};
@@ -233,7 +260,7 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   return cell;
 }
 
-void compute_scene(const Scene& scene, SceneCells& out, bool parallel_inside) {
+void compute_scene(const Scene& scene, const Weighting& weighting, SceneCells& out, bool parallel_inside) {
   assert(scene.wanted_begin <= scene.wanted_end && scene.wanted_end <= scene.sites.size());
   out.cells.assign(scene.wanted_count(), Cell{});
   out.coincident_count = 0;
@@ -242,7 +269,6 @@ void compute_scene(const Scene& scene, SceneCells& out, bool parallel_inside) {
   if (scene.wanted_count() == 0) return;
   const CellSearch search(scene);
   const SiteGrid& grid = search.grid;
-  const Weighting weighting(scene);
 
   auto run_buckets = [&](std::size_t begin, std::size_t end) {
     ConvexPolygon cell_polygon;
@@ -283,12 +309,41 @@ Scene make_scene(std::vector<Point> sites, Domain domain) {
   return scene;
 }
 
+ExactEngine::ExactEngine() = default;
+ExactEngine::~ExactEngine() = default;
+
+const ExactEngine::DensityEntry& ExactEngine::density_entry(const std::shared_ptr<const DensityGrid>& density) {
+  const std::uint64_t texel_hash = hash_texels(*density);
+  for (const auto& e : density_cache_)
+    if (e->density == density && e->texel_hash == texel_hash) return *e;
+  // Maps kept: a batch of scenes rarely holds more than a few.
+  constexpr std::size_t kDensityTables = 4;
+  if (density_cache_.size() >= kDensityTables) density_cache_.erase(density_cache_.begin());
+  auto entry = std::make_shared<DensityEntry>();
+  entry->density = density;
+  entry->texel_hash = texel_hash;
+  entry->uniform = is_uniform(*density);
+  if (!entry->uniform) entry->prefix = std::make_unique<const DensityPrefix>(*density);
+  density_cache_.push_back(entry);
+  return *entry;
+}
+
 void ExactEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
   assert(scenes.size() == out.size());
   // The contract, checked once per scene; wrapped copies only of scenes that need them.
   std::vector<Scene> wrapped(scenes.size());
   std::vector<const Scene*> checked(scenes.size());
-  for (std::size_t i = 0; i < scenes.size(); ++i) checked[i] = &validated_scene(scenes[i], wrapped[i]);
+  std::vector<Weighting> weighting(scenes.size());
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    checked[i] = &validated_scene(scenes[i], wrapped[i]);
+    if (!checked[i]->density) continue;
+    const DensityEntry& entry = density_entry(checked[i]->density);
+    if (entry.uniform) {
+      weighting[i].constant = entry.density->texels.front();
+    } else {
+      weighting[i].prefix = entry.prefix.get();
+    }
+  }
   // Small scenes run one per thread when there are enough of them to keep every thread busy;
   // otherwise (one scene, or large ones) each scene is split across the threads itself.
   constexpr std::size_t kSmallScene = 4096;
@@ -301,11 +356,11 @@ void ExactEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> o
     if (k < small.size() && small[k] == i) {
       ++k;
     } else {
-      compute_scene(*checked[i], out[i], true);
+      compute_scene(*checked[i], weighting[i], out[i], true);
     }
   }
   parallel_for(small.size(), 4, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) compute_scene(*checked[small[k]], out[small[k]], false);
+    for (std::size_t k = begin; k < end; ++k) compute_scene(*checked[small[k]], weighting[small[k]], out[small[k]], false);
   });
 }
 

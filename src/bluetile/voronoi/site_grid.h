@@ -75,6 +75,26 @@ class SiteGrid {
     }
   }
 
+  // As for_each_near, calling visit(site index, site position) from the grid's own copy of the
+  // positions, stored bucket by bucket: no lookup by index, so a scan stays in cache.
+  template <typename Visit>
+  void for_each_site_near(Point p, double reach, Visit visit) const {
+    auto [cx, cy] = bucket_coordinates(p);
+    const double kx = std::ceil(reach / cell_size_.x), ky = std::ceil(reach / cell_size_.y);
+    long x0 = 0, x1 = columns_ - 1, y0 = 0, y1 = rows_ - 1;
+    if (2.0 * kx + 1.0 < static_cast<double>(columns_)) x0 = cx - static_cast<long>(kx), x1 = cx + static_cast<long>(kx);
+    if (2.0 * ky + 1.0 < static_cast<double>(rows_)) y0 = cy - static_cast<long>(ky), y1 = cy + static_cast<long>(ky);
+    for (long by = y0; by <= y1; ++by) {
+      const long row = by - wrap_count(by, rows_) * rows_;
+      for (long bx = x0; bx <= x1; ++bx) {
+        const std::size_t b = static_cast<std::size_t>(row * columns_ + (bx - wrap_count(bx, columns_) * columns_));
+        for (std::uint32_t s = start_[b]; s < start_[b + 1]; ++s) visit(index_[s], points_[s]);
+      }
+    }
+  }
+  // Site position of storage slot s (slots in bucket order, site_indices()[s] its index).
+  Point stored_point(std::size_t s) const { return points_[s]; }
+
   // The storage itself (for copying the grid to a device): bucket b holds the sites
   // site_indices()[bucket_starts()[b] .. bucket_starts()[b + 1]), bucket b = row * columns + column.
   std::span<const std::uint32_t> bucket_starts() const { return start_; }

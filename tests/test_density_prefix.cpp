@@ -1,0 +1,182 @@
+// The prefix-table integration of weighted cells (density_prefix.h) against the texel-cut one it
+// replaced in the exact engine (density_moments, density_moments.h), kept as the reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/voronoi/density_moments.h"
+#include "bluetile/voronoi/density_prefix.h"
+#include "bluetile/voronoi/exact_engine.h"
+
+namespace bluetile {
+namespace {
+
+std::shared_ptr<DensityGrid> random_density(int width, int height, std::uint64_t seed, double zero_fraction = 0.0) {
+  Rng rng(seed);
+  auto grid = std::make_shared<DensityGrid>(width, height);
+  for (float& t : grid->texels) t = rng.uniform() < zero_fraction ? 0.0f : static_cast<float>(rng.uniform());
+  grid->texels[0] = 0.5f;  // never all zero
+  return grid;
+}
+
+Scene random_scene(const Domain& domain, std::size_t count, Boundary boundary, std::shared_ptr<DensityGrid> density,
+                   std::uint64_t seed) {
+  Rng rng(seed);
+  std::vector<Point> sites(count);
+  for (Point& p : sites) p = rng.point(domain);
+  Scene scene = make_scene(std::move(sites), domain);
+  scene.boundary = boundary;
+  scene.density = std::move(density);
+  return scene;
+}
+
+// Mass and second moment within `tolerance` relative; the first moment within `tolerance` of
+// mass times the polygon's radius (it may be near zero).
+void expect_agree(const std::vector<Point>& polygon, Point origin, const DensityGrid& grid, const DensityPrefix& prefix,
+                  Point size, bool periodic, double tolerance, const std::string& what) {
+  const WeightedMoments ref = density_moments(polygon, origin, grid, size, periodic);
+  const WeightedMoments got = prefix.moments(polygon, origin, size, periodic);
+  double radius = 0.0;
+  for (const Point& p : polygon) radius = std::max(radius, std::hypot(p.x, p.y));
+  EXPECT_NEAR(got.mass, ref.mass, tolerance * std::abs(ref.mass)) << what;
+  EXPECT_NEAR(got.first.x, ref.first.x, tolerance * std::abs(ref.mass) * radius) << what;
+  EXPECT_NEAR(got.first.y, ref.first.y, tolerance * std::abs(ref.mass) * radius) << what;
+  EXPECT_NEAR(got.second, ref.second, tolerance * std::abs(ref.second)) << what;
+  if (ref.mass > 0.0) {
+    const Point c = got.first / got.mass, r = ref.first / ref.mass;
+    EXPECT_NEAR(c.x, r.x, tolerance * radius) << what;
+    EXPECT_NEAR(c.y, r.y, tolerance * radius) << what;
+  }
+}
+
+TEST(DensityPrefix, RandomCellsAgreeWithTexelCutting) {
+  // Cells of random scenes over random grids (some texels zero), periodic (cells reaching
+  // across the torus' edges) and bounded (cells ending at the border), cells from less than a
+  // texel to dozens of texels wide, grid widths that are and are not whole blocks.
+  int cells = 0;
+  for (std::uint64_t seed = 1; seed <= 8; ++seed) {
+    for (Boundary boundary : {Boundary::periodic, Boundary::bounded}) {
+      const Domain domain = seed % 2 ? Domain{} : Domain{{1.0, 0.75}};
+      const int width = 5 + static_cast<int>(seed * seed) * 9, height = 3 + static_cast<int>(seed * seed) * 7;
+      auto grid = random_density(width, height, seed, seed % 3 == 0 ? 0.3 : 0.0);
+      const DensityPrefix prefix(*grid);
+      for (std::size_t count : {3u, 40u, 400u}) {
+        const Scene scene = random_scene(domain, count, boundary, grid, seed * 1000 + count);
+        const auto polygons = exact_cell_polygons(scene);
+        for (std::size_t i = 0; i < polygons.size(); ++i) {
+          expect_agree(polygons[i], scene.sites[i], *grid, prefix, domain.size, scene.periodic(), 1e-12,
+                       "seed " + std::to_string(seed) + " count " + std::to_string(count) + " site " + std::to_string(i));
+          ++cells;
+        }
+      }
+    }
+  }
+  EXPECT_GT(cells, 7000);
+}
+
+TEST(DensityPrefix, HardCases) {
+  auto grid = random_density(24, 16, 7, 0.2);
+  const DensityPrefix prefix(*grid);
+  const Point size{1.0, 1.0};
+  const double tx = 1.0 / 24, ty = 1.0 / 16;
+  auto check = [&](std::vector<Point> polygon, Point origin, const std::string& what) {
+    for (bool periodic : {false, true}) expect_agree(polygon, origin, *grid, prefix, size, periodic, 1e-12, what);
+  };
+  // A rectangle whose edges lie on texel lines (vertical and horizontal edges), 10 x 5 texels.
+  {
+    const Point o{7 * tx, 3 * ty};
+    check({{0, 0}, {10 * tx, 0}, {10 * tx, 5 * ty}, {0, 5 * ty}}, o, "texel-aligned rectangle");
+  }
+  // Exactly one texel, and a piece of one texel.
+  check({{0, 0}, {tx, 0}, {tx, ty}, {0, ty}}, {5 * tx, 9 * ty}, "one texel");
+  check({{-0.3 * tx, -0.2 * ty}, {0.4 * tx, -0.1 * ty}, {0.1 * tx, 0.3 * ty}}, {11.5 * tx, 4.5 * ty}, "inside one texel");
+  // Vertices on texel corners, a diagonal through texel corners.
+  check({{0, 0}, {6 * tx, 6 * ty}, {-2 * tx, 4 * ty}}, {3 * tx, 2 * ty}, "vertices on texel corners");
+  // Nearly vertical and nearly horizontal edges, crossing many rows or columns.
+  check({{0, 0}, {1e-9, 9 * ty}, {-5 * tx, 9 * ty + 1e-9}}, {12 * tx, 3 * ty}, "near-vertical edge");
+  check({{0, 0}, {19 * tx, 1e-9}, {19 * tx, 2.5 * ty}}, {2.5 * tx, 6.2 * ty}, "near-horizontal edge");
+  // The whole map (bounded), and the whole period around a site (periodic).
+  expect_agree({{0, 0}, {1, 0}, {1, 1}, {0, 1}}, {0, 0}, *grid, prefix, size, false, 1e-12, "whole map");
+  expect_agree({{-0.5, -0.5}, {0.5, -0.5}, {0.5, 0.5}, {-0.5, 0.5}}, {0.3, 0.7}, *grid, prefix, size, true, 1e-12,
+               "whole period");
+  // The bounded domain's border: a polygon touching the right and top edges exactly.
+  expect_agree({{0, 0}, {0.3, 0}, {0.3, 0.25}, {-0.1, 0.25}}, {0.7, 0.75}, *grid, prefix, size, false, 1e-12,
+               "right and top border");
+}
+
+TEST(DensityPrefix, HandComputedSquare) {
+  // The square [0.25, 0.75]^2 over a 4 x 4 grid: the four middle texels exactly.
+  DensityGrid grid(4, 4, 100.0f);  // the outer texels must not leak in
+  grid.at(1, 1) = 1.0f;
+  grid.at(2, 1) = 2.0f;
+  grid.at(1, 2) = 3.0f;
+  grid.at(2, 2) = 4.0f;
+  const DensityPrefix prefix(grid);
+  const std::vector<Point> square = {{-0.25, -0.25}, {0.25, -0.25}, {0.25, 0.25}, {-0.25, 0.25}};
+  for (bool periodic : {false, true}) {
+    const WeightedMoments m = prefix.moments(square, {0.5, 0.5}, {1.0, 1.0}, periodic);
+    EXPECT_NEAR(m.mass, 0.0625 * 10.0, 1e-15);
+    EXPECT_NEAR(m.first.x, 0.0625 * 0.125 * ((2.0 + 4.0) - (1.0 + 3.0)), 1e-15);
+    EXPECT_NEAR(m.first.y, 0.0625 * 0.125 * ((3.0 + 4.0) - (1.0 + 2.0)), 1e-15);
+    EXPECT_NEAR(m.second, 10.0 * 2.0 * std::pow(0.25, 4) / 3.0, 1e-15);
+  }
+}
+
+TEST(DensityPrefix, EngineCellsAgreeWithTexelCuttingAndThreadCounts) {
+  // The engine's cells (the cached tables, kept across calls) against the reference on the
+  // same polygons, and the same bits for 1, 2 and 7 threads.
+  for (Boundary boundary : {Boundary::periodic, Boundary::bounded}) {
+    const Domain domain{{1.0, 0.8}};
+    auto grid = random_density(300, 240, 31, 0.1);
+    const Scene scene = random_scene(domain, 3000, boundary, grid, 32);
+    const auto polygons = exact_cell_polygons(scene);
+    ExactEngine engine;
+    std::vector<SceneCells> runs;
+    const std::size_t saved = thread_count();
+    for (std::size_t threads : {1u, 2u, 7u}) {
+      set_thread_count(threads);
+      runs.push_back(engine.compute(scene));
+      runs.push_back(engine.compute(scene));  // the second call reuses the tables
+    }
+    set_thread_count(saved);
+    for (std::size_t i = 0; i < scene.sites.size(); ++i) {
+      const WeightedMoments ref = density_moments(polygons[i], scene.sites[i], *grid, domain.size, scene.periodic());
+      const Cell& cell = runs[0].cells[i];
+      EXPECT_NEAR(cell.mass, ref.mass, 1e-12 * ref.mass) << "site " << i;
+      EXPECT_NEAR(cell.second_moment, ref.second, 1e-12 * ref.second) << "site " << i;
+      if (ref.mass > 0.0) {
+        const Point c = scene.sites[i] + ref.first / ref.mass;
+        const double radius = cell.radius;
+        EXPECT_NEAR(cell.centroid.x, scene.periodic() ? wrap_point(c, domain).x : c.x, 1e-12 * radius) << "site " << i;
+        EXPECT_NEAR(cell.centroid.y, scene.periodic() ? wrap_point(c, domain).y : c.y, 1e-12 * radius) << "site " << i;
+      }
+      for (const SceneCells& run : runs) {
+        EXPECT_EQ(std::memcmp(&run.cells[i].centroid, &cell.centroid, sizeof(Point)), 0) << "site " << i;
+        EXPECT_EQ(std::memcmp(&run.cells[i].mass, &cell.mass, sizeof(double)), 0) << "site " << i;
+        EXPECT_EQ(std::memcmp(&run.cells[i].second_moment, &cell.second_moment, sizeof(double)), 0) << "site " << i;
+      }
+    }
+  }
+}
+
+TEST(DensityPrefix, AGridChangedInPlaceIsNotServedStaleTables) {
+  auto grid = random_density(40, 30, 5);
+  const Scene scene = random_scene(Domain{}, 50, Boundary::periodic, grid, 6);
+  ExactEngine engine;
+  const SceneCells before = engine.compute(scene);
+  for (float& t : grid->texels) t = 1.0f - t;
+  const SceneCells after = engine.compute(scene);
+  const SceneCells fresh = ExactEngine().compute(scene);
+  for (std::size_t i = 0; i < scene.sites.size(); ++i) {
+    EXPECT_EQ(after.cells[i].centroid, fresh.cells[i].centroid) << "site " << i;
+    EXPECT_NE(after.cells[i].mass, before.cells[i].mass) << "site " << i;
+  }
+}
+
+}  // namespace
+}  // namespace bluetile
