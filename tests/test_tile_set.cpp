@@ -332,6 +332,18 @@ TEST(TileSet, MalformedFilesNameLineAndValue) {
   EXPECT_LT(long_line.size(), 140u);
 }
 
+TEST(TileSet, TilesWithoutPointsOrFarFromEqualAreRefused) {
+  // Issue 24, item 8: the reader accepted a tile without points, and tiles of wildly unequal
+  // counts; both name the tile's line.
+  EXPECT_EQ(parse_error(wang8_file("# tile 3 0 1 1 1\n")), "t.txt:9: tile 3 has no points");
+  std::string tile3 = "# tile 3 0 1 1 1\n";
+  for (int k = 0; k < 4; ++k) tile3 += "0." + std::to_string(k + 1) + " 0.5 0 " + std::to_string(k) + "\n";
+  EXPECT_EQ(parse_error(wang8_file(tile3)), "");  // 4 times the others: still a tile set
+  tile3 += "0.5 0.25 0 4\n";
+  EXPECT_EQ(parse_error(wang8_file(tile3)), "t.txt:9: tile 3 has 5 points, more than 4 times the 1 of tile 0: a set's "
+                                            "tiles hold about as many points each");
+}
+
 TEST(TileSet, WritingRefusesWhatCouldNotBeRead) {
   TileSet set = small_set(TileSetKind::wang8, 3);
   set.tiles[2].points[1].x = 1.0;

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <system_error>
 
 #include "cli/commands.h"
 #include "bluetile/core/error.h"
@@ -52,6 +53,15 @@ int main(int argc, char** argv) {
     return 1;
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "bluetile: out of memory\n");
+    return 1;
+  } catch (const std::system_error& e) {
+    // A thread, or memory for one, that the limits (ulimit -v, -u) did not leave.
+    const std::error_code code = e.code();
+    if (code == std::errc::resource_unavailable_try_again || code == std::errc::not_enough_memory) {
+      std::fprintf(stderr, "bluetile: %s: out of memory or threads (ulimit -v, ulimit -u)\n", e.what());
+    } else {
+      std::fprintf(stderr, "bluetile: internal error: %s\n", e.what());
+    }
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "bluetile: internal error: %s\n", e.what());

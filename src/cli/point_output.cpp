@@ -45,12 +45,14 @@ PointOutput::PointOutput(OutputSet& outputs, const PointOutputOptions& options, 
   if (one_file_each(options.output)) {
     for (std::size_t k = 0; k < sets; ++k) {
       const std::string path = set_file_name(options.output, k, sets);
-      table_format_for(path, options.format);  // an unknown extension is refused before any work
+      // An unknown extension, or a header's array name that is no C name, is refused before any work.
+      if (table_format_for(path, options.format) == TableFormat::header) checked_table_name(path, options.name);
       files_.push_back(&outputs.add(path));
     }
     return;
   }
   TableFormat format = table_format_for(options.output, options.format);
+  if (format == TableFormat::header) checked_table_name(options.output, options.name);
   if (format == TableFormat::text && sets > 1 && options.output.find('#') != std::string::npos)
     throw Error("--output '" + options.output + "': file names with '#' cannot hold several sets");
   files_.push_back(&outputs.add(options.output, {.allow_stdout = true}));

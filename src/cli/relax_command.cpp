@@ -15,6 +15,7 @@
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/io/image_file.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/sampling/density_sampling.h"
 
@@ -55,6 +56,9 @@ void run_relax(const RelaxOptions& o) {
     check_memory(static_cast<double>(o.sets) * static_cast<double>(o.count) * kRelaxBytesPerSite,
                  "--count " + std::to_string(o.count) + " x --sets " + std::to_string(o.sets));
   }
+  // The image plugin is loaded, and an image's format checked, before any output is staged.
+  if (!o.density_map.empty() || !o.id_image.empty()) load_image_plugin();
+  if (!o.id_image.empty()) check_image_output(o.id_image);
   OutputSet outputs;
   if (!o.input.empty()) outputs.add_input(o.input);
   if (!o.density_map.empty()) outputs.add_input(o.density_map);

@@ -18,6 +18,7 @@
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/io/image.h"
+#include "bluetile/io/image_file.h"
 #include "bluetile/io/svg.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/sampling/density_sampling.h"
@@ -103,6 +104,9 @@ void run_stipple(const StippleOptions& o) {
   // Refused at once, as relax does, rather than after the start is drawn.
   check_memory(static_cast<double>(o.count) * kRelaxBytesPerSite, "--count " + std::to_string(o.count));
   // Every output is declared, and so checked, before any work; they appear together at the end.
+  // The image plugin is loaded, and the render's format checked, before any output is staged.
+  load_image_plugin();
+  if (!o.png.empty()) check_image_output(o.png);
   OutputSet outputs;
   outputs.add_input(o.image);
   OutputFile& points_file = outputs.add(o.output, {.allow_stdout = true});

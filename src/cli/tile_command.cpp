@@ -18,6 +18,7 @@
 #include "bluetile/core/parallel.h"
 #include "bluetile/io/density_map.h"
 #include "bluetile/io/image.h"
+#include "bluetile/io/image_file.h"
 #include "bluetile/tiling/default_tile_set.h"
 #include "bluetile/tiling/tiled_drawing.h"
 #include "bluetile/tiling/tiled_output.h"
@@ -256,6 +257,10 @@ void run_tile(const TileOptions& o) {
   format.normalize = o.normalize;
   // Every output is declared, and so checked (folders, the same file twice), before any work;
   // all of them are published together at the end.
+  // The image plugin is loaded before any output is staged.
+  bool images = !o.density_map.empty();
+  for (const std::string& path : o.outputs) images = images || output_kind(path) == OutputKind::image;
+  if (images) load_image_plugin();
   OutputSet outputs;
   if (!o.tiles.empty()) outputs.add_input(o.tiles);
   if (!o.density_map.empty()) outputs.add_input(o.density_map);

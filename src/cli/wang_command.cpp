@@ -391,7 +391,7 @@ void run_check(const CheckOptions& o) {
               o.period);
 
   if (o.output.empty()) return;
-  file("stats.json").write(stats.dump(2) + "\n");
+  file("stats.json").write(stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
   file("plane.txt").write([&](OutputStream& out) {
     write_points(out, PointSet{plane.points, plane.levels},
                  {"bluetile wang-check: " + std::to_string(o.period) + "x" + std::to_string(o.period) +

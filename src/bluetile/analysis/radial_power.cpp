@@ -3,19 +3,33 @@
 #include "bluetile/analysis/radial_power.h"
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <limits>
 
 #include "bluetile/core/error.h"
 
 namespace bluetile {
 
+double annulus_count(int size, double bin_width) { return std::floor(static_cast<double>(size / 2) / bin_width); }
+
 std::vector<Annulus> radial_power(const Periodogram& periodogram, double bin_width) {
   if (!(bin_width > 0.0) || !std::isfinite(bin_width)) throw Error("annulus width must be positive");
   if (periodogram.size < 2) throw Error("radial power of an empty periodogram");
   const int half = periodogram.half();
-  const double limit = static_cast<double>(half);
-  const auto annuli = static_cast<std::size_t>(std::floor(limit / bin_width));
-  if (annuli == 0) throw Error("annulus width is wider than half the periodogram size");
+  const double count = annulus_count(periodogram.size, bin_width);
+  char width[32];
+  std::snprintf(width, sizeof width, "%.17g", bin_width);
+  if (count < 1.0)
+    throw Error("annulus width " + std::string(width) + " is wider than half the periodogram size (" +
+                std::to_string(half) + ")");
+  if (count > kMaxAnnuli) {
+    char text[160];
+    std::snprintf(text, sizeof text, "annulus width %s is too narrow: %.3g annuli, more than the limit of %.0e", width,
+                  count, kMaxAnnuli);
+    throw Error(text);
+  }
+  const auto annuli = static_cast<std::size_t>(count);
 
   auto annulus_of = [&](int kx, int ky) -> std::size_t {
     double r = std::sqrt(static_cast<double>(kx * kx + ky * ky));

@@ -20,7 +20,16 @@ struct Annulus {
   std::size_t count = 0;   // frequencies in the annulus
 };
 
-// Throws Error when bin_width <= 0 or not finite, or the periodogram is empty.
+// The most annuli a radial curve may have: a thousand times the finest useful one (w = 1/1000 at
+// the largest periodogram, F = 65536) and far beyond any plot or table.
+inline constexpr double kMaxAnnuli = 1e9;
+
+// The annuli of width w in a periodogram of size F: floor((F / 2) / w), in double (a tiny w
+// makes more than a size_t holds).
+double annulus_count(int size, double bin_width);
+
+// Throws Error when bin_width <= 0 or not finite, when it is wider than half the periodogram's
+// size or makes more than kMaxAnnuli annuli (both naming the width), or the periodogram is empty.
 std::vector<Annulus> radial_power(const Periodogram& periodogram, double bin_width = 1.0);
 
 }  // namespace bluetile

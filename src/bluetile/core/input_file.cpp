@@ -1,11 +1,18 @@
 #include "bluetile/core/input_file.h"
 
 #include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
 #include <cstring>
 #include <memory>
+#include <mutex>
 #include <new>
+#include <system_error>
+#include <thread>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "bluetile/core/error.h"
@@ -18,11 +25,41 @@ constexpr std::size_t kChunkSize = 1 << 16;
 
 std::string name_of(const std::string& path) { return path == "-" ? "stdin" : path; }
 
+// Opening a FIFO waits until something opens it for writing, however long. A second into the
+// wait, one line on stderr says what the run waits for, instead of a silent hang.
+int open_input(const std::string& path) {
+  struct stat status {};
+  if (stat(path.c_str(), &status) != 0 || !S_ISFIFO(status.st_mode)) return ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  std::mutex mutex;
+  std::condition_variable opened_signal;
+  bool opened = false;
+  std::thread notice;
+  try {
+    notice = std::thread([&] {
+      std::unique_lock<std::mutex> lock(mutex);
+      if (!opened_signal.wait_for(lock, std::chrono::seconds(1), [&] { return opened; }))
+        std::fprintf(stderr, "bluetile: %s: waiting for a writer to open this FIFO\n", path.c_str());
+    });
+  } catch (const std::system_error&) {
+    // No thread to spare: open without the notice.
+  }
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  const int saved = errno;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    opened = true;
+  }
+  opened_signal.notify_one();
+  if (notice.joinable()) notice.join();
+  errno = saved;
+  return fd;
+}
+
 }  // namespace
 
 void for_each_chunk(const std::string& path, const std::function<void(std::string_view)>& consume) {
   const std::string name = name_of(path);
-  const int fd = path == "-" ? STDIN_FILENO : ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  const int fd = path == "-" ? STDIN_FILENO : open_input(path);
   if (fd < 0) throw Error(name + ": cannot open: " + std::strerror(errno));
   struct Closer {
     int fd;

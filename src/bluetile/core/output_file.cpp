@@ -474,7 +474,9 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
   auto direct = [&](int fd, const struct stat* st) -> OutputFile& {
     output->kind_ = OutputFile::Kind::descriptor;
     output->descriptor_ = fd;
-    if (st && S_ISREG(st->st_mode)) {  // a descriptor open on a regular file (a shell's > file)
+    // A descriptor open on a regular file (a shell's > file), or a pipe or socket, where two
+    // outputs would interleave their bytes; a device (a terminal, /dev/null) takes any number.
+    if (st && (S_ISREG(st->st_mode) || S_ISFIFO(st->st_mode) || S_ISSOCK(st->st_mode))) {
       remember(Identity{st->st_dev, st->st_ino, {}}, path, false);
     }
     outputs_.push_back(std::move(output));
@@ -512,7 +514,9 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
     case Resolved::Type::special: {
       int fd = ::open(r.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
       if (fd < 0) fail(path, "cannot write", errno);
-      return direct(fd, nullptr);
+      struct stat st {};
+      fstat(fd, &st);
+      return direct(fd, &st);
     }
     case Resolved::Type::folder:
       throw Error(path + ": is a folder");

@@ -17,7 +17,9 @@
 // Refused when declared, before any work, with an Error naming the user's path: a folder; a
 // missing or unwritable parent folder; an existing file the process may not write; the same file
 // as a declared input (add_input) or as another output of the set (by device and inode, through
-// links; for files not yet there, by parent folder and name).
+// links; for files not yet there, by parent folder and name); a pipe or socket (standard output
+// or a named FIFO) that another output of the set already writes to, whose bytes would
+// interleave (a device such as /dev/null takes any number).
 //
 // Writers stream: they receive an OutputStream (buffered, every write(2) and the close checked),
 // so a 10^8-point file is written with bounded memory. Any failed write throws Error naming the

@@ -9,6 +9,7 @@
 #include <mutex>
 #include <string>
 #include <string_view>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -80,7 +81,14 @@ class Pool {
   void grow(std::size_t count) {
     while (workers_.size() < count) {
       std::size_t id = workers_.size();
-      workers_.emplace_back([this, id] { worker_loop(id); });
+      try {
+        workers_.emplace_back([this, id] { worker_loop(id); });
+      } catch (const std::system_error& e) {
+        // EAGAIN or ENOMEM: a thread's stack did not fit the memory or thread limit.
+        throw Error("cannot start worker thread " + std::to_string(id + 1) + " of " + std::to_string(count) + " (" +
+                    e.code().message() + "): out of memory or threads (ulimit -v, ulimit -u); BLUETILE_THREADS=" +
+                    std::to_string(id + 1) + " asks for fewer");
+      }
     }
   }
 

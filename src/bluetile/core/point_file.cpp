@@ -76,7 +76,7 @@ double parse_coordinate(std::string_view token, const LineError& fail) {
   if (end != token.data() + token.size() || ec == std::errc::invalid_argument) fail("not a number " + quote(token));
   if (ec == std::errc::result_out_of_range) fail("coordinate out of range " + quote(token));
   if (!std::isfinite(value)) fail("not a finite number " + quote(token));
-  return value;
+  return value == 0.0 ? 0.0 : value;  // "-0" is the torus's 0, written back as "0"
 }
 
 bool parse_integer(std::string_view token, long long& value) {

@@ -11,6 +11,8 @@
 #include <fstream>
 #include <limits>
 
+#include <sys/stat.h>
+
 #include "bluetile/core/error.h"
 #include "bluetile/core/input_file.h"
 
@@ -150,6 +152,24 @@ bool is_identifier(const std::string& name) {
                      [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
 }
 
+// C23's and C++20's keywords and alternative tokens: a header must compile as both.
+bool is_keyword(std::string_view name) {
+  static constexpr std::string_view kKeywords[] = {
+      "alignas", "alignof", "and", "and_eq", "asm", "auto", "bitand", "bitor", "bool", "break", "case", "catch",
+      "char", "char8_t", "char16_t", "char32_t", "class", "compl", "concept", "const", "consteval", "constexpr",
+      "constinit", "const_cast", "continue", "co_await", "co_return", "co_yield", "decltype", "default", "delete",
+      "do", "double", "dynamic_cast", "else", "enum", "explicit", "export", "extern", "false", "float", "for",
+      "friend", "goto", "if", "inline", "int", "long", "mutable", "namespace", "new", "noexcept", "not", "not_eq",
+      "nullptr", "operator", "or", "or_eq", "private", "protected", "public", "register", "reinterpret_cast",
+      "requires", "restrict", "return", "short", "signed", "sizeof", "static", "static_assert", "static_cast",
+      "struct", "switch", "template", "this", "thread_local", "throw", "true", "try", "typedef", "typeid",
+      "typename", "typeof", "typeof_unqual", "union", "unsigned", "using", "virtual", "void", "volatile",
+      "wchar_t", "while", "xor", "xor_eq", "_Alignas", "_Alignof", "_Atomic", "_BitInt", "_Bool", "_Complex",
+      "_Decimal128", "_Decimal32", "_Decimal64", "_Generic", "_Imaginary", "_Noreturn", "_Static_assert",
+      "_Thread_local"};
+  return std::find(std::begin(kKeywords), std::end(kKeywords), name) != std::end(kKeywords);
+}
+
 // A float literal that reads back as exactly `f`: 9 significant digits, with a '.' or an
 // exponent so that the 'f' suffix makes a valid literal.
 void float_literal(float f, char* text, std::size_t size) {
@@ -160,8 +180,7 @@ void float_literal(float f, char* text, std::size_t size) {
 
 void write_header(ChunkedWriter& out, const TableView& table, std::size_t rows, const TableWriteOptions& options,
                   const std::string& path) {
-  std::string name = options.name.empty() ? table_name_for_path(path) : options.name;
-  if (!is_identifier(name)) throw Error(path + ": '" + name + "' is not a C identifier (letters, digits, '_')");
+  const std::string name = checked_table_name(path, options.name);
   for (const std::string& line : options.comment) out.write("// " + line + "\n");
   out.write("// " + std::to_string(table.sets) + " set(s) of " + std::to_string(rows) + " points, columns " +
             table.column_names + "; coordinates on the unit torus, in [0, 1).\n");
@@ -430,6 +449,13 @@ void write_point_table(TableFormat format, std::span<const PointSet> sets, const
   for (std::size_t k = 0; k < sets.size(); ++k) sink("# set " + std::to_string(k) + "\n" + format_points(sets[k]));
 }
 
+std::string checked_table_name(const std::string& path, const std::string& name) {
+  if (name.empty()) return table_name_for_path(path);
+  if (!is_identifier(name)) throw Error(path + ": '" + name + "' is not a C identifier (letters, digits, '_')");
+  if (is_keyword(name)) throw Error(path + ": '" + name + "' is a C or C++ keyword, not a name for the array");
+  return name;
+}
+
 std::string table_name_for_path(const std::string& path) {
   std::size_t slash = path.find_last_of('/');
   std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
@@ -446,7 +472,7 @@ std::string table_name_for_path(const std::string& path) {
   }
   while (!id.empty() && id.back() == '_') id.pop_back();
   if (id.empty()) return "bluetile_points";
-  if (std::isdigit(static_cast<unsigned char>(id[0]))) id = "points_" + id;
+  if (std::isdigit(static_cast<unsigned char>(id[0])) || is_keyword(id)) id = "points_" + id;
   return id;
 }
 
@@ -562,9 +588,38 @@ PointSet read_rps_file(const std::string& path, const ReadOptions& options) {
   return parse_rps_points(read_bytes(path), input_name(path), options);
 }
 
+namespace {
+
+// A text file's sets as one table: the level column in every set or in none, refused when the
+// file is read (before any work) rather than when the result is written.
+std::vector<PointSet> same_columns(std::vector<PointSet> sets, const std::string& path) {
+  for (std::size_t k = 1; k < sets.size(); ++k) {
+    if (sets[k].has_levels() != sets[0].has_levels())
+      throw Error(input_name(path) + ": set " + std::to_string(k) +
+                  (sets[0].has_levels() ? " has no level column but set 0 has one"
+                                        : " has a level column but set 0 has none") +
+                  ": a table's sets have one set of columns");
+  }
+  return sets;
+}
+
+std::vector<PointSet> read_text_table(const std::string& path) { return same_columns(read_point_sets(path), path); }
+
+}  // namespace
+
 std::vector<PointSet> read_point_table(const std::string& path) {
-  if (path == "-") return read_point_sets(path);
+  if (path == "-") return read_text_table(path);
   if (is_rps_path(path)) return {read_rps_file(path)};
+  struct stat status {};
+  if (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)) {
+    // A FIFO or device is read once: its first bytes, looked at to tell the format, cannot be
+    // read again by a second open (which would wait for another writer).
+    const std::string bytes = read_input(path);
+    std::string_view head(bytes);
+    if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(bytes, path);
+    if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(bytes, path);
+    return same_columns(parse_point_sets(bytes, path), path);
+  }
   char start[sizeof kBinaryMagic] = {};
   {
     std::ifstream in(path, std::ios::binary);
@@ -574,7 +629,7 @@ std::vector<PointSet> read_point_table(const std::string& path) {
   std::string_view head(start, sizeof start);
   if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(read_bytes(path), path);
   if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(read_bytes(path), path);
-  return read_point_sets(path);
+  return read_text_table(path);
 }
 
 }  // namespace bluetile

@@ -88,8 +88,14 @@ void write_table(TableFormat format, const TableView& table, const TableWriteOpt
 void write_point_table(TableFormat format, std::span<const PointSet> sets, const TableWriteOptions& options,
                        const std::string& path, const ByteSink& sink);
 
-// A C identifier from a file name: "tables/blue-noise 64.h" -> "blue_noise_64".
+// A C identifier from a file name: "tables/blue-noise 64.h" -> "blue_noise_64"; "points_" goes
+// before one that starts with a digit or is a C or C++ keyword ("int.h" -> "points_int").
 std::string table_name_for_path(const std::string& path);
+
+// The array name a C header output at `path` gets: `name`, or table_name_for_path when empty.
+// Throws Error("<path>: '<name>' is not a C identifier ...") for a name that is not one or is a C
+// or C++ keyword; commands call it when they declare the output, before any work.
+std::string checked_table_name(const std::string& path, const std::string& name);
 
 // Reads every set of a file in any readable format, recognised by its first bytes: npy,
 // binary, psa's .rps by its extension, else text (point_file.h; sets apart at '#' lines, UTK's convention). Throws

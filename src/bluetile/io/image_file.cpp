@@ -2,13 +2,18 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cinttypes>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <thread>
 
 #include <dlfcn.h>
 #include <link.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "bluetile/core/error.h"
@@ -21,7 +26,68 @@ struct Plugin {
   bluetile_oiio_encode_fn encode = nullptr;
   bluetile_oiio_write_fn write = nullptr;
   bluetile_oiio_read_fn read = nullptr;
+  bluetile_oiio_check_fn check = nullptr;
 };
+
+// The static initialisers of OpenImageIO and its dependencies start thread pools while the module
+// is being loaded. Where the memory or thread limit (ulimit -v, -u) leaves no room for them, the
+// exception they throw cannot pass through dlopen and ends the process in std::terminate (an
+// abort, exit status 134). While dlopen runs, that end says why on one line instead; callers load
+// the plugin before they stage any output (load_image_plugin), so nothing is left behind. The
+// address-space check below keeps most runs from getting there at all.
+[[noreturn]] void plugin_load_terminated() {
+  std::string why = "no reason given";
+  if (std::exception_ptr failure = std::current_exception()) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (const std::exception& e) {
+      why = e.what();
+    } catch (...) {
+    }
+  }
+  std::fprintf(stderr,
+               "bluetile: cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME
+               ": OpenImageIO could not start (%s): out of memory or threads (ulimit -v, ulimit -u)\n",
+               why.c_str());
+  std::_Exit(1);
+}
+
+// Address space that loading the plugin takes: OpenImageIO's some 250 libraries, and the thread
+// pools their initialisers start, a stack and a malloc arena per hardware thread. Measured: a
+// stipple of 100 dots needs a 540 MB ulimit -v on 2 cores, 17 MB of it before the plugin loads.
+std::uint64_t plugin_address_space_needed() {
+  constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
+  return (448 + 40 * std::uint64_t{std::max(1u, std::thread::hardware_concurrency())}) * kMiB;
+}
+
+// Under it, those initialisers fail in ways no caller can catch (an abort, a deadlock in a
+// logging library's thread pool, a crash): refused before dlopen instead.
+void check_plugin_address_space() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
+  std::uint64_t used_kib = 0;
+  if (std::FILE* status = std::fopen("/proc/self/status", "r")) {
+    char line[256];
+    while (std::fgets(line, sizeof line, status))
+      if (std::sscanf(line, "VmSize: %" SCNu64 " kB", &used_kib) == 1) break;
+    std::fclose(status);
+  }
+  const auto allowed = static_cast<std::uint64_t>(limit.rlim_cur);
+  const std::uint64_t used = used_kib * 1024, needed = plugin_address_space_needed();
+  const std::uint64_t left = allowed > used ? allowed - used : 0;
+  if (left >= needed) return;
+  throw Error("cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME ": OpenImageIO needs about " +
+              std::to_string(needed >> 20) + " MiB of address space to start, but the limit (ulimit -v " +
+              std::to_string(allowed >> 10) + ") leaves " + std::to_string(left >> 20) +
+              " MiB: out of memory for it; raise the limit");
+}
+
+void* open_plugin(const std::string& path) {
+  const std::terminate_handler previous = std::set_terminate(plugin_load_terminated);
+  void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  std::set_terminate(previous);
+  return handle;
+}
 
 // The folders the dynamic loader searches for libraries of the object holding this code (the
 // program when the library is linked statically, libbluetile_images.so when shared): its RUNPATH,
@@ -70,15 +136,22 @@ const Plugin& plugin() {
   static std::once_flag once;
   std::call_once(once, [] {
     // One line: the first candidate's reason (the one a user fixes), then what else was tried.
+    try {
+      check_plugin_address_space();
+    } catch (const Error& e) {
+      failure = e.what();
+      return;
+    }
     std::string first_reason, others;
     const std::vector<std::string> candidates = plugin_candidates();
     for (const std::string& path : candidates) {
       std::string why;
-      if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) {
+      if (void* handle = open_plugin(path)) {
         loaded.encode = reinterpret_cast<bluetile_oiio_encode_fn>(dlsym(handle, "bluetile_oiio_encode"));
         loaded.write = reinterpret_cast<bluetile_oiio_write_fn>(dlsym(handle, "bluetile_oiio_write"));
         loaded.read = reinterpret_cast<bluetile_oiio_read_fn>(dlsym(handle, "bluetile_oiio_read"));
-        if (loaded.encode && loaded.write && loaded.read) return;
+        loaded.check = reinterpret_cast<bluetile_oiio_check_fn>(dlsym(handle, "bluetile_oiio_check"));
+        if (loaded.encode && loaded.write && loaded.read && loaded.check) return;
         loaded = Plugin{};
         why = path + ": not a bluetile OpenImageIO plugin (or one of another version)";
       } else {
@@ -98,6 +171,12 @@ const Plugin& plugin() {
   return loaded;
 }
 
+// The name OpenImageIO is given for an output path: PNG for a path without an extension
+// (/dev/stdout).
+std::string format_name(const std::string& path) {
+  return std::filesystem::path(path).extension().empty() ? path + ".png" : path;
+}
+
 // Encodes in memory and streams through the output's checked writes; formats OpenImageIO writes
 // only to files go through a file, with messages naming the user's path.
 void write_samples(OutputFile& out, int width, int height, int channels, int bits, const void* samples,
@@ -106,8 +185,7 @@ void write_samples(OutputFile& out, int width, int height, int channels, int bit
   if (count != static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * static_cast<std::size_t>(channels))
     throw Error(path + ": image size does not match its pixels");
   const Plugin& p = plugin();
-  // The format follows the extension; PNG for a path without one (/dev/stdout).
-  const std::string name = std::filesystem::path(path).extension().empty() ? path + ".png" : path;
+  const std::string name = format_name(path);
   char error[512];
   unsigned char* bytes = nullptr;
   std::size_t size = 0;
@@ -129,6 +207,14 @@ void write_samples(OutputFile& out, int width, int height, int channels, int bit
 }
 
 }  // namespace
+
+void load_image_plugin() { plugin(); }
+
+void check_image_output(const std::string& path) {
+  char error[512];
+  if (plugin().check(format_name(path).c_str(), error, sizeof error) != 0)
+    throw Error(path + ": cannot write image: " + error);
+}
 
 void write_image_file(OutputFile& out, int width, int height, int channels, const std::vector<std::uint8_t>& pixels) {
   write_samples(out, width, height, channels, 8, pixels.data(), pixels.size());

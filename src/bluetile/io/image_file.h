@@ -15,6 +15,18 @@
 
 namespace bluetile {
 
+// Loads the image plugin now instead of at the first image: a command that reads or writes
+// images calls it before it declares any output, so that a plugin that cannot load (not found, or
+// no memory or threads left for OpenImageIO to start) fails before anything is staged. Throws
+// Error saying why; where OpenImageIO itself cannot start, prints that on one line and ends the
+// process with status 1 (its failure cannot be caught).
+void load_image_plugin();
+
+// Throws Error("<path>: cannot write image: <why>") when OpenImageIO knows no format to write for
+// the path's extension (PNG when it has none, as for /dev/stdout). Nothing is written; loads the
+// plugin. Commands call it when they declare an image output, before any work.
+void check_image_output(const std::string& path);
+
 // Writes 8-bit pixels (row 0 at the top, `channels` interleaved) in the format named by the
 // output path's extension (PNG when it has none, as /dev/stdout), encoded in memory and streamed
 // through output_file.h. Throws Error naming the user's path on failure.

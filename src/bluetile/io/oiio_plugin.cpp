@@ -44,6 +44,12 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_encode(const
   return 0;
 }
 
+extern "C" __attribute__((visibility("default"))) int bluetile_oiio_check(const char* name, char* error,
+                                                                          size_t error_size) {
+  if (!OIIO::ImageOutput::create(name)) return fail(OIIO::geterror(), error, error_size);
+  return 0;
+}
+
 extern "C" __attribute__((visibility("default"))) int bluetile_oiio_write(const char* path, int width, int height,
                                                                           int channels, int bits, const void* pixels,
                                                                           char* error, size_t error_size) {

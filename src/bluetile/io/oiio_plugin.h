@@ -20,6 +20,9 @@ typedef int (*bluetile_oiio_write_fn)(const char* path, int width, int height, i
                                       const void* pixels, char* error, size_t error_size);
 // Allocates *values with malloc; the caller frees it. *is_float tells whether the file stores
 // floating-point samples (EXR, HDR, float TIFF): integer samples come scaled to [0, 1].
+// Whether OpenImageIO can write a file of the format that the extension of `name` names: 0 when it
+// can; nothing is written.
+typedef int (*bluetile_oiio_check_fn)(const char* name, char* error, size_t error_size);
 typedef int (*bluetile_oiio_read_fn)(const char* path, int* width, int* height, int* channels, int* is_float,
                                      float** values, char* error, size_t error_size);
 }

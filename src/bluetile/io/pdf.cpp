@@ -21,6 +21,38 @@ namespace bluetile {
 #if BLUETILE_HAVE_CAIRO
 namespace {
 
+// `text` as valid UTF-8, which cairo requires of every string it draws: each byte that does not
+// begin a well-formed sequence becomes U+FFFD. Valid text comes back unchanged.
+std::string valid_utf8(std::string_view text) {
+  std::string result;
+  result.reserve(text.size());
+  auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
+  auto continuation = [&](std::size_t i, unsigned char low = 0x80, unsigned char high = 0xBF) {
+    return i < text.size() && byte(i) >= low && byte(i) <= high;
+  };
+  for (std::size_t i = 0; i < text.size();) {
+    const unsigned char b = byte(i);
+    std::size_t length = 0;
+    if (b < 0x80) length = 1;
+    else if (b >= 0xC2 && b <= 0xDF) length = continuation(i + 1) ? 2 : 0;
+    else if (b >= 0xE0 && b <= 0xEF)
+      length = continuation(i + 1, b == 0xE0 ? 0xA0 : 0x80, b == 0xED ? 0x9F : 0xBF) && continuation(i + 2) ? 3 : 0;
+    else if (b >= 0xF0 && b <= 0xF4)
+      length = continuation(i + 1, b == 0xF0 ? 0x90 : 0x80, b == 0xF4 ? 0x8F : 0xBF) && continuation(i + 2) &&
+                       continuation(i + 3)
+                   ? 4
+                   : 0;
+    if (length == 0) {
+      result += "\xEF\xBF\xBD";
+      ++i;
+    } else {
+      result.append(text.substr(i, length));
+      i += length;
+    }
+  }
+  return result;
+}
+
 // The cairo functions used, looked up by name in libcairo.so.2.
 #define BLUETILE_CAIRO_FUNCTIONS(X)                                                                             \
   X(cairo_pdf_surface_create) X(cairo_create) X(cairo_destroy) X(cairo_status) X(cairo_status_to_string)       \
@@ -125,7 +157,7 @@ class PdfPainter final : public SvgVisitor {
     paint(style, true);
   }
   void text(Point at, std::string_view s, const SvgText& style) override {
-    const std::string text(s);
+    const std::string text = valid_utf8(s);
     c_.cairo_select_font_face(cr_, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL,
                               style.bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
     c_.cairo_set_font_size(cr_, style.size);

@@ -276,6 +276,10 @@ void validate_tile_set(const TileSet& set) {
   }
 }
 
+// Tiles of one set differ in points only by the thinning of their last level: a factor beyond
+// this is no tile set the tool makes.
+constexpr std::size_t kMaxTileImbalance = 4;
+
 TileSet parse_tile_set(const std::string& text, const std::string& name) {
   TileSet set;
   std::optional<TileRules> rules;
@@ -391,6 +395,25 @@ TileSet parse_tile_set(const std::string& text, const std::string& name) {
       number = point_lines[id].empty() ? tile_line[id] : point_lines[id][point];
       fail("tile " + std::to_string(id) + ": " + problem);
     }
+  }
+  // Every tile samples the same density over the same area: one without points, or one with
+  // several times the points of another, is a damaged or hand-made file, not a tile set.
+  std::size_t fewest = 0, most = 0;
+  for (std::size_t id = 0; id < set.tiles.size(); ++id) {
+    const std::size_t n = set.tiles[id].points.size();
+    if (n == 0) {
+      number = tile_line[id];
+      fail("tile " + std::to_string(id) + " has no points");
+    }
+    if (n < set.tiles[fewest].points.size()) fewest = id;
+    if (n > set.tiles[most].points.size()) most = id;
+  }
+  const std::size_t low = set.tiles[fewest].points.size(), high = set.tiles[most].points.size();
+  if (high > kMaxTileImbalance * low) {
+    number = tile_line[most];
+    fail("tile " + std::to_string(most) + " has " + std::to_string(high) + " points, more than " +
+         std::to_string(kMaxTileImbalance) + " times the " + std::to_string(low) + " of tile " + std::to_string(fewest) +
+         ": a set's tiles hold about as many points each");
   }
   return set;
 }
