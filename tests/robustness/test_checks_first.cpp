@@ -230,7 +230,9 @@ TEST(ChecksFirst, AFifoInputWithoutAWriterIsSaidAndThenRead) {
   const std::string fifo = dir.file("in");
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
   std::thread writer([&] {
-    std::this_thread::sleep_for(std::chrono::seconds(3));  // the tool waits in open() meanwhile
+    // The tool waits in open() meanwhile and says so after a second; 8 s leave a slow start
+    // (a sanitizer build on a loaded machine) time to get there first.
+    std::this_thread::sleep_for(std::chrono::seconds(8));
     std::ofstream out(fifo);
     out << "0.1 0.2\n0.6 0.7\n0.3 0.9\n";
   });
