@@ -304,11 +304,11 @@ void levels(const Options& o) {
                           level >= 0 ? std::to_string(level).c_str() : "", m.rho, m.low_frequency, m.lattice_peak,
                           level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "", m.coherence_low, m.coherence_mid);
               std::fflush(stdout);
-              Worst& w = worst[{kind, strategy, n, order, prefix}];
-              w.rho = std::min(w.rho, m.rho);
-              w.lf = std::max(w.lf, m.low_frequency);
-              w.lattice = std::max(w.lattice, m.lattice_peak);
-              w.c_lf = std::max(w.c_lf, m.coherence_low);
+              Worst& row = worst[{kind, strategy, n, order, prefix}];
+              row.rho = std::min(row.rho, m.rho);
+              row.lf = std::max(row.lf, m.low_frequency);
+              row.lattice = std::max(row.lattice, m.lattice_peak);
+              row.c_lf = std::max(row.c_lf, m.coherence_low);
             }
           }
         }

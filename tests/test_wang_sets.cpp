@@ -451,7 +451,9 @@ TEST(WangRanks, VoidsOrderTakesTheDeepestVoidAboveTheDistanceFloor) {
       EXPECT_GE(chosen.first, 0.49 * farthest * (1 - 1e-12)) << "tile " << t << " rank " << s;
       for (std::size_t later = s + 1; later < end; ++later) {
         const auto other = measure(set.tiles[t].points[later]);
-        if (other.first >= 0.49 * farthest) EXPECT_GE(other.second, chosen.second * (1 - 1e-9)) << "tile " << t << " rank " << s;
+        if (other.first >= 0.49 * farthest) {
+          EXPECT_GE(other.second, chosen.second * (1 - 1e-9)) << "tile " << t << " rank " << s;
+        }
       }
     }
   }

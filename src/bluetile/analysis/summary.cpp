@@ -20,19 +20,6 @@ double mean_centroid_distance(std::span<const Point> points) {
   return sum / static_cast<double>(points.size());
 }
 
-SpectrumCurve spectrum_from_rdf(const RadialDistribution& rdf, double nu_max, double step) {
-  if (!(step > 0.0) || !(nu_max > 0.0)) throw Error("spectrum from the RDF needs a positive range and step");
-  SpectrumCurve curve;
-  const double unit = 0.5 * std::sqrt(static_cast<double>(rdf.count) / rdf.area);  // |k| of nu = 1
-  const auto samples = static_cast<std::size_t>(std::ceil(nu_max / step));
-  for (std::size_t i = 0; i <= samples; ++i) {
-    const double nu = std::min(nu_max, static_cast<double>(i) * step);
-    curve.nu.push_back(nu);
-    curve.power.push_back(power_from_rdf(rdf, nu * unit));
-  }
-  return curve;
-}
-
 Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions& options) {
   if (sets.empty()) throw Error("no point sets to analyse");
   const std::size_t n = sets[0].size();

@@ -67,14 +67,6 @@ struct Summary {
 // Mean distance of each site to the centroid of its exact periodic Voronoi cell (domain units).
 double mean_centroid_distance(std::span<const Point> points);
 
-// The radial power spectrum the RDF implies, sampled every `step` in nu from 0 to `nu_max`
-// (nu and power, for plots).
-struct SpectrumCurve {
-  std::vector<double> nu, power;
-};
-SpectrumCurve spectrum_from_rdf(const RadialDistribution& rdf, double nu_max = 10.0,
-                                double step = 0.005);
-
 // Analyses one set, or the mean over several sets of equal size (periodograms and RDFs
 // averaged before the measures are taken, as psa --avg does). Throws Error for an empty list,
 // sets of fewer than two points, or sets of different sizes.
