@@ -13,6 +13,27 @@ namespace {
 // point; wang8, 32 to 128 points per tile, seed 1, docs/RESULTS.md).
 constexpr double kVoidSpacingFloor = 0.7;
 
+// Where a point of tile u can lie near another tile's points: placements[u] lists (t, shift,
+// weight) for each tile t and block position with u among the tiles that fit there (the centre
+// included: t == u, shift 0, weight 1), weight 1 / the number of tiles that fit.
+struct Placement {
+  std::size_t tile;
+  Point shift;
+  double weight;
+};
+
+std::vector<std::vector<Placement>> placements_of(const BlockConfigurations& configurations, std::size_t tile_count) {
+  std::vector<std::vector<Placement>> placements(tile_count);
+  for (std::size_t t = 0; t < tile_count; ++t)
+    for (int p = 0; p < kBlockPositions; ++p) {
+      const Point shift{static_cast<double>(block_dx(p)), static_cast<double>(block_dy(p))};
+      const std::vector<int>& fits = configurations.candidates(static_cast<int>(t), p);
+      for (int u : fits)
+        placements[static_cast<std::size_t>(u)].push_back({t, shift, 1.0 / static_cast<double>(fits.size())});
+    }
+  return placements;
+}
+
 }  // namespace
 
 std::vector<std::vector<std::uint32_t>> rank_level(const BlockConfigurations& configurations, const TilePoints& tiles,
@@ -20,19 +41,7 @@ std::vector<std::vector<std::uint32_t>> rank_level(const BlockConfigurations& co
   const std::size_t tile_count = tiles.size();
   const std::size_t size = tiles.empty() ? 0 : tiles[0].size();
   const std::size_t level = size - level_begin;
-  // neighbours_of[u]: (tile t, shift) pairs: u can sit at the position `shift` away from t (the
-  // centre position included, t == u, shift 0).
-  struct Placement {
-    std::size_t tile;
-    Point shift;
-  };
-  std::vector<std::vector<Placement>> placements(tile_count);
-  for (std::size_t t = 0; t < tile_count; ++t) {
-    for (int p = 0; p < kBlockPositions; ++p) {
-      const Point shift{static_cast<double>(block_dx(p)), static_cast<double>(block_dy(p))};
-      for (int u : configurations.candidates(static_cast<int>(t), p)) placements[static_cast<std::size_t>(u)].push_back({t, shift});
-    }
-  }
+  const std::vector<std::vector<Placement>> placements = placements_of(configurations, tile_count);  // weights unused
   // nearest[t][m]: squared distance from point level_begin + m of tile t to the nearest ranked
   // point that can lie near it (ranked points are skipped).
   std::vector<std::vector<double>> nearest(tile_count, std::vector<double>(level, HUGE_VAL));
@@ -71,19 +80,7 @@ std::vector<std::vector<std::uint32_t>> rank_level_by_voids(const BlockConfigura
   const std::size_t tile_count = tiles.size();
   const std::size_t size = tiles.empty() ? 0 : tiles[0].size();
   const std::size_t level = size - level_begin;
-  struct Placement {
-    std::size_t tile;
-    Point shift;
-    double weight;
-  };
-  std::vector<std::vector<Placement>> placements(tile_count);
-  for (std::size_t t = 0; t < tile_count; ++t)
-    for (int p = 0; p < kBlockPositions; ++p) {
-      const Point shift{static_cast<double>(block_dx(p)), static_cast<double>(block_dy(p))};
-      const std::vector<int>& fits = configurations.candidates(static_cast<int>(t), p);
-      for (int u : fits)
-        placements[static_cast<std::size_t>(u)].push_back({t, shift, 1.0 / static_cast<double>(fits.size())});
-    }
+  const std::vector<std::vector<Placement>> placements = placements_of(configurations, tile_count);
   std::vector<std::vector<double>> energy(tile_count, std::vector<double>(level, 0.0));
   std::vector<std::vector<double>> nearest(tile_count, std::vector<double>(level, HUGE_VAL));
   std::vector<std::vector<bool>> ranked(tile_count, std::vector<bool>(level, false));

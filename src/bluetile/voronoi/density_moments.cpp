@@ -70,28 +70,35 @@ inline void add_piece(const BoxTexel& t, double r, double u1, double d1, double 
 
 }  // namespace
 
+TexelFrame texel_frame(std::span<const Point> polygon, Point origin, const DensityGrid& density, Point domain_size,
+                       std::vector<Point>& vertices) {
+  TexelFrame f;
+  f.texel = {domain_size.x / density.width, domain_size.y / density.height};
+  Point lo = polygon[0];
+  for (const Point& p : polygon) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
+  f.column = static_cast<long>(std::floor((origin.x + lo.x) / f.texel.x));
+  f.row = static_cast<long>(std::floor((origin.y + lo.y) / f.texel.y));
+  f.site = {origin.x - static_cast<double>(f.column) * f.texel.x, origin.y - static_cast<double>(f.row) * f.texel.y};
+  vertices.resize(polygon.size());
+  Point hi{0.0, 0.0};
+  for (std::size_t k = 0; k < polygon.size(); ++k) {
+    vertices[k] = {(f.site.x + polygon[k].x) / f.texel.x, (f.site.y + polygon[k].y) / f.texel.y};
+    hi = {std::max(hi.x, vertices[k].x), std::max(hi.y, vertices[k].y)};
+  }
+  f.columns = static_cast<long>(hi.x) + 1;
+  f.rows = static_cast<long>(hi.y) + 1;
+  return f;
+}
+
 WeightedMoments density_moments(std::span<const Point> polygon, Point origin, const DensityGrid& density,
                                 Point domain_size, bool periodic) {
   WeightedMoments moments;
   const std::size_t n = polygon.size();
   if (n < 3 || density.empty()) return moments;
-  const Point texel{domain_size.x / density.width, domain_size.y / density.height};
-  Point lo = polygon[0];
-  for (const Point& p : polygon) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-  const long c0 = static_cast<long>(std::floor((origin.x + lo.x) / texel.x));
-  const long r0 = static_cast<long>(std::floor((origin.y + lo.y) / texel.y));
-  // The frame: texel units, (0, 0) at the box's lower-left corner; `site` is the origin in it
-  // in domain units. Frame coordinates are >= 0 up to rounding, so converting one to an integer
-  // truncates as floor would, and the clamps below absorb the rounding.
-  const Point site{origin.x - static_cast<double>(c0) * texel.x, origin.y - static_cast<double>(r0) * texel.y};
   thread_local std::vector<Point> frame;
-  frame.resize(n);
-  Point hi{0.0, 0.0};
-  for (std::size_t k = 0; k < n; ++k) {
-    frame[k] = {(site.x + polygon[k].x) / texel.x, (site.y + polygon[k].y) / texel.y};
-    hi = {std::max(hi.x, frame[k].x), std::max(hi.y, frame[k].y)};
-  }
-  const long columns = static_cast<long>(hi.x) + 1, rows = static_cast<long>(hi.y) + 1;
+  const TexelFrame box = texel_frame(polygon, origin, density, domain_size, frame);
+  const Point texel = box.texel, site = box.site;
+  const long c0 = box.column, r0 = box.row, columns = box.columns, rows = box.rows;
   const long band_columns = std::max(1L, kBandTexels / rows);
 
   thread_local std::vector<std::size_t> row_start;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "bluetile/core/density_grid.h"
 #include "bluetile/core/torus.h"
@@ -25,6 +26,22 @@ struct WeightedMoments {
 // rounding).
 WeightedMoments density_moments(std::span<const Point> polygon, Point origin, const DensityGrid& density,
                                 Point domain_size, bool periodic);
+
+// A polygon laid over the texel grid, shared by the integrations (density_moments and
+// DensityPrefix) so that both see the same box and the same rounding.
+struct TexelFrame {
+  Point texel{0.0, 0.0};     // a texel's size, domain units
+  long column = 0, row = 0;  // the grid texel (not yet wrapped) at the box's lower-left corner
+  Point site{0.0, 0.0};      // the polygon's origin in the frame, domain units
+  long columns = 0, rows = 0;  // texels the box spans
+};
+
+// The frame of `polygon` (at least one vertex, relative to `origin`): texel units, (0, 0) at the
+// lower-left corner of its box; the vertices in those units go to `vertices`. Frame coordinates
+// are >= 0 up to rounding, so converting one to an integer truncates as floor would; callers
+// clamp against the rounding.
+TexelFrame texel_frame(std::span<const Point> polygon, Point origin, const DensityGrid& density, Point domain_size,
+                       std::vector<Point>& vertices);
 
 // Throws Error when the density of `scene` cannot weight it: an empty grid, a texel that is not
 // finite or negative, or zero everywhere. A scene without a density passes.

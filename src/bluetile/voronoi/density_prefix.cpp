@@ -79,21 +79,10 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
   const std::size_t n = polygon.size();
   if (n < 3) return moments;
   const DensityGrid& density = *density_;
-  const Point texel{domain_size.x / density.width, domain_size.y / density.height};
-  Point lo = polygon[0];
-  for (const Point& p : polygon) lo = {std::min(lo.x, p.x), std::min(lo.y, p.y)};
-  const long c0 = static_cast<long>(std::floor((origin.x + lo.x) / texel.x));
-  const long r0 = static_cast<long>(std::floor((origin.y + lo.y) / texel.y));
-  // The frame as density_moments builds it (the same box, the same rounding).
-  const Point site{origin.x - static_cast<double>(c0) * texel.x, origin.y - static_cast<double>(r0) * texel.y};
   thread_local std::vector<Point> frame;
-  frame.resize(n);
-  Point hi{0.0, 0.0};
-  for (std::size_t k = 0; k < n; ++k) {
-    frame[k] = {(site.x + polygon[k].x) / texel.x, (site.y + polygon[k].y) / texel.y};
-    hi = {std::max(hi.x, frame[k].x), std::max(hi.y, frame[k].y)};
-  }
-  const long columns = static_cast<long>(hi.x) + 1, rows = static_cast<long>(hi.y) + 1;
+  const TexelFrame box = texel_frame(polygon, origin, density, domain_size, frame);
+  const Point texel = box.texel, site = box.site;
+  const long c0 = box.column, r0 = box.row, columns = box.columns, rows = box.rows;
   const long width = density.width, height = density.height;
   auto grid_index = [periodic](long i, long size) {
     if (!periodic) return std::clamp<long>(i, 0, size - 1);

@@ -61,18 +61,7 @@ class SiteGrid {
   // `reach` of p on the torus (a superset of those sites; callers measure the distance).
   template <typename Visit>
   void for_each_near(Point p, double reach, Visit visit) const {
-    auto [cx, cy] = bucket_coordinates(p);
-    const double kx = std::ceil(reach / cell_size_.x), ky = std::ceil(reach / cell_size_.y);
-    long x0 = 0, x1 = columns_ - 1, y0 = 0, y1 = rows_ - 1;
-    if (2.0 * kx + 1.0 < static_cast<double>(columns_)) x0 = cx - static_cast<long>(kx), x1 = cx + static_cast<long>(kx);
-    if (2.0 * ky + 1.0 < static_cast<double>(rows_)) y0 = cy - static_cast<long>(ky), y1 = cy + static_cast<long>(ky);
-    for (long by = y0; by <= y1; ++by) {
-      const long row = by - wrap_count(by, rows_) * rows_;
-      for (long bx = x0; bx <= x1; ++bx) {
-        const std::size_t b = static_cast<std::size_t>(row * columns_ + (bx - wrap_count(bx, columns_) * columns_));
-        for (std::uint32_t s = start_[b]; s < start_[b + 1]; ++s) visit(index_[s]);
-      }
-    }
+    for_each_site_near(p, reach, [&](std::uint32_t index, Point) { visit(index); });
   }
 
   // As for_each_near, calling visit(site index, site position) from the grid's own copy of the
