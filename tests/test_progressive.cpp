@@ -4,6 +4,7 @@
 
 #include "bluetile/analysis/nearest_neighbour.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/progressive.h"
 #include "test_support.h"
@@ -93,6 +94,56 @@ TEST(Progressive, LevelSizes) {
   EXPECT_EQ(level_size(100, 0, 2.0), 100u);
   EXPECT_EQ(level_size(100, 0, 1.5), 50u);
   EXPECT_EQ(level_size(1, 0, 1.2), 0u);  // rounds to no new point: the caller reports it
+}
+
+bool same_bits(const PointSet& a, const PointSet& b) {
+  if (a.points.size() != b.points.size() || a.levels != b.levels) return false;
+  for (std::size_t i = 0; i < a.points.size(); ++i)
+    if (a.points[i].x != b.points[i].x || a.points[i].y != b.points[i].y) return false;
+  return true;
+}
+
+// Bases built in parallel, one engine per worker: every set must be the one add_levels builds
+// alone with seed S + k, whatever the thread count, from scratch and on bases with different
+// level counts.
+TEST(Progressive, BasesBuiltInParallelAreEachBaseAloneBitForBit) {
+  ExactEngine engine;
+  HierarchyOptions two_levels;
+  two_levels.add = 20;
+  two_levels.levels = 2;
+  const std::vector<PointSet> mixed = {relaxed_base(30, 1), add_levels(engine, relaxed_base(20, 2), two_levels),
+                                       relaxed_base(10, 3)};
+  HierarchyOptions scratch_options;
+  scratch_options.count = 24;
+  scratch_options.levels = 3;
+  scratch_options.iterations = 40;
+  scratch_options.tolerance = 2e-4;
+  scratch_options.seed = 11;
+  HierarchyOptions mixed_options = scratch_options;
+  mixed_options.add = 16;
+  mixed_options.levels = 0;  // one more level than each base has
+  const std::size_t machine_threads = thread_count();
+  for (const auto& [bases, options] : {std::pair{std::vector<PointSet>(9), scratch_options}, std::pair{mixed, mixed_options}}) {
+    std::vector<PointSet> alone;
+    for (std::size_t k = 0; k < bases.size(); ++k) {
+      HierarchyOptions single = options;
+      single.seed = options.seed + k;
+      alone.push_back(add_levels(engine, bases[k], single));
+    }
+    for (std::size_t threads : {1, 2, 7}) {
+      set_thread_count(threads);
+      std::vector<std::size_t> reported;
+      std::vector<PointSet> built = add_levels([] { return std::make_unique<ExactEngine>(); }, bases, options,
+                                               [&reported](std::size_t done) { reported.push_back(done); });
+      set_thread_count(machine_threads);
+      ASSERT_EQ(built.size(), alone.size());
+      for (std::size_t k = 0; k < built.size(); ++k)
+        EXPECT_TRUE(same_bits(built[k], alone[k])) << "set " << k << ", " << threads << " threads";
+      std::vector<std::size_t> counted(bases.size());
+      for (std::size_t k = 0; k < counted.size(); ++k) counted[k] = k + 1;
+      EXPECT_EQ(reported, counted);
+    }
+  }
 }
 
 TEST(Progressive, CommandLineHierarchyHasEveryPrefixWellSpread) {

@@ -14,7 +14,7 @@
 //   dart256       bluetile dart -n 256 -s 11 -o dart256.txt                            0.630  0.947
 //   dart4096      bluetile dart -n 4096 -s 3 -o dart4096.txt                           0.715  0.989
 //   jitter2304    the python3 line in jittered_grid() below (a psa .txt already)       0.310  4.312
-//   rand256 --avg bluetile relax -n 256 -s 21 --sets 4 -k 0 --engine exact \
+//   rand256 --avg bluetile relax -n 256 -s 21 --sets 4 -k 0 --engine exact
 //                   -o rand256_{}.txt  (psa rand256_?.psa.txt --stats --avg)            0.000  0.155
 //   lloyd256 --avg  the same with -k 30 -o lloyd256_{}.txt                             0.825  1.901
 //

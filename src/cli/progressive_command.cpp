@@ -14,6 +14,7 @@
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/relax/progressive.h"
+#include "bluetile/voronoi/exact_engine.h"
 
 namespace bluetile::cli {
 namespace {
@@ -80,21 +81,30 @@ void run_progressive(const ProgressiveOptions& o) {
                                            std::to_string(target_levels) + " levels");
 
   auto engine = make_engine(o.engine);
-  for (std::size_t k = 0; k < sets.size(); ++k) {
-    // Set k of a batch is the set --seed S+k gives alone (wrapping past 2^64 - 1).
-    options.seed = o.seed + k;
-    std::unique_ptr<Progress> progress;
-    int progress_level = -1;
-    options.on_iteration = [&](int level, const LloydIteration& it) {
-      if (level != progress_level) {
-        progress_level = level;
-        progress = std::make_unique<Progress>((sets.size() > 1 ? "set " + std::to_string(k) + ", " : "") + "level " +
-                                                  std::to_string(level) + ": relax",
-                                              o.iterations);
-      }
-      progress->update(it.iteration);
-    };
-    sets[k] = add_levels(*engine, std::move(sets[k]), options);
+  if (sets.size() > 1 && o.engine.engine == "exact") {
+    // Set k of a batch is the set --seed S+k gives alone (wrapping past 2^64 - 1); the exact
+    // engine is cheap to make, so the sets are built in parallel, one engine per worker.
+    options.seed = o.seed;
+    Progress progress("sets", static_cast<long long>(sets.size()));
+    sets = add_levels([] { return std::make_unique<ExactEngine>(); }, std::move(sets), options,
+                      [&progress](std::size_t done) { progress.update(static_cast<long long>(done)); });
+  } else {
+    // One raster engine serves every set in turn: it keeps its Vulkan device and pipelines.
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      options.seed = o.seed + k;
+      std::unique_ptr<Progress> progress;
+      int progress_level = -1;
+      options.on_iteration = [&](int level, const LloydIteration& it) {
+        if (level != progress_level) {
+          progress_level = level;
+          progress = std::make_unique<Progress>(
+              (sets.size() > 1 ? "set " + std::to_string(k) + ", " : "") + "level " + std::to_string(level) + ": relax",
+              o.iterations);
+        }
+        progress->update(it.iteration);
+      };
+      sets[k] = add_levels(*engine, std::move(sets[k]), options);
+    }
   }
   std::string how = o.input.empty() ? "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed)
                                     : "on " + input_name(o.input) + ", seed " + std::to_string(o.seed);

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <mutex>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 
 namespace bluetile {
@@ -175,6 +177,30 @@ PointSet add_levels(CentroidEngine& engine, PointSet set, const HierarchyOptions
     set = add_level(engine, set, level);
   }
   return set;
+}
+
+std::vector<PointSet> add_levels(const EngineMaker& new_engine, std::vector<PointSet> bases,
+                                 const HierarchyOptions& options,
+                                 const std::function<void(std::size_t done)>& on_base_done) {
+  for (const PointSet& base : bases) hierarchy_level_sizes(base, options);
+  HierarchyOptions each = options;
+  each.on_iteration = nullptr;
+  std::mutex done_mutex;
+  std::size_t done = 0;
+  // A few chunks per thread balance the load; each chunk makes one engine.
+  const std::size_t grain = std::max<std::size_t>(1, bases.size() / (4 * thread_count()));
+  parallel_for(bases.size(), grain, [&](std::size_t begin, std::size_t end) {
+    std::unique_ptr<CentroidEngine> engine = new_engine();
+    for (std::size_t k = begin; k < end; ++k) {
+      HierarchyOptions alone = each;
+      alone.seed = options.seed + k;
+      bases[k] = add_levels(*engine, std::move(bases[k]), alone);
+      std::lock_guard<std::mutex> lock(done_mutex);
+      ++done;
+      if (on_base_done) on_base_done(done);
+    }
+  });
+  return bases;
 }
 
 }  // namespace bluetile

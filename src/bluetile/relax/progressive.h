@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "bluetile/core/point_file.h"
@@ -58,6 +59,19 @@ struct HierarchyOptions {
 // Throws Error (before any work) when there is nothing to add, the base already has that many
 // levels, or the total would pass kMaxHierarchyPoints.
 PointSet add_levels(CentroidEngine& engine, PointSet base, const HierarchyOptions& options);
+
+// Makes an engine for one worker thread (an engine serves one caller at a time).
+using EngineMaker = std::function<std::unique_ptr<CentroidEngine>()>;
+
+// The hierarchies of independent bases: base k is the one add_levels builds alone with seed
+// options.seed + k (wrapping past 2^64 - 1), bit for bit. The bases are built in parallel, each
+// by one thread with an engine of its own from `new_engine` (a base's scenes then stay in that
+// thread's cache: relaxing many small sets in one engine call per iteration was measured slower).
+// options.on_iteration is not called; on_base_done(done) is, after each base, one call at a time.
+// Throws as add_levels does, before any work.
+std::vector<PointSet> add_levels(const EngineMaker& new_engine, std::vector<PointSet> bases,
+                                 const HierarchyOptions& options,
+                                 const std::function<void(std::size_t done)>& on_base_done = {});
 
 // The number of points each new level of add_levels adds, checked as add_levels checks them.
 std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const HierarchyOptions& options);
