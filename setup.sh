@@ -109,9 +109,9 @@ demo() {
   local bin="$build_dir/bluetile"
   "$bin" relax --count 1000 --iterations 80 --seed 1 --output "$out/points.txt" \
     --log "$out/relax-log.csv"
+  # analyze prints the report (also written to report.txt) on stdout.
   "$bin" analyze --input "$out/points.txt" --output "$out"
   echo "setup: wrote $out/points.txt, $out/relax-log.csv and the analysis in $out/" >&2
-  cat "$out/report.txt"
 }
 
 build_dir=${BLUETILE_BUILD_DIR:-build}
@@ -120,7 +120,8 @@ what=${1:-}
 case "$what" in
   demo)
     install_missing
-    build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
+    # Only the tool: the tests and benchmarks are built by `test` and `build`.
+    build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" --target bluetile
     shift
     demo "$@"
     ;;
