@@ -1,5 +1,6 @@
 #include "cli/progress.h"
 
+#include <cmath>
 #include <cstdio>
 
 #include <unistd.h>
@@ -7,7 +8,21 @@
 namespace bluetile::cli {
 
 Progress::Progress(std::string label, long long total)
-    : label_(std::move(label)), total_(total), enabled_(isatty(STDERR_FILENO) == 1) {}
+    : label_(std::move(label)),
+      total_(total),
+      enabled_(isatty(STDERR_FILENO) == 1),
+      start_(std::chrono::steady_clock::now()) {}
+
+std::string time_left(double elapsed_s, long long done, long long total) {
+  // Too early for a rate worth showing: under a second or nothing done yet.
+  if (done <= 0 || done >= total || elapsed_s < 1.0) return "";
+  const double left_s = elapsed_s * static_cast<double>(total - done) / static_cast<double>(done);
+  char text[48];
+  if (left_s < 90.0) std::snprintf(text, sizeof text, ", about %.0f s left", std::ceil(left_s));
+  else if (left_s < 90.0 * 60.0) std::snprintf(text, sizeof text, ", about %.0f min left", left_s / 60.0);
+  else std::snprintf(text, sizeof text, ", about %.1f h left", left_s / 3600.0);
+  return text;
+}
 
 Progress::~Progress() { finish(); }
 
@@ -18,7 +33,11 @@ void Progress::update(long long done, const std::string& detail) {
   last_draw_ = now;
   drawn_ = true;
   if (total_ <= 0) std::fprintf(stderr, "\r\033[K%s %s", label_.c_str(), detail.c_str());  // a step, no count
-  else std::fprintf(stderr, "\r\033[K%s %lld/%lld %s", label_.c_str(), done, total_, detail.c_str());
+  else {
+    const double elapsed_s = std::chrono::duration<double>(now - start_).count();
+    std::fprintf(stderr, "\r\033[K%s %lld/%lld%s %s", label_.c_str(), done, total_,
+                 time_left(elapsed_s, done, total_).c_str(), detail.c_str());
+  }
   std::fflush(stderr);
 }
 

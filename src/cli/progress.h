@@ -6,6 +6,10 @@
 
 namespace bluetile::cli {
 
+// ", about 3 s left" after `done` of `total` steps in elapsed_s seconds; "" before a second has
+// passed or a step is done, and at the end.
+std::string time_left(double elapsed_s, long long done, long long total);
+
 class Progress {
  public:
   // total <= 0: a step without a count, shown as its label and detail.
@@ -20,6 +24,7 @@ class Progress {
   long long total_;
   bool enabled_;
   bool drawn_ = false;
+  std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_{};
 };
 
