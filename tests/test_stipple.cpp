@@ -4,10 +4,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/torus.h"
 #include "bluetile/io/density_map.h"
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
@@ -91,6 +93,59 @@ TEST(Stipple, DrawsThePictureIntoPointsSvgAndPng) {
   const std::string log = read_text(dir.file("log.csv"));
   EXPECT_EQ(log.rfind("iteration,energy,max_displacement,mean_displacement,coincident,fallbacks,zero_density\n", 0), 0u);
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 9);
+}
+
+// For pen plotters: a printed size, one stroke per dot, the dots in pen order with the travel
+// reported, and dot sizes following the tone.
+double plane_distance(Point a, Point b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+TEST(Stipple, PlotterReadySvg) {
+  TempDir dir;
+  const std::string picture = write_picture(dir, "picture.png", 64, 48);
+  auto r = run_bluetile({"stipple", "--image", picture, "-n", "300", "-k", "4", "-o", dir.file("dots.txt"), "--svg",
+                         dir.file("dots.svg"), "--size", "210mm", "--dot-shape", "stroke", "--plot-order",
+                         "--dots-follow-density", "--dot-radius", "0.01"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const PointSet dots = read_point_file(dir.file("dots.txt"));
+  std::string error;
+  auto svg = test::parse_xml(read_text(dir.file("dots.svg")), &error);
+  ASSERT_TRUE(svg) << error;
+  EXPECT_EQ(svg->attributes.at("width"), "210mm");
+  EXPECT_EQ(svg->attributes.at("height"), "157.5mm");  // the picture's 4:3
+  const auto strokes = svg->find_all("line");
+  ASSERT_EQ(strokes.size(), 300u);
+  EXPECT_TRUE(svg->find_all("circle").empty());
+  // Each stroke is centred on a dot, every dot drawn once; the pen-up travel between strokes is
+  // what stderr reports, in mm (210 mm per unit of the longer side).
+  std::vector<bool> drawn(dots.points.size(), false);
+  double travel = 0.0, widest = 0.0, narrowest = INFINITY;
+  Point previous{};
+  for (std::size_t k = 0; k < strokes.size(); ++k) {
+    const Point centre{0.5 * (strokes[k]->number("x1") + strokes[k]->number("x2")), strokes[k]->number("y1")};
+    std::size_t nearest = 0;
+    for (std::size_t i = 1; i < dots.points.size(); ++i)
+      if (plane_distance(dots.points[i], centre) < plane_distance(dots.points[nearest], centre)) nearest = i;
+    ASSERT_LT(plane_distance(dots.points[nearest], centre), 1e-6);
+    EXPECT_FALSE(drawn[nearest]);
+    drawn[nearest] = true;
+    if (k > 0) travel += plane_distance(centre, previous);
+    previous = centre;
+    const double width = strokes[k]->number("stroke-width");
+    widest = std::max(widest, width);
+    narrowest = std::min(narrowest, width);
+  }
+  EXPECT_LE(widest, 0.01 + 1e-6);
+  EXPECT_LT(narrowest, 0.6 * widest) << "dot sizes follow the tone";
+  const std::string reported = "pen-up travel ";
+  const auto at = r.err.find(reported);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  EXPECT_NEAR(std::stod(r.err.substr(at + reported.size())), 210.0 * travel, 1e-3 * 210.0 * travel) << r.err;
+  // A length without a unit is refused before any work, and nothing is written.
+  auto bad = run_bluetile({"stipple", "--image", picture, "-n", "300", "-o", dir.file("bad.txt"), "--svg",
+                           dir.file("bad.svg"), "--size", "210"});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("--size 210: expected a positive length"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.txt")));
 }
 
 TEST(Stipple, SameOutputWhateverTheThreadCount) {

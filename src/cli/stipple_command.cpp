@@ -13,13 +13,13 @@
 #include "cli/engine_options.h"
 #include "cli/memory_budget.h"
 #include "cli/relax_log.h"
+#include "cli/stipple_drawing.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
-#include "bluetile/io/svg.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/sampling/density_sampling.h"
 
@@ -43,6 +43,7 @@ struct StippleOptions {
   DensityMapOptions transfer;
   double weight_exponent = 2.0;
   EngineOptions engine;
+  StippleDrawingOptions drawing;
 };
 
 // The drawing's domain: the image's aspect ratio, its longer side 1, so points stay in [0,1)^2.
@@ -56,18 +57,6 @@ Domain image_domain(const DensityGrid& map) {
 double default_dot_radius(const DensityGrid& map, const Domain& domain, std::size_t count) {
   const double peak = *std::max_element(map.texels.begin(), map.texels.end());
   return 0.5 * hexagonal_spacing(static_cast<double>(count) * peak / map.mean(), domain.area());
-}
-
-// The drawing in domain units, y up, one black disc per dot on white.
-void write_svg(OutputFile& out, const std::vector<Point>& points, const Domain& domain, double radius) {
-  const Point size = domain.size;
-  SvgDocument svg(0.0, 0.0, size.x, size.y, 1000.0 * size.x, 1000.0 * size.y, "px");
-  svg.set_title("bluetile stipple");
-  svg.rect(0.0, 0.0, size.x, size.y, SvgStyle::filled(colours::white));
-  svg.begin_group(SvgStyle::filled(colours::black), SvgTransform::fit_y_up(0.0, 0.0, size.x, size.y, 0.0, 0.0, size.x, size.y));
-  for (const Point& p : points) svg.circle(p, radius);
-  svg.end_group();
-  out.write(svg.str());
 }
 
 // The render's height in pixels, in double: a tall image's does not fit an int.
@@ -92,11 +81,13 @@ void check_render(const OutputFile& out, const DensityGrid& map, const Domain& d
                    " pixels");
 }
 
-void write_render(OutputFile& out, const std::vector<Point>& points, const Domain& domain, double radius, int width) {
+void write_render(OutputFile& out, const std::vector<Point>& points, const std::vector<double>& radii,
+                  const Domain& domain, int width) {
   const double scale = width / domain.size.x;
   const int height = static_cast<int>(render_height(domain, width));
   Canvas canvas(width, height, colours::white);
-  for (const Point& p : points) canvas.disc({p.x * scale, (domain.size.y - p.y) * scale}, radius * scale, colours::black);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    canvas.disc({points[i].x * scale, (domain.size.y - points[i].y) * scale}, radii[i] * scale, colours::black);
   write_image(out, canvas);
 }
 
@@ -107,6 +98,7 @@ void run_stipple(const StippleOptions& o) {
   // The image plugin is loaded, and the render's format checked, before any output is staged.
   load_image_plugin();
   if (!o.png.empty()) check_image_output(o.png);
+  if (!o.drawing.size.empty()) parse_printed_length(o.drawing.size, "--size");
   OutputSet outputs;
   outputs.add_input(o.image);
   OutputFile& points_file = outputs.add(o.output, {.allow_stdout = true});
@@ -136,8 +128,14 @@ void run_stipple(const StippleOptions& o) {
           o.image,
       std::string("domain ") + size + (o.periodic ? ", periodic" : ", bounded") + " (y up: image row 0 at the top)"};
   points_file.write([&](OutputStream& out) { write_points(out, PointSet{scene.sites, {}}, header); });
-  if (svg_file) write_svg(*svg_file, scene.sites, domain, radius);
-  if (png_file) write_render(*png_file, scene.sites, domain, radius, o.png_width);
+  const std::vector<double> radii = dot_radii(scene.sites, *map, domain, radius, o.drawing.follow_density);
+  if (svg_file) {
+    const PenTravel travel = write_stipple_svg(*svg_file, scene.sites, radii, domain, o.drawing);
+    if (o.drawing.plot_order)
+      std::fprintf(stderr, "bluetile stipple: pen-up travel %.6g %s in plot order (greedy nearest neighbour: %.6g %s)\n",
+                   travel.travel, travel.unit.c_str(), travel.greedy, travel.unit.c_str());
+  }
+  if (png_file) write_render(*png_file, scene.sites, radii, domain, o.png_width);
   if (log_file) log_file->close();
   outputs.publish();
 }
@@ -174,6 +172,7 @@ void add_stipple_command(CLI::App& app) {
   add_density_transfer_options(cmd, o->transfer, "Bright means dense (default: dark means dense, as ink on paper)");
   add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
+  add_stipple_drawing_options(cmd, o->drawing);
   cmd->callback([o] { run_stipple(*o); });
 }
 
