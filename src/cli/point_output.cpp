@@ -23,7 +23,7 @@ void add_point_output_options(CLI::App* command, PointOutputOptions& options, co
                       what + " (every {} becomes the set index: one file per set)")
       ->required();
   command->add_option("--format", options.format,
-                      "text, npy (shape K x N x 2), binary (.bpt, see README) or header (C/C++); "
+                      "text, npy (shape K x N x 2, or K x N x 3 with a level column), binary (.bpt, see README) or header (C/C++); "
                       "default: by the extension (.txt .dat .pts, .npy, .bpt, .h .hpp)")
       ->check(CLI::IsMember({"text", "npy", "binary", "header"}));
   command->add_flag("--float32", options.float32, "npy and binary: 4-byte floats instead of 8");
