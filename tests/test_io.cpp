@@ -124,5 +124,27 @@ TEST(Figures, SpectrumToneMapAndOrientation) {
   EXPECT_FLOAT_EQ(c.pixel(2, 0).r, 0.0f);
 }
 
+// Periodic cells are drawn one period over where they cross an edge, and end at the frame: no
+// cell outline outside the unit square, and outlines along all four sides inside it.
+TEST(Figures, PeriodicCellsEndAtTheFrame) {
+  PointsFigure figure;
+  figure.points = test::uniform_points(300, 17);
+  figure.cells = true;
+  const int size = 400;
+  const Canvas canvas = draw_points(figure, size);
+  const Point low = points_figure_pixel({0.0, 1.0}, 0.0, 0.0, size), high = points_figure_pixel({1.0, 0.0}, 0.0, 0.0, size);
+  auto bluish = [](Colour c) { return c.b > c.r + 0.1f; };  // the cells' outline colour, not grey or black
+  int outside = 0, inside_near_frame = 0;
+  for (int y = 0; y < canvas.height(); ++y)
+    for (int x = 0; x < canvas.width(); ++x) {
+      if (!bluish(canvas.pixel(x, y))) continue;
+      const bool out = x < low.x - 1.0 || x > high.x + 1.0 || y < low.y - 1.0 || y > high.y + 1.0;
+      outside += out;
+      inside_near_frame += !out && (x < low.x + 3.0 || x > high.x - 3.0 || y < low.y + 3.0 || y > high.y - 3.0);
+    }
+  EXPECT_EQ(outside, 0);
+  EXPECT_GT(inside_near_frame, 100);
+}
+
 }  // namespace
 }  // namespace bluetile

@@ -17,6 +17,30 @@ double note_height(double text_height, const PointsFigure& figure) {
   return figure.note.empty() ? 0.0 : text_height + 12.0;
 }
 
+// The part of a convex polygon inside [0,1]^2 (Sutherland and Hodgman 1974: one half-plane at a time).
+std::vector<Point> clip_to_unit_square(std::vector<Point> polygon) {
+  auto clip = [&polygon](auto inside, auto cross) {
+    std::vector<Point> kept;
+    for (std::size_t k = 0; k < polygon.size(); ++k) {
+      const Point a = polygon[k], b = polygon[(k + 1) % polygon.size()];
+      if (inside(a)) kept.push_back(a);
+      if (inside(a) != inside(b)) kept.push_back(cross(a, b));
+    }
+    polygon = std::move(kept);
+  };
+  auto on_x = [](double x) {
+    return [x](Point a, Point b) { return Point{x, a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x)}; };
+  };
+  auto on_y = [](double y) {
+    return [y](Point a, Point b) { return Point{a.x + (b.x - a.x) * (y - a.y) / (b.y - a.y), y}; };
+  };
+  clip([](Point p) { return p.x >= 0.0; }, on_x(0.0));
+  clip([](Point p) { return p.x <= 1.0; }, on_x(1.0));
+  clip([](Point p) { return p.y >= 0.0; }, on_y(0.0));
+  clip([](Point p) { return p.y <= 1.0; }, on_y(1.0));
+  return polygon;
+}
+
 }  // namespace
 
 Point points_figure_pixel(Point p, double x, double y, double size) {
@@ -53,8 +77,13 @@ void paint_points(const PointsFigure& figure, Painter& painter, double x, double
       double reach = 0.0;
       for (const Point& v : polygon) reach = std::max(reach, std::max(std::abs(v.x), std::abs(v.y)));
       for_copies(figure.points[i], reach, [&](Point site) {
+        // Cells, like the period they tile, end at the unit square's frame.
+        std::vector<Point> cell;
+        for (const Point& v : polygon) cell.push_back(site + v);
+        cell = clip_to_unit_square(std::move(cell));
+        if (cell.size() < 3) return;
         outline.clear();
-        for (const Point& v : polygon) outline.push_back(to_px(site + v));
+        for (const Point& v : cell) outline.push_back(to_px(v));
         outline.push_back(outline.front());
         painter.polyline(outline, cell_colour, 1.0);
       });
@@ -72,8 +101,8 @@ void paint_points(const PointsFigure& figure, Painter& painter, double x, double
     }
   }
   const Colour grid_colour{0.80f, 0.45f, 0.45f};
-  for (double x : figure.grid_x) painter.line(to_px({x, 0.0}), to_px({x, 1.0}), grid_colour, 1.0);
-  for (double y : figure.grid_y) painter.line(to_px({0.0, y}), to_px({1.0, y}), grid_colour, 1.0);
+  for (double gx : figure.grid_x) painter.line(to_px({gx, 0.0}), to_px({gx, 1.0}), grid_colour, 1.0);
+  for (double gy : figure.grid_y) painter.line(to_px({0.0, gy}), to_px({1.0, gy}), grid_colour, 1.0);
   // Frame of the unit square (one period).
   const Point corners[4] = {to_px({0, 0}), to_px({1, 0}), to_px({1, 1}), to_px({0, 1})};
   for (int k = 0; k < 4; ++k) painter.line(corners[k], corners[(k + 1) % 4], colours::grey, 1.0);
