@@ -1,0 +1,31 @@
+// Pen-plotter order of N uniform dots (sampling/plot_order.h): time, and the pen-up travel of the
+// greedy path and after 2-opt, both over the random-tour constant 0.7124 sqrt(N) (Beardwood,
+// Halton, Hammersley 1959; Applegate et al. 2006). Usage: bluetile_plot_order_bench [N...]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "bluetile/core/rng.h"
+#include "bluetile/sampling/plot_order.h"
+
+using namespace bluetile;
+
+int main(int argc, char** argv) {
+  std::vector<std::size_t> sizes;
+  for (int i = 1; i < argc; ++i) sizes.push_back(std::strtoul(argv[i], nullptr, 10));
+  if (sizes.empty()) sizes = {1000, 10000, 100000};
+  std::printf("| dots | time (s) | greedy / 0.7124 sqrt(N) | after 2-opt / 0.7124 sqrt(N) |\n|---|---|---|---|\n");
+  for (std::size_t n : sizes) {
+    Rng rng(1);
+    std::vector<Point> dots(n);
+    for (Point& p : dots) p = {rng.uniform(), rng.uniform()};
+    const auto start = std::chrono::steady_clock::now();
+    const PlotOrder plot = plot_order(dots);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const double tour = 0.7124 * std::sqrt(static_cast<double>(n));
+    std::printf("| %zu | %.3f | %.3f | %.3f |\n", n, seconds, plot.greedy_travel / tour, plot.travel / tour);
+  }
+  return 0;
+}
