@@ -23,6 +23,7 @@
 #include "cli/commands.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
+#include "cli/point_output.h"
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
@@ -59,6 +60,8 @@ struct AnalyzeOptions {
   int threads = 0;
   int image_size = 800;
   std::string title;
+  std::vector<double> domain;  // x0 y0 x1 y1, or empty
+  std::string psa_points;
 };
 
 // One curve of the analysis: a set, a mean over sets, or a prefix.
@@ -89,8 +92,10 @@ void tile_grid_lines(const TileGrid& grid, PointsFigure& figure) {
 }
 
 std::string append_wrap_hint(const std::string& message) {
-  if (message.find("is outside [0, 1)") == std::string::npos) return message;
-  return message + " (--wrap wraps such points onto the torus)";
+  if (message.find("is outside [") == std::string::npos) return message;
+  if (message.find("is outside [0, 1)") != std::string::npos)
+    return message + " (--domain X0 Y0 X1 Y1 rescales points made in another rectangle; --wrap wraps them onto the torus)";
+  return message + " (--wrap wraps such points into --domain)";
 }
 
 std::vector<PointSet> read_sets(const std::string& path, const ReadOptions& read) {
@@ -98,7 +103,7 @@ std::vector<PointSet> read_sets(const std::string& path, const ReadOptions& read
   if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a point file");
   std::vector<PointSet> sets;
   try {
-    sets = is_rps_path(path) ? std::vector<PointSet>{read_rps_file(path, read)} : read_point_sets(path, read);
+    sets = read_points_by_extension(path, read);
   } catch (const Error& e) {
     throw Error(append_wrap_hint(e.what()));
   }
@@ -301,6 +306,56 @@ void report_psa_table(std::ostringstream& out, const std::vector<Series>& series
   out << "\n";
 }
 
+// Each set of a series averaging several, one row per set, with report_table's columns.
+void report_set_table(std::ostringstream& out, const Series& series) {
+  const Summary& m = series.summary;
+  if (m.per_set.empty()) return;
+  out << series.label << ", per set:\n";
+  const std::size_t width = std::max<std::size_t>(8, std::to_string(m.per_set.size() - 1).size() + 4);
+  auto left = [&](const std::string& v) { return v + std::string(v.size() < width ? width - v.size() : 0, ' '); };
+  auto right = [](const std::string& v) { return " " + std::string(v.size() < 8 ? 8 - v.size() : 0, ' ') + v; };
+  auto value = [](double v, int decimals) { return std::isfinite(v) ? fixed(v, decimals) : std::string("-"); };
+  out << "  " << left("set");
+  for (const char* name : {"N", "rho", "avg min", "nu_eff", "Omega", "psi6"}) out << right(name);
+  out << "\n";
+  for (std::size_t k = 0; k < m.per_set.size(); ++k) {
+    const SetMeasures& s = m.per_set[k];
+    out << "  " << left(std::to_string(k)) << right(std::to_string(m.count)) << right(value(s.rho, 4))
+        << right(value(s.average_min_distance, 4)) << right(value(s.nu_eff, 3)) << right(value(s.omega, 3))
+        << right(value(s.bond_order, 3)) << "\n";
+  }
+  out << "\n";
+}
+
+// psa's plain text point file: the count, then one "x y" line per point (17 digits: exact).
+std::string psa_text(const PointSet& set) {
+  std::string text = std::to_string(set.points.size()) + "\n";
+  char line[64];
+  for (const Point& p : set.points) {
+    std::snprintf(line, sizeof line, "%.17g %.17g\n", p.x, p.y);
+    text += line;
+  }
+  return text;
+}
+
+// --domain X0 Y0 X1 Y1, checked: four finite numbers, X1 > X0 and Y1 > Y0.
+std::optional<CoordinateBox> domain_option(const std::vector<double>& v) {
+  if (v.empty()) return std::nullopt;
+  auto text = [](double d) {
+    char t[32];
+    std::snprintf(t, sizeof t, "%.17g", d);
+    return std::string(t);
+  };
+  if (v.size() != 4) throw Error("--domain needs four numbers X0 Y0 X1 Y1, got " + std::to_string(v.size()));
+  for (double d : v)
+    if (!std::isfinite(d)) throw Error("--domain: " + text(d) + " is not a finite number");
+  if (!(v[2] > v[0])) throw Error("--domain: X1 = " + text(v[2]) + " must be greater than X0 = " + text(v[0]));
+  if (!(v[3] > v[1])) throw Error("--domain: Y1 = " + text(v[3]) + " must be greater than Y0 = " + text(v[1]));
+  if (!(v[2] - v[0] < std::numeric_limits<double>::infinity()) || !(v[3] - v[1] < std::numeric_limits<double>::infinity()))
+    throw Error("--domain: the rectangle's sides overflow");
+  return CoordinateBox{v[0], v[1], v[2], v[3]};
+}
+
 // Boundary of the analysis: --bounded, or what the files declare ("# domain ..."), else periodic.
 Boundary choose_boundary(const AnalyzeOptions& o, const std::vector<std::vector<PointSet>>& inputs) {
   std::optional<Boundary> declared;
@@ -355,6 +410,28 @@ void check_annuli(const AnalyzeOptions& o, const std::vector<std::vector<PointSe
   check_memory(annuli * series * kAnalyzeBytesPerAnnulus, what);
 }
 
+// --psa-points: every set analysed (after --domain and --wrap) as psa's text, in input order; a
+// name with "{}" gives one file per set (psa reads one set a file).
+std::vector<std::pair<OutputFile*, const PointSet*>> declare_psa_points(const AnalyzeOptions& o,
+                                                                        const std::vector<std::vector<PointSet>>& inputs,
+                                                                        OutputSet& outputs) {
+  std::vector<std::pair<OutputFile*, const PointSet*>> files;
+  if (o.psa_points.empty()) return files;
+  std::vector<const PointSet*> sets;
+  for (const auto& file : inputs)
+    for (const PointSet& set : file) sets.push_back(&set);
+  if (o.psa_points.find("{}") == std::string::npos) {
+    if (sets.size() > 1)
+      throw Error("--psa-points '" + o.psa_points + "': the inputs hold " + std::to_string(sets.size()) +
+                  " sets and psa reads one set a file: put {} in the name for one file per set");
+    files.push_back({&outputs.add(o.psa_points, {.allow_stdout = true}), sets[0]});
+    return files;
+  }
+  for (std::size_t k = 0; k < sets.size(); ++k)
+    files.push_back({&outputs.add(set_file_name(o.psa_points, k, sets.size())), sets[k]});
+  return files;
+}
+
 void run_analyze(const AnalyzeOptions& o) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   if ((o.average ? 1 : 0) + (o.compare ? 1 : 0) + (o.by_level ? 1 : 0) > 1)
@@ -399,6 +476,7 @@ void run_analyze(const AnalyzeOptions& o) {
   // Read and check every input before anything is computed.
   ReadOptions read;
   read.wrap = o.wrap;
+  read.domain = domain_option(o.domain);
   std::vector<std::vector<PointSet>> inputs;
   for (const std::string& path : o.inputs) inputs.push_back(read_sets(path, read));
   std::size_t total_sets = 0;
@@ -423,6 +501,7 @@ void run_analyze(const AnalyzeOptions& o) {
                   std::to_string(inputs[0][0].points.size()));
   }
   check_annuli(o, inputs);
+  const std::vector<std::pair<OutputFile*, const PointSet*>> psa_files = declare_psa_points(o, inputs, outputs);
   // The estimate, before any work: a set too large for psa's O(N^2) measures or for the memory
   // is refused with what it would take.
   std::vector<AnalysisJob> jobs;
@@ -605,6 +684,7 @@ void run_analyze(const AnalyzeOptions& o) {
   for (const Series& s : series) {
     report_series(report, s);
     report << "\n";
+    report_set_table(report, s);
   }
   if (series.back().summary.count == 1000) {
     report << "The paper (section 2, N = 1000, x1000): dart throwing min 21.64 max 33.44, Lloyd 80 iterations\n"
@@ -617,6 +697,7 @@ void run_analyze(const AnalyzeOptions& o) {
     report << "points.png and points.svg show the first of the " << series[0].sets << " sets.\n";
   report << "written: stats.json radial.csv rdf.csv report.txt points spectrum radial rdf (.png .svg)";
   if (!o.summary.empty()) report << ", " << o.summary;
+  if (!o.psa_points.empty()) report << ", " << o.psa_points << " (psa's text)";
   report << "\n";
 
   const std::vector<Series> tables = o.compare ? series : std::vector<Series>{series.back()};
@@ -636,6 +717,7 @@ void run_analyze(const AnalyzeOptions& o) {
     else summary_file->write(summary_doc->str());
   }
   report_file.write(report.str());
+  for (const auto& [file, set] : psa_files) file->write(psa_text(*set));
   outputs.publish();
   std::cout << report.str() << std::flush;
 }
@@ -648,7 +730,9 @@ void add_analyze_command(CLI::App& app) {
       "analyze",
       "Spectrum, radial power, anisotropy, RDF, nu_eff, Omega and nearest-neighbour statistics of point sets (psa's "
       "conventions)");
-  cmd->add_option("-i,--input", o->inputs, "Point file(s); a file may hold several sets separated by '#' lines")
+  cmd->add_option("-i,--input", o->inputs,
+                  "Point file(s), by extension: .npy, .bpt, .csv (header x,y or x,y,level), psa's .rps, else text; a "
+                  "file may hold several sets (text: separated by '#' lines)")
       ->required();
   cmd->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
   add_integer_option(cmd, "--size", o->size, 0, 65536,
@@ -664,7 +748,15 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--bounded", o->bounded,
                 "The sets were made in the bounded unit square: Euclidean distances, edge-corrected RDF (also "
                 "chosen by a '# domain bounded' line in the file)");
-  cmd->add_flag("--wrap", o->wrap, "Wrap points outside [0, 1) onto the torus (else they are an error)");
+  cmd->add_flag("--wrap", o->wrap, "Wrap points outside [0, 1) (or --domain) onto the torus (else they are an error)");
+  cmd->add_option("--domain", o->domain,
+                  "X0 Y0 X1 Y1: the rectangle the points were made in, rescaled onto the unit torus (a non-square "
+                  "one is stretched); points outside are an error (or wrapped with --wrap)")
+      ->expected(4)
+      ->allow_extra_args(false);
+  cmd->add_option("--psa-points", o->psa_points,
+                  "Also write the points analysed (after --domain) as psa's plain text (N, then 'x y' lines) to this "
+                  "file; {} in the name is the set index, one file per set");
   add_real_option(cmd, "--rdf-range", o->rdf_range, {0.0, 1e6}, "Largest RDF distance in hexagonal spacings (default 8, psa's)")
       ->default_str("8");
   add_integer_option(cmd, "--rdf-bins", o->rdf_bins, 1, 1000000, "RDF histogram bins (default N / 8 within 32..1000, psa's)")

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "bluetile/core/error.h"
@@ -50,9 +51,11 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
   auto step = [&](const char* name) {
     if (options.step) options.step(name);
   };
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t k = 0; k < sets.size(); ++k) {
     step("nearest neighbours");
     NearestNeighbourStats nn = nearest_neighbour_stats(sets[k], Domain{}, options.boundary);
+    SetMeasures own{nn.rho(), nn.rho_mean(), nan, nan, nan};
     if (k == 0) {
       s.nn = nn;
       s.nn_min_lowest = s.nn_min_highest = nn.min;
@@ -68,13 +71,22 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
     if (s.has_bond_order) {
       step("bond order");
       BondOrder b = bond_orientational_order(sets[k]);
+      own.bond_order = b.local;
       s.bond_order.local += b.local;
       s.bond_order.global += b.global;
     }
     step("RDF");
     distributions.push_back(radial_distribution(sets[k], rdf_options));
     if (s.has_spectral_measures) step("psa's RDF spectrum");
-    if (s.has_spectral_measures) spectra.push_back(rdf_power_spectrum(sets[k]));
+    if (s.has_spectral_measures) {
+      spectra.push_back(rdf_power_spectrum(sets[k]));
+      if (sets.size() > 1) {
+        const SpectralMeasures m = spectral_measures(spectra.back());
+        own.nu_eff = m.nu_eff;
+        own.omega = m.omega;
+      }
+    }
+    if (sets.size() > 1) s.per_set.push_back(own);
     std::function<void(std::size_t, std::size_t)> progress;
     if (options.progress) {
       progress = [&](std::size_t done, std::size_t total) {

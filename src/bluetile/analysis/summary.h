@@ -39,6 +39,16 @@ struct SummaryOptions {
   std::function<void(const char*)> step;
 };
 
+// One set's own measures, for the per-set table of a mean over several sets. NaN where a
+// measure was not taken (nu_eff and Omega of bounded or skipped sets, bond order of bounded sets).
+struct SetMeasures {
+  double rho = 0.0;                   // min NN distance / hexagonal spacing
+  double average_min_distance = 0.0;  // mean NN distance / hexagonal spacing
+  double nu_eff = 0.0;
+  double omega = 0.0;
+  double bond_order = 0.0;            // local |psi6|
+};
+
 struct Summary {
   std::size_t count = 0;  // points per set
   std::size_t sets = 1;   // sets averaged
@@ -59,6 +69,8 @@ struct Summary {
   RdfPowerSpectrum rdf_power;
   SpectralMeasures measures;
   bool has_spectral_measures = false;
+  // Several sets: each set's measures, in set order (empty for one set).
+  std::vector<SetMeasures> per_set;
 
   // Normalised frequency nu = |k| / (sqrt(N) / 2) of an integer frequency.
   double nu(double frequency) const { return normalised_frequency(frequency, count); }

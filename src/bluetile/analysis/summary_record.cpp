@@ -107,6 +107,25 @@ Record summary_record(const Summary& s) {
   if (s.has_bond_order)
     r.set("bond_order",
           Record::object().set("local", Record::of(s.bond_order.local)).set("global", Record::of(s.bond_order.global)));
+  if (!s.per_set.empty()) {
+    // Each set's own measures, under the keys above: {rho, average_min_distance, nu_eff, omega,
+    // bond_order_local}, null where not measured.
+    Record list = Record::object();
+    std::vector<double> rho, amd, nu_eff, omega, psi6;
+    for (const SetMeasures& m : s.per_set) {
+      rho.push_back(m.rho);
+      amd.push_back(m.average_min_distance);
+      nu_eff.push_back(m.nu_eff);
+      omega.push_back(m.omega);
+      psi6.push_back(m.bond_order);
+    }
+    list.set("rho", Record::of(std::move(rho)));
+    list.set("average_min_distance", Record::of(std::move(amd)));
+    list.set("nu_eff", Record::of(std::move(nu_eff)));
+    list.set("omega", Record::of(std::move(omega)));
+    list.set("bond_order_local", Record::of(std::move(psi6)));
+    r.set("per_set", std::move(list));
+  }
   r.set("rdf_range_relative", Record::of(s.rdf.range() / h));
   r.set("rdf_bins", count_of(s.rdf.g.size()));
   r.set("periodogram_size", Record::of_integer(s.periodogram.size));

@@ -38,7 +38,8 @@ struct Record {
 };
 
 // stats.json's fields for one series: n, sets, boundary, nearest-neighbour distances (raw, x1000,
-// relative), hexagonal_spacing, rho, average_min_distance, the per-set range of minima (several
+// relative), hexagonal_spacing, rho, average_min_distance, the per-set range of minima and
+// per_set {rho, average_min_distance, nu_eff, omega, bond_order_local}, one value per set (several
 // sets), mean_centroid_distance[_relative], nu_eff and omega (null when not measured) with
 // omega_range_nu, bond_order {local, global}, rdf_range_relative, rdf_bins, periodogram_size, and
 // radial {frequency, nu, power, anisotropy_db, count}.

@@ -121,13 +121,12 @@ class SetParser {
         fail("level must be an integer from 0 to " + std::to_string(kMaxLevel) + ", got " + quote(tokens.kept[2]));
       set_.levels.push_back(static_cast<int>(level));
     }
-    if (!options_.wrap) {
-      for (int axis = 0; axis < 2; ++axis) {
-        if (!(p[axis] >= 0.0 && p[axis] < 1.0))
-          fail(std::string(axis == 0 ? "x" : "y") + " = " + shortened(tokens.kept[axis]) + " is outside [0, 1)");
-      }
-    }
-    set_.points.push_back(wrap_point(p, Domain{}));
+    int outside = -1;
+    const Point placed = place_read_point(p, options_, outside);
+    if (outside >= 0)
+      fail(std::string(outside == 0 ? "x" : "y") + " = " + shortened(tokens.kept[outside]) + " is outside " +
+           read_range_text(outside, options_));
+    set_.points.push_back(placed);
   }
 
   bool empty() const { return set_.points.empty() && count_line_ == 0; }
@@ -166,6 +165,29 @@ std::optional<Boundary> declared_boundary(std::string_view comment) {
 }
 
 }  // namespace
+
+Point place_read_point(Point read, const ReadOptions& options, int& outside) {
+  outside = -1;
+  const CoordinateBox box = options.domain.value_or(CoordinateBox{});
+  const double low[2] = {box.x0, box.y0}, high[2] = {box.x1, box.y1};
+  Point unit = read;
+  for (int axis = 0; axis < 2; ++axis) {
+    if (!options.wrap && !(read[axis] >= low[axis] && read[axis] < high[axis])) {
+      outside = axis;
+      return read;
+    }
+    if (options.domain) unit[axis] = (read[axis] - low[axis]) / (high[axis] - low[axis]);
+  }
+  // A coordinate just below the domain's end may round to 1: the torus's 0.
+  return wrap_point(unit, Domain{});
+}
+
+std::string read_range_text(int axis, const ReadOptions& options) {
+  const CoordinateBox box = options.domain.value_or(CoordinateBox{});
+  char text[80];
+  std::snprintf(text, sizeof text, "[%.17g, %.17g)", axis == 0 ? box.x0 : box.y0, axis == 0 ? box.x1 : box.y1);
+  return text;
+}
 
 // Splits text fed in arbitrary chunks into lines and hands them to one set parser (or, with
 // `several`, one per '#'-separated set).

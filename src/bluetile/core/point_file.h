@@ -35,11 +35,27 @@ struct PointSet {
   bool has_levels() const { return !levels.empty(); }
 };
 
-struct ReadOptions {
-  // false: a coordinate outside [0, 1) is an error naming the file, line and value, instead of
-  // being wrapped onto the torus.
-  bool wrap = true;
+// The rectangle [x0, x1) x [y0, y1) a file's coordinates lie in (ReadOptions::domain).
+struct CoordinateBox {
+  double x0 = 0.0, y0 = 0.0, x1 = 1.0, y1 = 1.0;
 };
+
+struct ReadOptions {
+  // false: a coordinate outside [0, 1) (outside `domain` when there is one) is an error naming
+  // the file, line and value, instead of being wrapped onto the torus.
+  bool wrap = true;
+  // The domain the set was made in: every coordinate is mapped linearly from [x0, x1) x [y0, y1)
+  // onto the unit torus (a non-square box is stretched). None: the file is on the unit torus.
+  std::optional<CoordinateBox> domain;
+};
+
+// A point as read, placed on the unit torus as `options` says. `outside` is set to the axis
+// (0 x, 1 y) of a coordinate outside the domain when options.wrap is false (the point is then
+// not placed), else -1.
+Point place_read_point(Point read, const ReadOptions& options, int& outside);
+
+// "[0, 1)", or the domain's range of that axis ("[0, 64)"), for messages.
+std::string read_range_text(int axis, const ReadOptions& options);
 
 // The largest level a point file may hold: writers must not go beyond what readers accept.
 inline constexpr int kMaxLevel = 1000000;

@@ -226,8 +226,9 @@ class SetBuilder {
   }
 
  public:
-  SetBuilder(const std::string& name, std::size_t sets, std::size_t rows, std::size_t columns)
-      : name_(name), columns_(columns), sets_(checked_set_count(name, sets, rows)) {
+  SetBuilder(const std::string& name, std::size_t sets, std::size_t rows, std::size_t columns,
+             const ReadOptions& options)
+      : name_(name), columns_(columns), options_(options), sets_(checked_set_count(name, sets, rows)) {
     for (PointSet& set : sets_) {
       set.points.reserve(rows);
       if (columns == 3) set.levels.reserve(rows);
@@ -247,7 +248,12 @@ class SetBuilder {
     if (column == 0) {
       x_ = value;
     } else {
-      sets_[set].points.push_back(wrap_point(Point{x_, value}, Domain{}));
+      int outside = -1;
+      const Point placed = place_read_point(Point{x_, value}, options_, outside);
+      if (outside >= 0)
+        throw Error(where() + (outside == 0 ? "x = " : "y = ") + format_value(outside == 0 ? x_ : value) +
+                    " is outside " + read_range_text(outside, options_));
+      sets_[set].points.push_back(placed);
     }
   }
 
@@ -262,6 +268,7 @@ class SetBuilder {
 
   const std::string& name_;
   std::size_t columns_;
+  ReadOptions options_;
   std::vector<PointSet> sets_;
   double x_ = 0.0;
 };
@@ -476,7 +483,7 @@ std::string table_name_for_path(const std::string& path) {
   return id;
 }
 
-std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::string& name) {
+std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::string& name, const ReadOptions& options) {
   if (bytes.size() < sizeof kBinaryMagic || !starts_with(bytes, kBinaryMagic, sizeof kBinaryMagic))
     throw Error(name + ": not a bluetile binary point table (wrong magic)");
   if (bytes.size() < kBinaryHeaderBytes)
@@ -499,7 +506,7 @@ std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::stri
                 " points (" + std::to_string(kBinaryHeaderBytes + payload) + " bytes) but the file has " +
                 std::to_string(bytes.size()) + " bytes");
   }
-  SetBuilder builder(name, sets, rows, columns);
+  SetBuilder builder(name, sets, rows, columns, options);
   const char* at = h + kBinaryHeaderBytes;
   for (std::size_t k = 0; k < sets; ++k)
     for (std::size_t i = 0; i < rows; ++i)
@@ -508,7 +515,7 @@ std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::stri
   return builder.finish();
 }
 
-std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string& name) {
+std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string& name, const ReadOptions& options) {
   if (!starts_with(bytes, kNpyMagic, sizeof kNpyMagic)) throw Error(name + ": not a .npy file (wrong magic)");
   if (bytes.size() < 10) throw Error(name + ": .npy file cut short in its header");
   const int major = static_cast<unsigned char>(bytes[6]);
@@ -545,7 +552,7 @@ std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string&
                 ") needs " + std::to_string(payload) + " data bytes but the file has " +
                 std::to_string(bytes.size() - data_start));
   }
-  SetBuilder builder(name, sets, rows, columns);
+  SetBuilder builder(name, sets, rows, columns, options);
   const char* data = bytes.data() + data_start;
   for (std::size_t k = 0; k < sets; ++k)
     for (std::size_t i = 0; i < rows; ++i)
@@ -576,10 +583,16 @@ PointSet parse_rps_points(std::string_view bytes, const std::string& name, const
       std::snprintf(text, sizeof text, "%.9g", value[axis]);
       const std::string where = name + ": point " + std::to_string(i) + ": ";
       if (!std::isfinite(value[axis])) throw Error(where + "not a finite number '" + text + "'");
-      if (!options.wrap && !(value[axis] >= 0.0 && value[axis] < 1.0))
-        throw Error(where + (axis == 0 ? "x" : "y") + " = " + text + " is outside [0, 1)");
     }
-    set.points.push_back(wrap_point(Point{value[0], value[1]}, Domain{}));
+    int outside = -1;
+    const Point placed = place_read_point(Point{value[0], value[1]}, options, outside);
+    if (outside >= 0) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.9g", value[outside]);
+      throw Error(name + ": point " + std::to_string(i) + ": " + (outside == 0 ? "x" : "y") + " = " + text +
+                  " is outside " + read_range_text(outside, options));
+    }
+    set.points.push_back(placed);
   }
   return set;
 }
@@ -630,6 +643,89 @@ std::vector<PointSet> read_point_table(const std::string& path) {
   if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(read_bytes(path), path);
   if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(read_bytes(path), path);
   return read_text_table(path);
+}
+
+namespace {
+
+std::string_view trimmed(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t' || s.front() == '\r')) s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r')) s.remove_suffix(1);
+  return s;
+}
+
+std::vector<std::string_view> csv_fields(std::string_view line) {
+  std::vector<std::string_view> fields;
+  for (std::size_t start = 0;;) {
+    const std::size_t comma = line.find(',', start);
+    fields.push_back(trimmed(line.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start)));
+    if (comma == std::string_view::npos) return fields;
+    start = comma + 1;
+  }
+}
+
+bool is_csv_header(const std::vector<std::string_view>& fields) {
+  auto name = [](std::string_view field) {
+    if (field.size() >= 2 && (field.front() == '"' || field.front() == '\'') && field.back() == field.front())
+      field = field.substr(1, field.size() - 2);
+    return lower(std::string(field));
+  };
+  if (fields.size() != 2 && fields.size() != 3) return false;
+  return name(fields[0]) == "x" && name(fields[1]) == "y" && (fields.size() == 2 || name(fields[2]) == "level");
+}
+
+}  // namespace
+
+std::vector<PointSet> parse_csv_points(std::string_view text, const std::string& name, const ReadOptions& options) {
+  // Each line becomes the text format's "x y [level]" and goes through its parser, which checks
+  // the numbers, ranges and levels and counts the lines: one reader of points, not two.
+  static constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  if (text.substr(0, kBom.size()) == kBom) text.remove_prefix(kBom.size());
+  PointTextParser parser(name, true, options);
+  std::size_t number = 0;
+  bool data_seen = false;
+  while (!text.empty()) {
+    const std::size_t end = text.find('\n');
+    const std::string_view line = text.substr(0, end);
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+    ++number;
+    const std::string_view body = trimmed(line);
+    if (body.empty() || body.front() == '#') {
+      parser.feed(std::string(line) + "\n");
+      continue;
+    }
+    const std::vector<std::string_view> fields = csv_fields(body);
+    auto fail = [&](const std::string& what) {
+      const std::string shown(body.substr(0, 40));
+      throw Error(name + ":" + std::to_string(number) + ": " + what + ", got '" + shown + (body.size() > 40 ? "...'" : "'"));
+    };
+    if (!data_seen && is_csv_header(fields)) {
+      parser.feed("# " + std::string(body) + "\n");  // the header, as a comment: line numbers stay
+      data_seen = true;
+      continue;
+    }
+    data_seen = true;
+    if (fields.size() != 2 && fields.size() != 3) fail("expected 'x,y' or 'x,y,level' (comma-separated)");
+    std::string converted;
+    for (std::string_view field : fields) {
+      if (field.empty()) fail("an empty field");
+      if (field.find_first_of(" \t") != std::string_view::npos) fail("a field holding a blank");
+      converted += std::string(field) + " ";
+    }
+    converted.back() = '\n';
+    parser.feed(converted);
+  }
+  return parser.finish();
+}
+
+std::vector<PointSet> read_points_by_extension(const std::string& path, const ReadOptions& options) {
+  const std::string extension = path == "-" ? "" : extension_of(path);
+  std::vector<PointSet> sets;
+  if (extension == ".npy") sets = parse_npy_table(read_input(path), input_name(path), options);
+  else if (extension == ".bpt") sets = parse_binary_table(read_input(path), input_name(path), options);
+  else if (extension == ".csv") sets = parse_csv_points(read_input(path), input_name(path), options);
+  else if (extension == ".rps") sets = {read_rps_file(path, options)};
+  else sets = read_point_sets(path, options);
+  return same_columns(std::move(sets), path);
 }
 
 }  // namespace bluetile

@@ -104,8 +104,23 @@ std::string checked_table_name(const std::string& path, const std::string& name)
 std::vector<PointSet> read_point_table(const std::string& path);
 
 // The same decoders over bytes in memory; `name` stands for the file in messages.
-std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string& name);
-std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::string& name);
+// `options`: the domain and range check of ReadOptions (point_file.h); by default points are
+// wrapped onto the unit torus.
+std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string& name, const ReadOptions& options = {});
+std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::string& name,
+                                         const ReadOptions& options = {});
+
+// Comma-separated points: an optional header line "x,y" or "x,y,level" (any case), then one point
+// a line, "x,y" or "x,y,level"; '#' lines separate sets and comment, as in text. Throws
+// Error("<name>:<line>: ...") naming the value for an empty or malformed field, a wrong column
+// count and everything the text format refuses.
+std::vector<PointSet> parse_csv_points(std::string_view text, const std::string& name, const ReadOptions& options = {});
+
+// Every set of a file in the format its extension names (any case): .npy, .bpt, .csv, .rps, and
+// text for any other (and for "-"); `options` applies to every format. What `bluetile analyze`
+// reads. Throws Error naming the file (and line or point) like the readers above, and for sets
+// that differ in their columns (levels in some only).
+std::vector<PointSet> read_points_by_extension(const std::string& path, const ReadOptions& options = {});
 
 // psa's raw point sets (.rps, Heck, Schlömer and Deussen's analysis tool): no header, one set of
 // little-endian float32 pairs x y, so a file of B bytes holds B / 8 points. It has no magic:
