@@ -3,6 +3,7 @@
 // sets measured with Euclidean distances, out-of-range points refused.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -162,6 +163,50 @@ TEST(AnalyzeOutputs, MultiSetFilesSayWhatTheirPointsImageShows) {
   bool note = false;
   for (const auto* text : svg->find_all("text")) note |= text->text.find("set 1 of 2") != std::string::npos;
   EXPECT_TRUE(note);
+}
+
+TEST(AnalyzeOutputs, CompareSummaryShowsEverySeries) {
+  test::TempDir dir;
+  const std::string a = dir.write("a.txt", points_text(uniform_points(128, 41)));
+  const std::string b = dir.write("b.txt", points_text(uniform_points(200, 42)));
+  auto r = test::run_bluetile({"analyze", "-i", a, b, "--compare", "--label", "alpha", "--label", "beta", "-o",
+                               dir.file("c"), "--no-centroids", "--summary", dir.file("c.svg")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto stats = nlohmann::json::parse(test::read_text(dir.file("c/stats.json")));
+  auto page = parse_file(dir.file("c.svg"));
+  ASSERT_TRUE(page);
+  std::vector<std::string> texts;
+  for (const auto* text : page->find_all("text")) texts.push_back(text->text);
+  auto has = [&](const std::string& t) { return std::find(texts.begin(), texts.end(), t) != texts.end(); };
+  // Each series: its points and periodogram (captioned), and its row of the table with its numbers.
+  EXPECT_EQ(page->find_all("image").size(), 2u);  // one periodogram per series
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& s = stats["compare"][i];
+    const std::string label = s["label"];
+    SCOPED_TRACE(label);
+    EXPECT_TRUE(has(label + ", F = " + std::to_string(s["periodogram_size"].get<int>())));
+    char number[32];
+    std::snprintf(number, sizeof number, "%.4f", s["rho"].get<double>());
+    EXPECT_TRUE(has(number)) << number;
+    std::snprintf(number, sizeof number, "%.4f", s["average_min_distance"].get<double>());
+    EXPECT_TRUE(has(number)) << number;
+    std::snprintf(number, sizeof number, "%.3f", s["nu_eff"].get<double>());
+    EXPECT_TRUE(has(number)) << number;
+    std::snprintf(number, sizeof number, "%.3f", s["bond_order"]["local"].get<double>());
+    EXPECT_TRUE(has(number)) << number;
+    EXPECT_TRUE(has(std::to_string(s["n"].get<int>())));
+  }
+  EXPECT_TRUE(has("psi6"));
+  EXPECT_FALSE(has("effective Nyquist frequency nu_eff"));  // not one series' name-value list
+
+  // The PDF holds the same words.
+  r = test::run_bluetile({"analyze", "-i", a, b, "--compare", "--label", "alpha", "--label", "beta", "-o",
+                          dir.file("p"), "--no-centroids", "--summary", dir.file("c.pdf")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto text = test::run_command("pdftotext '" + dir.file("c.pdf") + "' -");
+  if (text.exit_code == 127) GTEST_SKIP() << "pdftotext (poppler-utils) is not installed; ./setup.sh installs it";
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  for (const char* word : {"alpha", "beta", "psi6"}) EXPECT_NE(text.out.find(word), std::string::npos) << text.out;
 }
 
 }  // namespace

@@ -356,6 +356,24 @@ std::optional<CoordinateBox> domain_option(const std::vector<double>& v) {
   return CoordinateBox{v[0], v[1], v[2], v[3]};
 }
 
+// The compare summary: every series' points, periodogram and row of the stdout table (not the
+// last series alone).
+void add_compare_series(SummaryPage& page, const std::vector<Series>& series, const std::vector<PointsFigure>& figures) {
+  page.table_header = {"", "N", "rho", "avg min", "nu_eff", "Omega", "psi6"};
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    const Summary& m = series[i].summary;
+    SummaryPage::Series s;
+    s.label = series[i].label;
+    s.points = figures[i];
+    s.periodogram = m.periodogram;
+    s.row = {std::to_string(m.count), fixed(m.nn.rho(), 4), fixed(m.nn.rho_mean(), 4),
+             m.has_spectral_measures ? fixed(m.measures.nu_eff, 3) : "-",
+             m.has_spectral_measures ? fixed(m.measures.omega, 3) : "-",
+             m.has_bond_order ? fixed(m.bond_order.local, 3) : "-"};
+    page.series.push_back(std::move(s));
+  }
+}
+
 // Boundary of the analysis: --bounded, or what the files declare ("# domain ..."), else periodic.
 Boundary choose_boundary(const AnalyzeOptions& o, const std::vector<std::vector<PointSet>>& inputs) {
   std::optional<Boundary> declared;
@@ -646,6 +664,7 @@ void run_analyze(const AnalyzeOptions& o) {
     page.axis = axis;
     page.anisotropy_reference = reference;
     page.measures = measure_rows(s.summary);
+    if (o.compare) add_compare_series(page, series, figures);
     summary_doc = summary_page(page);
   }
 

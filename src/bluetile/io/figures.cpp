@@ -284,6 +284,56 @@ SvgDocument montage_svg(std::span<const SvgDocument> images, std::span<const std
   return doc;
 }
 
+namespace {
+
+// Each series' points (left column) and periodogram (right column) on a grid of up to 4 x 4
+// panels, the label under each.
+void paint_series_panels(SvgDocument& doc, std::span<const SummaryPage::Series> series, double left, double right,
+                         double top, double column) {
+  constexpr std::size_t kMaxPanels = 16;  // 4 x 4: panels of 60 pt, about the smallest that reads
+  const std::size_t shown = std::min(series.size(), kMaxPanels);
+  const std::size_t across = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(shown))));
+  const double cell = column / static_cast<double>(across), caption = 9.0, panel = cell - caption;
+  SvgPainter tiny(doc, across > 2 ? 6.0 : 7.0);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const double dx = static_cast<double>(i % across) * cell + 0.5 * caption;
+    const double dy = top + static_cast<double>(i / across) * cell;
+    PointsFigure points = series[i].points;
+    points.note.clear();
+    paint_points(points, tiny, left + dx, dy, panel);
+    doc.image(right + dx, dy, panel, panel, spectrum_image(series[i].periodogram, 256));
+    tiny.text(left + dx + 0.5 * panel, dy + panel + 2.0, series[i].label, colours::black, Align::centre, Align::start);
+    tiny.text(right + dx + 0.5 * panel, dy + panel + 2.0,
+              series[i].label + ", F = " + std::to_string(series[i].periodogram.size), colours::black, Align::centre,
+              Align::start);
+  }
+  if (series.size() > shown)
+    tiny.text(left, top + column + 6.0,
+              "the first " + std::to_string(shown) + " of " + std::to_string(series.size()) + " series are drawn",
+              colours::black, Align::start, Align::start);
+}
+
+// One row per series: its label, then its cells under the header.
+void paint_series_table(SvgDocument& doc, const SummaryPage& page, double x, double& y, double width) {
+  const std::size_t columns = page.table_header.size();
+  if (columns == 0) return;
+  const double label_width = width - 34.0 * static_cast<double>(columns - 1);
+  auto cell_x = [&](std::size_t c) { return x + label_width + 34.0 * static_cast<double>(c); };
+  auto row = [&](const std::string& label, std::span<const std::string> cells, bool bold) {
+    y += 12.0;
+    std::string shown = label.size() > 18 ? label.substr(0, 17) + "\u2026" : label;
+    const double size = bold ? 6.5 : 7.5;  // the header narrower: "avg min" fits its column
+    doc.text({x, y}, shown, {.size = size, .bold = bold});
+    for (std::size_t c = 0; c < cells.size() && c + 1 < columns; ++c)
+      doc.text({cell_x(c + 1), y}, cells[c], {.size = size, .anchor = Align::end, .bold = bold});
+    doc.line({x, y + 3.0}, {x + width, y + 3.0}, SvgStyle::stroked(colours::light_grey, 0.5));
+  };
+  row(page.table_header[0], std::span<const std::string>(page.table_header).subspan(1), true);
+  for (const SummaryPage::Series& s : page.series) row(s.label, s.row, false);
+}
+
+}  // namespace
+
 SvgDocument summary_page(const SummaryPage& page) {
   // A4 portrait in points; two columns of 255 pt.
   constexpr double kWidth = 595.0, kHeight = 842.0, kMargin = 36.0, kColumn = 255.0, kGutter = 13.0;
@@ -298,15 +348,19 @@ SvgDocument summary_page(const SummaryPage& page) {
   SvgPainter small(doc, 8.0);
   // Row 1: the points and the periodogram.
   const double row1 = 80.0;
-  PointsFigure points = page.points;
-  points.note.clear();
-  paint_points(points, small, left, row1, kColumn);
-  doc.image(right_column, row1, kColumn, kColumn, spectrum_image(page.periodogram, 1024));
-  small.text(left + 0.5 * kColumn, row1 + kColumn + 4.0, page.points.note.empty() ? "points" : page.points.note,
-             colours::black, Align::centre, Align::start);
-  small.text(right_column + 0.5 * kColumn, row1 + kColumn + 4.0,
-             "periodogram, F = " + std::to_string(page.periodogram.size) + " (k = 0 at the centre)", colours::black,
-             Align::centre, Align::start);
+  if (page.series.empty()) {
+    PointsFigure points = page.points;
+    points.note.clear();
+    paint_points(points, small, left, row1, kColumn);
+    doc.image(right_column, row1, kColumn, kColumn, spectrum_image(page.periodogram, 1024));
+    small.text(left + 0.5 * kColumn, row1 + kColumn + 4.0, page.points.note.empty() ? "points" : page.points.note,
+               colours::black, Align::centre, Align::start);
+    small.text(right_column + 0.5 * kColumn, row1 + kColumn + 4.0,
+               "periodogram, F = " + std::to_string(page.periodogram.size) + " (k = 0 at the centre)", colours::black,
+               Align::centre, Align::start);
+  } else {
+    paint_series_panels(doc, page.series, left, right_column, row1, kColumn);
+  }
 
   // Rows 2 and 3: radial power and the RDF; anisotropy and the table.
   const double row2 = row1 + kColumn + 22.0, plot_h = 205.0, row3 = row2 + plot_h + 10.0;
@@ -327,7 +381,8 @@ SvgDocument summary_page(const SummaryPage& page) {
   double y = row3 + 12.0;
   doc.text({right_column, y}, "measures", {.size = 10.0, .bold = true});
   y += 6.0;
-  for (const auto& [name, value] : page.measures) {
+  if (!page.series.empty()) paint_series_table(doc, page, right_column, y, kColumn);
+  for (const auto& [name, value] : page.series.empty() ? page.measures : decltype(page.measures){}) {
     y += 13.0;
     doc.text({right_column, y}, name, {.size = 8.5});
     doc.text({right_column + kColumn, y}, value, {.size = 8.5, .anchor = Align::end});

@@ -95,6 +95,18 @@ struct SummaryPage {
   FrequencyAxis axis = FrequencyAxis::normalised;
   std::vector<RdfCurve> rdf;
   std::vector<std::pair<std::string, std::string>> measures;  // name, value
+  // Several series side by side (analyze --compare): when not empty, row 1 draws each series'
+  // points and periodogram small, captioned with its label (the first 16), and the measures
+  // are a table of one row per series under `table_header` (its first column: the label);
+  // `points`, `periodogram` and `measures` are then not drawn.
+  struct Series {
+    std::string label;
+    PointsFigure points;
+    Periodogram periodogram;
+    std::vector<std::string> row;  // the table's cells after the label
+  };
+  std::vector<Series> series;
+  std::vector<std::string> table_header;
 };
 SvgDocument summary_page(const SummaryPage& page);
 
