@@ -20,16 +20,19 @@ struct AnalysisEstimate {
   double seconds = 0.0;      // all of it, on thread_count() threads
   double psa_seconds = 0.0;  // of which psa's nu_eff and Omega (their RDF spectrum)
   double psa_pairs = 0.0;    // the pairs that spectrum histograms
+  double discrepancy_seconds = 0.0;  // of which the four discrepancies (every pair)
   double bytes = 0.0;        // peak memory
 };
 
 // From constants measured on this project's 2-core machine (docs/BENCHMARKS.md, "analyze at
 // scale"), scaled by the thread count.
-AnalysisEstimate estimate_analysis(const std::vector<AnalysisJob>& jobs, bool psa_measures);
+AnalysisEstimate estimate_analysis(const std::vector<AnalysisJob>& jobs, bool psa_measures, bool discrepancy = false);
 
-// Throws Error when the estimate exceeds `time_limit_minutes` (naming --no-psa-measures when psa's
-// measures are what takes the time, and --time-limit) or the available memory.
-void check_analysis_budget(const std::vector<AnalysisJob>& jobs, bool psa_measures, double time_limit_minutes);
+// Throws Error when the estimate exceeds `time_limit_minutes` (naming --no-psa-measures or
+// --no-discrepancy when those O(N^2) measures take much of the time, and --time-limit) or the
+// available memory.
+void check_analysis_budget(const std::vector<AnalysisJob>& jobs, bool psa_measures, double time_limit_minutes,
+                           bool discrepancy = false);
 
 // "12 s", "15 min", "4.2 h"
 std::string format_seconds(double seconds);

@@ -60,6 +60,7 @@ struct AnalyzeOptions {
   int threads = 0;
   int image_size = 800;
   std::string title;
+  bool no_discrepancy = false;
   std::vector<double> domain;  // x0 y0 x1 y1, or empty
   std::string psa_points;
 };
@@ -189,6 +190,12 @@ std::string fixed(double v, int decimals) {
   return buffer;
 }
 
+std::string discrepancy_text(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.6g", v);
+  return buffer;
+}
+
 // The measures researchers quote, name and value, for the report, the summary page and tables.
 std::vector<std::pair<std::string, std::string>> measure_rows(const Summary& s) {
   std::vector<std::pair<std::string, std::string>> rows = {
@@ -205,6 +212,12 @@ std::vector<std::pair<std::string, std::string>> measure_rows(const Summary& s) 
   if (s.has_bond_order) {
     rows.push_back({"bond order |psi6| (local)", fixed(s.bond_order.local, 3)});
     rows.push_back({"bond order |<psi6>| (global)", fixed(s.bond_order.global, 3)});
+  }
+  if (s.has_discrepancy) {
+    rows.push_back({"centred discrepancy CD^2", discrepancy_text(s.discrepancy.centred)});
+    rows.push_back({"wrap-around discrepancy WD^2", discrepancy_text(s.discrepancy.wrap_around)});
+    rows.push_back({"mixture discrepancy MD^2", discrepancy_text(s.discrepancy.mixture)});
+    rows.push_back({"L2-star discrepancy", discrepancy_text(s.discrepancy.l2_star)});
   }
   if (s.has_centroid_distance)
     rows.push_back({"mean distance to centroid / d_hex", fixed(s.centroid_distance / s.nn.hexagonal_spacing, 4)});
@@ -247,6 +260,10 @@ void report_series(std::ostringstream& out, const Series& series) {
   if (s.has_bond_order)
     out << "  bond-orientational order: local |psi6| " << fixed(s.bond_order.local, 3) << ", global |<psi6>| "
         << fixed(s.bond_order.global, 3) << " (1 = hexagonal lattice)\n";
+  if (s.has_discrepancy)
+    out << "  discrepancy (scipy.stats.qmc's): CD " << discrepancy_text(s.discrepancy.centred) << ", WD "
+        << discrepancy_text(s.discrepancy.wrap_around) << ", MD " << discrepancy_text(s.discrepancy.mixture)
+        << " (squared), L2-star " << discrepancy_text(s.discrepancy.l2_star) << "\n";
   if (s.has_centroid_distance)
     out << "  mean distance to cell centroid: " << csv_number(s.centroid_distance) << " ("
         << fixed(s.centroid_distance / h, 4) << " hexagonal spacings; 0 = centroidal)\n";
@@ -533,8 +550,8 @@ void run_analyze(const AnalyzeOptions& o) {
   } else {
     jobs.push_back({inputs[0][0].points.size(), total_sets, o.size});
   }
-  if (boundary == Boundary::periodic) check_analysis_budget(jobs, !o.no_psa_measures, o.time_limit_minutes);
-  else check_analysis_budget(jobs, false, o.time_limit_minutes);
+  if (boundary == Boundary::periodic) check_analysis_budget(jobs, !o.no_psa_measures, o.time_limit_minutes, !o.no_discrepancy);
+  else check_analysis_budget(jobs, false, o.time_limit_minutes, !o.no_discrepancy);
 
   auto label_of = [&](std::size_t i) {
     return o.labels.empty() ? std::filesystem::path(o.inputs[i]).stem().string() : o.labels[i];
@@ -545,6 +562,7 @@ void run_analyze(const AnalyzeOptions& o) {
   options.bin_width = o.bin_width;
   options.centroids = !o.no_centroids;
   options.spectral_measures = !o.no_psa_measures;
+  options.discrepancy = !o.no_discrepancy;
   options.boundary = boundary;
   options.rdf.range = o.rdf_range;
   options.rdf.bins = static_cast<std::size_t>(o.rdf_bins);
@@ -789,6 +807,8 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--no-psa-measures", o->no_psa_measures,
                 "Skip nu_eff and Omega by psa's definitions: their RDF takes every pair closer than 0.25, O(N^2) (about "
                 "half an hour at 10^6 points on 2 cores)");
+  cmd->add_flag("--no-discrepancy", o->no_discrepancy,
+                "Skip the centred, wrap-around, mixture and L2-star discrepancies (scipy.stats.qmc's): every pair, O(N^2)");
   add_real_option(cmd, "--time-limit", o->time_limit_minutes, {0.0, 1e7, true, false},
                   "Refuse up front when the estimated analysis time exceeds this many minutes");
   cmd->add_option("--title", o->title, "Title of radial.png and of the summary");

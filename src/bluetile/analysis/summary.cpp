@@ -38,6 +38,7 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
   s.boundary = options.boundary;
   s.has_centroid_distance = options.centroids && periodic;
   s.has_bond_order = options.bond_order && periodic;
+  s.has_discrepancy = options.discrepancy;
   RdfOptions rdf_options = options.rdf;
   rdf_options.boundary = options.boundary;
   const int size = options.size > 0 ? options.size : default_periodogram_size(n);
@@ -75,6 +76,14 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
       s.bond_order.local += b.local;
       s.bond_order.global += b.global;
     }
+    if (s.has_discrepancy) {
+      step("discrepancies");
+      const Discrepancies d = discrepancies(sets[k]);
+      s.discrepancy.centred += d.centred;
+      s.discrepancy.wrap_around += d.wrap_around;
+      s.discrepancy.mixture += d.mixture;
+      s.discrepancy.l2_star += d.l2_star;
+    }
     step("RDF");
     distributions.push_back(radial_distribution(sets[k], rdf_options));
     if (s.has_spectral_measures) step("psa's RDF spectrum");
@@ -108,6 +117,10 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
   s.centroid_distance /= count;
   s.bond_order.local /= count;
   s.bond_order.global /= count;
+  s.discrepancy.centred /= count;
+  s.discrepancy.wrap_around /= count;
+  s.discrepancy.mixture /= count;
+  s.discrepancy.l2_star /= count;
   for (double& v : periodogram_sum.power) v /= count;  // count = 1: exact
   s.periodogram = std::move(periodogram_sum);
   s.radial = radial_power(s.periodogram, options.bin_width);

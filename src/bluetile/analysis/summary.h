@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "bluetile/analysis/bond_order.h"
+#include "bluetile/analysis/discrepancy.h"
 #include "bluetile/analysis/nearest_neighbour.h"
 #include "bluetile/analysis/pair_correlation.h"
 #include "bluetile/analysis/periodogram.h"
@@ -33,6 +34,8 @@ struct SummaryOptions {
   bool bond_order = true;  // psi_6 from exact periodic Voronoi neighbours
   // nu_eff and Omega by psa's definitions: O(N^2) (rdf_power_spectrum_pairs), hours at 10^6.
   bool spectral_measures = true;
+  // CD, WD, MD and L2-star discrepancies (discrepancy.h): O(N^2).
+  bool discrepancy = true;
   RdfOptions rdf;          // range and bins (its boundary is taken from `boundary`)
   std::function<void(std::size_t, std::size_t)> progress;  // periodogram progress
   // Called with the name of each step as it starts ("nearest neighbours", "periodogram", ...).
@@ -69,6 +72,8 @@ struct Summary {
   RdfPowerSpectrum rdf_power;
   SpectralMeasures measures;
   bool has_spectral_measures = false;
+  Discrepancies discrepancy;      // mean over sets
+  bool has_discrepancy = false;
   // Several sets: each set's measures, in set order (empty for one set).
   std::vector<SetMeasures> per_set;
 

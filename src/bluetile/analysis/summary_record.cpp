@@ -126,6 +126,13 @@ Record summary_record(const Summary& s) {
     list.set("bond_order_local", Record::of(std::move(psi6)));
     r.set("per_set", std::move(list));
   }
+  if (s.has_discrepancy)
+    // scipy.stats.qmc.discrepancy's method names and values (CD, WD, MD squared; L2-star not).
+    r.set("discrepancy", Record::object()
+                             .set("CD", Record::of(s.discrepancy.centred))
+                             .set("WD", Record::of(s.discrepancy.wrap_around))
+                             .set("MD", Record::of(s.discrepancy.mixture))
+                             .set("L2-star", Record::of(s.discrepancy.l2_star)));
   r.set("rdf_range_relative", Record::of(s.rdf.range() / h));
   r.set("rdf_bins", count_of(s.rdf.g.size()));
   r.set("periodogram_size", Record::of_integer(s.periodogram.size));

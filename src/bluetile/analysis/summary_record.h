@@ -41,7 +41,7 @@ struct Record {
 // relative), hexagonal_spacing, rho, average_min_distance, the per-set range of minima and
 // per_set {rho, average_min_distance, nu_eff, omega, bond_order_local}, one value per set (several
 // sets), mean_centroid_distance[_relative], nu_eff and omega (null when not measured) with
-// omega_range_nu, bond_order {local, global}, rdf_range_relative, rdf_bins, periodogram_size, and
+// omega_range_nu, bond_order {local, global}, discrepancy {CD, WD, MD, L2-star} (when measured), rdf_range_relative, rdf_bins, periodogram_size, and
 // radial {frequency, nu, power, anisotropy_db, count}.
 Record summary_record(const Summary& s);
 
