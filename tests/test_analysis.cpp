@@ -405,6 +405,7 @@ std::string write_points(const test::TempDir& dir, const std::string& name, cons
 TEST(AnalyzeCommand, WritesEveryOutput) {
   test::TempDir dir;
   std::string input = write_points(dir, "uniform.txt", uniform_points(400, 8));
+  std::filesystem::create_directory(dir.file("nested"));  // -o creates only the last folder
   std::string out = dir.file("nested/out");
   auto r = test::run_bluetile({"analyze", "--input", input, "--output", out});
   ASSERT_EQ(r.exit_code, 0) << r.err;

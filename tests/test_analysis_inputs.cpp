@@ -1,6 +1,7 @@
 // What `bluetile analyze` reads and writes beside its measures: every point format the tool
 // writes (npy, bpt, text), CSV and psa's .rps, chosen by extension, with the same statistics as
-// the text of the same points; per-set tables of multi-set files; --domain; --psa-points.
+// the text of the same points; per-set tables of multi-set files; --domain; --psa-points; the
+// output folder's parent.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -170,6 +171,22 @@ TEST(AnalyzeInputs, MultiSetFilesGetAPerSetTable) {
   r = run_bluetile({"analyze", "-i", npy, "-o", dir.file("b"), "--average", "--psa-points", dir.file("all.txt")});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("put {} in the name"), std::string::npos) << r.err;
+}
+
+TEST(AnalyzeInputs, OutputCreatesOnlyTheLastFolder) {
+  TempDir dir;
+  const std::string input = dir.write("p.txt", table_bytes(TableFormat::text, {PointSet{test::uniform_points(64, 3), {}, {}}}));
+  auto r = run_bluetile({"analyze", "-i", input, "-o", dir.file("typo/b/c"), "--no-centroids"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find(dir.file("typo/b/c") + ": the folder '" + dir.file("typo/b") + "' does not exist"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("typo")));
+  r = run_bluetile({"analyze", "-i", input, "-o", dir.file("typo/"), "--no-centroids"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_bluetile({"analyze", "-i", input, "-o", dir.file("typo/b/"), "--no-centroids"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("typo/b/stats.json")));
 }
 
 }  // namespace

@@ -445,6 +445,16 @@ void check_annuli(const AnalyzeOptions& o, const std::vector<std::vector<PointSe
   check_memory(annuli * series * kAnalyzeBytesPerAnnulus, what);
 }
 
+// The output folder is created when missing, but not its parents: a typo must not make a tree.
+void check_output_parent(const std::string& output) {
+  std::filesystem::path folder = std::filesystem::path(output).lexically_normal();
+  if (!folder.has_filename()) folder = folder.parent_path();  // "a/b/"
+  const std::filesystem::path parent = folder.parent_path();
+  std::error_code ec;
+  if (parent.empty() || std::filesystem::exists(parent, ec)) return;
+  throw Error(output + ": the folder '" + parent.string() + "' does not exist (analyze creates only the last folder of -o)");
+}
+
 // --psa-points: every set analysed (after --domain and --wrap) as psa's text, in input order; a
 // name with "{}" gives one file per set (psa reads one set a file).
 std::vector<std::pair<OutputFile*, const PointSet*>> declare_psa_points(const AnalyzeOptions& o,
@@ -491,6 +501,7 @@ void run_analyze(const AnalyzeOptions& o) {
   OutputSet outputs;
   for (const std::string& path : o.inputs) outputs.add_input(path);
   if (!o.from.empty()) outputs.add_input(o.from);
+  check_output_parent(o.output);
   outputs.add_folder(o.output);
   const std::filesystem::path dir(o.output);
   auto output = [&](const std::string& name) -> OutputFile& { return outputs.add((dir / name).string()); };
@@ -771,7 +782,7 @@ void add_analyze_command(CLI::App& app) {
                   "Point file(s), by extension: .npy, .bpt, .csv (header x,y or x,y,level), psa's .rps, else text; a "
                   "file may hold several sets (text: separated by '#' lines)")
       ->required();
-  cmd->add_option("-o,--output", o->output, "Output folder (created if missing)")->required();
+  cmd->add_option("-o,--output", o->output, "Output folder (created if missing; its parent must exist)")->required();
   add_integer_option(cmd, "--size", o->size, 0, 65536,
                      "Periodogram size F (even): frequencies -F/2..F/2-1; default (0) 2 floor(5 sqrt(N))");
   add_real_option(cmd, "--bin-width", o->bin_width, {0.0, 65536.0, true, false}, "Annulus width in integer frequencies");

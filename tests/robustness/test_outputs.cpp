@@ -259,7 +259,8 @@ TEST(Outputs, AnalyzePublishesAllOrNothing) {
   Outcome r = run({"analyze", "-i", dir.file("p.txt"), "-o", dir.file("an"), "--no-centroids"});
   expect_failure(r, dir.file("an/points.png") + ": is a folder");
   EXPECT_EQ(entries(dir.file("an")), Names{"points.png/"});
-  // A missing folder appears with all its files, or not at all.
+  // A missing folder appears with all its files, or not at all (only the last one is created).
+  fs::create_directory(dir.file("new"));
   r = run({"analyze", "-i", dir.file("p.txt"), "-o", dir.file("new/sub"), "--no-centroids"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(entries(dir.file("new")),
