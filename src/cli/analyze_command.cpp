@@ -529,7 +529,7 @@ void run_analyze(const AnalyzeOptions& o) {
   for (const auto& sets : inputs) total_sets += sets.size();
   if (!o.average && !o.compare && total_sets > 1)
     throw Error(std::to_string(total_sets) + " point sets given (" + std::to_string(o.inputs.size()) +
-                " files): use --average to analyse their mean or --compare to plot them together");
+                " files): use --average to analyse their mean (with a table of each set) or --compare to plot them together");
   if (o.by_level && !inputs[0][0].has_levels())
     throw Error(o.inputs[0] + ": --by-level needs a level column (x y level)");
   const Boundary boundary = choose_boundary(o, inputs);
