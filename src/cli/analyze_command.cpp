@@ -825,8 +825,7 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_option("--title", o->title, "Title of radial.png and of the summary");
   add_integer_option(cmd, "--image-size", o->image_size, 64, 8192,
                      "Side of points.png in pixels (two thirds of it per set side by side)");
-  add_integer_option(cmd, "--threads", o->threads, 1, 1024, "CPU threads (default: all cores); output does not depend on it")
-      ->default_str("all cores");
+  add_threads_option(cmd, o->threads);
   cmd->callback([o] { run_analyze(*o); });
 }
 

@@ -28,7 +28,7 @@ void add_dart_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("dart", "Dart throwing with radius reduction on the unit torus");
   add_integer_option(cmd, "-n,--count", o->count, std::size_t{1}, static_cast<std::size_t>(kMaxCount), "Number of points")
       ->required();
-  add_integer_option(cmd, "-s,--seed", o->seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(), "Seed");
+  add_seed_option(cmd, o->seed);
   add_integer_option(cmd, "--sets", *sets, 1LL, 10000000LL, "Throw K independent sets; set k is the set --seed S+k gives alone");
   add_integer_option(cmd, "--max-failures", o->max_failures, std::size_t{1}, std::size_t{1000000000},
                      "Rejections in a row before the radius shrinks");

@@ -1,5 +1,7 @@
 #include "cli/density_options.h"
 
+#include "cli/numeric_options.h"
+
 namespace bluetile::cli {
 
 void add_density_transfer_options(CLI::App* command, DensityMapOptions& options, std::string_view invert_help) {
@@ -9,18 +11,15 @@ void add_density_transfer_options(CLI::App* command, DensityMapOptions& options,
       ->check(CLI::IsMember({"auto", "srgb", "linear"}))
       ->capture_default_str();
   command->add_flag("--invert", options.invert, std::string(invert_help));
-  command->add_option("--gamma", options.gamma, "Density = value^gamma after decoding and --invert")
-      ->check(CLI::PositiveNumber)
-      ->capture_default_str();
+  add_real_option(command, "--gamma", options.gamma, {0.0, kInfinity, true, false},
+                  "Density = value^gamma after decoding and --invert");
 }
 
 void add_weight_exponent_option(CLI::App* command, double& exponent) {
-  command->add_option("--weight-exponent", exponent,
-                      "Weight Lloyd's cells by density^E: 2 keeps the point density proportional to the map (a "
-                      "centroidal Voronoi diagram's point density goes as the square root of its weight), 1 is Secord "
-                      "2002's weighting, whose contrast flattens as the set converges")
-      ->check(CLI::Range(0.0, 8.0))
-      ->capture_default_str();
+  add_real_option(command, "--weight-exponent", exponent, {0.0, 8.0},
+                  "Weight Lloyd's cells by density^E: 2 keeps the point density proportional to the map (a "
+                  "centroidal Voronoi diagram's point density goes as the square root of its weight), 1 is Secord "
+                  "2002's weighting, whose contrast flattens as the set converges");
 }
 
 DensityTransfer density_transfer(const DensityMapOptions& options, bool invert_by_default) {

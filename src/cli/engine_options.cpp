@@ -36,9 +36,7 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
       ->check(CLI::IsMember({"quad", "fan"}))
       ->capture_default_str();
   command->add_option("--device", options.device, "Raster engine: Vulkan device name or index (see 'bluetile devices')");
-  add_integer_option(command, "--threads", options.threads, 1, 1024,
-                     "CPU threads (default: all cores); output does not depend on it")
-      ->default_str("all cores");
+  add_threads_option(command, options.threads);
 }
 
 std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <map>
 
 namespace bluetile::cli {
 namespace {
@@ -17,6 +18,8 @@ bool less(WholeNumber a, WholeNumber b) {
 }
 
 std::string to_string(WholeNumber v) { return (v.negative ? "-" : "") + std::to_string(v.magnitude); }
+
+}  // namespace
 
 std::string number_text(double v) {
   if (std::isinf(v)) return v > 0 ? "infinity" : "-infinity";
@@ -47,7 +50,6 @@ std::string real_range(RealRange r) {
   return "a finite number";
 }
 
-}  // namespace
 
 std::string parse_whole_number(std::string_view text, WholeNumber& value) {
   // sign? digits [. digits] [e sign? digits], read exactly as a decimal, never through a double.
@@ -121,6 +123,8 @@ std::string check_integer(std::string_view text, WholeNumber min, WholeNumber ma
 
 std::string check_real(std::string_view text, RealRange range, double& value) {
   std::string problem;
+  // A leading '+' is read as CLI11 reads it (from_chars takes none); a sign after it is not.
+  if (text.size() > 1 && text[0] == '+' && text[1] != '-' && text[1] != '+') text.remove_prefix(1);
   auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
   if (ec == std::errc::result_out_of_range) {
     problem = "out of range";
@@ -136,19 +140,51 @@ std::string check_real(std::string_view text, RealRange range, double& value) {
   return problem + "; expected " + real_range(range);
 }
 
+namespace {
+
+std::map<const CLI::Option*, NumericOption>& numeric_registry() {
+  static std::map<const CLI::Option*, NumericOption> registry;
+  return registry;
+}
+
+}  // namespace
+
+const NumericOption* find_numeric_option(const CLI::Option* option) {
+  auto it = numeric_registry().find(option);
+  return it == numeric_registry().end() ? nullptr : &it->second;
+}
+
+void register_numeric_option(const CLI::Option* option, NumericOption record) {
+  numeric_registry().insert_or_assign(option, std::move(record));
+}
+
+std::string message_name(const std::string& names) { return CLI::detail::split(names, ',').back(); }
+
 CLI::Option* add_real_option(CLI::App* command, const std::string& names, double& target, RealRange range,
                              const std::string& help) {
+  const std::string name = message_name(names);
   CLI::Option* option = command->add_option_function<std::string>(
       names,
-      [&target, range, names](const std::string& text) {
+      [&target, range, name](const std::string& text) {
         double value = 0.0;
         std::string problem = check_real(text, range, value);
-        if (!problem.empty()) throw CLI::ValidationError(CLI::detail::split(names, ',').back() + " " + text + ": " + problem);
+        if (!problem.empty()) throw CLI::ValidationError(name + " " + text + ": " + problem);
         target = value;
       },
       help);
   option->type_name("NUMBER")->default_str(number_text(target));
+  register_numeric_option(option, {name, false, {}, {}, range, real_range(range)});
   return option;
+}
+
+CLI::Option* add_seed_option(CLI::App* command, std::uint64_t& seed, const std::string& help) {
+  return add_integer_option(command, "-s,--seed", seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(), help);
+}
+
+CLI::Option* add_threads_option(CLI::App* command, int& threads) {
+  return add_integer_option(command, "--threads", threads, 1, 1024,
+                            "CPU threads (default: all cores); output does not depend on it")
+      ->default_str("all cores");
 }
 
 }  // namespace bluetile::cli

@@ -11,6 +11,7 @@
 #include <limits>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -21,6 +22,7 @@ namespace bluetile::cli {
 inline constexpr long long kMaxCount = 100'000'000;     // points in a set
 inline constexpr int kMaxIterations = 100'000'000;      // Lloyd iterations
 inline constexpr long long kMaxSets = 10'000'000;       // sets of one relax run
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // An integer as a sign and a magnitude, wide enough for every range we accept.
 struct WholeNumber {
@@ -46,23 +48,6 @@ WholeNumber whole(T v) {
 // Checks text against [min, max]; returns "" and the value, or the message without the name.
 std::string check_integer(std::string_view text, WholeNumber min, WholeNumber max, WholeNumber& value);
 
-// Adds an integer option with values in [min, max].
-template <typename T>
-CLI::Option* add_integer_option(CLI::App* command, const std::string& names, T& target, T min, T max,
-                                const std::string& help) {
-  CLI::Option* option = command->add_option_function<std::string>(
-      names,
-      [&target, min, max, names](const std::string& text) {
-        WholeNumber value;
-        std::string problem = check_integer(text, whole(min), whole(max), value);
-        if (!problem.empty()) throw CLI::ValidationError(CLI::detail::split(names, ',').back() + " " + text + ": " + problem);
-        target = value.negative ? static_cast<T>(-static_cast<T>(value.magnitude - 1) - 1) : static_cast<T>(value.magnitude);
-      },
-      help);
-  option->type_name("INT")->default_str(std::to_string(target));
-  return option;
-}
-
 // A range of reals; an open end excludes its value. The default is [0, infinity).
 struct RealRange {
   double min = 0.0;
@@ -74,8 +59,58 @@ struct RealRange {
 // Checks text against the range; returns "" and the value, or the message without the name.
 std::string check_real(std::string_view text, RealRange range, double& value);
 
+// The range in words: "a number from 0 to 0.25", "a finite number > 0".
+std::string real_range(RealRange range);
+
+// A number as the messages and the help write it: the shortest text that reads back the same,
+// "infinity" for an infinite bound.
+std::string number_text(double v);
+
+// The record of a numeric option, kept so that tests can find every numeric option of every
+// command (tests/robustness/test_options.cpp) and try bad values on it.
+struct NumericOption {
+  std::string name;  // as the messages write it: "--count"
+  bool integer = false;
+  WholeNumber min, max;  // integer options
+  RealRange range;       // real options
+  std::string range_text;  // "an integer from 1 to 100000000", "a finite number >= 0"
+};
+
+// The record of `option` when it was added by add_integer_option or add_real_option (or the
+// seed and thread helpers), else null. The latest record wins for an address reused.
+const NumericOption* find_numeric_option(const CLI::Option* option);
+void register_numeric_option(const CLI::Option* option, NumericOption record);
+
+// The name the messages use: the last of `names` ("-n,--count" -> "--count").
+std::string message_name(const std::string& names);
+
+// Adds an integer option with values in [min, max].
+template <typename T>
+CLI::Option* add_integer_option(CLI::App* command, const std::string& names, T& target, T min, T max,
+                                const std::string& help) {
+  const std::string name = message_name(names);
+  CLI::Option* option = command->add_option_function<std::string>(
+      names,
+      [&target, min, max, name](const std::string& text) {
+        WholeNumber value;
+        std::string problem = check_integer(text, whole(min), whole(max), value);
+        if (!problem.empty()) throw CLI::ValidationError(name + " " + text + ": " + problem);
+        target = value.negative ? static_cast<T>(-static_cast<T>(value.magnitude - 1) - 1) : static_cast<T>(value.magnitude);
+      },
+      help);
+  option->type_name("INT")->default_str(std::to_string(target));
+  register_numeric_option(option, {name, true, whole(min), whole(max), {}, integer_range(whole(min), whole(max))});
+  return option;
+}
+
 // Adds an option taking a finite real number in `range`.
 CLI::Option* add_real_option(CLI::App* command, const std::string& names, double& target, RealRange range,
                              const std::string& help);
+
+// Adds -s,--seed: any integer from 0 to 2^64 - 1.
+CLI::Option* add_seed_option(CLI::App* command, std::uint64_t& seed, const std::string& help = "Seed");
+
+// Adds --threads: 1 to 1024 CPU threads, 0 (the default) meaning all cores.
+CLI::Option* add_threads_option(CLI::App* command, int& threads);
 
 }  // namespace bluetile::cli

@@ -143,8 +143,7 @@ void add_progressive_command(CLI::App& app) {
       ->default_str("");
   add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations per level");
   add_real_option(cmd, "--tolerance", o->tolerance, {}, "Stop a level early once no point moves more than this");
-  add_integer_option(cmd, "-s,--seed", o->seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(),
-                     "Seed of the random placement");
+  add_seed_option(cmd, o->seed, "Seed of the random placement");
   cmd->add_option("--placement", o->placement, "Start of new points: gaps (best candidate) or random (the paper)")
       ->check(CLI::IsMember({"gaps", "random"}))
       ->capture_default_str();

@@ -137,8 +137,7 @@ void add_relax_command(CLI::App& app) {
   count->excludes(input);
   input->excludes(count);
   add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations");
-  add_integer_option(cmd, "-s,--seed", o->seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(),
-                     "Seed of the random start");
+  add_seed_option(cmd, o->seed, "Seed of the random start");
   add_integer_option(cmd, "--fixed", o->fixed, 0LL, kMaxCount, "Keep the first M sites in place (they still shape the cells)");
   add_real_option(cmd, "--tolerance", o->tolerance, {}, "Stop early once no site moves more than this (domain units)");
   auto* sets = add_integer_option(cmd, "--sets", o->sets, 1LL, kMaxSets,

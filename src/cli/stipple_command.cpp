@@ -12,6 +12,7 @@
 #include "cli/density_options.h"
 #include "cli/engine_options.h"
 #include "cli/memory_budget.h"
+#include "cli/numeric_options.h"
 #include "cli/relax_log.h"
 #include "cli/stipple_drawing.h"
 #include "bluetile/core/error.h"
@@ -150,23 +151,20 @@ void add_stipple_command(CLI::App& app) {
   cmd->add_option("--image", o->image, "Image to stipple (PNG, TIFF, EXR, ...: anything OpenImageIO reads)")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("-n,--count", o->count, "Number of dots")->required()->check(CLI::Range(1LL, 100000000LL));
-  cmd->add_option("-k,--iterations", o->iterations, "Lloyd iterations")->check(CLI::Range(0, 100000000))->capture_default_str();
-  cmd->add_option("-s,--seed", o->seed, "Seed of the density-proportional start")->capture_default_str();
-  cmd->add_option("--tolerance", o->tolerance, "Stop early once no dot moves more than this (domain units)")
-      ->check(CLI::NonNegativeNumber);
+  add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount, "Number of dots")->required();
+  add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations");
+  add_seed_option(cmd, o->seed, "Seed of the density-proportional start");
+  add_real_option(cmd, "--tolerance", o->tolerance, {}, "Stop early once no dot moves more than this (domain units)");
   cmd->add_flag("--periodic", o->periodic, "Cells wrap around the picture's edges (default: they end at the border)");
   cmd->add_option("-o,--output", o->output,
                   "Output point file: the picture's longer side spans [0, 1), y up (image row 0 is the top)")
       ->required();
   cmd->add_option("--svg", o->svg, "Also write the drawing as SVG (one black disc per dot)");
   cmd->add_option("--png", o->png, "Also render the drawing as a PNG");
-  cmd->add_option("--png-width", o->png_width, "Width of the --png render in pixels")
-      ->check(CLI::Range(16, 32768))
-      ->capture_default_str();
-  cmd->add_option("--dot-radius", o->dot_radius,
+  add_integer_option(cmd, "--png-width", o->png_width, 16, 32768, "Width of the --png render in pixels");
+  add_real_option(cmd, "--dot-radius", o->dot_radius, {0.0, kInfinity, true, false},
                   "Dot radius in domain units (default: dots just touch where the image is darkest)")
-      ->check(CLI::PositiveNumber);
+      ->default_str("");
   cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
   add_density_transfer_options(cmd, o->transfer, "Bright means dense (default: dark means dense, as ink on paper)");

@@ -76,19 +76,6 @@ std::string number(double v) {
   return text;
 }
 
-// CLI11's PositiveNumber names the largest double in its message; this names the rule.
-const CLI::Validator kPositive(
-    [](const std::string& text) -> std::string {
-      try {
-        std::size_t used = 0;
-        double v = std::stod(text, &used);
-        if (used == text.size() && std::isfinite(v) && v > 0.0) return {};
-      } catch (const std::exception&) {
-      }
-      return "must be a positive finite number, got '" + text + "'";
-    },
-    "POSITIVE");
-
 // The tiling, thinning and window the options describe.
 struct Plan {
   std::unique_ptr<Tiler> tiler;
@@ -310,21 +297,23 @@ void add_tile_command(CLI::App& app) {
       ->expected(4)
       ->required()
       ->allow_extra_args(false);
-  cmd->add_option("--tile-size", o->tile_size, "Plane units per tile (default 1, or from the density)")
-      ->check(kPositive);
-  cmd->add_option("--density", o->density,
+  const RealRange positive{0.0, kInfinity, true, false};
+  add_real_option(cmd, "--tile-size", o->tile_size, positive, "Plane units per tile (default 1, or from the density)")
+      ->default_str("");
+  add_real_option(cmd, "--density", o->density, positive,
                   "Points per unit area of a uniform tiling (with --tile-size: thinned to it by rank)")
-      ->check(kPositive);
+      ->default_str("");
   cmd->add_option("--density-map", o->density_map,
                   "Image whose values set the density (any format OpenImageIO reads), stretched over the region");
   add_density_transfer_options(cmd, o->transfer, "Dark means dense (stippling): density 1 - luminance");
-  cmd->add_option("--max-density", o->max_density, "With --density-map: points per unit area at the densest texel")
-      ->check(kPositive);
-  cmd->add_option("--count", o->count,
+  add_real_option(cmd, "--max-density", o->max_density, positive,
+                  "With --density-map: points per unit area at the densest texel")
+      ->default_str("");
+  add_real_option(cmd, "--count", o->count, positive,
                   "With --density-map: about this many points in the region (default 30000 when neither this, "
                   "--max-density nor --tile-size is given)")
-      ->check(kPositive);
-  cmd->add_option("-s,--seed", o->seed, "Seed of the tiling")->capture_default_str();
+      ->default_str("");
+  add_seed_option(cmd, o->seed, "Seed of the tiling");
   cmd->add_option("-o,--output", o->outputs,
                   "Output, by extension: .svg dots, .png (.tif .exr ...) a render, .bin raw float64 columns, "
                   "anything else (or - for stdout) a point file; repeat for several")
@@ -333,16 +322,13 @@ void add_tile_command(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--normalize", o->normalize,
                 "Write coordinates relative to the (square) region, scaled onto [0,1)^2, for `bluetile analyze`");
-  cmd->add_option("--dot-radius", o->dot_radius,
+  add_real_option(cmd, "--dot-radius", o->dot_radius, positive,
                   "Dot radius in plane units for .svg and .png (default: dots cover 35 % where densest)")
-      ->check(kPositive);
+      ->default_str("");
   cmd->add_flag("--dots-follow-density", o->dots_follow_density,
                 "Dot area proportional to the local density (radius r sqrt(density / max density))");
-  cmd->add_option("--image-size", o->image_size, "Width of .png renders in pixels")
-      ->check(CLI::Range(16, 16384))
-      ->capture_default_str();
-  cmd->add_option("--threads", o->threads, "CPU threads (default: all cores); output does not depend on it")
-      ->check(CLI::Range(1, 1024));
+  add_integer_option(cmd, "--image-size", o->image_size, 16, 16384, "Width of .png renders in pixels");
+  add_threads_option(cmd, o->threads);
   cmd->add_flag("-v,--verbose", o->verbose, "Print counts and the time split (generate, format, write) on stderr");
   cmd->callback([o] { run_tile(*o); });
 }

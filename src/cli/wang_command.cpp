@@ -25,6 +25,7 @@
 #include "cli/commands.h"
 #include "cli/engine_options.h"
 #include "cli/memory_budget.h"
+#include "cli/numeric_options.h"
 #include "cli/progress.h"
 
 namespace bluetile::cli {
@@ -424,63 +425,44 @@ void add_wang_command(CLI::App& app) {
   cmd->add_option("--set", o->kind, "Tile set: wang8 (the paper's), wang16 (every edge combination) or corner16 (corner colours)")
       ->check(CLI::IsMember({"wang8", "wang16", "corner16"}))
       ->capture_default_str();
-  cmd->add_option("-n,--points", o->points, "Points per tile in level 0")
-      ->check(CLI::Range(1LL, kMaxPointsPerTile))
-      ->capture_default_str();
-  cmd->add_option("-k,--iterations", o->iterations, "Constrained Lloyd iterations per level")
-      ->check(CLI::Range(0, 100000000))
-      ->capture_default_str();
-  cmd->add_option("--warm", o->warm, "Warm start: periodic iterations of each tile alone before the constrained ones")
-      ->check(CLI::Range(0, 100000000))
-      ->capture_default_str();
-  cmd->add_option("-l,--levels", o->levels, "Levels (hierarchical sets that tile)")->check(CLI::Range(1, 32))->capture_default_str();
-  cmd->add_option("--ratio", o->ratio, "Each further level brings a tile's count to round(R x count)")->capture_default_str();
+  add_integer_option(cmd, "-n,--points", o->points, 1LL, kMaxPointsPerTile, "Points per tile in level 0");
+  add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Constrained Lloyd iterations per level");
+  add_integer_option(cmd, "--warm", o->warm, 0, kMaxIterations,
+                     "Warm start: periodic iterations of each tile alone before the constrained ones");
+  add_integer_option(cmd, "-l,--levels", o->levels, 1, 32, "Levels (hierarchical sets that tile)");
+  // Above 10^8 a second level would pass the point limit at once (as progressive --ratio).
+  add_real_option(cmd, "--ratio", o->ratio, {1.0, 1e8, true, false},
+                  "Each further level brings a tile's count to round(R x count)");
   cmd->add_option("--strategy", o->strategy,
                   "Neighbour configurations: exact (every admissible 3x3 block), instances (random torus tilings), "
                   "rounds (one block per fitting neighbour)")
       ->check(CLI::IsMember({"exact", "instances", "rounds"}))
       ->capture_default_str();
-  cmd->add_option("--period", o->period, "instances: the torus tiling is M x M tiles")
-      ->check(CLI::Range(2, 1024))
-      ->capture_default_str();
-  cmd->add_option("--margin", o->margin, "Keep points this far inside their tile (tile units)")
-      ->check(CLI::Range(0.0, 0.25))
-      ->capture_default_str();
-  cmd->add_option("--lattice-steps", o->refine.lattice_iterations,
-                  "Lattice decorrelation after each level's iterations: gradient steps that lower the tile-lattice "
-                  "peaks C_LF (and, in level 0, C_mid) (0: none)")
-      ->check(CLI::Range(0, 100000))
-      ->capture_default_str();
-  cmd->add_option("--lattice-steps-per-iteration", o->refine.lattice_steps_per_iteration,
-                  "Lattice steps after each constrained iteration of the second half, which Lloyd's next iteration "
-                  "repairs (0: none)")
-      ->check(CLI::Range(0, 1000))
-      ->capture_default_str();
-  cmd->add_option("--lattice-step", o->refine.lattice_step, "Largest move of one lattice step, in hexagonal spacings")
-      ->check(CLI::Range(0.0001, 0.1))
-      ->capture_default_str();
-  cmd->add_option("--seam-steps", o->refine.seam_iterations,
-                  "Seam spacing after each level's iterations: repulsion steps for points closer than the spacing to a "
-                  "point they can meet in a tiling (0: none)")
-      ->check(CLI::Range(0, 100000))
-      ->capture_default_str();
-  cmd->add_option("--seam-spacing", o->refine.seam_spacing, "Seam spacing of level 0, in hexagonal spacings of the tile's points")
-      ->check(CLI::Range(0.01, 2.0))
-      ->capture_default_str();
-  cmd->add_option("--level-seam-spacing", o->refine.later_seam_spacing,
-                  "Seam spacing of levels 1 and up, in hexagonal spacings of the tile's points")
-      ->check(CLI::Range(0.01, 2.0))
-      ->capture_default_str();
+  add_integer_option(cmd, "--period", o->period, 2, 1024, "instances: the torus tiling is M x M tiles");
+  add_real_option(cmd, "--margin", o->margin, {0.0, 0.25}, "Keep points this far inside their tile (tile units)");
+  add_integer_option(cmd, "--lattice-steps", o->refine.lattice_iterations, 0, 100000,
+                     "Lattice decorrelation after each level's iterations: gradient steps that lower the tile-lattice "
+                     "peaks C_LF (and, in level 0, C_mid) (0: none)");
+  add_integer_option(cmd, "--lattice-steps-per-iteration", o->refine.lattice_steps_per_iteration, 0, 1000,
+                     "Lattice steps after each constrained iteration of the second half, which Lloyd's next iteration "
+                     "repairs (0: none)");
+  add_real_option(cmd, "--lattice-step", o->refine.lattice_step, {0.0001, 0.1},
+                  "Largest move of one lattice step, in hexagonal spacings");
+  add_integer_option(cmd, "--seam-steps", o->refine.seam_iterations, 0, 100000,
+                     "Seam spacing after each level's iterations: repulsion steps for points closer than the spacing "
+                     "to a point they can meet in a tiling (0: none)");
+  add_real_option(cmd, "--seam-spacing", o->refine.seam_spacing, {0.01, 2.0},
+                  "Seam spacing of level 0, in hexagonal spacings of the tile's points");
+  add_real_option(cmd, "--level-seam-spacing", o->refine.later_seam_spacing, {0.01, 2.0},
+                  "Seam spacing of levels 1 and up, in hexagonal spacings of the tile's points");
   cmd->add_option("--rank-order", o->rank_order,
                   "Progressive order inside each level: farthest (greedy farthest point) or voids (tiled "
                   "void-and-cluster: lower low-frequency power and tile-lattice coherence between level boundaries, "
                   "closer nearest pairs)")
       ->check(CLI::IsMember({"farthest", "voids"}))
       ->capture_default_str();
-  cmd->add_option("--void-sigma", o->void_sigma, "voids: kernel width in hexagonal spacings of the prefix")
-      ->check(CLI::Range(0.1, 4.0))
-      ->capture_default_str();
-  cmd->add_option("-s,--seed", o->seed, "Seed")->capture_default_str();
+  add_real_option(cmd, "--void-sigma", o->void_sigma, {0.1, 4.0}, "voids: kernel width in hexagonal spacings of the prefix");
+  add_seed_option(cmd, o->seed);
   cmd->add_option("-o,--output", o->output, "Output tile-set file")->required();
   cmd->add_flag("--check", o->check, "Print the seam check of the result");
   cmd->add_flag("-v,--verbose", o->verbose, "Print displacement, energy and scene counts of every iteration on stderr");
@@ -495,17 +477,14 @@ void add_wang_command(CLI::App& app) {
   CLI::App* check = app.add_subcommand(
       "wang-check", "Seam check of a tile set (every admissible 2x2 block) and the analysis of a tiled plane");
   check->add_option("tiles", c->input, "Tile-set file")->required()->check(CLI::ExistingFile);
-  check->add_option("--period", c->period, "The analysed plane is an M x M torus tiling")
-      ->check(CLI::Range(1, 1024))
-      ->capture_default_str();
-  check->add_option("-s,--seed", c->seed, "Seed of the tiling")->capture_default_str();
+  add_integer_option(check, "--period", c->period, 1, 1024, "The analysed plane is an M x M torus tiling");
+  add_seed_option(check, c->seed, "Seed of the tiling");
   check->add_option("-o,--output", c->output,
                     "Folder for stats.json, plane.txt and the images (spectrum, radial power, points, the tile set)");
   check->add_flag("--untiled", c->untiled, "Compare with untiled Lloyd at the same N (exact engine)");
-  check->add_option("--untiled-iterations", c->untiled_iterations, "Iterations of the untiled reference")
-      ->check(CLI::Range(0, 100000))
-      ->capture_default_str();
-  check->add_option("--image-size", c->image_size, "Side of points.png in pixels")->check(CLI::Range(64, 8192));
+  add_integer_option(check, "--untiled-iterations", c->untiled_iterations, 0, 100000,
+                     "Iterations of the untiled reference");
+  add_integer_option(check, "--image-size", c->image_size, 64, 8192, "Side of points.png in pixels");
   check->callback([c] { run_check(*c); });
 }
 
