@@ -48,6 +48,26 @@ TEST(Options, OutOfRangeNanAndInfinityAreRefused) {
        "--bin-width 0: out of range; expected a number above 0 and at most 65536 (see --help)"},
       {{"relax", "-n", "10", "--resolution", "15", "-o", out},
        "--resolution 15: out of range; expected an integer from 16 to 65536 (see --help)"},
+      // Issue 23, item 2: every command takes numbers the one way.
+      {{"tile", "--region", "0", "0", "1", "1", "-s", "-1", "-o", out}, "--seed -1: out of range; " + seeds},
+      {{"wang", "-s", "18446744073709551616", "-o", out}, "--seed 18446744073709551616: out of range; " + seeds},
+      {{"wang-check", "/dev/null", "-s", "-1"}, "--seed -1: out of range; " + seeds},
+      {{"stipple", "--image", "/dev/null", "-n", "10", "-s", "-1", "-o", out}, "--seed -1: out of range; " + seeds},
+      {{"wang", "--ratio", "inf", "-o", out},
+       "--ratio inf: not a finite number; expected a number above 1 and at most 100000000 (see --help)"},
+      {{"wang", "--margin", "nan", "-o", out}, "--margin nan: not a finite number; expected a number from 0 to 0.25 (see --help)"},
+      {{"wang", "--lattice-step", "nan", "-o", out},
+       "--lattice-step nan: not a finite number; expected a number from 0.0001 to 0.1 (see --help)"},
+      {{"wang", "--seam-spacing", "nan", "-o", out},
+       "--seam-spacing nan: not a finite number; expected a number from 0.01 to 2 (see --help)"},
+      {{"stipple", "--tolerance", "nan"}, "--tolerance nan: not a finite number; expected a finite number >= 0 (see --help)"},
+      {{"stipple", "--dot-radius", "nan"}, "--dot-radius nan: not a finite number; expected a finite number > 0 (see --help)"},
+      {{"relax", "-n", "10", "--weight-exponent", "nan", "-o", out},
+       "--weight-exponent nan: not a finite number; expected a number from 0 to 8 (see --help)"},
+      {{"relax", "-n", "10", "--gamma", "inf", "-o", out},
+       "--gamma inf: not a finite number; expected a finite number > 0 (see --help)"},
+      {{"tile", "--region", "0", "0", "1", "1", "--threads", "0", "-o", out},
+       "--threads 0: out of range; expected an integer from 1 to 1024 (see --help)"},
   };
   for (const Refusal& c : cases) {
     Outcome r = run(c.arguments);
@@ -68,6 +88,18 @@ TEST(Options, WholeNumbersInScientificNotationAreAccepted) {
   r = run({"relax", "-n", "10", "-k", "1", "-s", "18446744073709551615", "--engine", "exact", "-o", dir.file("c.txt")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(read_text(dir.file("c.txt")).find("seed 18446744073709551615"), std::string::npos);
+}
+
+TEST(Options, WangTakesCountsAsRelaxDoes) {
+  TempDir dir;
+  // Issue 23, item 2: "wang --points 1e3" was refused where "relax -n 1e3" is accepted.
+  Outcome r = run({"wang", "-n", "1.3e1", "-k", "0", "--warm", "0", "--lattice-steps", "0", "--seam-steps", "0",
+                   "--ratio", "+2", "-o", dir.file("a.tiles")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run({"wang", "-n", "13", "-k", "0", "--warm", "0", "--lattice-steps", "0", "--seam-steps", "0", "-o",
+           dir.file("b.tiles")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir.file("a.tiles")), read_text(dir.file("b.tiles")));
 }
 
 TEST(Options, RunsTooLargeForTheMachineAreRefusedUpFront) {
