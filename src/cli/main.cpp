@@ -2,10 +2,11 @@
 #include <csignal>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <new>
 #include <system_error>
 
-#include "cli/commands.h"
+#include "cli/app.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/parallel.h"
@@ -25,18 +26,8 @@ int main(int argc, char** argv) {
     return 1;
   }
 
-  CLI::App app{"bluetile: blue-noise sample points by Lloyd relaxation on the unit torus"};
-  app.require_subcommand(1);
-  app.set_version_flag("--version", "bluetile 0.1.0");
-  bluetile::cli::add_relax_command(app);
-  bluetile::cli::add_centroids_command(app);
-  bluetile::cli::add_analyze_command(app);
-  bluetile::cli::add_dart_command(app);
-  bluetile::cli::add_progressive_command(app);
-  bluetile::cli::add_devices_command(app);
-  bluetile::cli::add_wang_command(app);
-  bluetile::cli::add_tile_command(app);
-  bluetile::cli::add_stipple_command(app);
+  std::unique_ptr<CLI::App> made = bluetile::cli::make_app();
+  CLI::App& app = *made;
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
