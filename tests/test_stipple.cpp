@@ -159,6 +159,28 @@ TEST(Stipple, SameOutputWhateverTheThreadCount) {
   EXPECT_EQ(read_text(dir.file("dots1.txt")), read_text(dir.file("dots2.txt")));
 }
 
+TEST(Stipple, InvertMeansDarkIsDenseAsInEveryCommand) {
+  // --invert is density 1 - luminance in stipple as in relax and tile: stipple's default, so it
+  // changes nothing; --no-invert is bright means dense.
+  TempDir dir;
+  std::string picture = write_picture(dir, "picture.png", 32, 32);
+  auto stipple = [&](const std::string& name, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"stipple", "--image", picture, "-n", "300", "-k", "2", "-o", dir.file(name)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    auto r = run_bluetile(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return read_text(dir.file(name));
+  };
+  const std::string plain = stipple("plain.txt", {}), inverted = stipple("inverted.txt", {"--invert"});
+  const std::string bright = stipple("bright.txt", {"--no-invert"});
+  EXPECT_EQ(plain, inverted);
+  std::size_t right_dark = 0, right_bright = 0;  // the picture's right half is the bright one
+  for (const Point& p : read_point_file(dir.file("plain.txt")).points) right_dark += p.x >= 0.5;
+  for (const Point& p : read_point_file(dir.file("bright.txt")).points) right_bright += p.x >= 0.5;
+  EXPECT_LT(right_dark, 130u);  // about 95: 1 - luminance, sRGB-decoded, is 0.44 on the right, 0.95 on the left
+  EXPECT_GT(right_bright, 200u);
+}
+
 TEST(Stipple, BadImagesGiveOneClearLineAndNoOutput) {
   TempDir dir;
   const float nan = std::numeric_limits<float>::quiet_NaN();

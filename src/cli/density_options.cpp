@@ -4,13 +4,16 @@
 
 namespace bluetile::cli {
 
-void add_density_transfer_options(CLI::App* command, DensityMapOptions& options, std::string_view invert_help) {
+void add_density_transfer_options(CLI::App* command, DensityMapOptions& options) {
   command->add_option("--transfer", options.transfer,
                       "How image samples become linear values: srgb (decode the sRGB curve), linear (as stored), "
                       "auto (srgb for 8/16-bit images such as PNG, linear for float images such as EXR)")
       ->check(CLI::IsMember({"auto", "srgb", "linear"}))
       ->capture_default_str();
-  command->add_flag("--invert", options.invert, std::string(invert_help));
+  command->add_flag("--invert,!--no-invert", options.invert,
+                    std::string("Dark means dense: density 1 - luminance; --no-invert: bright means dense, density = "
+                                "luminance (default here: ") +
+                        (options.invert ? "--invert, dark means dense)" : "--no-invert, bright means dense)"));
   add_real_option(command, "--gamma", options.gamma, {0.0, kInfinity, true, false},
                   "Density = value^gamma after decoding and --invert");
 }
@@ -22,12 +25,12 @@ void add_weight_exponent_option(CLI::App* command, double& exponent) {
                   "2002's weighting, whose contrast flattens as the set converges");
 }
 
-DensityTransfer density_transfer(const DensityMapOptions& options, bool invert_by_default) {
+DensityTransfer density_transfer(const DensityMapOptions& options) {
   DensityTransfer t;
   t.curve = options.transfer == "srgb"     ? TransferCurve::srgb
             : options.transfer == "linear" ? TransferCurve::linear
                                            : TransferCurve::automatic;
-  t.invert = options.invert != invert_by_default;
+  t.invert = options.invert;
   t.gamma = options.gamma;
   return t;
 }

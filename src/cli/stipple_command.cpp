@@ -106,7 +106,7 @@ void run_stipple(const StippleOptions& o) {
   OutputFile* svg_file = o.svg.empty() ? nullptr : &outputs.add(o.svg, {.allow_stdout = true});
   OutputFile* png_file = o.png.empty() ? nullptr : &outputs.add(o.png);
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
-  auto map = std::make_shared<DensityGrid>(load_density_map(o.image, density_transfer(o.transfer, true)));
+  auto map = std::make_shared<DensityGrid>(load_density_map(o.image, density_transfer(o.transfer)));
   const Domain domain = image_domain(*map);
   if (png_file) check_render(*png_file, *map, domain, o.png_width);
   const auto count = static_cast<std::size_t>(o.count);
@@ -167,7 +167,8 @@ void add_stipple_command(CLI::App& app) {
       ->default_str("");
   cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
-  add_density_transfer_options(cmd, o->transfer, "Bright means dense (default: dark means dense, as ink on paper)");
+  o->transfer.invert = true;  // dark means dense by default, as ink on paper
+  add_density_transfer_options(cmd, o->transfer);
   add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
   add_stipple_drawing_options(cmd, o->drawing);

@@ -305,7 +305,7 @@ void add_tile_command(CLI::App& app) {
       ->default_str("");
   cmd->add_option("--density-map", o->density_map,
                   "Image whose values set the density (any format OpenImageIO reads), stretched over the region");
-  add_density_transfer_options(cmd, o->transfer, "Dark means dense (stippling): density 1 - luminance");
+  add_density_transfer_options(cmd, o->transfer);
   add_real_option(cmd, "--max-density", o->max_density, positive,
                   "With --density-map: points per unit area at the densest texel")
       ->default_str("");
