@@ -15,13 +15,15 @@ mkdir -p "$2"
 work=$(cd "$2" && pwd)
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 expected=$here/expected.sha256
-image=$here/ramp.pgm
+# Outputs name their inputs: the image is copied into each run's folder and named relatively,
+# so the bytes do not depend on where the repository is.
+image=ramp.pgm
 
 # run NAME ARGS...: the tool, its standard output kept as NAME.stdout when NAME is not "-".
 run() {
   local name=$1
   shift
-  local out=/dev/null
+  local out=discarded.stdout
   [ "$name" != - ] && out=$name.stdout
   if ! "$tool" "$@" >"$out" 2>>stderr.log; then
     echo "golden: failed: bluetile $*" >&2
@@ -35,6 +37,7 @@ outputs() {
   rm -rf "$dir"
   mkdir -p "$dir"
   cd "$dir"
+  cp "$here/ramp.pgm" "$image"
 
   # dart: every point format, a batch of sets, one file per set.
   run - dart -n 64 -s 3 -o dart.txt
@@ -108,7 +111,7 @@ outputs() {
   # devices: the machine's own list; it only has to run.
   run - devices
 
-  rm -f stderr.log
+  rm -f stderr.log discarded.stdout "$image"
   find . -type f | LC_ALL=C sort | sed 's|^\./||' | xargs -d '\n' sha256sum
 }
 

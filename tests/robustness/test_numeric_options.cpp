@@ -73,7 +73,8 @@ std::vector<BadValue> bad_values(const NumericOption& o) {
 
 // Numbers the tool takes without the numeric idiom, each with the reason.
 const std::set<std::string> kOtherNumbers = {
-    "tile --region",  // four coordinates, checked together (finite, X0 < X1, Y0 < Y1) by the command
+    "tile --region",    // four coordinates, checked together (finite, X0 < X1, Y0 < Y1) by the command
+    "analyze --domain",  // the same, before any file is read
 };
 
 bool looks_numeric(const CLI::Option* option) {
