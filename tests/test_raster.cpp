@@ -4,6 +4,7 @@
 // they skip (lavapipe is installed on CI and developer machines, so there they run).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -287,6 +288,40 @@ TEST(Raster, BitIdenticalAcrossRunsAndThreadCounts) {
     EXPECT_EQ(a, b) << coverage;
     EXPECT_EQ(b, c) << coverage;
   }
+}
+
+// --pixel-work moves the per-pixel work, never the result: device and host write the same file.
+TEST(Raster, PixelWorkOptionMovesTheWorkNotTheResult) {
+  REQUIRE_VULKAN();
+  test::TempDir dir;
+  for (const char* coverage : {"area", "point"}) {
+    std::vector<std::string> common = {"relax", "-n", "200", "-k", "3", "--seed", "5", "--resolution", "64", "--coverage", coverage};
+    std::vector<std::string> files;
+    for (const char* work : {"device", "host", "auto"}) {
+      std::vector<std::string> args = common;
+      files.push_back(dir.file(std::string(coverage) + "_" + work + ".txt"));
+      args.insert(args.end(), {"--pixel-work", work, "-o", files.back()});
+      test::CommandResult r = test::run_bluetile(args);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+    }
+    const std::string device = test::read_text(files[0]);
+    EXPECT_FALSE(device.empty());
+    EXPECT_EQ(device, test::read_text(files[1])) << coverage;
+    EXPECT_EQ(device, test::read_text(files[2])) << coverage;
+  }
+  // A bad value: one line naming the option and what it accepts, nothing written.
+  test::CommandResult r = test::run_bluetile({"relax", "-n", "10", "--pixel-work", "gpu", "-o", dir.file("bad.txt")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err.rfind("bluetile: ", 0), 0u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  for (const char* word : {"--pixel-work", "auto", "device", "host"}) EXPECT_NE(r.err.find(word), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.txt")));
+  // The device path asked for where it cannot run: refused, not moved to the host.
+  r = test::run_bluetile({"relax", "-n", "50", "-k", "1", "--engine", "raster", "--bounded", "--pixel-work", "device", "-o",
+                          dir.file("bounded.txt")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("bounded domain"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bounded.txt")));
 }
 
 TEST(Raster, DevicesCommandAndIdImage) {

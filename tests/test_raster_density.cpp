@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <tuple>
+#include <utility>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
@@ -202,16 +203,25 @@ TEST(RasterDensity, ADensityChangedInPlaceIsMeasuredAfresh) {
   EXPECT_LE(differences(scene, raster, exact).centroid, 1e-12);
 }
 
-TEST(RasterDensity, DevicePixelWorkRoutesToTheHost) {
+TEST(RasterDensity, DevicePixelWorkRefusesDensitiesAndBorders) {
   REQUIRE_VULKAN();
-  // An engine set to do its per-pixel work on the device (shaders that know neither densities
-  // nor borders) runs such scenes on the host: the same cells as the host path.
-  Scene scene = random_scene(200, Domain{}, Boundary::bounded, 12);
-  scene.density = random_texels(9, 9, 4, 0.2);
-  SceneCells device = shared_engine(48, Coverage::area, ConeShape::quad, PixelWork::device).compute(scene);
-  SceneCells host = shared_engine(48, Coverage::area, ConeShape::quad, PixelWork::host).compute(scene);
-  EXPECT_TRUE(test::identical_cells(device, host));
-  expect_exact(scene, 48, "device pixel work");
+  // Pixel work asked for on the device (shaders that know neither densities nor borders) is
+  // refused for such scenes, never moved to the host; automatic runs them on the host.
+  Scene weighted = random_scene(200, Domain{}, Boundary::periodic, 12);
+  weighted.density = random_texels(9, 9, 4, 0.2);
+  Scene bounded = random_scene(200, Domain{}, Boundary::bounded, 13);
+  for (const auto& [scene, word] : {std::pair{&weighted, "density"}, std::pair{&bounded, "bounded"}}) {
+    try {
+      shared_engine(48, Coverage::area, ConeShape::quad, PixelWork::device).compute(*scene);
+      ADD_FAILURE() << "expected an error for " << word;
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("'host'"), std::string::npos) << e.what();
+    }
+    SceneCells automatic = shared_engine(48, Coverage::area, ConeShape::quad, PixelWork::automatic).compute(*scene);
+    SceneCells host = shared_engine(48, Coverage::area, ConeShape::quad, PixelWork::host).compute(*scene);
+    EXPECT_TRUE(test::identical_cells(automatic, host)) << word;
+  }
 }
 
 TEST(RasterDensity, PointCoverageRefusesAVaryingDensity) {

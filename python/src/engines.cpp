@@ -31,6 +31,7 @@ void check_engine_choice(const EngineChoice& c) {
   one_of("engine", c.engine, {"raster", "exact"});
   one_of("coverage", c.coverage, {"point", "area"});
   one_of("cone", c.cone, {"quad", "fan"});
+  one_of("pixel_work", c.pixel_work, {"auto", "device", "host"});
   if (c.resolution != 0 && (c.resolution < 16 || c.resolution > 65536))
     throw nb::value_error(("resolution: expected 0 (from N) or 16 to 65536, got " + std::to_string(c.resolution)).c_str());
 }
@@ -42,6 +43,9 @@ std::unique_ptr<bluetile::CentroidEngine> make_engine(const EngineChoice& c) {
   r.coverage = c.coverage == "point" ? bluetile::Coverage::point : bluetile::Coverage::area;
   r.cone = c.cone == "fan" ? bluetile::ConeShape::fan : bluetile::ConeShape::quad;
   r.device = c.device;
+  r.pixel_work = c.pixel_work == "device" ? bluetile::PixelWork::device
+                 : c.pixel_work == "host" ? bluetile::PixelWork::host
+                                          : bluetile::PixelWork::automatic;
   return std::make_unique<bluetile::RasterEngine>(r);
 }
 
@@ -82,8 +86,8 @@ nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {
 
 nb::object relax(std::optional<AnyArray> points, long long count, long long sets, int iterations, std::uint64_t seed,
                  long long fixed, double tolerance, const std::string& engine, int resolution, const std::string& coverage,
-                 const std::string& cone, const std::string& device, bool history) {
-  EngineChoice choice{engine, resolution, coverage, cone, device};
+                 const std::string& cone, const std::string& device, const std::string& pixel_work, bool history) {
+  EngineChoice choice{engine, resolution, coverage, cone, device, pixel_work};
   check_engine_choice(choice);
   check_range("iterations", iterations, 0, 100000000);
   check_non_negative("tolerance", tolerance);
@@ -127,8 +131,8 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
 }
 
 nb::tuple centroids(const AnyArray& points, const std::string& engine, int resolution, const std::string& coverage,
-                    const std::string& cone, const std::string& device) {
-  EngineChoice choice{engine, resolution, coverage, cone, device};
+                    const std::string& cone, const std::string& device, const std::string& pixel_work) {
+  EngineChoice choice{engine, resolution, coverage, cone, device, pixel_work};
   check_engine_choice(choice);
   PointSets input = point_sets(points, "points");
   std::vector<bluetile::SceneCells> cells(input.sets.size());
@@ -154,8 +158,9 @@ nb::tuple centroids(const AnyArray& points, const std::string& engine, int resol
 nb::tuple progressive(std::optional<AnyArray> base, std::optional<AnyArray> base_levels, long long count, long long add,
                       double ratio, int levels, int iterations, double tolerance, std::uint64_t seed,
                       const std::string& placement, const std::string& engine, int resolution,
-                      const std::string& coverage, const std::string& cone, const std::string& device) {
-  EngineChoice choice{engine, resolution, coverage, cone, device};
+                      const std::string& coverage, const std::string& cone, const std::string& device,
+                      const std::string& pixel_work) {
+  EngineChoice choice{engine, resolution, coverage, cone, device, pixel_work};
   check_engine_choice(choice);
   check_range("iterations", iterations, 0, 100000000);
   check_range("levels", levels, 0, 64);
@@ -199,11 +204,11 @@ nb::tuple progressive(std::optional<AnyArray> base, std::optional<AnyArray> base
 void bind_engines(nb::module_& m) {
   m.def("relax", &relax,
         nb::sig("def relax(points: NDArray[numpy.float64] | None = None, *, count: int = 0, sets: int = 0, iterations: int = 80, "
-                "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', "
+                "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
                 "history: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, NDArray]]"),
         "points"_a = nb::none(), nb::kw_only(), "count"_a = 0, "sets"_a = 0, "iterations"_a = 80,
         "seed"_a = 1, "fixed"_a = 0, "tolerance"_a = 0.0, "engine"_a = "raster", "resolution"_a = 0,
-        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "history"_a = false,
+        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto", "history"_a = false,
         R"(Lloyd relaxation, as ``bluetile relax``.
 
 Start from ``points`` (shape (N, 2), or (K, N, 2) for K sets relaxed each on its own) or from
@@ -213,17 +218,18 @@ centroid of its periodic Voronoi cell, ``iterations`` times, or until no site mo
 ``tolerance``. The first ``fixed`` sites shape the cells but stay in place.
 
 engine: "raster" (Vulkan, lavapipe by default) or "exact" (CPU, exact polygons); resolution,
-coverage ("area" | "point"), cone ("quad" | "fan") and device set the raster engine.
+coverage ("area" | "point"), cone ("quad" | "fan"), device and pixel_work ("auto" | "device" |
+"host": where the per-pixel work runs, as ``--pixel-work``; the same bits) set the raster engine.
 With ``history=True`` returns (points, history) where history holds one array per column of
 ``--log``: iteration, energy, max_displacement, mean_displacement, coincident, fallbacks.
 The same seed gives the same bits as the tool. Releases the GIL while it runs.)");
 
   m.def("centroids", &centroids,
         nb::sig("def centroids(points: NDArray[numpy.float64], *, engine: str = 'raster', resolution: int = 0, "
-                "coverage: str = 'area', cone: str = 'quad', device: str = '') "
+                "coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
                 "-> tuple[NDArray[numpy.float64], NDArray[numpy.float64]]"),
         "points"_a, nb::kw_only(), "engine"_a = "raster", "resolution"_a = 0,
-        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "",
+        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto",
         R"(Cell centroids and areas of every point, as ``bluetile centroids``.
 
 Returns (centroids, areas): shapes (N, 2) and (N,) for points of shape (N, 2), or (K, N, 2) and
@@ -233,12 +239,12 @@ Returns (centroids, areas): shapes (N, 2) and (N,) for points of shape (N, 2), o
   m.def("progressive", &progressive,
         nb::sig("def progressive(base: NDArray[numpy.float64] | None = None, base_levels: NDArray[numpy.integer] | None = None, *, "
                 "count: int = 0, add: int = 0, ratio: float = 0.0, levels: int = 0, iterations: int = 80, "
-                "tolerance: float = 0.0, seed: int = 1, placement: str = 'gaps', engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '') "
+                "tolerance: float = 0.0, seed: int = 1, placement: str = 'gaps', engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
                 "-> tuple[NDArray[numpy.float64], NDArray[numpy.int32]]"),
         "base"_a = nb::none(), "base_levels"_a = nb::none(), nb::kw_only(),
         "count"_a = 0, "add"_a = 0, "ratio"_a = 0.0, "levels"_a = 0, "iterations"_a = 80, "tolerance"_a = 0.0,
         "seed"_a = 1, "placement"_a = "gaps", "engine"_a = "raster", "resolution"_a = 0, "coverage"_a = "area",
-        "cone"_a = "quad", "device"_a = "",
+        "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto",
         R"(Hierarchical point sets, as ``bluetile progressive`` (the paper, section 2.1).
 
 From scratch (``count``: level 0 has N relaxed random points, then ``levels`` levels in all,

@@ -15,6 +15,7 @@ struct EngineChoice {
   std::string coverage = "area";
   std::string cone = "quad";
   std::string device;
+  std::string pixel_work = "auto";
 };
 
 // Throws ValueError for a name or a resolution out of range (before any work).

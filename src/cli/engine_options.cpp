@@ -15,6 +15,9 @@ RasterOptions raster_options(const EngineOptions& options) {
   r.coverage = options.coverage == "point" ? Coverage::point : Coverage::area;
   r.cone = options.cone == "fan" ? ConeShape::fan : ConeShape::quad;
   r.device = options.device;
+  r.pixel_work = options.pixel_work == "device" ? PixelWork::device
+                 : options.pixel_work == "host" ? PixelWork::host
+                                                : PixelWork::automatic;
   return r;
 }
 
@@ -36,6 +39,13 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
       ->check(CLI::IsMember({"quad", "fan"}))
       ->capture_default_str();
   command->add_option("--device", options.device, "Raster engine: Vulkan device name or index (see 'bluetile devices')");
+  command->add_option("--pixel-work", options.pixel_work,
+                      "Raster engine: where the per-pixel work (classification, sums, boundary split) runs: auto (the "
+                      "device on GPUs, the host on CPU devices such as lavapipe), device (compute shaders; refused on a "
+                      "device without the features they need, or with a density map or a bounded domain) or host "
+                      "(threaded); the output is the same bits")
+      ->check(CLI::IsMember({"auto", "device", "host"}))
+      ->capture_default_str();
   add_threads_option(command, options.threads);
 }
 

@@ -17,6 +17,7 @@ struct EngineOptions {
   std::string coverage = "area";  // raster: point | area
   std::string cone = "quad";      // raster: quad | fan
   std::string device;             // raster: Vulkan device name or index
+  std::string pixel_work = "auto";  // raster: auto | device | host (where the per-pixel work runs)
   int threads = 0;                // CPU threads; 0 = all cores
 };
 

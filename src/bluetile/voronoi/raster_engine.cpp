@@ -34,6 +34,7 @@
 #include <bit>
 #include <chrono>
 #include <cmath>
+#include <functional>
 #include <mutex>
 
 #include "bluetile/core/error.h"
@@ -96,6 +97,11 @@ struct RasterEngine::Impl {
   explicit Impl(const RasterOptions& o)
       : options(o), device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.force_float32}) {
     on_device = o.pixel_work == PixelWork::device || (o.pixel_work == PixelWork::automatic && !device.is_cpu());
+    // Asked for by name, the device path is the exact one or none: never moved to the host, and
+    // never the float32 split unless that is asked for too.
+    if (o.pixel_work == PixelWork::device && !device.float64_split() && !o.force_float32)
+      throw Error("raster engine: pixel work 'device' needs shaderFloat64 for the exact split, which '" +
+                  device.device_name() + "' lacks; use pixel work 'host' or 'auto'");
   }
 
   RasterSettings settings() const {
@@ -156,8 +162,26 @@ struct RasterEngine::Impl {
     return group;
   }
 
+  // Pixel work asked for on the device is not moved to the host: scenes that need the host
+  // (a varying density, a bounded domain) are refused before any work.
+  static void refuse_host_only_scenes(std::span<const Scene* const> batch) {
+    for (const Scene* scene : batch) {
+      const char* what = nullptr;
+      if (!scene->periodic()) {
+        what = "a bounded domain";
+      } else if (scene->density) {
+        const std::vector<float>& t = scene->density->texels;
+        if (std::adjacent_find(t.begin(), t.end(), std::not_equal_to<>()) != t.end()) what = "a varying density";
+      }
+      if (what)
+        throw Error(std::string("raster engine: pixel work 'device' cannot take a scene with ") + what +
+                    " (the shaders neither weigh pixels nor know a border); use pixel work 'host' or 'auto'");
+    }
+  }
+
   void compute(std::span<const Scene* const> batch, std::span<SceneCells> out) {
     if (batch.size() != out.size()) throw Error("raster engine: scenes and results differ in number");
+    if (options.pixel_work == PixelWork::device) refuse_host_only_scenes(batch);
     auto host_start = Clock::now();
     ++stats.computes;
     if (options.keep_id_images) id_images.assign(batch.size(), IdImage{});

@@ -27,13 +27,14 @@ enum class ConeShape {
   fan,   // the classic tessellated cone (triangle fan), depth interpolated: biased
 };
 
-// Where the per-pixel work (classification, sums, boundary split) runs. Scenes with a varying
-// density or a bounded domain always have it done on the host (the shaders neither weigh pixels
-// nor know a border): a batch holding one runs wholly on the host.
+// Where the per-pixel work (classification, sums, boundary split) runs; every choice gives the
+// same bits. Scenes with a varying density or a bounded domain need the host (the shaders
+// neither weigh pixels nor know a border).
 enum class PixelWork {
-  automatic,  // the host on CPU devices (lavapipe runs compute shaders on one thread, 50-100x
-              // slower than the same loops natively: docs/BENCHMARKS.md), the device elsewhere
-  device,     // classify.comp and split_f64.comp / split_f32.comp
+  automatic,  // the host on CPU devices (measured faster on lavapipe: docs/RASTER.md), the
+              // device elsewhere; a batch holding a weighted or bounded scene runs on the host
+  device,     // classify.comp and split_f64.comp: RasterEngine throws Error on a device without
+              // shaderFloat64 (unless force_float32) and compute() on a weighted or bounded scene
   host,       // the host reference (raster_reference.cpp), threaded
 };
 
