@@ -62,17 +62,25 @@ int wrap_count(int a, int n) { return a >= 0 ? (a < n ? 0 : a / n) : (a >= -n ? 
 real wrap_axis(real d, real period) { return d < -0.5 * period ? d + period : (d >= 0.5 * period ? d - period : d); }
 
 // Candidates of the current pixel: global site index, periodic image (whole periods), offset
-// from the pixel centre and its squared length.
-uint candidate_site[BLUETILE_MAX_CANDIDATES];
-ivec2 candidate_image[BLUETILE_MAX_CANDIDATES];
-real2 candidate_offset[BLUETILE_MAX_CANDIDATES];
-real candidate_distance[BLUETILE_MAX_CANDIDATES];
-
-// The clipped polygon, relative to its owner.
+// from the pixel centre and its squared length; then the clipped polygon, relative to its owner
+// (two buffers, clipped from one into the other). In shared memory, each invocation its own
+// slice: lavapipe turns a private array indexed by a variable into a ladder of selects and
+// unrolls every loop over one, running all copies under a mask (about 11 us per pixel).
 #define MAX_VERTICES (4 + BLUETILE_MAX_CANDIDATES)
-real2 polygon[MAX_VERTICES];
-real2 clipped[MAX_VERTICES];
-real side[MAX_VERTICES];
+shared uint candidate_site_s[BLUETILE_SPLIT_GROUP * BLUETILE_MAX_CANDIDATES];
+shared ivec2 candidate_image_s[BLUETILE_SPLIT_GROUP * BLUETILE_MAX_CANDIDATES];
+shared real2 candidate_offset_s[BLUETILE_SPLIT_GROUP * BLUETILE_MAX_CANDIDATES];
+shared real candidate_distance_s[BLUETILE_SPLIT_GROUP * BLUETILE_MAX_CANDIDATES];
+shared real2 polygon_s[BLUETILE_SPLIT_GROUP * 2 * MAX_VERTICES];
+shared real side_s[BLUETILE_SPLIT_GROUP * MAX_VERTICES];
+uint candidate_base, polygon_base, clipped_base, side_base;
+#define candidate_site(c) candidate_site_s[candidate_base + uint(c)]
+#define candidate_image(c) candidate_image_s[candidate_base + uint(c)]
+#define candidate_offset(c) candidate_offset_s[candidate_base + uint(c)]
+#define candidate_distance(c) candidate_distance_s[candidate_base + uint(c)]
+#define polygon(k) polygon_s[polygon_base + uint(k)]
+#define clipped(k) polygon_s[clipped_base + uint(k)]
+#define side(k) side_s[side_base + uint(k)]
 int vertex_count;
 real max_radius_squared;
 
@@ -83,27 +91,31 @@ void clip_by_bisector(real2 d) {
   precise real offset = 0.5 * dd;
   bool any_outside = false;
   for (int k = 0; k < vertex_count; ++k) {
-    precise real s = polygon[k].x * d.x + polygon[k].y * d.y - offset;
-    side[k] = s;
+    precise real s = polygon(k).x * d.x + polygon(k).y * d.y - offset;
+    side(k) = s;
     any_outside = any_outside || s > 0.0;
   }
   if (!any_outside) return;
   int m = 0;
   precise real radius_squared = 0.0;
   for (int k = 0, l = vertex_count - 1; k < vertex_count; l = k++) {
-    precise real sl = side[l], sk = side[k];
+    precise real sl = side(l), sk = side(k);
+    const real2 pl = polygon(l), pk = polygon(k);
     if ((sl < 0.0 && sk > 0.0) || (sl > 0.0 && sk < 0.0)) {
       precise real t = sl / (sl - sk);
-      precise real2 x = polygon[l] + t * (polygon[k] - polygon[l]);
-      clipped[m++] = x;
+      precise real2 x = pl + t * (pk - pl);
+      clipped(m++) = x;
       radius_squared = max(radius_squared, x.x * x.x + x.y * x.y);
     }
     if (sk <= 0.0) {
-      clipped[m++] = polygon[k];
-      radius_squared = max(radius_squared, polygon[k].x * polygon[k].x + polygon[k].y * polygon[k].y);
+      clipped(m++) = pk;
+      radius_squared = max(radius_squared, pk.x * pk.x + pk.y * pk.y);
     }
   }
-  for (int k = 0; k < m; ++k) polygon[k] = clipped[k];
+  // The clipped polygon is the polygon now: swap the buffers.
+  uint t = polygon_base;
+  polygon_base = clipped_base;
+  clipped_base = t;
   vertex_count = m;
   max_radius_squared = radius_squared;
 }
@@ -120,6 +132,10 @@ void push_overflow(uvec2 entry) {
 
 void main() {
   const uint k = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * BLUETILE_SPLIT_GROUP + gl_LocalInvocationID.x;
+  candidate_base = gl_LocalInvocationID.x * uint(BLUETILE_MAX_CANDIDATES);
+  polygon_base = gl_LocalInvocationID.x * uint(2 * MAX_VERTICES);
+  clipped_base = polygon_base + uint(MAX_VERTICES);
+  side_base = gl_LocalInvocationID.x * uint(MAX_VERTICES);
   if (k >= counters[BLUETILE_COUNTER_BOUNDARY]) return;
   const uvec2 entry = boundary[k];
   scene = scenes[entry.x];
@@ -179,32 +195,32 @@ void main() {
           push_overflow(entry);
           return;
         }
-        candidate_site[count] = g;
-        candidate_image[count] = ivec2(wx, wy);
-        candidate_offset[count] = o;
-        candidate_distance[count] = d2;
+        candidate_site(count) = g;
+        candidate_image(count) = ivec2(wx, wy);
+        candidate_offset(count) = o;
+        candidate_distance(count) = d2;
         ++count;
       }
     }
   }
   // Only sites within (nearest + diagonal) of the centre can be nearest somewhere in the pixel.
   real nearest2 = 1e30;
-  for (int c = 0; c < count; ++c) nearest2 = min(nearest2, candidate_distance[c]);
+  for (int c = 0; c < count; ++c) nearest2 = min(nearest2, candidate_distance(c));
   reach = sqrt(nearest2) + diagonal;
   // The nearest one, s0, owns part of the pixel; another site owns part of it only if it is
   // nearer than s0 at some corner (the distance difference is affine over the pixel), and one
   // that is not is never the nearest anywhere in it, so it cuts no piece either.
   int nearest_index = 0;
   for (int c = 1; c < count; ++c)
-    if (candidate_distance[c] < candidate_distance[nearest_index]) nearest_index = c;
-  const uint s0 = candidate_site[nearest_index];
-  const ivec2 image0 = candidate_image[nearest_index];
+    if (candidate_distance(c) < candidate_distance(nearest_index)) nearest_index = c;
+  const uint s0 = candidate_site(nearest_index);
+  const ivec2 image0 = candidate_image(nearest_index);
   precise const real2 corner0 = -(site_from_sample(s0, ij) + real2(image0) * domain_size);
   int kept = 0;
   for (int c = 0; c < count; ++c) {
-    if (candidate_distance[c] > reach * reach) continue;
+    if (candidate_distance(c) > reach * reach) continue;
     if (c != nearest_index) {
-      precise real2 d = site_from_site(s0, candidate_site[c]) + real2(candidate_image[c] - image0) * domain_size;
+      precise real2 d = site_from_site(s0, candidate_site(c)) + real2(candidate_image(c) - image0) * domain_size;
       precise real offset = 0.5 * (d.x * d.x + d.y * d.y);
       bool nearer_somewhere = false;
       for (int corner = 0; corner < 4; ++corner) {
@@ -214,13 +230,13 @@ void main() {
       }
       if (!nearer_somewhere) continue;
     }
-    candidate_site[kept] = candidate_site[c];
-    candidate_image[kept] = candidate_image[c];
-    candidate_offset[kept] = candidate_offset[c];
+    candidate_site(kept) = candidate_site(c);
+    candidate_image(kept) = candidate_image(c);
+    candidate_offset(kept) = candidate_offset(c);
     ++kept;
   }
   for (int c = 0; c < kept; ++c) {
-    precise real2 o = candidate_offset[c];
+    precise real2 o = candidate_offset(c);
     precise real d = sqrt(o.x * o.x + o.y * o.y);
     if (d + diagonal > reach_limit) {
       push_overflow(entry);
@@ -229,30 +245,30 @@ void main() {
   }
 
   for (int a = 0; a < kept; ++a) {
-    const uint owner = candidate_site[a];
+    const uint owner = candidate_site(a);
     if ((sites[owner].flags & BLUETILE_SITE_WANTED) == 0u) continue;
     // The pixel square relative to this image of the owner.
-    precise const real2 corner = -(site_from_sample(owner, ij) + real2(candidate_image[a]) * domain_size);
-    polygon[0] = corner;
-    polygon[1] = corner + real2(pixel_size.x, 0.0);
-    polygon[2] = corner + pixel_size;
-    polygon[3] = corner + real2(0.0, pixel_size.y);
+    precise const real2 corner = -(site_from_sample(owner, ij) + real2(candidate_image(a)) * domain_size);
+    polygon(0) = corner;
+    polygon(1) = corner + real2(pixel_size.x, 0.0);
+    polygon(2) = corner + pixel_size;
+    polygon(3) = corner + real2(0.0, pixel_size.y);
     vertex_count = 4;
     max_radius_squared = 0.0;
     for (int v = 0; v < 4; ++v) {
-      precise real r2 = polygon[v].x * polygon[v].x + polygon[v].y * polygon[v].y;
+      precise real r2 = polygon(v).x * polygon(v).x + polygon(v).y * polygon(v).y;
       max_radius_squared = max(max_radius_squared, r2);
     }
     for (int b = 0; b < kept && vertex_count >= 3; ++b) {
       if (b == a) continue;
-      precise real2 d = site_from_site(owner, candidate_site[b]) + real2(candidate_image[b] - candidate_image[a]) * domain_size;
+      precise real2 d = site_from_site(owner, candidate_site(b)) + real2(candidate_image(b) - candidate_image(a)) * domain_size;
       if (d.x == 0.0 && d.y == 0.0) continue;
       clip_by_bisector(d);
     }
     if (vertex_count < 3) continue;
     precise real cross_sum = 0.0, x_sum = 0.0, y_sum = 0.0, xx_sum = 0.0, yy_sum = 0.0;
     for (int v = 0, u = vertex_count - 1; v < vertex_count; u = v++) {
-      precise real2 p = polygon[u], q = polygon[v];
+      precise real2 p = polygon(u), q = polygon(v);
       precise real c = p.x * q.y - q.x * p.y;
       cross_sum += c;
       x_sum += (p.x + q.x) * c;

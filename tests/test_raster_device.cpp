@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "bluetile/core/rng.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/voronoi/raster_engine.h"
 #include "bluetile/voronoi/raster_reference.h"
@@ -25,6 +26,19 @@ std::vector<Scene> device_scenes() {
   scenes.push_back(make_scene(uniform_points(300, 51)));
   scenes.push_back(test::relaxed_scene(300, 52, 10));
   for (const test::HardCase& c : test::hard_cases()) scenes.push_back(make_scene(c.sites));
+  // A rectangle with fixed sites (the shape of the Wang loop's cropped scenes: context sites
+  // shape the cells, only the wanted ones are measured), and a cluster dense enough that some
+  // pixels go to the host.
+  Scene rectangle;
+  rectangle.domain.size = {2.0, 1.0};
+  Rng rng(56);
+  for (int k = 0; k < 400; ++k) rectangle.sites.push_back(rng.point(rectangle.domain));
+  rectangle.wanted_begin = 150;
+  rectangle.wanted_end = 400;
+  scenes.push_back(std::move(rectangle));
+  std::vector<Point> cluster = uniform_points(200, 57);
+  for (int k = 0; k < 300; ++k) cluster.push_back({0.3 + 0.02 * rng.uniform(), 0.6 + 0.02 * rng.uniform()});
+  scenes.push_back(make_scene(std::move(cluster)));
   return scenes;
 }
 
@@ -68,15 +82,18 @@ TEST(RasterDevice, SumsMatchTheHostReferenceBitForBit) {
 TEST(RasterDevice, HostPathGivesTheDevicePathsBits) {
   REQUIRE_VULKAN();
   const std::vector<Scene> scenes = device_scenes();
-  for (Coverage coverage : {Coverage::area, Coverage::point}) {
-    RasterEngine& device = test::shared_engine(64, coverage, ConeShape::quad, PixelWork::device);
-    RasterEngine& host = test::shared_engine(64, coverage, ConeShape::quad, PixelWork::host);
-    if (!device.float64_split()) GTEST_SKIP() << "the device has no shaderFloat64";
-    std::vector<SceneCells> a(scenes.size()), b(scenes.size());
-    device.compute(scenes, a);
-    host.compute(scenes, b);
-    for (std::size_t k = 0; k < scenes.size(); ++k) EXPECT_TRUE(test::identical_cells(a[k], b[k])) << "scene " << k;
-  }
+  // 64: one classification tile per scene; 150: partial tiles on both axes.
+  for (int resolution : {64, 150})
+    for (Coverage coverage : {Coverage::area, Coverage::point}) {
+      RasterEngine& device = test::shared_engine(resolution, coverage, ConeShape::quad, PixelWork::device);
+      RasterEngine& host = test::shared_engine(resolution, coverage, ConeShape::quad, PixelWork::host);
+      if (!device.float64_split()) GTEST_SKIP() << "the device has no shaderFloat64";
+      std::vector<SceneCells> a(scenes.size()), b(scenes.size());
+      device.compute(scenes, a);
+      host.compute(scenes, b);
+      for (std::size_t k = 0; k < scenes.size(); ++k)
+        EXPECT_TRUE(test::identical_cells(a[k], b[k])) << "resolution " << resolution << " scene " << k;
+    }
 }
 
 TEST(RasterDevice, Float32SplitStaysWithinItsStatedBound) {

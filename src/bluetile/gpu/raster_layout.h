@@ -5,14 +5,18 @@
 #ifndef BLUETILE_GPU_RASTER_LAYOUT_H
 #define BLUETILE_GPU_RASTER_LAYOUT_H
 
-// Classification: one invocation sums a segment of this many pixels of one row, so runs of
-// equal IDs cost one set of atomics each instead of one per pixel (7x fewer at 16 pixels per
-// cell, ~30x at point coverage's 1000).
+// The host's classification (raster_reference.cpp) sums segments of this many pixels of one
+// row, so runs of equal IDs are summed at once.
 #define BLUETILE_CLASSIFY_SEGMENT 32
-// Invocations per classification workgroup: consecutive rows of one segment column.
+// classify.comp: a workgroup is a tile of GROUP consecutive columns (one per invocation) by
+// ROWS rows, each invocation summing runs down its column. ROWS above 32: the loop over them is
+// never unrolled by lavapipe (whose SIMD code runs every unrolled copy); 64 x 64 lists fit in
+// 16 KiB of shared memory.
 #define BLUETILE_CLASSIFY_GROUP 64
-// Boundary pixels per split workgroup.
-#define BLUETILE_SPLIT_GROUP 64
+#define BLUETILE_CLASSIFY_ROWS 64
+// Boundary pixels per split workgroup: each invocation keeps its candidates and polygons in
+// shared memory (about 1.4 KiB each in float64), within the 32 KiB a lavapipe group has.
+#define BLUETILE_SPLIT_GROUP 16
 // Split workgroups per row of its indirect dispatch (well below the 65535 every device allows).
 #define BLUETILE_SPLIT_ROW 4096u
 // Sites that may own part of one boundary pixel (after pruning); more go to the host (rare:

@@ -429,8 +429,8 @@ struct RasterDevice::Impl {
     if (pixel_work) {
       vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, classify_pipeline);
       vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
-      vkCmdDispatch(cb, (max_rx + BLUETILE_CLASSIFY_SEGMENT - 1) / BLUETILE_CLASSIFY_SEGMENT,
-                    (max_ry + BLUETILE_CLASSIFY_GROUP - 1) / BLUETILE_CLASSIFY_GROUP, static_cast<std::uint32_t>(group.size()));
+      vkCmdDispatch(cb, (max_rx + BLUETILE_CLASSIFY_GROUP - 1) / BLUETILE_CLASSIFY_GROUP,
+                    (max_ry + BLUETILE_CLASSIFY_ROWS - 1) / BLUETILE_CLASSIFY_ROWS, static_cast<std::uint32_t>(group.size()));
     }
     VkMemoryBarrier compute_to_compute{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     compute_to_compute.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
