@@ -72,15 +72,13 @@ shared ivec2 candidate_image_s[BLUETILE_SPLIT_GROUP * BLUETILE_MAX_CANDIDATES];
 shared real2 candidate_offset_s[BLUETILE_SPLIT_GROUP * BLUETILE_MAX_CANDIDATES];
 shared real candidate_distance_s[BLUETILE_SPLIT_GROUP * BLUETILE_MAX_CANDIDATES];
 shared real2 polygon_s[BLUETILE_SPLIT_GROUP * 2 * MAX_VERTICES];
-shared real side_s[BLUETILE_SPLIT_GROUP * MAX_VERTICES];
-uint candidate_base, polygon_base, clipped_base, side_base;
+uint candidate_base, polygon_base, clipped_base;
 #define candidate_site(c) candidate_site_s[candidate_base + uint(c)]
 #define candidate_image(c) candidate_image_s[candidate_base + uint(c)]
 #define candidate_offset(c) candidate_offset_s[candidate_base + uint(c)]
 #define candidate_distance(c) candidate_distance_s[candidate_base + uint(c)]
 #define polygon(k) polygon_s[polygon_base + uint(k)]
 #define clipped(k) polygon_s[clipped_base + uint(k)]
-#define side(k) side_s[side_base + uint(k)]
 int vertex_count;
 real max_radius_squared;
 
@@ -91,16 +89,20 @@ void clip_by_bisector(real2 d) {
   precise real offset = 0.5 * dd;
   bool any_outside = false;
   for (int k = 0; k < vertex_count; ++k) {
-    precise real s = polygon(k).x * d.x + polygon(k).y * d.y - offset;
-    side(k) = s;
+    const real2 p = polygon(k);
+    precise real s = p.x * d.x + p.y * d.y - offset;
     any_outside = any_outside || s > 0.0;
   }
   if (!any_outside) return;
+  // Second pass: the side of each vertex recomputed (the same arithmetic, so the same bits)
+  // and the previous vertex carried along, so each vertex is read once per pass.
   int m = 0;
   precise real radius_squared = 0.0;
-  for (int k = 0, l = vertex_count - 1; k < vertex_count; l = k++) {
-    precise real sl = side(l), sk = side(k);
-    const real2 pl = polygon(l), pk = polygon(k);
+  real2 pl = polygon(vertex_count - 1);
+  precise real sl = pl.x * d.x + pl.y * d.y - offset;
+  for (int k = 0; k < vertex_count; ++k) {
+    const real2 pk = polygon(k);
+    precise real sk = pk.x * d.x + pk.y * d.y - offset;
     if ((sl < 0.0 && sk > 0.0) || (sl > 0.0 && sk < 0.0)) {
       precise real t = sl / (sl - sk);
       precise real2 x = pl + t * (pk - pl);
@@ -111,6 +113,8 @@ void clip_by_bisector(real2 d) {
       clipped(m++) = pk;
       radius_squared = max(radius_squared, pk.x * pk.x + pk.y * pk.y);
     }
+    pl = pk;
+    sl = sk;
   }
   // The clipped polygon is the polygon now: swap the buffers.
   uint t = polygon_base;
@@ -135,7 +139,6 @@ void main() {
   candidate_base = gl_LocalInvocationID.x * uint(BLUETILE_MAX_CANDIDATES);
   polygon_base = gl_LocalInvocationID.x * uint(2 * MAX_VERTICES);
   clipped_base = polygon_base + uint(MAX_VERTICES);
-  side_base = gl_LocalInvocationID.x * uint(MAX_VERTICES);
   if (k >= counters[BLUETILE_COUNTER_BOUNDARY]) return;
   const uvec2 entry = boundary[k];
   scene = scenes[entry.x];
@@ -179,7 +182,8 @@ void main() {
     return;
   }
   const uint columns = uint(scene.grid_size.x), rows = uint(scene.grid_size.y);
-  int count = 0;
+  int count = 0, nearest_index = 0;
+  real nearest2 = 1e30;
   for (int by = lo.y; by <= hi.y; ++by) {
     int wy = wrap_count(by, int(rows));
     for (int bx = lo.x; bx <= hi.x; ++bx) {
@@ -199,20 +203,20 @@ void main() {
         candidate_image(count) = ivec2(wx, wy);
         candidate_offset(count) = o;
         candidate_distance(count) = d2;
+        // The nearest so far (the first of equals), kept in registers.
+        if (count == 0 || d2 < nearest2) {
+          nearest2 = d2;
+          nearest_index = count;
+        }
         ++count;
       }
     }
   }
   // Only sites within (nearest + diagonal) of the centre can be nearest somewhere in the pixel.
-  real nearest2 = 1e30;
-  for (int c = 0; c < count; ++c) nearest2 = min(nearest2, candidate_distance(c));
   reach = sqrt(nearest2) + diagonal;
   // The nearest one, s0, owns part of the pixel; another site owns part of it only if it is
   // nearer than s0 at some corner (the distance difference is affine over the pixel), and one
   // that is not is never the nearest anywhere in it, so it cuts no piece either.
-  int nearest_index = 0;
-  for (int c = 1; c < count; ++c)
-    if (candidate_distance(c) < candidate_distance(nearest_index)) nearest_index = c;
   const uint s0 = candidate_site(nearest_index);
   const ivec2 image0 = candidate_image(nearest_index);
   precise const real2 corner0 = -(site_from_sample(s0, ij) + real2(image0) * domain_size);
