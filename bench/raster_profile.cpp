@@ -92,8 +92,8 @@ int main(int argc, char** argv) {
       {"n1e5", 100000, 1, 3, Coverage::area},   {"sets256", 64, 256, 50, Coverage::area},
       {"sets4096", 64, 4096, 10, Coverage::area}, {"point", 1000, 1, 80, Coverage::point},
   };
-  std::printf("| job | engine | iterations | wall ms/it | cpu ms/it | ratio (wall) | passes/it | redone | boundary px/it | host-split px/it | upload ms/it | device ms/it | host ms/it | start-up ms |\n");
-  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("| job | engine | iterations | wall ms/it | cpu ms/it | ratio (wall) | passes/it | redone | boundary px/it | host-split px/it | upload ms/it | device ms/it | cones ms/it | classify ms/it | split ms/it | host ms/it | start-up ms |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Job& job : all) {
     if (("," + jobs_text + ",").find("," + job.name + ",") == std::string::npos) continue;
     std::vector<PixelWork> works = {PixelWork::automatic};
@@ -143,13 +143,15 @@ int main(int argc, char** argv) {
         const RasterStats& s = raster->stats();
         const RasterStats& b = before[k];
         const double n = its * repeats;
-        std::printf(" %.2f | %llu | %.0f | %.0f | %.2f | %.2f | %.2f | %.0f |\n", static_cast<double>(s.submits - b.submits) / n,
+        std::printf(" %.2f | %llu | %.0f | %.0f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.0f |\n", static_cast<double>(s.submits - b.submits) / n,
                     static_cast<unsigned long long>(s.redone_scenes - b.redone_scenes),
                     static_cast<double>(s.boundary_pixels - b.boundary_pixels) / n,
                     static_cast<double>(s.host_split_pixels - b.host_split_pixels) / n, (s.upload_seconds - b.upload_seconds) / n * 1e3,
-                    (s.device_seconds - b.device_seconds) / n * 1e3, (s.host_seconds - b.host_seconds) / n * 1e3, e.startup_ms);
+                    (s.device_seconds - b.device_seconds) / n * 1e3, (s.cone_seconds - b.cone_seconds) / n * 1e3,
+                    (s.classify_seconds - b.classify_seconds) / n * 1e3, (s.split_seconds - b.split_seconds) / n * 1e3,
+                    (s.host_seconds - b.host_seconds) / n * 1e3, e.startup_ms);
       } else {
-        std::printf(" | | | | | | | |\n");
+        std::printf(" | | | | | | | | | | |\n");
       }
       std::fflush(stdout);
     }

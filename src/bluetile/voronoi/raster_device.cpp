@@ -53,6 +53,7 @@ struct RasterDevice::Impl {
   VkRenderPass render_pass = VK_NULL_HANDLE;
   VkPipeline cone_pipeline = VK_NULL_HANDLE, classify_pipeline = VK_NULL_HANDLE, split_pipeline = VK_NULL_HANDLE;
   VkCommandBuffer commands = VK_NULL_HANDLE;
+  VkQueryPool timestamps = VK_NULL_HANDLE;  // per-stage device times (where the device has them)
   gpu::Image id_image, depth_image;
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
   HostBuffer instances, scenes, sites, positions, masks, grid, sums, counters, overflow;
@@ -97,6 +98,7 @@ struct RasterDevice::Impl {
     for (VkPipeline p : {cone_pipeline, classify_pipeline, split_pipeline})
       if (p) vkDestroyPipeline(d, p, nullptr);
     if (render_pass) vkDestroyRenderPass(d, render_pass, nullptr);
+    if (timestamps) vkDestroyQueryPool(d, timestamps, nullptr);
     if (pool) vkDestroyDescriptorPool(d, pool, nullptr);
     if (layout) vkDestroyPipelineLayout(d, layout, nullptr);
     if (set_layout) vkDestroyDescriptorSetLayout(d, set_layout, nullptr);
@@ -136,6 +138,13 @@ struct RasterDevice::Impl {
     command_info.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
     command_info.commandBufferCount = 1;
     BLUETILE_VK_CHECK(vkAllocateCommandBuffers(d, &command_info, &commands));
+
+    if (gpu->properties().limits.timestampComputeAndGraphics) {
+      VkQueryPoolCreateInfo query_info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+      query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+      query_info.queryCount = 4;
+      BLUETILE_VK_CHECK(vkCreateQueryPool(d, &query_info, nullptr, &timestamps));
+    }
   }
 
   // The compute pipelines on first use: a run with the per-pixel work on the host never pays
@@ -378,6 +387,10 @@ struct RasterDevice::Impl {
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     BLUETILE_VK_CHECK(vkBeginCommandBuffer(cb, &begin));
+    if (timestamps) vkCmdResetQueryPool(cb, timestamps, 0, 4);
+    auto stamp = [&](std::uint32_t q) {
+      if (timestamps) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, q);
+    };
     auto upload = [&](HostBuffer& b, std::size_t bytes) {
       if (!b.staged() || bytes == 0) return;
       VkBufferCopy region{0, 0, bytes};
@@ -400,6 +413,7 @@ struct RasterDevice::Impl {
                          VK_PIPELINE_STAGE_VERTEX_SHADER_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
                          0, 1, &to_shaders, 0, nullptr, 0, nullptr);
 
+    stamp(0);
     VkClearValue clears[2];
     clears[0].color.uint32[0] = clears[0].color.uint32[1] = clears[0].color.uint32[2] = clears[0].color.uint32[3] = 0;
     clears[1].depthStencil = {1.0f, 0};
@@ -425,6 +439,7 @@ struct RasterDevice::Impl {
       vkCmdDraw(cb, static_cast<std::uint32_t>(6 * instance_count), 1, 0, 0);
     }
     vkCmdEndRenderPass(cb);
+    stamp(1);
 
     if (pixel_work) {
       vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, classify_pipeline);
@@ -432,6 +447,7 @@ struct RasterDevice::Impl {
       vkCmdDispatch(cb, (max_rx + BLUETILE_CLASSIFY_GROUP - 1) / BLUETILE_CLASSIFY_GROUP,
                     (max_ry + BLUETILE_CLASSIFY_ROWS - 1) / BLUETILE_CLASSIFY_ROWS, static_cast<std::uint32_t>(group.size()));
     }
+    stamp(2);
     VkMemoryBarrier compute_to_compute{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     compute_to_compute.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
     compute_to_compute.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT;
@@ -442,6 +458,7 @@ struct RasterDevice::Impl {
       vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, split_pipeline);
       vkCmdDispatchIndirect(cb, counters.device.buffer, 4 * BLUETILE_COUNTER_DISPATCH);
     }
+    stamp(3);
     VkMemoryBarrier to_transfer{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     to_transfer.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
     to_transfer.dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_HOST_READ_BIT;
@@ -469,6 +486,17 @@ struct RasterDevice::Impl {
                          &to_host, 0, nullptr, 0, nullptr);
     BLUETILE_VK_CHECK(vkEndCommandBuffer(cb));
     gpu->submit_and_wait(cb);
+    timing.cones = timing.classify = timing.split = 0.0;
+    if (timestamps) {
+      std::uint64_t t[4] = {};
+      if (vkGetQueryPoolResults(gpu->device(), timestamps, 0, 4, sizeof t, t, sizeof t[0],
+                                VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS) {
+        const double period = 1e-9 * static_cast<double>(gpu->properties().limits.timestampPeriod);
+        timing.cones = static_cast<double>(t[1] - t[0]) * period;
+        timing.classify = static_cast<double>(t[2] - t[1]) * period;
+        timing.split = static_cast<double>(t[3] - t[2]) * period;
+      }
+    }
 
     // The overflow list is read only as far as it was filled (rarely at all).
     const std::uint32_t overflowed = static_cast<const std::uint32_t*>(counters.host())[BLUETILE_COUNTER_OVERFLOW];

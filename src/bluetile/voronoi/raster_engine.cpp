@@ -240,6 +240,9 @@ struct RasterEngine::Impl {
       stats.scene_passes += group.size();
       stats.upload_seconds += device.timing().upload;
       stats.device_seconds += device.timing().device;
+      stats.cone_seconds += device.timing().cones;
+      stats.classify_seconds += device.timing().classify;
+      stats.split_seconds += device.timing().split;
 
       host_start = Clock::now();
       // Pixels left to the host, per scene of the group (in increasing order).

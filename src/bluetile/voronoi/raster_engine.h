@@ -77,6 +77,9 @@ struct RasterStats {
   double drawn_radius_sum = 0.0;       // sum of the cone radii of every site drawn (domain units)
   double upload_seconds = 0.0;  // filling the device's input buffers
   double device_seconds = 0.0;  // recording, submission and wait
+  // Parts of device_seconds from device timestamps (0 where the device has none): the cone
+  // pass, classify.comp, the split.
+  double cone_seconds = 0.0, classify_seconds = 0.0, split_seconds = 0.0;
   double host_seconds = 0.0;    // scene preparation, coverage check, host splits, assembling cells
 };
 
