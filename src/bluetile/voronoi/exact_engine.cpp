@@ -5,6 +5,8 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <limits>
 #include <optional>
 
@@ -12,6 +14,7 @@
 #include "bluetile/core/parallel.h"
 #include "bluetile/voronoi/density_moments.h"
 #include "bluetile/voronoi/density_prefix.h"
+#include "bluetile/voronoi/kept_topology.h"
 #include "bluetile/voronoi/polygon.h"
 #include "bluetile/voronoi/scene.h"
 #include "bluetile/voronoi/site_grid.h"
@@ -260,32 +263,454 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   return cell;
 }
 
-void compute_scene(const Scene& scene, const Weighting& weighting, SceneCells& out, bool parallel_inside) {
+using Topology = ExactEngine::Topology;
+
+// The list of `site`'s cell (just computed by the search, radius squared `radius_squared`): every
+// copy of a site within Topology::kListFactor times the radius, nearest first. Returns the list's
+// radius, or -1 when the grid's search order does not reach that far (the cell is then searched
+// on every call).
+double gather_list(const Scene& scene, const SiteGrid& grid, std::uint32_t site, double radius_squared,
+                   std::vector<Topology::Entry>& list, std::vector<double>& distances) {
+  const double reach = Topology::kListFactor * std::sqrt(radius_squared);
+  const Point cell = grid.cell_size();
+  if (!(reach < static_cast<double>(SiteGrid::kSearchRadius) * std::min(cell.x, cell.y))) return -1.0;
+  const double reach_squared = reach * reach;
+  const Point origin = scene.sites[site];
+  auto [cx, cy] = grid.bucket_coordinates(origin);
+  const Point local{origin.x - static_cast<double>(cx) * cell.x, origin.y - static_cast<double>(cy) * cell.y};
+  const std::size_t first = list.size();
+  for (const auto& step : grid.search_order()) {
+    if (step.lower_bound_squared >= reach_squared) break;
+    const double gx = step.dx > 0   ? static_cast<double>(step.dx) * cell.x - local.x
+                      : step.dx < 0 ? local.x - static_cast<double>(step.dx + 1) * cell.x
+                                    : 0.0;
+    const double gy = step.dy > 0   ? static_cast<double>(step.dy) * cell.y - local.y
+                      : step.dy < 0 ? local.y - static_cast<double>(step.dy + 1) * cell.y
+                                    : 0.0;
+    if (gx * gx + gy * gy > reach_squared) continue;
+    const long bx = cx + step.dx, by = cy + step.dy;
+    if (!scene.periodic() && !inside_grid(grid, bx, by)) continue;
+    const auto wx = static_cast<std::int16_t>(SiteGrid::wrap_count(bx, grid.columns()));
+    const auto wy = static_cast<std::int16_t>(SiteGrid::wrap_count(by, grid.rows()));
+    grid.for_each_in_bucket(bx, by, origin, [&](std::uint32_t other, Point d) {
+      if (other == site && wx == 0 && wy == 0) return;  // the site itself
+      const double dd = d.x * d.x + d.y * d.y;
+      if (dd > reach_squared) return;
+      // Insertion by distance, stable: a list holds about ten sites.
+      std::size_t k = list.size();
+      list.push_back({other, wx, wy});
+      distances.push_back(dd);
+      for (; k > first && distances[k - 1 - first] > dd; --k) {
+        list[k] = list[k - 1];
+        distances[k - first] = distances[k - 1 - first];
+      }
+      list[k] = {other, wx, wy};
+      distances[k - first] = dd;
+    });
+  }
+  return reach;
+}
+
+// Where a site is now against its reference position: p = reference - k period + rest, k a whole
+// number of periods (the site wrapped across the domain's border), |rest| = moved.
+struct Moved {
+  Point p;
+  double moved;
+  std::int8_t kx, ky;
+};
+
+// Every site's move since the reference positions, reference[q] being site order[q]'s (site q's
+// when `order` is empty); returns the largest.
+double displacements(const Scene& scene, const std::vector<Point>& reference, const std::vector<std::uint32_t>& order,
+                     std::vector<Moved>& now) {
+  const std::size_t n = scene.sites.size();
+  now.resize(n);
+  const Point size = scene.domain.size;
+  constexpr std::size_t kChunk = 16384;
+  const std::size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<double> chunk_max(chunks, 0.0);
+  parallel_for(chunks, 1, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      double m = 0.0;
+      for (std::size_t q = c * kChunk; q < std::min(n, (c + 1) * kChunk); ++q) {
+        const Point p = scene.sites[order.empty() ? q : order[q]];
+        Point d = p - reference[q];
+        std::int8_t kx = 0, ky = 0;
+        if (scene.periodic()) {
+          // A site moves less than half a period between calls of a relaxation, so a jump of
+          // more than half a period is a wrap; anything else only makes the rest large.
+          kx = d.x > 0.5 * size.x ? -1 : d.x < -0.5 * size.x ? 1 : 0;
+          ky = d.y > 0.5 * size.y ? -1 : d.y < -0.5 * size.y ? 1 : 0;
+          d.x += static_cast<double>(kx) * size.x;
+          d.y += static_cast<double>(ky) * size.y;
+        }
+        const double moved = std::sqrt(d.x * d.x + d.y * d.y);
+        now[q] = {p, moved, kx, ky};
+        m = std::max(m, moved);
+      }
+      chunk_max[c] = m;
+    }
+  });
+  double m = 0.0;
+  for (double v : chunk_max) m = std::max(m, v);
+  return m;
+}
+
+// measure_cell for a cell given as its vertices, counter-clockwise relative to the site.
+Cell measure_vertices(const Scene& scene, std::uint32_t site, std::span<const Point> polygon, double radius_squared,
+                      const Weighting& weighting) {
+  Cell cell;
+  const Point origin = scene.sites[site];
+  const PolygonMoments moments = polygon_moments(polygon);
+  cell.area = moments.area();
+  cell.mass = cell.area;
+  cell.radius = std::sqrt(radius_squared);
+  cell.second_moment = moments.second_moment();
+  Point offset = moments.centroid();
+  if (weighting.prefix) {
+    const WeightedMoments m = weighting.prefix->moments(polygon, origin, scene.domain.size, scene.periodic());
+    cell.mass = m.mass;
+    cell.second_moment = m.second;
+    offset = m.mass > 0.0 ? m.first / m.mass : Point{0.0, 0.0};
+  } else if (weighting.constant != 1.0) {
+    cell.mass = weighting.constant * cell.area;
+    cell.second_moment *= weighting.constant;
+  }
+  if (!(cell.mass > 0.0) && cell.area > 0.0) {
+    cell.mass = 0.0;
+    cell.centroid = origin;
+    cell.status = CellStatus::zero_density;
+    return cell;
+  }
+  cell.centroid = scene_point(scene, origin + offset);
+  return cell;
+}
+
+// The most edges a cell built directly from its kept neighbours may have (more: clipped).
+constexpr std::size_t kMaxDirectEdges = 24;
+
+// The cell straight from its kept edge neighbours d[0..m) (counter-clockwise, as when the list
+// was made): vertex k is where the bisectors of d[k] and d[k+1] meet. Accepted only when each
+// turn is counter-clockwise and well conditioned, the neighbours go round the site once, and no
+// vertex lies beyond the bisector of any other list entry d[m..count) or edge neighbour (the
+// clipping predicate): then the polygon is the intersection of the list's half-planes, the
+// cell clipping would give, to rounding. Returns false otherwise (the cell is then clipped).
+bool direct_cell(const Point* d, std::size_t m, std::size_t count, Point* vertex, double& radius_squared) {
+  double r2 = 0.0;
+  int windings = 0;
+  for (std::size_t k = 0; k < m; ++k) {
+    const Point a = d[k], b = d[k + 1 == m ? 0 : k + 1];
+    const double det = a.x * b.y - a.y * b.x;
+    const double aa = a.x * a.x + a.y * a.y, bb = b.x * b.x + b.y * b.y;
+    // sin of the turn at least 1e-4: the vertex then carries at most ~1e4 roundings of |d|.
+    if (!(det > 0.0 && det * det > 1e-8 * aa * bb)) return false;
+    const double ha = 0.5 * aa, hb = 0.5 * bb;
+    const Point v{(ha * b.y - hb * a.y) / det, (a.x * hb - b.x * ha) / det};
+    vertex[k] = v;
+    r2 = std::max(r2, v.x * v.x + v.y * v.y);
+    windings += a.y < 0.0 && b.y >= 0.0;
+  }
+  if (windings != 1) return false;
+  const double reach_squared = 4.0 * r2;
+  for (std::size_t e = 0; e < count; ++e) {
+    const Point n = d[e];
+    const double dd = n.x * n.x + n.y * n.y;
+    if (dd >= reach_squared) continue;  // the clipping's own test: cannot reach the cell
+    const double offset = 0.5 * dd;
+    for (std::size_t k = 0; k < m; ++k) {
+      if (e < m && (e == k || e == (k + 1 == m ? 0 : k + 1))) continue;  // the vertex's own lines
+      if (vertex[k].x * n.x + vertex[k].y * n.y - offset > 0.0) return false;
+    }
+  }
+  radius_squared = r2;
+  return true;
+}
+
+struct SceneRun {
+  const Scene& scene;
+  const Weighting& weighting;
+  SceneCells& out;
+  bool parallel_inside;
+  Topology* topology;  // null: not kept
+  KeptTopologyStats& stats;
+};
+
+// Puts the entries of list[first, end) that carry the cell's edges first, in the polygon's
+// counter-clockwise order (each edge's site: its nearest copy in the list), the others after
+// them nearest first. Returns how many edges (0: the cell is always clipped: an edge of the
+// starting rectangle, an edge whose site is not in the list, too many edges).
+std::uint8_t edges_first(const ConvexPolygon& polygon, std::vector<Topology::Entry>& list, std::size_t first,
+                         std::vector<Topology::Entry>& scratch) {
+  const auto vertices = polygon.vertices();
+  const std::size_t count = list.size() - first;
+  scratch.clear();
+  std::vector<std::uint8_t> used(count, 0);  // small: a list holds about ten entries
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const PolygonVertex& v = vertices[i];
+    if (v.p == vertices[(i + 1) % vertices.size()].p) continue;  // a tie's zero-length edge
+    if (v.edge_label == kOwnCopy || scratch.size() >= kMaxDirectEdges) return 0;
+    std::size_t k = 0;
+    while (k < count && (used[k] || list[first + k].site != v.edge_label)) ++k;
+    if (k == count) return 0;
+    used[k] = 1;
+    scratch.push_back(list[first + k]);
+  }
+  const std::size_t edges = scratch.size();
+  if (edges < 3) return 0;
+  for (std::size_t k = 0; k < count; ++k)
+    if (!used[k]) scratch.push_back(list[first + k]);
+  std::copy(scratch.begin(), scratch.end(), list.begin() + static_cast<std::ptrdiff_t>(first));
+  return static_cast<std::uint8_t>(edges);
+}
+
+// Measures the wanted cells by the full search; with `lists`, also makes every cell's list.
+void search_scene(SceneRun& run, Topology* lists) {
+  const Scene& scene = run.scene;
+  const CellSearch search(scene);
+  const SiteGrid& grid = search.grid;
+  if (lists && search.tree) lists = nullptr;  // far-from-uniform sites: always searched
+  // Buckets in chunks of a fixed size, each chunk's lists in its own buffers, joined in chunk
+  // order: the same lists whatever the thread count.
+  constexpr std::size_t kBuckets = 256;
+  const std::size_t chunks = (grid.bucket_count() + kBuckets - 1) / kBuckets;
+  struct ChunkLists {
+    std::vector<std::uint32_t> order, sizes;
+    std::vector<std::uint8_t> edges;
+    std::vector<Topology::Entry> entries;
+    std::vector<double> reach;
+  };
+  std::vector<ChunkLists> chunk_lists(lists ? chunks : 0);
+
+  auto run_chunks = [&](std::size_t begin, std::size_t end) {
+    ConvexPolygon cell_polygon;
+    SearchScratch scratch;
+    scratch.candidates.reserve(64);
+    std::vector<double> distances;
+    std::vector<Topology::Entry> edge_scratch;
+    for (std::size_t c = begin; c < end; ++c) {
+      for (std::size_t b = c * kBuckets; b < std::min(grid.bucket_count(), (c + 1) * kBuckets); ++b) {
+        for (std::uint32_t site : grid.sites_in_bucket(b)) {
+          if (site < scene.wanted_begin || site >= scene.wanted_end) {
+            if (lists) {  // a fixed site: in the order (its position is read there), no list
+              chunk_lists[c].order.push_back(site);
+              chunk_lists[c].edges.push_back(0);
+              chunk_lists[c].sizes.push_back(0);
+              chunk_lists[c].reach.push_back(-1.0);
+            }
+            continue;
+          }
+          bool complete = build_cell(scene, search, site, cell_polygon, scratch);
+          run.out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, cell_polygon, run.weighting);
+          if (!lists) continue;
+          ChunkLists& mine = chunk_lists[c];
+          const std::size_t before = mine.entries.size();
+          distances.clear();
+          const double reach =
+              complete ? gather_list(scene, grid, site, cell_polygon.max_radius_squared(), mine.entries, distances) : -1.0;
+          mine.order.push_back(site);
+          mine.sizes.push_back(static_cast<std::uint32_t>(mine.entries.size() - before));
+          mine.reach.push_back(reach);
+          mine.edges.push_back(reach >= 0.0 && scene.periodic()
+                                   ? edges_first(cell_polygon, mine.entries, before, edge_scratch)
+                                   : 0);
+        }
+      }
+    }
+  };
+  if (run.parallel_inside) {
+    parallel_for(chunks, 1, run_chunks);
+  } else {
+    run_chunks(0, chunks);
+  }
+  run.stats.searched_cells += scene.wanted_count();
+  if (!lists) return;
+  lists->drop_lists();
+  std::size_t total = 0;
+  for (const ChunkLists& c : chunk_lists) total += c.entries.size();
+  if (total > std::numeric_limits<std::uint32_t>::max()) return;
+  lists->order.reserve(scene.wanted_count());
+  lists->reach.reserve(scene.wanted_count());
+  lists->start.reserve(scene.wanted_count() + 1);
+  lists->entries.reserve(total);
+  lists->start.push_back(0);
+  for (const ChunkLists& c : chunk_lists) {
+    lists->order.insert(lists->order.end(), c.order.begin(), c.order.end());
+    lists->reach.insert(lists->reach.end(), c.reach.begin(), c.reach.end());
+    lists->edges.insert(lists->edges.end(), c.edges.begin(), c.edges.end());
+    lists->entries.insert(lists->entries.end(), c.entries.begin(), c.entries.end());
+    for (std::uint32_t size : c.sizes) lists->start.push_back(lists->start.back() + size);
+  }
+  // Entries name their site by its place in the order, where its position is kept per call.
+  std::vector<std::uint32_t> place(scene.sites.size());
+  for (std::size_t q = 0; q < lists->order.size(); ++q) place[lists->order[q]] = static_cast<std::uint32_t>(q);
+  for (Topology::Entry& e : lists->entries) e.site = place[e.site];
+  lists->reference.resize(scene.sites.size());
+  for (std::size_t q = 0; q < lists->order.size(); ++q) lists->reference[q] = scene.sites[lists->order[q]];
+  lists->has_lists = true;
+}
+
+// Measures the wanted cells from the kept lists; cells whose certificate fails are searched.
+// Returns how many failed.
+std::size_t kept_scene(SceneRun& run, Topology& topology) {
+  const Scene& scene = run.scene;
+  std::vector<Moved> now;
+  const double farthest = displacements(scene, topology.reference, topology.order, now);
+  // The few sites that moved the most (at most one in Topology::kFastShare, those farther than
+  // `slow`) are checked one by one through a grid of their own; the certificate of a cell then
+  // only needs room for the others' moves, at most `slow`.
+  double slow = farthest;
+  std::vector<std::uint32_t> fast;
+  std::vector<Point> fast_points;
+  const std::size_t n = scene.sites.size();
+  const std::size_t allowed = n / Topology::kFastShare;
+  if (allowed > 0 && farthest > 0.0) {
+    std::vector<double> sorted(n);
+    for (std::size_t q = 0; q < n; ++q) sorted[q] = now[q].moved;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(n - 1 - allowed), sorted.end());
+    slow = sorted[n - 1 - allowed];
+    for (std::size_t q = 0; q < n; ++q) {
+      if (now[q].moved > slow) {
+        fast.push_back(static_cast<std::uint32_t>(q));
+        fast_points.push_back(now[q].p);
+      }
+    }
+  }
+  std::optional<SiteGrid> fast_grid;
+  if (!fast.empty()) fast_grid.emplace(fast_points, scene.domain, 1.0, false);
+  const Point size = scene.domain.size;
+  const std::size_t count = topology.order.size();
+  std::vector<std::uint8_t> failed(count, 0);
+
+  auto run_range = [&](std::size_t begin, std::size_t end) {
+    ConvexPolygon cell_polygon;
+    std::vector<Point> offsets(32);
+    Point vertex[kMaxDirectEdges];
+    for (std::size_t q = begin; q < end; ++q) {
+      const double reach = topology.reach[q];
+      if (reach < 0.0) {
+        failed[q] = topology.order[q] >= scene.wanted_begin && topology.order[q] < scene.wanted_end;
+        continue;
+      }
+      const std::uint32_t site = topology.order[q];
+      const Moved centre = now[q];
+      const Point origin = centre.p;
+      bool coincident = false;
+      const std::uint32_t list_begin = topology.start[q], list_size = topology.start[q + 1] - list_begin;
+      if (list_size > offsets.size()) offsets.resize(list_size);
+      for (std::uint32_t e = 0; e < list_size; ++e) {
+        const Topology::Entry entry = topology.entries[list_begin + e];
+        const Moved& other = now[entry.site];
+        // The same copy as when the list was made, shifted by the periods its site and this
+        // one wrapped across since.
+        const Point shift{static_cast<double>(entry.wx + other.kx - centre.kx) * size.x - origin.x,
+                          static_cast<double>(entry.wy + other.ky - centre.ky) * size.y - origin.y};
+        offsets[e] = other.p + shift;
+        coincident |= offsets[e].x == 0.0 && offsets[e].y == 0.0;  // searched: the search decides
+      }
+      double radius_squared = 0.0;
+      const std::size_t edges = topology.edges[q];
+      // Built from its edges only while the cell stays inside the starting rectangle (which the
+      // clipping intersects it with): radius below half the shorter period.
+      const bool direct = !coincident && edges > 0 &&
+                          direct_cell(offsets.data(), edges, list_size, vertex, radius_squared) &&
+                          radius_squared < 0.25 * std::min(size.x, size.y) * std::min(size.x, size.y);
+      if (!direct && !coincident) {
+        start_cell(scene, origin, cell_polygon);
+        for (std::uint32_t e = 0; e < list_size; ++e)
+          cell_polygon.clip_by_bisector(offsets[e], topology.entries[list_begin + e].site);
+        radius_squared = cell_polygon.max_radius_squared();
+      }
+      // The certificate. A copy that can cut the cell lies within twice its radius of the site
+      // now; it then lay within that plus the moves of both sites of the list's centre when the
+      // list was made, hence in the list, if that sum stays below the list's radius (with room
+      // for the roundings of the distances, far below the margin). A site not in the list that
+      // moved at most `slow` cannot reach the cell when the sum with `slow` stays below it.
+      // Sites that moved more than `slow` are not bounded by it: any of them near the site now
+      // fails the cell (searched), whether it is in the list or not.
+      const double cell_reach = 2.0 * std::sqrt(radius_squared);
+      auto room = [&](double others) { return (cell_reach + centre.moved + others) * (1.0 + 1e-9) + 1e-300 < reach; };
+      bool certified = !coincident && room(farthest);
+      if (!certified && !coincident && fast_grid && room(slow)) {
+        const double limit = cell_reach * (1.0 + 1e-9) + 1e-300;
+        certified = true;
+        fast_grid->for_each_site_near(origin, limit, [&](std::uint32_t k, Point p) {
+          if (fast[k] != q && scene_distance(scene, origin, p) <= limit) certified = false;
+        });
+      }
+      if (!certified) {
+        failed[q] = 1;
+        continue;
+      }
+      run.out.cells[site - scene.wanted_begin] =
+          direct ? measure_vertices(scene, site, std::span<const Point>(vertex, edges), radius_squared, run.weighting)
+                 : measure_cell(scene, site, false, cell_polygon, run.weighting);
+    }
+  };
+  if (run.parallel_inside) {
+    parallel_for(count, 512, run_range);
+  } else {
+    run_range(0, count);
+  }
+  std::vector<std::uint32_t> searched;
+  for (std::size_t q = 0; q < count; ++q)
+    if (failed[q]) searched.push_back(topology.order[q]);
+  run.stats.kept_cells += scene.wanted_count() - searched.size();
+  if (searched.empty()) return 0;
+  const CellSearch search(scene);
+  auto search_range = [&](std::size_t begin, std::size_t end) {
+    ConvexPolygon cell_polygon;
+    SearchScratch scratch;
+    scratch.candidates.reserve(64);
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::uint32_t site = searched[k];
+      bool complete = build_cell(scene, search, site, cell_polygon, scratch);
+      run.out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, cell_polygon, run.weighting);
+    }
+  };
+  if (run.parallel_inside) {
+    parallel_for(searched.size(), 64, search_range);
+  } else {
+    search_range(0, searched.size());
+  }
+  run.stats.searched_cells += searched.size();
+  std::size_t lists_failed = 0;
+  for (std::size_t q = 0; q < count; ++q) lists_failed += failed[q] && topology.reach[q] >= 0.0;
+  run.stats.failed_cells += lists_failed;
+  return lists_failed;
+}
+
+void compute_scene(SceneRun run) {
+  const Scene& scene = run.scene;
+  SceneCells& out = run.out;
   assert(scene.wanted_begin <= scene.wanted_end && scene.wanted_end <= scene.sites.size());
   out.cells.assign(scene.wanted_count(), Cell{});
   out.coincident_count = 0;
   out.fallback_count = 0;
   out.zero_density_count = 0;
   if (scene.wanted_count() == 0) return;
-  const CellSearch search(scene);
-  const SiteGrid& grid = search.grid;
 
-  auto run_buckets = [&](std::size_t begin, std::size_t end) {
-    ConvexPolygon cell_polygon;
-    SearchScratch scratch;
-    scratch.candidates.reserve(64);
-    for (std::size_t b = begin; b < end; ++b) {
-      for (std::uint32_t site : grid.sites_in_bucket(b)) {
-        if (site < scene.wanted_begin || site >= scene.wanted_end) continue;
-        bool complete = build_cell(scene, search, site, cell_polygon, scratch);
-        out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, cell_polygon, weighting);
-      }
+  Topology* topology = run.topology;
+  if (!topology) {
+    search_scene(run, nullptr);
+  } else if (!topology->matches(scene)) {
+    // A new scene: searched; its positions are the reference for the next call's moves.
+    topology->reset(scene);
+    search_scene(run, nullptr);
+    topology->reference = scene.sites;
+    topology->has_reference = true;
+  } else if (topology->has_lists) {
+    const std::size_t failed = kept_scene(run, *topology);
+    if (failed * Topology::kFailShare > scene.wanted_count()) {
+      // Stale lists: the next call searches, and makes new ones if the sites move little.
+      topology->drop_lists();
+      topology->reference = scene.sites;
     }
-  };
-  if (parallel_inside) {
-    parallel_for(grid.bucket_count(), 256, run_buckets);
   } else {
-    run_buckets(0, grid.bucket_count());
+    std::vector<Moved> now;
+    const double farthest = displacements(scene, topology->reference, topology->order, now);
+    const double spacing = std::sqrt(scene.domain.area() / static_cast<double>(scene.sites.size()));
+    search_scene(run, farthest < Topology::kListMove * spacing ? topology : nullptr);
+    if (!topology->has_lists) topology->reference = scene.sites;
   }
   for (const Cell& c : out.cells) {
     out.coincident_count += c.status == CellStatus::coincident;
@@ -309,8 +734,18 @@ Scene make_scene(std::vector<Point> sites, Domain domain) {
   return scene;
 }
 
-ExactEngine::ExactEngine() = default;
+ExactEngineOptions default_exact_engine_options() {
+  ExactEngineOptions options;
+  const char* keep = std::getenv("BLUETILE_EXACT_KEEP_TOPOLOGY");
+  if (keep && std::strcmp(keep, "0") == 0) options.keep_topology = false;
+  return options;
+}
+
+ExactEngine::ExactEngine() : ExactEngine(default_exact_engine_options()) {}
+ExactEngine::ExactEngine(ExactEngineOptions options) : options_(options) {}
 ExactEngine::~ExactEngine() = default;
+
+void ExactEngine::forget_topology() { topology_.clear(); }
 
 const ExactEngine::DensityEntry& ExactEngine::density_entry(const std::shared_ptr<const DensityGrid>& density) {
   const std::uint64_t texel_hash = hash_texels(*density);
@@ -352,16 +787,47 @@ void ExactEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> o
     if (checked[i]->sites.size() <= kSmallScene) small.push_back(i);
   const bool across_scenes = small.size() >= 2 * thread_count();
   if (!across_scenes) small.clear();
+  // The kept topology, one state per place in the batch, for scenes large enough to profit.
+  stats_ = KeptTopologyStats{};
+  if (options_.keep_topology) {
+    if (topology_.size() > scenes.size()) topology_.resize(scenes.size());
+    while (topology_.size() < scenes.size()) topology_.push_back(nullptr);
+  } else {
+    topology_.clear();
+  }
+  std::vector<KeptTopologyStats> scene_stats(scenes.size());
+  auto topology = [&](std::size_t i) -> Topology* {
+    if (!options_.keep_topology || checked[i]->sites.size() < Topology::kMinSites) {
+      if (i < topology_.size()) topology_[i].reset();
+      return nullptr;
+    }
+    if (!topology_[i]) topology_[i] = std::make_unique<Topology>();
+    return topology_[i].get();
+  };
+  std::vector<Topology*> states(scenes.size());
+  for (std::size_t i = 0; i < scenes.size(); ++i) states[i] = topology(i);
   for (std::size_t i = 0, k = 0; i < scenes.size(); ++i) {
     if (k < small.size() && small[k] == i) {
       ++k;
     } else {
-      compute_scene(*checked[i], weighting[i], out[i], true);
+      compute_scene({*checked[i], weighting[i], out[i], true, states[i], scene_stats[i]});
     }
   }
   parallel_for(small.size(), 4, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t k = begin; k < end; ++k) compute_scene(*checked[small[k]], weighting[small[k]], out[small[k]], false);
+    for (std::size_t k = begin; k < end; ++k) {
+      const std::size_t i = small[k];
+      compute_scene({*checked[i], weighting[i], out[i], false, states[i], scene_stats[i]});
+    }
   });
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    stats_.kept_cells += scene_stats[i].kept_cells;
+    stats_.searched_cells += scene_stats[i].searched_cells;
+    stats_.failed_cells += scene_stats[i].failed_cells;
+    if (states[i]) {
+      stats_.list_entries += states[i]->entries.size();
+      stats_.bytes += states[i]->bytes();
+    }
+  }
 }
 
 std::vector<Point> exact_cell_polygon(const Scene& given, std::size_t site) {

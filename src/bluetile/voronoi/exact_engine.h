@@ -20,9 +20,35 @@ namespace bluetile {
 
 class DensityPrefix;
 
+// Topology kept between calls (kept_topology.h): after a call that measured a scene of at least
+// kMinSites sites, each wanted cell keeps a list of the sites near it (within 2.6 times its
+// radius) and the positions they had. The next call on a scene with the same place in the batch,
+// site count, wanted range, domain and boundary clips each cell against its list only, and
+// certifies the result: the list is complete for the new cell when the cell's reach (twice its
+// radius) plus how far its site and the farthest-moved site of the scene moved since the list was
+// made stays inside the list's radius. Cells whose certificate fails (and coincident ones) are
+// computed by the full search, as are all cells of a call whose sites moved too far. Results
+// agree with the full search to rounding (the same bisectors clip the cell, in another order),
+// and are the same bits whatever the thread count.
+struct ExactEngineOptions {
+  // Default: on, unless the environment sets BLUETILE_EXACT_KEEP_TOPOLOGY=0 (for comparisons).
+  bool keep_topology = true;
+};
+ExactEngineOptions default_exact_engine_options();
+
+// What the kept topology did in the last call (summed over the scenes of the batch).
+struct KeptTopologyStats {
+  std::size_t kept_cells = 0;      // certified from the kept lists
+  std::size_t searched_cells = 0;  // measured by the full search (first calls, fallbacks)
+  std::size_t failed_cells = 0;    // of those, cells whose kept list failed its certificate
+  std::size_t list_entries = 0;    // entries of the lists now held
+  std::size_t bytes = 0;           // memory the kept state holds now
+};
+
 class ExactEngine final : public CentroidEngine {
  public:
   ExactEngine();
+  explicit ExactEngine(ExactEngineOptions options);
   ~ExactEngine() override;
   std::string_view name() const override { return "exact"; }
   using CentroidEngine::compute;
@@ -34,9 +60,17 @@ class ExactEngine final : public CentroidEngine {
   // to call from two threads at once on one engine (one engine per thread instead).
   struct DensityEntry;
 
+  // Forgets the kept topology (the next call searches every cell).
+  void forget_topology();
+  const KeptTopologyStats& last_topology_stats() const { return stats_; }
+  struct Topology;  // kept_topology.h
+
  private:
   const DensityEntry& density_entry(const std::shared_ptr<const DensityGrid>& density);
   std::vector<std::shared_ptr<const DensityEntry>> density_cache_;
+  ExactEngineOptions options_;
+  std::vector<std::unique_ptr<Topology>> topology_;  // per scene of the batch
+  KeptTopologyStats stats_;
 };
 
 // The cell polygon of one site, vertices counter-clockwise relative to the site (for drawing
