@@ -737,7 +737,7 @@ Scene make_scene(std::vector<Point> sites, Domain domain) {
 ExactEngineOptions default_exact_engine_options() {
   ExactEngineOptions options;
   const char* keep = std::getenv("BLUETILE_EXACT_KEEP_TOPOLOGY");
-  if (keep && std::strcmp(keep, "0") == 0) options.keep_topology = false;
+  if (keep && std::strcmp(keep, "1") == 0) options.keep_topology = true;
   return options;
 }
 

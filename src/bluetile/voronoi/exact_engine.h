@@ -30,9 +30,11 @@ class DensityPrefix;
 // computed by the full search, as are all cells of a call whose sites moved too far. Results
 // agree with the full search to rounding (the same bisectors clip the cell, in another order),
 // and are the same bits whatever the thread count.
+// Off by default: kept cells agree with searched ones to rounding (about 1e-16), not bit for bit,
+// so with it on a result depends on the calls the engine saw before (same bits for any thread
+// count still). ExactEngine() turns it on when the environment sets BLUETILE_EXACT_KEEP_TOPOLOGY=1.
 struct ExactEngineOptions {
-  // Default: on, unless the environment sets BLUETILE_EXACT_KEEP_TOPOLOGY=0 (for comparisons).
-  bool keep_topology = true;
+  bool keep_topology = false;
 };
 ExactEngineOptions default_exact_engine_options();
 
