@@ -1,6 +1,9 @@
 #include "cli/engine_options.h"
 
+#include <cstdio>
+
 #include "cli/numeric_options.h"
+#include "cli/progress.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/voronoi/exact_engine.h"
@@ -53,6 +56,22 @@ std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {
   if (options.threads > 0) set_thread_count(static_cast<std::size_t>(options.threads));
   if (options.engine == "exact") return std::make_unique<ExactEngine>();
   return std::make_unique<RasterEngine>(raster_options(options));
+}
+
+void note_faster_engine(const CentroidEngine& engine, double site_iterations) {
+  const auto* raster = dynamic_cast<const RasterEngine*>(&engine);
+  if (raster == nullptr || !raster->cpu_device()) return;
+  // Measured on lavapipe, 2 cores (relax -n 20000 -k 20): about 4 us per cell with the raster
+  // engine, 8-10x less with the exact engine (docs/BENCHMARKS.md, "Which engine to use").
+  constexpr double kRasterSecondsPerCell = 4e-6, kExactSpeedUp = 8.0;
+  constexpr double kWorthSaying = 10.0;  // seconds: shorter runs are not worth a line
+  const double raster_s = kRasterSecondsPerCell * site_iterations;
+  if (raster_s < kWorthSaying) return;
+  std::fprintf(stderr,
+               "bluetile: note: about %s on the raster engine on %s, a CPU device; --engine exact computes the same "
+               "cells (to 1e-12 of area coverage) in about %s\n",
+               duration_words(raster_s).c_str(), raster->device_name().c_str(),
+               duration_words(raster_s / kExactSpeedUp).c_str());
 }
 
 void write_id_image(const EngineOptions& options, CentroidEngine& engine, const Scene& scene, OutputFile& out) {

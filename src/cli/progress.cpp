@@ -13,15 +13,20 @@ Progress::Progress(std::string label, long long total)
       enabled_(isatty(STDERR_FILENO) == 1),
       start_(std::chrono::steady_clock::now()) {}
 
+std::string duration_words(double seconds) {
+  char text[48];
+  if (seconds < 90.0) std::snprintf(text, sizeof text, "%.0f s", std::ceil(seconds));
+  else if (seconds < 90.0 * 60.0) std::snprintf(text, sizeof text, "%.0f min", seconds / 60.0);
+  else if (seconds < 48.0 * 3600.0) std::snprintf(text, sizeof text, "%.1f h", seconds / 3600.0);
+  else std::snprintf(text, sizeof text, "%.0f days", seconds / 86400.0);
+  return text;
+}
+
 std::string time_left(double elapsed_s, long long done, long long total) {
   // Too early for a rate worth showing: under a second or nothing done yet.
   if (done <= 0 || done >= total || elapsed_s < 1.0) return "";
   const double left_s = elapsed_s * static_cast<double>(total - done) / static_cast<double>(done);
-  char text[48];
-  if (left_s < 90.0) std::snprintf(text, sizeof text, ", about %.0f s left", std::ceil(left_s));
-  else if (left_s < 90.0 * 60.0) std::snprintf(text, sizeof text, ", about %.0f min left", left_s / 60.0);
-  else std::snprintf(text, sizeof text, ", about %.1f h left", left_s / 3600.0);
-  return text;
+  return ", about " + duration_words(left_s) + " left";
 }
 
 Progress::~Progress() { finish(); }

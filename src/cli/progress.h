@@ -6,6 +6,9 @@
 
 namespace bluetile::cli {
 
+// A duration as people say it: "42 s", "12 min", "3.5 h", "40 days".
+std::string duration_words(double seconds);
+
 // ", about 3 s left" after `done` of `total` steps in elapsed_s seconds; "" before a second has
 // passed or a step is done, and at the end.
 std::string time_left(double elapsed_s, long long done, long long total);

@@ -81,6 +81,7 @@ void run_progressive(const ProgressiveOptions& o) {
                                            std::to_string(target_levels) + " levels");
 
   auto engine = make_engine(o.engine);
+  note_faster_engine(*engine, total * o.iterations);
   if (sets.size() > 1 && o.engine.engine == "exact") {
     // Set k of a batch is the set --seed S+k gives alone (wrapping past 2^64 - 1); the exact
     // engine is cheap to make, so the sets are built in parallel, one engine per worker.

@@ -105,6 +105,9 @@ void run_relax(const RelaxOptions& o) {
   }
 
   auto engine = make_engine(o.engine);
+  double cells = 0.0;
+  for (const Scene& scene : scenes) cells += static_cast<double>(scene.wanted_count());
+  note_faster_engine(*engine, cells * o.iterations);
   // The log is streamed while the run goes: its memory does not grow with the iterations.
   RelaxLog log("relax", o.iterations, o.verbose, log_file ? &log_file->open() : nullptr);
   LloydResult result = relax_lloyd(*engine, scenes, log.lloyd_options(o.iterations, o.tolerance));

@@ -116,6 +116,7 @@ void run_stipple(const StippleOptions& o) {
   scene.density = std::make_shared<DensityGrid>(weight_for_point_density(*map, o.weight_exponent));
 
   auto engine = make_engine(o.engine);
+  note_faster_engine(*engine, static_cast<double>(count) * o.iterations);
   RelaxLog log("stipple", o.iterations, o.verbose, log_file ? &log_file->open() : nullptr);
   LloydResult result = relax_lloyd(*engine, scene, log.lloyd_options(o.iterations, o.tolerance));
   log.finish(result, o.tolerance, o.iterations);

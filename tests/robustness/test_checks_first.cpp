@@ -245,5 +245,27 @@ TEST(ChecksFirst, AFifoInputWithoutAWriterIsSaidAndThenRead) {
   EXPECT_NE(read_text(dir.file("o.txt")).find("3 points, 1 iterations"), std::string::npos);
 }
 
+// Issue 25, item 7: a long raster job on a CPU device says, before it starts, how long it should
+// take and how long the exact engine would (killed once the line had time to appear).
+TEST(ChecksFirst, ALongRasterJobOnACpuDeviceNamesTheFasterEngine) {
+  TempDir dir;
+  Child child({{"relax", "-n", "20000", "-k", "1000", "-o", dir.file("a.txt")}});
+  std::this_thread::sleep_for(std::chrono::seconds(8));
+  kill(child.pid(), SIGKILL);
+  Outcome r = child.wait();
+  if (r.err.find("no Vulkan") != std::string::npos || r.exit_code == 1) GTEST_SKIP() << "no raster engine: " << r.err;
+  // 2e7 cells at 4 us: about 80 s; the exact engine 8 times less.
+  EXPECT_NE(r.err.find("bluetile: note: about 80 s on the raster engine on "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("a CPU device; --engine exact computes the same cells (to 1e-12 of area coverage) in about 10 s"),
+            std::string::npos)
+      << r.err;
+  // Short jobs, and the exact engine, say nothing.
+  Outcome small = run({"relax", "-n", "200", "-k", "5", "-o", dir.file("b.txt")});
+  EXPECT_EQ(small.exit_code, 0) << small.err;
+  EXPECT_EQ(small.err, "");
+  Outcome exact = run({"relax", "-n", "20000", "-k", "3", "--engine", "exact", "-o", dir.file("c.txt")});
+  EXPECT_EQ(exact.err, "");
+}
+
 }  // namespace
 }  // namespace bluetile::robustness

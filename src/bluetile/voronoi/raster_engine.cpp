@@ -405,6 +405,7 @@ std::string RasterEngine::device_name() const { return impl_->device.device_name
 int RasterEngine::resolution_for(const Scene& scene) const { return impl_->resolution_for(scene); }
 bool RasterEngine::float64_split() const { return impl_->device.float64_split(); }
 bool RasterEngine::pixel_work_on_device() const { return impl_->on_device; }
+bool RasterEngine::cpu_device() const { return impl_->device.is_cpu(); }
 
 const IdImage& RasterEngine::id_image(std::size_t scene) const {
   if (scene >= impl_->id_images.size()) throw Error("raster engine: no ID image kept for that scene (keep_id_images)");

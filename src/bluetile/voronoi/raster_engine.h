@@ -107,6 +107,8 @@ class RasterEngine final : public CentroidEngine {
   const RasterOptions& options() const;
   const RasterStats& stats() const;
   std::string device_name() const;
+  // Whether the Vulkan device is a CPU implementation (lavapipe).
+  bool cpu_device() const;
   // The ID buffer of scene `scene` of the last compute (needs keep_id_images).
   const IdImage& id_image(std::size_t scene) const;
   // The scene resolution the engine uses for a scene (x side, pixels); throws Error when it
