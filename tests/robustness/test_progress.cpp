@@ -7,7 +7,11 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <thread>
 #include <regex>
 #include <string>
 #include <vector>
@@ -23,8 +27,9 @@ struct TerminalRun {
   std::string terminal;  // what the tool wrote to its stderr, a terminal
 };
 
-// Runs the tool with stderr on a new pseudo-terminal and stdin, stdout on files.
-TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder) {
+// Runs the tool with stderr on a new pseudo-terminal and stdin, stdout on files; kills it after
+// `seconds`.
+TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder, int seconds) {
   int master = -1, slave = -1;
   if (openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) ADD_FAILURE() << "openpty failed";
   std::vector<char*> argv;
@@ -46,6 +51,12 @@ TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std
     _exit(127);
   }
   close(slave);
+  std::atomic<bool> ended{false};
+  std::thread stop([pid, seconds, &ended] {
+    for (int tenths = 0; tenths < 10 * seconds && !ended; ++tenths)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (!ended) kill(pid, SIGKILL);  // not yet collected, so the pid is still the child's
+  });
   TerminalRun result;
   char buffer[4096];
   for (;;) {
@@ -56,6 +67,8 @@ TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std
   }
   close(master);
   int status = 0;
+  ended = true;  // the terminal closed: the child has exited or is exiting
+  stop.join();
   waitpid(pid, &status, 0);
   result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
@@ -63,15 +76,20 @@ TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std
 
 TEST(Progress, ATerminalSeesTotalsAndTheTimeLeft) {
   test::TempDir dir;
-  // A relaxation of a few seconds: the time left shows once a second has passed.
-  const std::vector<std::string> job = {"relax", "--count", "30000", "--iterations", "60", "--engine", "exact",
-                                        "-o", dir.file("points.txt")};
-  TerminalRun terminal = run_on_terminal(job, dir.path());
-  ASSERT_EQ(terminal.exit_code, 0) << terminal.terminal;
-  EXPECT_TRUE(std::regex_search(terminal.terminal, std::regex(R"(relax [0-9]+/60, about [0-9.]+ (s|min|h) left)")))
+  // A relaxation far longer than the test, killed after 4 s: the time left shows once a second
+  // has passed, whatever the machine's speed.
+  TerminalRun terminal = run_on_terminal(
+      {"relax", "--count", "20000", "--iterations", "100000", "--engine", "exact", "-o", dir.file("points.txt")},
+      dir.path(), 4);
+  EXPECT_TRUE(std::regex_search(terminal.terminal,
+                                std::regex(R"(relax [0-9]+/100000, about [0-9.]+ (s|min|h|days) left)")))
       << terminal.terminal;
-  EXPECT_NE(terminal.terminal.find("relax 60/60"), std::string::npos) << terminal.terminal;
-
+  // A short run draws its last step on a terminal, and nothing when stderr is not one.
+  const std::vector<std::string> job = {"relax", "--count", "300", "--iterations", "6", "--engine", "exact",
+                                        "-o", dir.file("small.txt")};
+  TerminalRun short_run = run_on_terminal(job, dir.path(), 60);
+  EXPECT_EQ(short_run.exit_code, 0) << short_run.terminal;
+  EXPECT_NE(short_run.terminal.find("relax 6/6"), std::string::npos) << short_run.terminal;
   Outcome piped = run(job);
   EXPECT_EQ(piped.exit_code, 0) << piped.err;
   EXPECT_EQ(piped.err, "") << "progress is for terminals only";
