@@ -1,4 +1,4 @@
-// libFuzzer target for the binary point tables (core/point_table.h: npy, .bpt, psa's .rps): no crash, no
+// libFuzzer target for the binary point tables (core/point_table.h: npy, .bpt, CSV, psa's .rps): no crash, no
 // undefined behaviour, no allocation beyond what the bytes can hold, only bluetile::Error; every
 // value read is finite.
 #include <cmath>
@@ -11,9 +11,10 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
-  for (auto parse : {&bluetile::parse_npy_table, &bluetile::parse_binary_table}) {
+  // Through pointers the default ReadOptions must be given.
+  for (auto parse : {&bluetile::parse_npy_table, &bluetile::parse_binary_table, &bluetile::parse_csv_points}) {
     try {
-      for (const bluetile::PointSet& set : parse(bytes, "fuzz"))
+      for (const bluetile::PointSet& set : parse(bytes, "fuzz", bluetile::ReadOptions{}))
         for (const auto& p : set.points) BLUETILE_FUZZ_CHECK(std::isfinite(p.x) && std::isfinite(p.y));
     } catch (const bluetile::Error&) {
     }

@@ -225,25 +225,12 @@ std::uint64_t hash_texels(const DensityGrid& density) {
   return ((h[0] * kPrime ^ h[1]) * kPrime ^ h[2]) * kPrime ^ h[3];
 }
 
-Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const ConvexPolygon& cell_polygon,
-                  const Weighting& weighting) {
-  Cell cell;
-  const Point origin = scene.sites[site];
-  if (coincident) {
-    cell.centroid = origin;
-    cell.status = CellStatus::coincident;
-    return cell;
-  }
-  const PolygonMoments moments = cell_polygon.moments();
-  cell.area = moments.area();
-  cell.mass = cell.area;
-  cell.radius = std::sqrt(cell_polygon.max_radius_squared());
-  cell.second_moment = moments.second_moment();
-  Point offset = moments.centroid();
+// A measured cell (area, second moment, radius) under the scene's weighting: its mass, weighted
+// moments and centroid; `offset` is the plain centroid relative to the site, `polygon` the cell's
+// vertices relative to the site (needed only with a density table).
+Cell weigh_cell(const Scene& scene, Point origin, const Weighting& weighting, std::span<const Point> polygon, Cell cell,
+                Point offset) {
   if (weighting.prefix) {
-    thread_local std::vector<Point> polygon;
-    polygon.clear();
-    for (const PolygonVertex& v : cell_polygon.vertices()) polygon.push_back(v.p);
     const WeightedMoments m = weighting.prefix->moments(polygon, origin, scene.domain.size, scene.periodic());
     cell.mass = m.mass;
     cell.second_moment = m.second;
@@ -261,6 +248,30 @@ Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const
   }
   cell.centroid = scene_point(scene, origin + offset);
   return cell;
+}
+
+Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const ConvexPolygon& cell_polygon,
+                  const Weighting& weighting) {
+  Cell cell;
+  const Point origin = scene.sites[site];
+  if (coincident) {
+    cell.centroid = origin;
+    cell.status = CellStatus::coincident;
+    return cell;
+  }
+  const PolygonMoments moments = cell_polygon.moments();
+  cell.area = moments.area();
+  cell.mass = cell.area;
+  cell.radius = std::sqrt(cell_polygon.max_radius_squared());
+  cell.second_moment = moments.second_moment();
+  std::span<const Point> polygon;  // only the density's integration needs the vertices as points
+  if (weighting.prefix) {
+    thread_local std::vector<Point> vertices;
+    vertices.clear();
+    for (const PolygonVertex& v : cell_polygon.vertices()) vertices.push_back(v.p);
+    polygon = vertices;
+  }
+  return weigh_cell(scene, origin, weighting, polygon, cell, moments.centroid());
 }
 
 using Topology = ExactEngine::Topology;
@@ -366,24 +377,7 @@ Cell measure_vertices(const Scene& scene, std::uint32_t site, std::span<const Po
   cell.mass = cell.area;
   cell.radius = std::sqrt(radius_squared);
   cell.second_moment = moments.second_moment();
-  Point offset = moments.centroid();
-  if (weighting.prefix) {
-    const WeightedMoments m = weighting.prefix->moments(polygon, origin, scene.domain.size, scene.periodic());
-    cell.mass = m.mass;
-    cell.second_moment = m.second;
-    offset = m.mass > 0.0 ? m.first / m.mass : Point{0.0, 0.0};
-  } else if (weighting.constant != 1.0) {
-    cell.mass = weighting.constant * cell.area;
-    cell.second_moment *= weighting.constant;
-  }
-  if (!(cell.mass > 0.0) && cell.area > 0.0) {
-    cell.mass = 0.0;
-    cell.centroid = origin;
-    cell.status = CellStatus::zero_density;
-    return cell;
-  }
-  cell.centroid = scene_point(scene, origin + offset);
-  return cell;
+  return weigh_cell(scene, origin, weighting, polygon, cell, moments.centroid());
 }
 
 // The most edges a cell built directly from its kept neighbours may have (more: clipped).
