@@ -28,6 +28,7 @@ namespace bluetile {
 namespace {
 
 using test::compare_cells;
+using test::fixed_site_rectangle;
 using test::Errors;
 using test::shared_engine;
 using test::uniform_points;
@@ -153,12 +154,8 @@ TEST(Raster, CoincidentAndPixellessCellsAreReported) {
 
 TEST(Raster, RectangularDomainAndFixedSites) {
   REQUIRE_VULKAN();
-  Scene scene;
-  scene.domain.size = {2.0, 1.0};
   Rng rng(13);
-  for (int k = 0; k < 300; ++k) scene.sites.push_back(rng.point(scene.domain));
-  scene.wanted_begin = 100;
-  scene.wanted_end = 300;
+  const Scene scene = fixed_site_rectangle(rng, 300, 100);
   SceneCells exact = ExactEngine().compute(scene);
   SceneCells area = shared_engine(64, Coverage::area).compute(scene);
   ASSERT_EQ(area.cells.size(), 200u);

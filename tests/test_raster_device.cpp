@@ -29,13 +29,8 @@ std::vector<Scene> device_scenes() {
   // A rectangle with fixed sites (the shape of the Wang loop's cropped scenes: context sites
   // shape the cells, only the wanted ones are measured), and a cluster dense enough that some
   // pixels go to the host.
-  Scene rectangle;
-  rectangle.domain.size = {2.0, 1.0};
   Rng rng(56);
-  for (int k = 0; k < 400; ++k) rectangle.sites.push_back(rng.point(rectangle.domain));
-  rectangle.wanted_begin = 150;
-  rectangle.wanted_end = 400;
-  scenes.push_back(std::move(rectangle));
+  scenes.push_back(test::fixed_site_rectangle(rng, 400, 150));
   std::vector<Point> cluster = uniform_points(200, 57);
   for (int k = 0; k < 300; ++k) cluster.push_back({0.3 + 0.02 * rng.uniform(), 0.6 + 0.02 * rng.uniform()});
   scenes.push_back(make_scene(std::move(cluster)));

@@ -104,6 +104,15 @@ bool identical_cells(const SceneCells& a, const SceneCells& b) {
   return true;
 }
 
+Scene fixed_site_rectangle(Rng& rng, std::size_t sites, std::size_t fixed) {
+  Scene scene;
+  scene.domain.size = {2.0, 1.0};
+  for (std::size_t k = 0; k < sites; ++k) scene.sites.push_back(rng.point(scene.domain));
+  scene.wanted_begin = fixed;
+  scene.wanted_end = sites;
+  return scene;
+}
+
 Scene relaxed_scene(std::size_t n, std::uint64_t seed, int iterations) {
   Scene scene = make_scene(uniform_points(n, seed));
   ExactEngine exact;

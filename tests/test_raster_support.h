@@ -9,6 +9,7 @@
 #include <tuple>
 #include <vector>
 
+#include "bluetile/core/rng.h"
 #include "bluetile/voronoi/engine.h"
 #include "bluetile/voronoi/raster_engine.h"
 
@@ -40,6 +41,10 @@ Errors compare_cells(const SceneCells& a, const SceneCells& b, const Scene& scen
 bool identical_cells(const SceneCells& a, const SceneCells& b);
 
 Scene relaxed_scene(std::size_t n, std::uint64_t seed, int iterations);
+
+// `sites` points from `rng` in the 2 x 1 rectangle, the first `fixed` only shaping the cells (the
+// shape of the Wang loop's cropped scenes).
+Scene fixed_site_rectangle(Rng& rng, std::size_t sites, std::size_t fixed);
 
 struct HardCase {
   const char* name;

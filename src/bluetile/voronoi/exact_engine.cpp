@@ -35,6 +35,18 @@ constexpr std::uint32_t kOwnCopy = kUnlabelled;
 // grid then costs O(N) or O(sqrt N) per cell, and the k-d tree (site_tree.h) searches instead.
 constexpr double kCrowdedBucket = 8.0;
 
+// The squared distance from a point at `local` in its bucket (`cell` the bucket's size) to the
+// bucket `step` away: what a search from that point must reach to see the bucket's sites.
+double bucket_gap_squared(const SiteGrid::SearchStep& step, Point local, Point cell) {
+  const double gx = step.dx > 0   ? static_cast<double>(step.dx) * cell.x - local.x
+                    : step.dx < 0 ? local.x - static_cast<double>(step.dx + 1) * cell.x
+                                  : 0.0;
+  const double gy = step.dy > 0   ? static_cast<double>(step.dy) * cell.y - local.y
+                    : step.dy < 0 ? local.y - static_cast<double>(step.dy + 1) * cell.y
+                                  : 0.0;
+  return gx * gx + gy * gy;
+}
+
 struct Candidate {
   double distance_squared;
   Point offset;
@@ -170,13 +182,7 @@ bool build_cell(const Scene& scene, const CellSearch& search, std::uint32_t site
     const double reach_squared = 4.0 * cell_polygon.max_radius_squared();
     if (step.lower_bound_squared >= reach_squared) return !coincident;
     // The exact distance from the site to bucket (dx, dy) skips buckets the bound let through.
-    const double gx = step.dx > 0   ? static_cast<double>(step.dx) * cell.x - local.x
-                      : step.dx < 0 ? local.x - static_cast<double>(step.dx + 1) * cell.x
-                                    : 0.0;
-    const double gy = step.dy > 0   ? static_cast<double>(step.dy) * cell.y - local.y
-                      : step.dy < 0 ? local.y - static_cast<double>(step.dy + 1) * cell.y
-                                    : 0.0;
-    if (gx * gx + gy * gy >= reach_squared) continue;
+    if (bucket_gap_squared(step, local, cell) >= reach_squared) continue;
     if (!scene.periodic() && !inside_grid(grid, cx + step.dx, cy + step.dy)) continue;
     grid.for_each_in_bucket(cx + step.dx, cy + step.dy, origin, visit);
     if (coincident) return false;
@@ -292,13 +298,7 @@ double gather_list(const Scene& scene, const SiteGrid& grid, std::uint32_t site,
   const std::size_t first = list.size();
   for (const auto& step : grid.search_order()) {
     if (step.lower_bound_squared >= reach_squared) break;
-    const double gx = step.dx > 0   ? static_cast<double>(step.dx) * cell.x - local.x
-                      : step.dx < 0 ? local.x - static_cast<double>(step.dx + 1) * cell.x
-                                    : 0.0;
-    const double gy = step.dy > 0   ? static_cast<double>(step.dy) * cell.y - local.y
-                      : step.dy < 0 ? local.y - static_cast<double>(step.dy + 1) * cell.y
-                                    : 0.0;
-    if (gx * gx + gy * gy > reach_squared) continue;
+    if (bucket_gap_squared(step, local, cell) > reach_squared) continue;
     const long bx = cx + step.dx, by = cy + step.dy;
     if (!scene.periodic() && !inside_grid(grid, bx, by)) continue;
     const auto wx = static_cast<std::int16_t>(SiteGrid::wrap_count(bx, grid.columns()));
