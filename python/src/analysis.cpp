@@ -90,7 +90,7 @@ nb::dict summary_dict(bluetile::Summary&& s) {
 void bind_analysis(nb::module_& m) {
   m.def(
       "analyze",
-      [](const AnyArray& points, int size, double bin_width, bool centroids, bool psa_measures) {
+      [](const AnyArray& points, int size, double bin_width, bool centroids, bool psa_measures, bool discrepancy) {
         check_spectrum_options(size, bin_width);
         PointSets input = analysed_sets(points);
         bluetile::SummaryOptions options;
@@ -98,6 +98,7 @@ void bind_analysis(nb::module_& m) {
         options.bin_width = bin_width;
         options.centroids = centroids;
         options.spectral_measures = psa_measures;
+        options.discrepancy = discrepancy;
         bluetile::Summary summary;
         {
           nb::gil_scoped_release release;
@@ -106,8 +107,9 @@ void bind_analysis(nb::module_& m) {
         return summary_dict(std::move(summary));
       },
       nb::sig("def analyze(points: NDArray[numpy.float64], *, size: int = 0, bin_width: float = 1.0, centroids: bool = True, "
-              "psa_measures: bool = True) -> dict[str, typing.Any]"),
+              "psa_measures: bool = True, discrepancy: bool = True) -> dict[str, typing.Any]"),
       "points"_a, nb::kw_only(), "size"_a = 0, "bin_width"_a = 1.0, "centroids"_a = true, "psa_measures"_a = true,
+      "discrepancy"_a = true,
       R"(Statistics of a point set on the unit torus, as ``bluetile analyze`` writes them to stats.json.
 
 ``points``: shape (N, 2), or (K, N, 2) for the mean over K sets (``--average``). Returns a dict
@@ -116,7 +118,8 @@ boundary, nn_min, nn_max, nn_mean, nn_x1000, nn_relative, hexagonal_spacing, rho
 average_min_distance, nn_min_lowest/highest (K > 1), mean_centroid_distance[_relative] unless
 ``centroids=False``, nu_eff and omega by psa's definitions (None when ``psa_measures=False``;
 their RDF is O(N^2), about half an hour at 10^6 points on 2 cores) with omega_range_nu,
-bond_order (local, global), rdf_range_relative, rdf_bins, periodogram_size and radial (arrays
+bond_order (local, global), discrepancy (CD, WD, MD, L2-star, as scipy.stats.qmc.discrepancy;
+absent with ``discrepancy=False``, as ``--no-discrepancy``: O(N^2)), rdf_range_relative, rdf_bins, periodogram_size and radial (arrays
 frequency, nu, power, anisotropy_db, count; NaN where stats.json has null); and "periodogram",
 the (F, F) array of ``periodogram``. size: the periodogram's F (0: 2 floor(5 sqrt(N)));
 bin_width: the annulus width.)");

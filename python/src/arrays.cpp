@@ -114,4 +114,26 @@ nb::ndarray<nb::numpy, double> points_to_numpy(const std::vector<std::vector<blu
   return to_numpy(std::move(values), {count, 2});
 }
 
+bluetile::DensityGrid density_grid(const AnyArray& a, const char* name) {
+  const std::string what(name);
+  if (a.ndim() != 2 || a.shape(0) < 1 || a.shape(1) < 1)
+    throw nb::value_error((what + ": expected a 2-D array of shape (rows, columns)").c_str());
+  if (a.shape(0) > 65536 || a.shape(1) > 65536)
+    throw nb::value_error((what + ": expected at most 65536 rows and columns").c_str());
+  const bool f64 = a.dtype() == nb::dtype<double>(), f32 = a.dtype() == nb::dtype<float>();
+  if (!f64 && !f32) throw nb::type_error((what + ": expected float64 or float32, got " + dtype_name(a.dtype())).c_str());
+  const int height = static_cast<int>(a.shape(0)), width = static_cast<int>(a.shape(1));
+  bluetile::DensityGrid grid(width, height);
+  for (int r = 0; r < height; ++r)
+    for (int c = 0; c < width; ++c) {
+      const std::int64_t at = r * a.stride(0) + c * a.stride(1);
+      const double v = f64 ? static_cast<const double*>(a.data())[at] : static_cast<const float*>(a.data())[at];
+      if (!(v >= 0.0) || !std::isfinite(v))
+        throw nb::value_error((what + ": values must be finite and >= 0, got " + std::to_string(v) + " at row " +
+                               std::to_string(r) + ", column " + std::to_string(c)).c_str());
+      grid.at(c, height - 1 - r) = static_cast<float>(v);  // row 0 at the bottom, y up
+    }
+  return grid;
+}
+
 }  // namespace pybluetile

@@ -10,6 +10,7 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/ndarray.h>
 
+#include "bluetile/core/density_grid.h"
 #include "bluetile/core/torus.h"
 
 namespace pybluetile {
@@ -32,6 +33,12 @@ PointSets point_sets(const AnyArray& array, const char* name);
 
 // Whole numbers (any integer dtype) of shape (N,), each in [0, max].
 std::vector<int> levels_array(const AnyArray& array, std::size_t count, const char* name, int max);
+
+// A density map: a 2-D float64 or float32 array of shape (rows, columns), row 0 at the top (as
+// images and matplotlib's imshow have it), every value finite and >= 0; the grid's row 0 is the
+// bottom (density_grid.h). Throws TypeError (dtype) or ValueError naming `name` and, for a bad
+// value, its row and column.
+bluetile::DensityGrid density_grid(const AnyArray& array, const char* name);
 
 // A NumPy array owning `values` (moved, not copied), of the given shape.
 template <typename T>

@@ -6,7 +6,7 @@
 
 namespace pybluetile {
 
-void bind_engines(nanobind::module_& m);   // relax, centroids, progressive
+void bind_engines(nanobind::module_& m);   // relax, stipple, centroids, progressive
 void bind_sampling(nanobind::module_& m);  // random_points, dart
 void bind_analysis(nanobind::module_& m);  // analyze, periodogram, radial_power, nearest_neighbour_distances
 void bind_tables(nanobind::module_& m);    // save_table, load_table

@@ -1,4 +1,4 @@
-// relax, centroids and progressive: the loops over either engine.
+// relax, stipple, centroids and progressive: the loops over either engine.
 #include "engines.h"
 
 #include <optional>
@@ -12,6 +12,8 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/progressive.h"
+#include "bluetile/relax/stipple.h"
+#include "bluetile/sampling/density_sampling.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/voronoi/raster_engine.h"
 
@@ -84,13 +86,34 @@ nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {
   return d;
 }
 
+// As the tool: the raster engine, or the exact one for weighted or bounded cells, which the
+// raster engine computes several times slower (docs/BENCHMARKS.md), unless one is named.
+std::string default_engine(const std::optional<std::string>& engine, bool weighted_or_bounded) {
+  return engine ? *engine : weighted_or_bounded ? "exact" : "raster";
+}
+
+void check_weight_exponent(double exponent) {
+  if (!(exponent >= 0.0 && exponent <= 8.0))
+    throw nb::value_error(("weight_exponent: expected 0 to 8, got " + std::to_string(exponent)).c_str());
+}
+
 nb::object relax(std::optional<AnyArray> points, long long count, long long sets, int iterations, std::uint64_t seed,
-                 long long fixed, double tolerance, const std::string& engine, int resolution, const std::string& coverage,
+                 long long fixed, double tolerance, std::optional<AnyArray> density_map, double weight_exponent,
+                 bool bounded, const std::optional<std::string>& engine, int resolution, const std::string& coverage,
                  const std::string& cone, const std::string& device, const std::string& pixel_work, bool history) {
-  EngineChoice choice{engine, resolution, coverage, cone, device, pixel_work};
+  EngineChoice choice{default_engine(engine, density_map.has_value() || bounded), resolution, coverage, cone, device,
+                      pixel_work};
   check_engine_choice(choice);
   check_range("iterations", iterations, 0, 100000000);
   check_non_negative("tolerance", tolerance);
+  check_weight_exponent(weight_exponent);
+  // The map is stretched over the unit square, as `relax --density-map` stretches it; random
+  // starts follow it and the cells are weighted so that the relaxed set keeps following it.
+  std::shared_ptr<const bluetile::DensityGrid> density, weight;
+  if (density_map) {
+    density = std::make_shared<bluetile::DensityGrid>(density_grid(*density_map, "density_map"));
+    weight = std::make_shared<bluetile::DensityGrid>(bluetile::weight_for_point_density(*density, weight_exponent));
+  }
   if (points.has_value() == (count != 0)) throw nb::value_error("give either points or count");
   if (sets != 0 && points) throw nb::value_error("sets: only with count (an array of shape (K, N, 2) has its sets)");
   PointSets input;
@@ -100,8 +123,12 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
     check_range("count", count, 1, 100000000);
     check_range("sets", sets, 0, 10000000);
     input.batched = sets != 0;
-    for (long long k = 0; k < std::max(sets, 1LL); ++k)
-      input.sets.push_back(bluetile::uniform_random_points(static_cast<std::size_t>(count), seed, static_cast<std::uint64_t>(k)));
+    for (long long k = 0; k < std::max(sets, 1LL); ++k) {
+      const auto n = static_cast<std::size_t>(count);
+      const auto set = static_cast<std::uint64_t>(k);
+      input.sets.push_back(density ? bluetile::density_random_points(*density, n, seed, set)
+                                   : bluetile::uniform_random_points(n, seed, set));
+    }
   }
   const std::size_t n = input.sets[0].size();
   if (fixed < 0 || static_cast<std::size_t>(fixed) > n)
@@ -114,6 +141,8 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
     for (auto& set : input.sets) {
       bluetile::Scene scene = bluetile::make_scene(std::move(set));
       scene.wanted_begin = static_cast<std::size_t>(fixed);
+      scene.boundary = bounded ? bluetile::Boundary::bounded : bluetile::Boundary::periodic;
+      scene.density = weight;
       scenes.push_back(std::move(scene));
     }
     auto e = make_engine(choice);
@@ -128,6 +157,42 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
   nb::object array = nb::cast(points_to_numpy(relaxed, input.batched));
   if (!history) return array;
   return nb::make_tuple(array, history_dict(result.history));
+}
+
+nb::object stipple(const AnyArray& density_map, long long count, int iterations, std::uint64_t seed, double tolerance,
+                   bool periodic, double weight_exponent, const std::string& engine, int resolution,
+                   const std::string& coverage, const std::string& cone, const std::string& device,
+                   const std::string& pixel_work, bool info) {
+  EngineChoice choice{engine, resolution, coverage, cone, device, pixel_work};
+  check_engine_choice(choice);
+  check_range("count", count, 1, 100000000);
+  check_range("iterations", iterations, 0, 100000000);
+  check_non_negative("tolerance", tolerance);
+  check_weight_exponent(weight_exponent);
+  const bluetile::DensityGrid map = density_grid(density_map, "density_map");
+  bluetile::StippleStart start;
+  start.count = static_cast<std::size_t>(count);
+  start.seed = seed;
+  start.periodic = periodic;
+  start.weight_exponent = weight_exponent;
+  bluetile::Scene scene;
+  bluetile::LloydResult result;
+  {
+    nb::gil_scoped_release release;
+    scene = bluetile::stipple_scene(map, start);
+    bluetile::LloydOptions options;
+    options.iterations = iterations;
+    options.tolerance = tolerance;
+    result = bluetile::relax_lloyd(*make_engine(choice), scene, options);
+  }
+  nb::object points = nb::cast(points_to_numpy({scene.sites}, false));
+  if (!info) return points;
+  nb::dict d;
+  d["width"] = scene.domain.size.x;
+  d["height"] = scene.domain.size.y;
+  d["dot_radius"] = bluetile::stipple_dot_radius(map, scene.domain, start.count);
+  d["iterations"] = result.iterations;
+  return nb::make_tuple(points, d);
 }
 
 nb::tuple centroids(const AnyArray& points, const std::string& engine, int resolution, const std::string& coverage,
@@ -204,10 +269,12 @@ nb::tuple progressive(std::optional<AnyArray> base, std::optional<AnyArray> base
 void bind_engines(nb::module_& m) {
   m.def("relax", &relax,
         nb::sig("def relax(points: NDArray[numpy.float64] | None = None, *, count: int = 0, sets: int = 0, iterations: int = 80, "
-                "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
+                "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, density_map: NDArray[numpy.floating] | None = None, "
+                "weight_exponent: float = 2.0, bounded: bool = False, engine: str | None = None, resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
                 "history: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, NDArray]]"),
         "points"_a = nb::none(), nb::kw_only(), "count"_a = 0, "sets"_a = 0, "iterations"_a = 80,
-        "seed"_a = 1, "fixed"_a = 0, "tolerance"_a = 0.0, "engine"_a = "raster", "resolution"_a = 0,
+        "seed"_a = 1, "fixed"_a = 0, "tolerance"_a = 0.0, "density_map"_a = nb::none(), "weight_exponent"_a = 2.0,
+        "bounded"_a = false, "engine"_a = nb::none(), "resolution"_a = 0,
         "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto", "history"_a = false,
         R"(Lloyd relaxation, as ``bluetile relax``.
 
@@ -217,12 +284,36 @@ sets of shape (K, N, 2), set k seeded as the tool seeds it). Every wanted site m
 centroid of its periodic Voronoi cell, ``iterations`` times, or until no site moves more than
 ``tolerance``. The first ``fixed`` sites shape the cells but stay in place.
 
-engine: "raster" (Vulkan, lavapipe by default) or "exact" (CPU, exact polygons); resolution,
+With ``density_map`` (a 2-D array of densities, row 0 at the top, stretched over the unit square,
+as ``--density-map`` with the image's densities) random starts follow the map and the cells are
+weighted by map^``weight_exponent`` (2 keeps the point density proportional to the map), as
+``bluetile relax --density-map``. ``bounded=True``: cells end at the square's border (``--bounded``).
+
+engine: "raster" (Vulkan, lavapipe by default) or "exact" (CPU, exact polygons); None picks the
+tool's default: raster, or exact with a density map or bounded cells. resolution,
 coverage ("area" | "point"), cone ("quad" | "fan"), device and pixel_work ("auto" | "device" |
 "host": where the per-pixel work runs, as ``--pixel-work``; the same bits) set the raster engine.
 With ``history=True`` returns (points, history) where history holds one array per column of
 ``--log``: iteration, energy, max_displacement, mean_displacement, coincident, fallbacks.
 The same seed gives the same bits as the tool. Releases the GIL while it runs.)");
+
+  m.def("stipple", &stipple,
+        nb::sig("def stipple(density_map: NDArray[numpy.floating], *, count: int, iterations: int = 50, seed: int = 1, "
+                "tolerance: float = 0.0, periodic: bool = False, weight_exponent: float = 2.0, engine: str = 'exact', "
+                "resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
+                "info: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, float | int]]"),
+        "density_map"_a, nb::kw_only(), "count"_a, "iterations"_a = 50, "seed"_a = 1, "tolerance"_a = 0.0,
+        "periodic"_a = false, "weight_exponent"_a = 2.0, "engine"_a = "exact", "resolution"_a = 0,
+        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto", "info"_a = false,
+        R"(A stipple drawing by weighted Lloyd relaxation (Secord 2002), as ``bluetile stipple``.
+
+``density_map``: a 2-D array of densities, row 0 at the top (for a grey image with dark meaning
+dense, as the tool's default ``--invert``, pass 1 - luminance). The drawing spans the map's aspect
+ratio with its longer side 1: points lie in [0, W) x [0, H), y up. ``count`` dots start in
+proportion to the map and relax with cells weighted by map^``weight_exponent``; the cells end at
+the picture's border unless ``periodic``. The same map, count, seed and options give the tool's
+points bit for bit. With ``info=True`` returns (points, dict of width, height, dot_radius (dots
+that just touch where the map is densest, the tool's default) and iterations).)");
 
   m.def("centroids", &centroids,
         nb::sig("def centroids(points: NDArray[numpy.float64], *, engine: str = 'raster', resolution: int = 0, "

@@ -150,30 +150,9 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
   if (density_map && density > 0.0) throw nb::value_error("density is for uniform tilings; with density_map give max_density");
   if (!density_map && max_density > 0.0) throw nb::value_error("max_density needs density_map");
 
-  // The map: a 2-D array of non-negative values, row 0 at the top (as images and matplotlib's
-  // imshow have it), stretched over the region.
-  std::vector<float> texels;
-  std::size_t map_width = 0, map_height = 0;
-  if (density_map) {
-    const AnyArray& a = *density_map;
-    if (a.ndim() != 2 || a.shape(0) < 1 || a.shape(1) < 1)
-      throw nb::value_error("density_map: expected a 2-D array of shape (rows, columns)");
-    map_height = a.shape(0);
-    map_width = a.shape(1);
-    const bool f64 = a.dtype() == nb::dtype<double>(), f32 = a.dtype() == nb::dtype<float>();
-    if (!f64 && !f32)
-      throw nb::type_error(("density_map: expected float64 or float32, got " + dtype_name(a.dtype())).c_str());
-    texels.resize(map_width * map_height);
-    for (std::size_t r = 0; r < map_height; ++r)
-      for (std::size_t c = 0; c < map_width; ++c) {
-        const std::int64_t at = static_cast<std::int64_t>(r) * a.stride(0) + static_cast<std::int64_t>(c) * a.stride(1);
-        const double v = f64 ? static_cast<const double*>(a.data())[at] : static_cast<const float*>(a.data())[at];
-        if (!(v >= 0.0) || !std::isfinite(v))
-          throw nb::value_error(("density_map: values must be finite and >= 0, got " + std::to_string(v) + " at row " +
-                                 std::to_string(r) + ", column " + std::to_string(c)).c_str());
-        texels[(map_height - 1 - r) * map_width + c] = static_cast<float>(v);  // row 0 at the bottom, y up
-      }
-  }
+  // The map, stretched over the region.
+  std::optional<bluetile::DensityGrid> map;
+  if (density_map) map = density_grid(*density_map, "density_map");
 
   std::vector<bluetile::TiledPoint> points;
   {
@@ -194,8 +173,7 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
     const double fraction = target == 0.0 || target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
     std::optional<bluetile::Thinning> thinning;
     if (density_map)
-      thinning = bluetile::Thinning::from_map(static_cast<int>(map_width), static_cast<int>(map_height), texels, window,
-                                              fraction);
+      thinning = bluetile::Thinning::from_map(map->width, map->height, map->texels, window, fraction);
     else if (fraction < 1.0)
       thinning = bluetile::Thinning::uniform(fraction);
     points = tiler.tiled_points(window, thinning ? &*thinning : nullptr);

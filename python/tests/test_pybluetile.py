@@ -151,6 +151,14 @@ def test_analyze_averages_sets_and_skips_psa_measures_like_the_tool(tool, tmp_pa
     assert mine["sets"] == 2 and mine["nu_eff"] is None and mine["omega"] is None
     assert_same_values({k: v for k, v in mine.items() if k != "periodogram"},
                        {k: v for k, v in stats.items() if k not in TOOL_ONLY_KEYS}, "stats")
+    # Without the discrepancies, as --no-discrepancy.
+    tool("analyze", "--input", tmp_path / "two.txt", "--output", tmp_path / "b", "--average", "--no-psa-measures",
+         "--no-discrepancy")
+    stats = json.loads((tmp_path / "b" / "stats.json").read_text())
+    mine = bt.analyze(sets, psa_measures=False, discrepancy=False)
+    assert "discrepancy" not in mine and "discrepancy" in bt.analyze(sets, psa_measures=False)
+    assert_same_values({k: v for k, v in mine.items() if k != "periodogram"},
+                       {k: v for k, v in stats.items() if k not in TOOL_ONLY_KEYS}, "stats")
 
 
 def test_tables_round_trip_and_numpy_reads_them(tmp_path):

@@ -44,11 +44,7 @@ struct RelaxOptions {
 // Set k of a batch: its own seed, so set 0 of any batch equals the single set of that seed.
 // Uniform, or drawn in proportion to the density when there is one.
 std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_t count, const DensityGrid* density) {
-  Rng rng(derive_seed(seed, set));
-  if (density) return sample_density(*density, Domain{}, count, rng);
-  std::vector<Point> points(count);
-  for (Point& p : points) p = rng.point(Domain{});
-  return points;
+  return density ? density_random_points(*density, count, seed, set) : uniform_random_points(count, seed, set);
 }
 
 void run_relax(const RelaxOptions& o) {

@@ -34,4 +34,10 @@ std::vector<Point> sample_density(const DensityGrid& density, const Domain& doma
   return points;
 }
 
+std::vector<Point> density_random_points(const DensityGrid& density, std::size_t count, std::uint64_t seed,
+                                         std::uint64_t set) {
+  Rng rng(derive_seed(seed, set));
+  return sample_density(density, Domain{}, count, rng);
+}
+
 }  // namespace bluetile

@@ -17,4 +17,9 @@ namespace bluetile {
 // Deterministic for a given rng state. Throws Error when the grid is empty or zero everywhere.
 std::vector<Point> sample_density(const DensityGrid& density, const Domain& domain, std::size_t count, Rng& rng);
 
+// Set `set` of seed `seed`, drawn in proportion to `density` over the unit square: the start of
+// `bluetile relax --density-map`, as uniform_random_points (core/rng.h) is the uniform one.
+std::vector<Point> density_random_points(const DensityGrid& density, std::size_t count, std::uint64_t seed,
+                                         std::uint64_t set = 0);
+
 }  // namespace bluetile
