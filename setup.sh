@@ -30,7 +30,7 @@ packages=(
   libcairo2-dev libexpat1-dev poppler-utils
   libcgal-dev
   clang libclang-rt-dev
-  python3-venv python3-dev python3-numpy python3-pytest
+  python3-venv python3-dev python3-numpy python3-pytest python3-dask
 )
 
 install_missing() {
