@@ -388,7 +388,7 @@ TEST(Raster, AddressSpaceLimitIsAClearErrorNotACrash) {
   EXPECT_EQ(WEXITSTATUS(status), 1);
   const std::string err = test::read_text(dir.file("err"));
   EXPECT_NE(err.find("address space"), std::string::npos) << err;
-  EXPECT_NE(err.find("--engine exact"), std::string::npos) << err;
+  EXPECT_NE(err.find("use the exact engine"), std::string::npos) << err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("p.txt")));
 }
 

@@ -134,7 +134,7 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
 
 std::vector<LevelSummary> summarize_levels(std::span<const Point> points, std::span<const int> levels,
                                            const SummaryOptions& options) {
-  if (levels.size() != points.size()) throw Error("--by-level needs a level column (x y level) on every point");
+  if (levels.size() != points.size()) throw Error("the analysis by level needs a level column (x y level) on every point");
   std::vector<int> distinct(levels.begin(), levels.end());
   std::sort(distinct.begin(), distinct.end());
   distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());

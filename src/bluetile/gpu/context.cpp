@@ -175,12 +175,12 @@ std::size_t pick_device(const std::vector<DeviceInfo>& infos, const std::string&
   if (std::all_of(wanted.begin(), wanted.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) {
     std::size_t i = std::stoul(wanted);
     if (i >= infos.size())
-      throw Error("--device " + wanted + ": there are only " + std::to_string(infos.size()) + " Vulkan devices (see 'bluetile devices')");
+      throw Error("device " + wanted + ": there are only " + std::to_string(infos.size()) + " Vulkan devices (see 'bluetile devices')");
     return check(i);
   }
   for (std::size_t i = 0; i < infos.size(); ++i)
     if (lower(infos[i].name).find(lower(wanted)) != std::string::npos) return check(i);
-  throw Error("--device '" + wanted + "': no Vulkan device has that name (see 'bluetile devices')");
+  throw Error("device '" + wanted + "': no Vulkan device has that name (see 'bluetile devices')");
 }
 
 }  // namespace
@@ -215,7 +215,7 @@ void throw_vk_error(const char* call, const char* file, int line, VkResult resul
   std::string what = std::string("Vulkan call ") + call + " failed with " + vk_result_name(result) + " at " + file + ":" +
                      std::to_string(line);
   if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
-    what += " (out of memory: try a smaller --resolution or fewer --sets)";
+    what += " (out of memory: try a smaller resolution or fewer sets)";
   if (result == VK_ERROR_DEVICE_LOST) what += " (the device was lost)";
   throw Error(what);
 }
@@ -272,7 +272,7 @@ void check_address_space(std::size_t bytes, const std::string& what) {
   if (left >= bytes) return;
   auto mib = [](std::size_t b) { return std::to_string((b + (1u << 20) - 1) >> 20); };
   throw Error(what + " needs about " + mib(bytes) + " MiB of address space but the limit (ulimit -v " +
-              std::to_string(allowed >> 10) + ") leaves " + mib(left) + " MiB; raise the limit or use --engine exact");
+              std::to_string(allowed >> 10) + ") leaves " + mib(left) + " MiB; raise the limit or use the exact engine");
 }
 
 Context::Context(const std::string& wanted_device) {
@@ -398,7 +398,7 @@ Buffer Context::create_buffer(VkDeviceSize size, VkBufferUsageFlags usage, Memor
   if ((usage & VK_BUFFER_USAGE_STORAGE_BUFFER_BIT) && size > properties_.limits.maxStorageBufferRange)
     throw Error("a buffer of " + std::to_string(size >> 20) + " MiB exceeds the device's maxStorageBufferRange of " +
                 std::to_string(properties_.limits.maxStorageBufferRange >> 20) + " MiB (" + info_.name +
-                "); use a smaller --resolution or fewer --sets");
+                "); use a smaller resolution or fewer sets");
   Buffer b;
   b.size = size;
   VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};

@@ -128,7 +128,7 @@ const std::vector<BlockConfiguration>& BlockConfigurations::projections(int cent
         if (result.size() >= kMaxProjections) {
           throw Error("exact strategy: more than " + std::to_string(kMaxProjections) +
                       " neighbour configurations for one group of points (cells nearly as wide as a tile); use "
-                      "more points per tile or --strategy instances");
+                      "more points per tile or the instances strategy");
         }
         partial.weight = weight;
         result.push_back(partial);

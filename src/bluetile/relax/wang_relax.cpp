@@ -159,14 +159,14 @@ TileSet relax_wang_tiles(CentroidEngine& engine, const WangOptions& options) {
   if (options.points == 0) throw Error("a tile needs at least one point");
   if (options.levels < 1) throw Error("a set needs at least one level");
   if (options.levels > 1 && !(options.ratio > 1.0))
-    throw Error("--ratio must be above 1, got " + std::to_string(options.ratio));
+    throw Error("ratio must be above 1, got " + std::to_string(options.ratio));
   TileSet set = empty_tile_set(options.kind);
   std::size_t total = 0;
   for (int l = 0; l < options.levels; ++l) {
     WangLevelOptions level = options.level;
     level.add = l == 0 ? options.points : level_size(total, 0, options.ratio);
     if (level.add == 0)
-      throw Error("--ratio " + std::to_string(options.ratio) + " adds no point to tiles of " + std::to_string(total) +
+      throw Error("ratio " + std::to_string(options.ratio) + " adds no point to tiles of " + std::to_string(total) +
                   " (level " + std::to_string(l) + ")");
     level.seed = derive_seed(options.seed, static_cast<std::uint64_t>(l));
     add_wang_level(engine, set, level);

@@ -66,7 +66,7 @@ WangStep empty_step(const WangPoints& points) {
 void check_cell(const Cell& cell, const CentroidEngine& engine) {
   if (cell.status != CellStatus::coincident && !(cell.radius > 0.0)) {
     throw Error("engine " + std::string(engine.name()) +
-                " does not report cell radii, which cropped scenes need; use --engine exact or --strategy instances");
+                " does not report cell radii, which cropped scenes need; use the exact engine or the instances strategy");
   }
 }
 

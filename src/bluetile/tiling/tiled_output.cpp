@@ -119,10 +119,10 @@ std::vector<TiledColumn> parse_tiled_columns(std::string_view list) {
     std::string_view name = list.substr(start, comma - start);
     auto found = std::find(std::begin(kColumnNames), std::end(kColumnNames), name);
     if (found == std::end(kColumnNames))
-      throw Error("--columns: unknown column '" + std::string(name) + "' (known: x, y, i, j, tile, level, rank)");
+      throw Error("columns: unknown column '" + std::string(name) + "' (known: x, y, i, j, tile, level, rank)");
     auto column = static_cast<TiledColumn>(found - std::begin(kColumnNames));
     if (std::find(columns.begin(), columns.end(), column) != columns.end())
-      throw Error("--columns: column '" + std::string(name) + "' given twice");
+      throw Error("columns: column '" + std::string(name) + "' given twice");
     columns.push_back(column);
     start = comma + 1;
   }

@@ -146,10 +146,10 @@ struct RasterEngine::Impl {
         break;
       if (job->size() > max_sites)
         throw Error("raster engine: a scene of " + std::to_string(job->size()) +
-                    " sites exceeds what the device's largest storage buffer holds; use --engine exact");
+                    " sites exceeds what the device's largest storage buffer holds; use the exact engine");
       if (double(w) * h > pixel_budget)
         throw Error("raster engine: a scene of " + std::to_string(w) + " x " + std::to_string(h) +
-                    " pixels exceeds the device's memory budget; use a smaller --resolution");
+                    " pixels exceeds the device's memory budget; use a smaller resolution");
       job->origin_x = static_cast<int>(x);
       job->origin_y = static_cast<int>(y);
       x += w;
@@ -395,7 +395,7 @@ void RasterEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> 
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     checked[i] = &validated_scene(scenes[i], wrapped[i]);
     if (scenes[i].density && impl_->options.coverage == Coverage::point && !is_uniform(*scenes[i].density))
-      throw Error("raster engine: a density weights cells only in area coverage (--coverage area)");
+      throw Error("raster engine: a density weights cells only in area coverage");
   }
   impl_->compute(checked, out);
 }
