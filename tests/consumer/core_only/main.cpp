@@ -4,7 +4,10 @@
 #include <cstdio>
 #include <fstream>
 
-#include <bluetile/core/point_table.h>
+#include <bluetile/bluetile.h>  // core alone: the umbrella must compile without Vulkan and images
+#if defined(BLUETILE_WITH_IMAGES) || defined(BLUETILE_WITH_RASTER)
+#error "bluetile::core alone must not bring the image or raster headers through bluetile/bluetile.h"
+#endif
 
 #include "../relax_check.h"
 

@@ -3,8 +3,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include <bluetile/io/image_file.h>
-#include <bluetile/voronoi/raster_engine.h>
+#include <bluetile/bluetile.h>  // every component: the umbrella brings the image and raster headers
 
 #include "../relax_check.h"
 
