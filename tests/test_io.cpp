@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "bluetile/core/error.h"
-#include "bluetile/io/figures.h"
+#include "bluetile/drawing/figures.h"
 #include "bluetile/io/font.h"
 #include "bluetile/io/image.h"
 #include "bluetile/io/plot.h"

@@ -46,13 +46,13 @@
 #if BLUETILE_WITH_IMAGES
 // images: density maps, image files, figures, SVG, PDF, plots, drawings of tiled windows.
 #include "bluetile/io/density_map.h"
-#include "bluetile/io/figures.h"
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/io/pdf.h"
 #include "bluetile/io/plot.h"
 #include "bluetile/io/svg.h"
-#include "bluetile/tiling/tiled_drawing.h"
+#include "bluetile/drawing/figures.h"
+#include "bluetile/drawing/tiled_drawing.h"
 #endif
 
 #if BLUETILE_WITH_RASTER

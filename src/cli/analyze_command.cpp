@@ -31,7 +31,7 @@
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/tiling/tiled_output.h"
-#include "bluetile/io/figures.h"
+#include "bluetile/drawing/figures.h"
 #include "bluetile/io/pdf.h"
 
 namespace bluetile::cli {

@@ -20,7 +20,7 @@
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/tiling/default_tile_set.h"
-#include "bluetile/tiling/tiled_drawing.h"
+#include "bluetile/drawing/tiled_drawing.h"
 #include "bluetile/tiling/tiled_output.h"
 #include "bluetile/tiling/tiler.h"
 

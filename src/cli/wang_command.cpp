@@ -17,7 +17,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
-#include "bluetile/io/figures.h"
+#include "bluetile/drawing/figures.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/tiling/seam_check.h"

@@ -1,4 +1,4 @@
-#include "bluetile/io/figures.h"
+#include "bluetile/drawing/figures.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "bluetile/tiling/tiled_drawing.h"
+#include "bluetile/drawing/tiled_drawing.h"
 
 #include <algorithm>
 #include <cmath>
