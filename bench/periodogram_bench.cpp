@@ -1,4 +1,4 @@
-// The periodogram's two methods side by side (docs/BENCHMARKS.md, "Periodogram at scale"):
+// The periodogram's two methods side by side (docs/BENCHMARKS.md, "Analysis at scale"):
 // seconds for the direct sum and the non-uniform FFT at psa's default F for each N, and the
 // largest difference between them relative to P(0) = N. The direct sum is skipped above
 // --direct-max points (it grows as N^2). Then, for --rdf-count, the seconds of psa's

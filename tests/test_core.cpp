@@ -65,7 +65,7 @@ TEST(Rng, DerivedSeedsDiffer) {
 }
 
 TEST(Rng, DerivedSeedsArePinned) {
-  // Issue 13, item 17: derive_seed(5, 9) was compared with itself. Values from an independent
+  // derive_seed(5, 9) was once compared with itself. Values from an independent
   // Python transcription of SplitMix64 (Steele, Lea, Flood 2014) as derive_seed uses it.
   EXPECT_EQ(derive_seed(5, 9), 0x1D00A4E03A07AC5Eull);
   EXPECT_EQ(derive_seed(0, 0), 0x75856F745165F252ull);

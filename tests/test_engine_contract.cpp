@@ -49,7 +49,7 @@ TEST(SceneContract, WrapsOnlyWhatNeedsIt) {
 }
 
 TEST_P(EngineContract, SitesOutsideTheDomainAreWrapped) {
-  // Issue 13, item 15: the exact engine gave areas summing to 1.00998 for sites one period out.
+  // The exact engine once gave areas summing to 1.00998 for sites one period out.
   auto engine = GetParam().make();
   ExactEngine reference;
   for (Domain domain : {Domain{}, Domain{{2.0, 0.5}}}) {

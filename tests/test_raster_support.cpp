@@ -146,7 +146,7 @@ std::vector<HardCase> hard_cases() {
   for (int k = 0; k < 200; ++k)
     cluster.push_back(wrap_point({0.99 + 0.02 * rng.uniform(), 0.995 + 0.01 * rng.uniform()}, Domain{}));
   cases.push_back({"cluster straddling the corner", cluster});
-  // Issue 13: distinct sites closer than float depths (or pixel-centre offsets) can separate.
+  // Distinct sites closer than float depths (or pixel-centre offsets) can separate.
   cases.push_back({"sites 1e-18 apart", {{0.5, 0.5}, {0.25, 0.75}, {1e-18, 0.5}, {2e-18, 0.5}}});
   cases.push_back({"sites one ulp apart", {{0.001, 0.3}, {std::nextafter(0.001, 1.0), 0.3}, {0.6, 0.7}, {0.4, 0.1}}});
   return cases;

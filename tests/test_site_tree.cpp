@@ -1,5 +1,5 @@
 // The k-d tree cell search (voronoi/site_tree.h) and the exact engine on sites far from uniform
-// (issue 13, item 7: sites on a line took about N^3 time): cells against an independent
+// (sites on a line once took about N^3 time): cells against an independent
 // brute-force clipper, and the work per cell bounded whatever N.
 #include <gtest/gtest.h>
 

@@ -15,7 +15,7 @@ namespace bluetile::cli {
 namespace {
 
 // One thread's seconds, measured with bluetile_periodogram_bench --threads 1 and analyze
-// --no-psa-measures on 10^6 points (docs/BENCHMARKS.md, "analyze at scale"), rounded up.
+// --no-psa-measures on 10^6 points (docs/BENCHMARKS.md, "Analysis at scale"), rounded up.
 constexpr double kPairSeconds = 2e-8;           // psa's RDF: per pair closer than 0.25
 constexpr double kBesselSeconds = 5e-8;         // its Hankel transform: per Bessel function
 constexpr double kPeriodogramFftSeconds = 4e-9; // per butterfly of the non-uniform FFT's passes

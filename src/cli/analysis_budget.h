@@ -24,7 +24,7 @@ struct AnalysisEstimate {
   double bytes = 0.0;        // peak memory
 };
 
-// From constants measured on this project's 2-core machine (docs/BENCHMARKS.md, "analyze at
+// From constants measured on this project's 2-core machine (docs/BENCHMARKS.md, "Analysis at
 // scale"), scaled by the thread count.
 AnalysisEstimate estimate_analysis(const std::vector<AnalysisJob>& jobs, bool psa_measures, bool discrepancy = false);
 

@@ -124,7 +124,7 @@ Periodogram compute_periodogram(std::span<const Point> points, int size,
 
 bool periodogram_uses_nufft(std::size_t count, int size) {
   if (size < 2) return false;
-  // Measured on one thread (docs/BENCHMARKS.md, "Periodogram at scale"): the direct sum costs
+  // Measured on one thread (docs/BENCHMARKS.md, "Analysis at scale"): the direct sum costs
   // about 0.6 ns per point and frequency (half the plane is summed), the non-uniform FFT about
   // 4 ns per butterfly of its two passes plus 400 ns to spread a point. The direct sum wins
   // below about 100 points, where both take a millisecond.

@@ -1,6 +1,6 @@
 // Figures of merit of a tiled plane, defined so that they compare with the literature (the
-// Wang-tile issue's definitions; periodogram conventions of psa, DESIGN section 5). For N points
-// on the unit torus:
+// definitions of docs/RESULTS.md, "Wang tiles"; periodogram conventions of psa, docs/DESIGN.md
+// section 5). For N points on the unit torus:
 //  - rho: the global minimum nearest-neighbour distance over the hexagonal spacing
 //    sqrt(2 / (sqrt(3) N)) (Lagae and Dutré's relative radius, psa's global mindist);
 //  - LF: the mean periodogram over integer k with 0 < |k| < 0.5 sqrt(N) (white noise 1);
@@ -56,7 +56,7 @@ TilingMetrics measure_tiling(std::span<const Point> points, int period, int tile
 // The periodogram size measure_tiling uses for N points and a period M.
 int tiling_periodogram_size(std::size_t count, int period);
 
-// The prefix sweep of a progressive tile set of `top` points per tile (issue 19): k at 1/16, 3/32,
+// The prefix sweep of a progressive tile set of `top` points per tile (docs/RESULTS.md, "Every prefix"): k at 1/16, 3/32,
 // 1/8, 3/16, 1/4, 3/8, 1/2, 3/4 and 1 of the top count, rounded, and every level boundary in
 // `boundaries`; sorted, distinct, each at least 1.
 std::vector<std::size_t> prefix_sweep(std::size_t top, std::span<const std::size_t> boundaries);

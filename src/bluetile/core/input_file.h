@@ -1,5 +1,5 @@
 // Reading input files so that a file is never silently cut short: every open and read is
-// checked, and running out of memory while reading is an error too (issue 13: a stream read
+// checked, and running out of memory while reading is an error too (a stream read
 // under `ulimit -v` once stopped half-way without a word). "-" is standard input.
 #pragma once
 

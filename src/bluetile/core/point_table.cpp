@@ -15,6 +15,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/input_file.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -27,18 +28,13 @@ constexpr char kNpyMagic[6] = {'\x93', 'N', 'U', 'M', 'P', 'Y'};
 // vanishes, small enough to stay in cache.
 constexpr std::size_t kSinkChunk = 1 << 16;
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 // The extension of the file name in `path`, with its dot, lower case; "" when none.
 std::string extension_of(const std::string& path) {
   std::size_t slash = path.find_last_of('/');
   std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
   std::size_t dot = name.find_last_of('.');
   if (dot == std::string::npos || dot == 0) return "";
-  return lower(name.substr(dot));
+  return lower_case(name.substr(dot));
 }
 
 // Buffers bytes for a sink.
@@ -667,7 +663,7 @@ bool is_csv_header(const std::vector<std::string_view>& fields) {
   auto name = [](std::string_view field) {
     if (field.size() >= 2 && (field.front() == '"' || field.front() == '\'') && field.back() == field.front())
       field = field.substr(1, field.size() - 2);
-    return lower(std::string(field));
+    return lower_case(std::string(field));
   };
   if (fields.size() != 2 && fields.size() != 3) return false;
   return name(fields[0]) == "x" && name(fields[1]) == "y" && (fields.size() == 2 || name(fields[2]) == "level");

@@ -27,6 +27,10 @@ class Rng {
   std::uint64_t state_[4];
 };
 
+// SplitMix64's finaliser: a bijective mix whose every output bit depends on every input bit
+// (the seeding of Rng, and the tilers' hashes of cells and edges).
+std::uint64_t mix64(std::uint64_t z);
+
 // A seed for stream `index` derived from a user seed, so that set k of a batch does not
 // depend on how many sets come before it.
 std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t index);

@@ -12,6 +12,7 @@
 #include <sys/resource.h>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile::gpu {
 namespace {
@@ -151,11 +152,6 @@ std::vector<VkPhysicalDevice> physical_devices(VkInstance instance) {
   return devices;
 }
 
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
-
 std::size_t pick_device(const std::vector<DeviceInfo>& infos, const std::string& wanted) {
   if (infos.empty()) {
     throw Error("the Vulkan loader found no device; install a driver, for example Mesa's lavapipe (Debian: mesa-vulkan-drivers)");
@@ -179,7 +175,7 @@ std::size_t pick_device(const std::vector<DeviceInfo>& infos, const std::string&
     return check(i);
   }
   for (std::size_t i = 0; i < infos.size(); ++i)
-    if (lower(infos[i].name).find(lower(wanted)) != std::string::npos) return check(i);
+    if (lower_case(infos[i].name).find(lower_case(wanted)) != std::string::npos) return check(i);
   throw Error("device '" + wanted + "': no Vulkan device has that name (see 'bluetile devices')");
 }
 

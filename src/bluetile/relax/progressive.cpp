@@ -136,7 +136,7 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
     throw Error(std::to_string(target_levels) + " levels: the base already has " + std::to_string(base_levels) +
                 " level(s); the number of levels is the total to reach");
   }
-  // A level the point-file reader would refuse is not written (issue 13, item 12).
+  // A level the point-file reader would refuse is not written.
   if (target_levels - 1 > kMaxLevel) {
     throw Error("the base already has levels up to " + std::to_string(base_levels - 1) + ", and a point file holds levels up to " +
                 std::to_string(kMaxLevel) + " only");

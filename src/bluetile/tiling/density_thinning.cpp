@@ -6,6 +6,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -13,15 +14,9 @@ namespace {
 // Keeps dithers of different cells and seeds independent of the tile-set bits (another stream).
 constexpr std::uint64_t kDitherStream = 0x6469746865720001ull;
 
-std::string number(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
-
 void check_fraction(double fraction, const char* what) {
   if (!(fraction > 0.0 && fraction <= 1.0))
-    throw Error(std::string(what) + " must lie in (0, 1], got " + number(fraction));
+    throw Error(std::string(what) + " must lie in (0, 1], got " + exact_text(fraction));
 }
 
 }  // namespace
@@ -47,7 +42,7 @@ Thinning Thinning::from_map(int width, int height, std::span<const float> texels
     float v = texels[k];
     if (!(std::isfinite(v) && v >= 0.0f))
       throw Error("density map: texel " + std::to_string(k % static_cast<std::size_t>(width)) + ", " +
-                  std::to_string(k / static_cast<std::size_t>(width)) + " is " + number(v) +
+                  std::to_string(k / static_cast<std::size_t>(width)) + " is " + exact_text(v) +
                   " (must be finite and >= 0)");
     largest = std::max(largest, v);
   }

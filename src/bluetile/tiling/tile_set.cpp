@@ -25,13 +25,6 @@ constexpr std::uint64_t kHorizontalEdge = 2;  // wang16: the edge below cell (i,
 constexpr std::uint64_t kVerticalEdge = 3;    // wang16: the edge left of cell (i, j)
 constexpr std::uint64_t kLatticePoint = 4;    // corner16: the lower-left corner of cell (i, j)
 
-// SplitMix64's finaliser: a bijective mix whose every output bit depends on every input bit.
-std::uint64_t mix64(std::uint64_t z) {
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
 std::int64_t floor_mod(std::int64_t a, std::int64_t m) {
   std::int64_t r = a % m;
   return r < 0 ? r + m : r;

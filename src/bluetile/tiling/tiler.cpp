@@ -6,16 +6,11 @@
 #include <string>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 #include "bluetile/tiling/density_thinning.h"
 
 namespace bluetile {
 namespace {
-
-std::string number(double v) {
-  char buffer[40];
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  return buffer;
-}
 
 // Where a cell stands against a window, from the bounds its computed positions cannot leave:
 // fl(i + x) lies in [i, i + 1] for x in [0, 1), and rounding is monotonic, so every X of cell i is
@@ -33,7 +28,7 @@ Overlap overlap(double lo_x, double hi_x, double lo_y, double hi_y, const Window
 Tiler::Tiler(TileSet set, std::uint64_t seed, double tile_size)
     : set_(std::move(set)), rules_(set_.kind), seed_(seed), tile_size_(tile_size) {
   if (!(std::isfinite(tile_size) && tile_size > 0.0))
-    throw Error("tile size must be positive and finite, got " + number(tile_size));
+    throw Error("tile size must be positive and finite, got " + exact_text(tile_size));
   validate_tile_set(set_);
   ranked_.resize(set_.tiles.size());
   std::size_t total = 0;
@@ -62,13 +57,13 @@ std::span<const int> Tiler::ranked_levels(int tile) const { return ranked_.at(st
 CellRange Tiler::cells(const Window& w) const {
   if (!(std::isfinite(w.x0) && std::isfinite(w.y0) && std::isfinite(w.x1) && std::isfinite(w.y1)))
     throw Error("window coordinates must be finite");
-  if (!(w.x1 > w.x0)) throw Error("window: x1 must be greater than x0, got x0 " + number(w.x0) + ", x1 " + number(w.x1));
-  if (!(w.y1 > w.y0)) throw Error("window: y1 must be greater than y0, got y0 " + number(w.y0) + ", y1 " + number(w.y1));
+  if (!(w.x1 > w.x0)) throw Error("window: x1 must be greater than x0, got x0 " + exact_text(w.x0) + ", x1 " + exact_text(w.x1));
+  if (!(w.y1 > w.y0)) throw Error("window: y1 must be greater than y0, got y0 " + exact_text(w.y0) + ", y1 " + exact_text(w.y1));
   double lo_x = std::floor(w.x0 / tile_size_) - 1.0, hi_x = std::floor(w.x1 / tile_size_) + 2.0;
   double lo_y = std::floor(w.y0 / tile_size_) - 1.0, hi_y = std::floor(w.y1 / tile_size_) + 2.0;
   for (double c : {lo_x, hi_x, lo_y, hi_y})
     if (!(std::fabs(c) <= kMaxCellIndex))
-      throw Error("window reaches " + number(c) + " tiles from the origin (at most " + number(kMaxCellIndex) +
+      throw Error("window reaches " + exact_text(c) + " tiles from the origin (at most " + exact_text(kMaxCellIndex) +
                   " keep tile-local positions exact enough)");
   return {static_cast<std::int64_t>(lo_x), static_cast<std::int64_t>(lo_y), static_cast<std::int64_t>(hi_x),
           static_cast<std::int64_t>(hi_y)};

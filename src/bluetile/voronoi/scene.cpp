@@ -5,16 +5,11 @@
 #include <string>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 #include "bluetile/voronoi/density_moments.h"
 
 namespace bluetile {
 namespace {
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
 
 bool inside(Point p, const Domain& domain) {
   return p.x >= 0.0 && p.x < domain.size.x && p.y >= 0.0 && p.y < domain.size.y;
@@ -25,7 +20,7 @@ bool inside(Point p, const Domain& domain) {
 const Scene& validated_scene(const Scene& scene, Scene& storage) {
   const Point size = scene.domain.size;
   if (!(std::isfinite(size.x) && std::isfinite(size.y) && size.x > 0.0 && size.y > 0.0))
-    throw Error("scene: domain " + number(size.x) + " x " + number(size.y) + " is not a finite positive size");
+    throw Error("scene: domain " + exact_text(size.x) + " x " + exact_text(size.y) + " is not a finite positive size");
   if (scene.wanted_begin > scene.wanted_end || scene.wanted_end > scene.sites.size())
     throw Error("scene: wanted sites [" + std::to_string(scene.wanted_begin) + ", " + std::to_string(scene.wanted_end) +
                 ") do not lie inside its " + std::to_string(scene.sites.size()) + " sites");
@@ -36,11 +31,11 @@ const Scene& validated_scene(const Scene& scene, Scene& storage) {
   std::size_t first_outside = scene.sites.size();
   for (std::size_t i = 0; i < scene.sites.size(); ++i) {
     const Point p = scene.sites[i];
-    auto site = [&] { return "scene: site " + std::to_string(i) + " (" + number(p.x) + ", " + number(p.y) + ")"; };
+    auto site = [&] { return "scene: site " + std::to_string(i) + " (" + exact_text(p.x) + ", " + exact_text(p.y) + ")"; };
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) throw Error(site() + " is not finite");
     if (first_outside == scene.sites.size() && !inside(p, scene.domain)) {
       if (!scene.periodic())
-        throw Error(site() + " lies outside the bounded domain " + number(size.x) + " x " + number(size.y));
+        throw Error(site() + " lies outside the bounded domain " + exact_text(size.x) + " x " + exact_text(size.y));
       first_outside = i;
     }
   }

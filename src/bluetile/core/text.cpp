@@ -1,0 +1,25 @@
+#include "bluetile/core/text.h"
+
+#include <cctype>
+#include <cstdio>
+
+namespace bluetile {
+
+std::string exact_text(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.17g", v);
+  return buffer;
+}
+
+std::string fixed_text(double v, int decimals) {
+  char buffer[352];  // %f of the largest double is 309 digits, plus the decimals asked for
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
+  return buffer;
+}
+
+std::string lower_case(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
+}
+
+}  // namespace bluetile
