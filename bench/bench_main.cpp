@@ -22,8 +22,8 @@
 #include <time.h>
 
 #include "alloc_tracker.h"
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "loglog_plot.h"
@@ -636,8 +636,8 @@ int run(int argc, char** argv) {
   set_thread_count(default_threads);
 
   const std::string md = markdown_text(o, command, facts, rows, paper, default_threads);
-  if (!o.csv.empty()) write_text_atomically(o.csv, csv_text(rows, paper));
-  if (!o.markdown.empty()) write_text_atomically(o.markdown, md);
+  if (!o.csv.empty()) write_output(o.csv, csv_text(rows, paper));
+  if (!o.markdown.empty()) write_output(o.markdown, md);
   if (!o.plot_dir.empty()) {
     std::vector<std::pair<std::size_t, std::string>> seen;
     for (const Row& r : rows)

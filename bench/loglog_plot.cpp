@@ -8,8 +8,8 @@
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 
 namespace bluetile::bench {
 namespace {
@@ -99,9 +99,11 @@ void write_loglog_png(const std::string& path, const LogLogPlot& plot, int width
     text(x1 + 40, ly + 2, s.label, 15, Algo::TextAlignX::Left, Algo::TextAlignY::Baseline);
   }
 
-  write_atomically(path, [&](const std::string& temporary) {
+  OutputSet outputs;
+  outputs.add(path).write_through_path([&](const std::string& temporary) {
     if (!image.write(temporary)) throw Error(path + ": cannot write PNG: " + image.geterror());
   });
+  outputs.publish();
 }
 
 }  // namespace bluetile::bench

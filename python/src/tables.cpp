@@ -8,8 +8,8 @@
 
 #include "arrays.h"
 #include "bindings.h"
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/point_table.h"
 
 namespace pybluetile {
@@ -34,13 +34,8 @@ void save_table(const std::string& path, const AnyArray& points, std::optional<A
   options.float32 = float32;
   options.name = name;
   options.comment = comment;
-  bluetile::write_atomically(path, [&](const std::string& temporary) {
-    std::ofstream out(temporary, std::ios::binary);
-    bluetile::write_point_table(f, sets, options, path, [&](std::string_view bytes) {
-      out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    });
-    out.close();
-    if (!out) throw bluetile::Error(path + ": cannot write");
+  bluetile::write_output(path, [&](bluetile::OutputStream& out) {
+    bluetile::write_point_table(f, sets, options, path, [&](std::string_view bytes) { out.write(bytes); });
   });
 }
 

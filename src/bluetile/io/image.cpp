@@ -6,7 +6,6 @@
 #include <memory>
 
 
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/io/font.h"
 

@@ -7,8 +7,8 @@
 #include <charconv>
 #include <cmath>
 
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 
 namespace bluetile {
 namespace {
@@ -475,7 +475,7 @@ std::string SvgDocument::str() const {
   return out;
 }
 
-void SvgDocument::write(const std::string& path) const { write_text_atomically(path, str()); }
+void SvgDocument::write(const std::string& path) const { write_output(path, str()); }
 
 std::vector<std::uint8_t> encode_png(const SvgImage& image) {
   if ((image.channels != 1 && image.channels != 3) || image.width <= 0 || image.height <= 0 ||

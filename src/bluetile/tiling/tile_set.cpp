@@ -5,9 +5,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "bluetile/core/atomic_file.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/input_file.h"
+#include "bluetile/core/output_file.h"
 
 namespace bluetile {
 namespace {
@@ -433,6 +433,6 @@ std::string format_tile_set(const TileSet& set) {
   return text;
 }
 
-void write_tile_set(const std::string& path, const TileSet& set) { write_text_atomically(path, format_tile_set(set)); }
+void write_tile_set(const std::string& path, const TileSet& set) { write_output(path, format_tile_set(set)); }
 
 }  // namespace bluetile
