@@ -264,6 +264,44 @@ TEST(WangLattice, CoherenceOfIdenticalTilesIsTheTileCount) {
   EXPECT_NEAR(lattice_coherence(pairs).low, 64.0 * 4.0 / 16.0, 1e-12);
 }
 
+TEST(WangLattice, ObjectiveAndMetricShareTheBandsAtTheirEdges) {
+  // Hand-checked edges of the shared bands (integers, no rounding): for n = 8 the mid band is
+  // 8 <= 4 |m|^2 < 72, so |m|^2 = 2 is in and (3, 3), |m|^2 = 18, is out; the low band is
+  // 4 |m|^2 < 8 (|m|^2 = 1 only); C_LF's band is 0 < |m|^2 <= 5. A float test r < 1.5 sqrt(n)
+  // puts (3, 3) inside for n = 8 and (9, 15) inside for n = 136.
+  EXPECT_TRUE(in_mid_band(2, 8));
+  EXPECT_FALSE(in_mid_band(18, 8));
+  EXPECT_FALSE(in_mid_band(306, 136));
+  EXPECT_TRUE(in_mid_band(305, 136));
+  EXPECT_TRUE(in_low_band(1, 8));
+  EXPECT_FALSE(in_low_band(2, 8));
+  EXPECT_FALSE(in_low_band(0, 8));
+  EXPECT_TRUE(in_coherence_low_band(5));
+  EXPECT_FALSE(in_coherence_low_band(6));
+
+  // One tile of 8 points on lines x + y = k / 3 repeated over a 4 x 4 torus: the tile's sum at
+  // m = (3, 3) is 8 (C = 64 / 8 = 8, the largest C can be), just outside the mid band. The
+  // objective's C_mid (lattice_coherence) and the metric's (measure_tiling) must agree, so both
+  // leave it out.
+  Rng rng(11);
+  std::vector<Point> tile;
+  for (int k = 0; k < 8; ++k) {
+    const double x = rng.uniform();
+    const double y = std::fmod(static_cast<double>(k % 3) / 3.0 - x + 2.0, 1.0);
+    tile.push_back({x, y});
+  }
+  const LatticeCoherence objective = lattice_coherence(TilePoints{tile});
+  constexpr int kPeriod = 4;
+  std::vector<Point> plane;
+  for (int j = 0; j < kPeriod; ++j)
+    for (int i = 0; i < kPeriod; ++i)
+      for (Point p : tile) plane.push_back({(p.x + i) / kPeriod, (p.y + j) / kPeriod});
+  const TilingMetrics metric = measure_tiling(plane, kPeriod, 1);
+  EXPECT_LT(objective.mid, 7.0);
+  EXPECT_NEAR(metric.coherence_mid, objective.mid, 1e-9);
+  EXPECT_NEAR(metric.coherence_low, objective.low, 1e-9);
+}
+
 TEST(WangLattice, StepsLowerTheLatticePeaksAndKeepTheSeams) {
   ExactEngine engine;
   double mid_with = 0.0, mid_without = 0.0, lf_with = 0.0, lf_without = 0.0;

@@ -15,12 +15,8 @@
 namespace bluetile {
 namespace {
 
-// Bands of the definitions, in units of sqrt(N).
-constexpr double kLowBand = 0.5;
-constexpr double kMidBandEnd = 1.5;
+// The end of the anisotropy's band, in units of sqrt(N) (the LF and mid bands: tiling_metrics.h).
 constexpr double kAnisotropyBandEnd = 1.6;
-// C_LF looks at tile frequencies m with |m|^2 up to this.
-constexpr int kCoherenceLowNorm = 5;
 
 }  // namespace
 
@@ -66,31 +62,31 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
 
   double low_sum = 0.0, lattice_sum = 0.0;
   std::size_t low_count = 0, lattice_count = 0;
-  const int first_annulus = static_cast<int>(std::ceil(kLowBand * root));
+  const int first_annulus = static_cast<int>(std::ceil(0.5 * root));  // the mid band's start
   const int end_annulus = static_cast<int>(std::floor(kAnisotropyBandEnd * root));  // annuli [i, i+1) below it
   const std::size_t annuli = static_cast<std::size_t>(std::max(0, end_annulus - first_annulus));
   std::vector<double> sum(annuli, 0.0), sum_squares(annuli, 0.0);
   std::vector<std::size_t> count(annuli, 0);
   for (int ky = -half; ky < half; ++ky) {
     for (int kx = -half; kx < half; ++kx) {
-      const double k2 = static_cast<double>(kx) * kx + static_cast<double>(ky) * ky;
+      const std::int64_t k2 = static_cast<std::int64_t>(kx) * kx + static_cast<std::int64_t>(ky) * ky;
       const double p = periodogram.at(kx, ky);
-      if (k2 > 0.0 && k2 < kLowBand * kLowBand * n) {
+      if (in_low_band(k2, points.size())) {
         low_sum += p;
         ++low_count;
       }
-      if (lattice(kx, ky) && k2 > 0.0) {
-        if (k2 < n) {
+      if (lattice(kx, ky) && k2 > 0) {
+        if (k2 < static_cast<std::int64_t>(points.size())) {
           lattice_sum += p;
           ++lattice_count;
         }
-        const int mx = kx / period, my = ky / period;
-        if (mx * mx + my * my <= kCoherenceLowNorm) m.coherence_low = std::max(m.coherence_low, p / lattice_scale);
-        if (k2 >= kLowBand * kLowBand * n && k2 < kMidBandEnd * kMidBandEnd * n)
+        const std::int64_t mx = kx / period, my = ky / period;
+        if (in_coherence_low_band(mx * mx + my * my)) m.coherence_low = std::max(m.coherence_low, p / lattice_scale);
+        if (in_mid_band(k2, points.size()))
           m.coherence_mid = std::max(m.coherence_mid, p / lattice_scale);
         continue;  // lattice frequencies stay out of the diffuse anisotropy
       }
-      const int annulus = static_cast<int>(std::floor(std::sqrt(k2)));
+      const int annulus = static_cast<int>(std::floor(std::sqrt(static_cast<double>(k2))));
       if (annulus >= first_annulus && annulus < end_annulus) {
         const std::size_t i = static_cast<std::size_t>(annulus - first_annulus);
         sum[i] += p;

@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -21,6 +22,18 @@
 #include "bluetile/core/torus.h"
 
 namespace bluetile {
+
+// The bands above, for frequencies k with |k|^2 = k2 and N = count points, in integers, so that
+// a frequency on a band's edge falls on the same side for every user. The Wang loop's lattice
+// objective (relax/wang_lattice.h) aims at the same bands in tile units (k = M m and N = n M^2,
+// so k2 / N = m2 / n): its points per tile n and |m|^2 serve as count and k2.
+inline bool in_low_band(std::int64_t k2, std::size_t count) {  // 0 < |k| < 0.5 sqrt(N)
+  return k2 > 0 && 4 * k2 < static_cast<std::int64_t>(count);
+}
+inline bool in_mid_band(std::int64_t k2, std::size_t count) {  // 0.5 sqrt(N) <= |k| < 1.5 sqrt(N)
+  return 4 * k2 >= static_cast<std::int64_t>(count) && 4 * k2 < 9 * static_cast<std::int64_t>(count);
+}
+inline bool in_coherence_low_band(std::int64_t m2) { return m2 > 0 && m2 <= 5; }  // C_LF's 0 < |m|^2 <= 5
 
 struct TilingMetrics {
   std::size_t count = 0;  // N

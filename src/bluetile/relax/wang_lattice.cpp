@@ -6,6 +6,7 @@
 #include <complex>
 #include <numbers>
 
+#include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/torus.h"
 
 namespace bluetile {
@@ -21,21 +22,20 @@ struct Frequency {
 
 constexpr double kLowTarget = 0.02, kMidTarget = 20.0;
 
-// Half of the integer plane (m and -m have the same C): mx > 0, or mx = 0 and my > 0.
+// Half of the integer plane (m and -m have the same C): mx > 0, or mx = 0 and my > 0. The bands
+// are the tiling metrics' (tiling_metrics.h) in tile units: the low band is LF's with C_LF's
+// frequencies added, the mid band C_mid's.
 std::vector<Frequency> frequencies(std::size_t n, bool mid_band) {
   const double root = std::sqrt(static_cast<double>(n));
-  const double low_end = std::max(0.5 * root, std::sqrt(5.0) + 1e-9);
-  const double end = mid_band ? 1.5 * root : low_end;
-  const int reach = static_cast<int>(std::ceil(end));
+  const int reach = static_cast<int>(std::ceil(std::max(mid_band ? 1.5 * root : 0.5 * root, std::sqrt(5.0)))) + 1;
   std::vector<Frequency> out;
   for (int mx = 0; mx <= reach; ++mx)
     for (int my = -reach; my <= reach; ++my) {
       if (mx == 0 && my <= 0) continue;
-      const double r = std::hypot(mx, my);
-      const bool low = r < low_end || mx * mx + my * my <= 5;
-      if (low) {
+      const std::int64_t m2 = static_cast<std::int64_t>(mx) * mx + static_cast<std::int64_t>(my) * my;
+      if (in_low_band(m2, n) || in_coherence_low_band(m2)) {
         out.push_back({mx, my, kLowTarget, true});
-      } else if (mid_band && r >= 0.5 * root && r < 1.5 * root) {
+      } else if (mid_band && in_mid_band(m2, n)) {
         out.push_back({mx, my, kMidTarget, false});
       }
     }

@@ -3,12 +3,13 @@
 // k = M m of an M x M window the plane's Fourier sum is the sum over tiles of each tile's own
 // sum F_t(m) = sum over its points of exp(-2 pi i m.x) (x tile-local, m integer), weighted by how
 // often the tile occurs: the tile-lattice coherence C(m) = |sum_t F_t(m)|^2 / (T n) sets the
-// peaks at those frequencies (C_LF and C_mid of the Wang-tile issue; the periodogram there is
-// C(m) M^2 / T). Tiles relaxed under the same constraints have correlated F_t(m), so C(m) is
+// peaks at those frequencies (C_LF and C_mid of analysis/tiling_metrics.h; the periodogram
+// there is C(m) M^2 / T). Tiles relaxed under the same constraints have correlated F_t(m), so C(m) is
 // larger than independent tiles would give; here the moving points take a few small steps down
-// the gradient of sum_m (C(m) / target)^4 over the low band 0 < |m| < max(0.5 sqrt(n), sqrt(5))
-// (target 0.02) and, where asked, the mid band 0.5 sqrt(n) <= |m| < 1.5 sqrt(n) (target 20),
-// each step moving the point that moves most by `step` hexagonal spacings. Only the level's
+// the gradient of sum_m (C(m) / target)^4 over the low band 0 < |m| < 0.5 sqrt(n) or
+// 0 < |m|^2 <= 5 (target 0.02) and, where asked, the mid band 0.5 sqrt(n) <= |m| < 1.5 sqrt(n)
+// (target 20), the metrics' bands in tile units (tiling_metrics.h), each step moving the point
+// that moves most by `step` hexagonal spacings. Only the level's
 // moving points move, inside their tile; the seam spacing step runs after it.
 #pragma once
 
