@@ -19,6 +19,7 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/relax/lloyd.h"
+#include "bluetile/voronoi/engine_choice.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/voronoi/raster_engine.h"
 #include "test_raster_support.h"
@@ -390,6 +391,50 @@ TEST(Raster, AddressSpaceLimitIsAClearErrorNotACrash) {
   EXPECT_NE(err.find("address space"), std::string::npos) << err;
   EXPECT_NE(err.find("use the exact engine"), std::string::npos) << err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("p.txt")));
+}
+
+TEST(EngineChoice, RefusesEachFieldNamingItAndWhatItAccepts) {
+  auto message = [](const EngineChoice& choice) {
+    try {
+      validate(choice);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message({}), "accepted");
+  EngineChoice c;
+  c.engine = "gpu";
+  EXPECT_EQ(message(c), "engine: expected one of 'raster', 'exact', got 'gpu'");
+  c = {};
+  c.coverage = "areas";
+  EXPECT_EQ(message(c), "coverage: expected one of 'point', 'area', got 'areas'");
+  c = {};
+  c.cone = "cone";
+  EXPECT_EQ(message(c), "cone: expected one of 'quad', 'fan', got 'cone'");
+  c = {};
+  c.pixel_work = "gpu";
+  EXPECT_EQ(message(c), "pixel_work: expected one of 'auto', 'device', 'host', got 'gpu'");
+  c = {};
+  c.resolution = 15;
+  EXPECT_EQ(message(c), "resolution: expected 0 (from N) or 16 to 65536, got 15");
+  c.resolution = 65537;
+  EXPECT_NE(message(c).find("got 65537"), std::string::npos);
+  c.resolution = 16;
+  EXPECT_EQ(message(c), "accepted");
+  // The names map onto the options the raster engine takes.
+  c = {};
+  c.coverage = "point";
+  c.cone = "fan";
+  c.pixel_work = "host";
+  c.resolution = 64;
+  const RasterOptions r = raster_options(c);
+  EXPECT_EQ(r.coverage, Coverage::point);
+  EXPECT_EQ(r.cone, ConeShape::fan);
+  EXPECT_EQ(r.pixel_work, PixelWork::host);
+  EXPECT_EQ(r.resolution, 64);
+  c.engine = "exact";
+  EXPECT_NE(dynamic_cast<ExactEngine*>(make_engine(c).get()), nullptr);
 }
 
 }  // namespace

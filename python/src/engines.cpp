@@ -21,36 +21,6 @@ namespace pybluetile {
 
 using namespace nb::literals;
 
-void check_engine_choice(const EngineChoice& c) {
-  auto one_of = [](const std::string& what, const std::string& value, std::initializer_list<const char*> names) {
-    std::string list;
-    for (const char* n : names) {
-      if (value == n) return;
-      list += (list.empty() ? "'" : ", '") + std::string(n) + "'";
-    }
-    throw nb::value_error((what + ": expected one of " + list + ", got '" + value + "'").c_str());
-  };
-  one_of("engine", c.engine, {"raster", "exact"});
-  one_of("coverage", c.coverage, {"point", "area"});
-  one_of("cone", c.cone, {"quad", "fan"});
-  one_of("pixel_work", c.pixel_work, {"auto", "device", "host"});
-  if (c.resolution != 0 && (c.resolution < 16 || c.resolution > 65536))
-    throw nb::value_error(("resolution: expected 0 (from N) or 16 to 65536, got " + std::to_string(c.resolution)).c_str());
-}
-
-std::unique_ptr<bluetile::CentroidEngine> make_engine(const EngineChoice& c) {
-  if (c.engine == "exact") return std::make_unique<bluetile::ExactEngine>();
-  bluetile::RasterOptions r;
-  r.resolution = c.resolution;
-  r.coverage = c.coverage == "point" ? bluetile::Coverage::point : bluetile::Coverage::area;
-  r.cone = c.cone == "fan" ? bluetile::ConeShape::fan : bluetile::ConeShape::quad;
-  r.device = c.device;
-  r.pixel_work = c.pixel_work == "device" ? bluetile::PixelWork::device
-                 : c.pixel_work == "host" ? bluetile::PixelWork::host
-                                          : bluetile::PixelWork::automatic;
-  return std::make_unique<bluetile::RasterEngine>(r);
-}
-
 namespace {
 
 void check_range(const char* name, long long value, long long low, long long high) {

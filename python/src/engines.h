@@ -6,22 +6,16 @@
 #include <string>
 
 #include "bluetile/voronoi/engine.h"
+#include "bluetile/voronoi/engine_choice.h"
 
 namespace pybluetile {
 
-struct EngineChoice {
-  std::string engine = "raster";
-  int resolution = 0;
-  std::string coverage = "area";
-  std::string cone = "quad";
-  std::string device;
-  std::string pixel_work = "auto";
-};
+// The library's engine choice (bluetile/voronoi/engine_choice.h): its names, defaults and
+// ranges; a bad one raises pybluetile.Error (a ValueError) naming the argument.
+using bluetile::EngineChoice;
 
-// Throws ValueError for a name or a resolution out of range (before any work).
-void check_engine_choice(const EngineChoice& choice);
-
-// Creates the engine (a Vulkan context for raster); throws bluetile::Error when there is none.
-std::unique_ptr<bluetile::CentroidEngine> make_engine(const EngineChoice& choice);
+// Checks the choice before any work.
+inline void check_engine_choice(const EngineChoice& choice) { bluetile::validate(choice); }
+using bluetile::make_engine;
 
 }  // namespace pybluetile

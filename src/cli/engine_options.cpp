@@ -6,40 +6,24 @@
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
-#include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/voronoi/raster_engine.h"
 
 namespace bluetile::cli {
-namespace {
-
-RasterOptions raster_options(const EngineOptions& options) {
-  RasterOptions r;
-  r.resolution = options.resolution;
-  r.coverage = options.coverage == "point" ? Coverage::point : Coverage::area;
-  r.cone = options.cone == "fan" ? ConeShape::fan : ConeShape::quad;
-  r.device = options.device;
-  r.pixel_work = options.pixel_work == "device" ? PixelWork::device
-                 : options.pixel_work == "host" ? PixelWork::host
-                                                : PixelWork::automatic;
-  return r;
-}
-
-}  // namespace
 
 void add_engine_options(CLI::App* command, EngineOptions& options) {
   command->add_option("--engine", options.engine, "Centroid engine: raster (Vulkan) or exact (CPU)")
-      ->check(CLI::IsMember({"raster", "exact"}))
+      ->check(CLI::IsMember(engine_names()))
       ->capture_default_str();
-  add_integer_option(command, "--resolution", options.resolution, 16, 65536,
+  add_integer_option(command, "--resolution", options.resolution, kMinResolution, kMaxResolution,
                      "Raster engine: ID buffer side in pixels (default: from N, about 4 pixels per cell for area "
                      "coverage, 1000 for point)")
       ->default_str("from N");
   command->add_option("--coverage", options.coverage,
                       "Raster engine: point (pixel centres) or area (boundary pixels split exactly)")
-      ->check(CLI::IsMember({"point", "area"}))
+      ->check(CLI::IsMember(coverage_names()))
       ->capture_default_str();
   command->add_option("--cone", options.cone, "Raster engine: quad (exact depth) or fan (tessellated, biased)")
-      ->check(CLI::IsMember({"quad", "fan"}))
+      ->check(CLI::IsMember(cone_names()))
       ->capture_default_str();
   command->add_option("--device", options.device, "Raster engine: Vulkan device name or index (see 'bluetile devices')");
   command->add_option("--pixel-work", options.pixel_work,
@@ -47,15 +31,14 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
                       "device on GPUs, the host on CPU devices such as lavapipe), device (compute shaders; refused on a "
                       "device without the features they need, or with a density map or a bounded domain) or host "
                       "(threaded); the output is the same bits")
-      ->check(CLI::IsMember({"auto", "device", "host"}))
+      ->check(CLI::IsMember(pixel_work_names()))
       ->capture_default_str();
   add_threads_option(command, options.threads);
 }
 
 std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {
   if (options.threads > 0) set_thread_count(static_cast<std::size_t>(options.threads));
-  if (options.engine == "exact") return std::make_unique<ExactEngine>();
-  return std::make_unique<RasterEngine>(raster_options(options));
+  return bluetile::make_engine(static_cast<const EngineChoice&>(options));
 }
 
 void note_faster_engine(const CentroidEngine& engine, double site_iterations) {

@@ -8,17 +8,13 @@
 
 #include "bluetile/core/output_file.h"
 #include "bluetile/voronoi/engine.h"
+#include "bluetile/voronoi/engine_choice.h"
 
 namespace bluetile::cli {
 
-struct EngineOptions {
-  std::string engine = "raster";
-  int resolution = 0;             // raster: ID-buffer side in pixels; 0 picks one from N
-  std::string coverage = "area";  // raster: point | area
-  std::string cone = "quad";      // raster: quad | fan
-  std::string device;             // raster: Vulkan device name or index
-  std::string pixel_work = "auto";  // raster: auto | device | host (where the per-pixel work runs)
-  int threads = 0;                // CPU threads; 0 = all cores
+// The library's engine choice (engine_choice.h: names, defaults, ranges), and the threads.
+struct EngineOptions : EngineChoice {
+  int threads = 0;  // CPU threads; 0 = all cores
 };
 
 void add_engine_options(CLI::App* command, EngineOptions& options);
