@@ -8,7 +8,16 @@
 // `bluetile progressive --count N --sets K --engine exact`), built one set after another with one
 // exact engine and in parallel with an engine per worker, side by side in one run; checks that
 // both give the same bits.
+//
+// `bluetile_progressive_bench prefixes N seeds [sigma...]`: the prefix sweep of untiled
+// progressive sets of N points (k at 1/16 ... 1 of N and every level boundary), rho and LF worst
+// (and mean) over seeds 1..seeds, for the placement and voids rank orders side by side, built as
+// `bluetile progressive --count N/16 --ratio 2 --levels 5 --engine exact` and as
+// `--count 1 --ratio 2 --levels log2(N)+1` (one point, then doubling). A fourth argument sets the
+// void order's kernel width in hexagonal spacings (default kVoidSigmaFactor).
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -17,6 +26,7 @@
 #include <vector>
 
 #include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/progressive.h"
@@ -56,9 +66,150 @@ int compare_parallel_sets(std::size_t sets, std::size_t n) {
   return same ? 0 : 1;
 }
 
+struct SweepRow {
+  double worst_rho = HUGE_VAL, mean_rho = 0.0, worst_lf = 0.0, mean_lf = 0.0;
+};
+
+// rho and LF of the first k points of every set, for every k of the sweep.
+std::vector<SweepRow> measure_sweep(const std::vector<PointSet>& sets, const std::vector<std::size_t>& sweep) {
+  std::vector<SweepRow> rows(sweep.size());
+  for (const PointSet& set : sets) {
+    for (std::size_t i = 0; i < sweep.size(); ++i) {
+      const std::span<const Point> prefix(set.points.data(), sweep[i]);
+      const TilingMetrics m = measure_tiling(prefix, 0, 0);
+      rows[i].worst_rho = std::min(rows[i].worst_rho, m.rho);
+      rows[i].worst_lf = std::max(rows[i].worst_lf, m.low_frequency);
+      rows[i].mean_rho += m.rho / static_cast<double>(sets.size());
+      rows[i].mean_lf += m.low_frequency / static_cast<double>(sets.size());
+    }
+  }
+  return rows;
+}
+
+// EXPERIMENT: joint iterations with the ranks fixed: every point moves by the mean of its Lloyd
+// displacements in the prefixes it belongs to.
+void relax_prefixes(CentroidEngine& engine, std::vector<Point>& points, const std::vector<std::size_t>& prefixes,
+                    int iterations) {
+  const Domain torus{};
+  for (int it = 0; it < iterations; ++it) {
+    std::vector<Point> sum(points.size(), Point{0.0, 0.0});
+    std::vector<double> weight(points.size(), 0.0);
+    for (std::size_t p : prefixes) {
+      Scene scene = make_scene(std::vector<Point>(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(p)));
+      SceneCells cells = engine.compute(scene);
+      for (std::size_t i = 0; i < p; ++i) {
+        const Point d = torus_offset(points[i], cells.cells[i].centroid, torus);
+        sum[i].x += d.x;
+        sum[i].y += d.y;
+        weight[i] += 1.0;
+      }
+    }
+    for (std::size_t i = 0; i < points.size(); ++i)
+      points[i] = wrap_point({points[i].x + sum[i].x / weight[i], points[i].y + sum[i].y / weight[i]}, torus);
+  }
+}
+
+void print_sweep(const char* name, const std::vector<PointSet>& sets) {
+  std::vector<std::size_t> boundaries;
+  std::vector<std::size_t> sweep = prefix_sweep(sets[0].points.size(), boundaries);
+  std::vector<SweepRow> rows = measure_sweep(sets, sweep);
+  std::printf("%s:", name);
+  for (std::size_t i = 0; i < sweep.size(); ++i) std::printf(" %zu %.3f/%.4f", sweep[i], rows[i].worst_rho, rows[i].worst_lf);
+  std::printf("\n");
+}
+
+int experiments(std::size_t n, std::size_t seeds, int joint_iterations, double ratio) {
+  ExactEngine engine;
+  std::vector<PointSet> joint, staged_joint;
+  for (std::size_t k = 0; k < seeds; ++k) {
+    LevelOptions all;
+    all.add = n;
+    all.seed = derive_seed(1 + k, 0);
+    PointSet set = add_level(engine, PointSet{}, all);
+    std::vector<std::uint32_t> order = void_order(set.points, 0);
+    PointSet ranked;
+    for (std::uint32_t i : order) ranked.points.push_back(set.points[i]);
+    joint.push_back(ranked);
+    HierarchyOptions options;
+    options.count = n / 16;
+    options.ratio = 2.0;
+    options.levels = 5;
+    options.seed = 1 + k;
+    options.rank_order = ProgressiveOrder::voids;
+    PointSet staged = add_levels(engine, PointSet{}, options);
+    std::vector<std::size_t> prefixes;
+    for (double p = static_cast<double>(n); p >= static_cast<double>(n) / 16.0; p /= ratio)
+      prefixes.push_back(static_cast<std::size_t>(std::llround(p)));
+    relax_prefixes(engine, staged.points, prefixes, joint_iterations);
+    staged_joint.push_back(staged);
+  }
+  print_sweep("all relaxed, then voids", joint);
+  char name[128];
+  std::snprintf(name, sizeof name, "staged voids + %d joint iterations, prefixes ratio %.2f", joint_iterations, ratio);
+  print_sweep(name, staged_joint);
+  return 0;
+}
+
+int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
+  struct Construction {
+    const char* name;
+    std::size_t count;
+    int levels;
+  };
+  int doublings = 0;
+  while ((std::size_t{1} << doublings) < n) ++doublings;
+  const Construction constructions[] = {{"N/16, ratio 2, 5 levels", n / 16, 5},
+                                        {"1, ratio 2", 1, doublings + 1}};
+  using Clock = std::chrono::steady_clock;
+  for (const Construction& c : constructions) {
+    std::vector<std::vector<SweepRow>> results;
+    std::vector<double> seconds;
+    std::vector<std::size_t> sweep;
+    for (ProgressiveOrder order : {ProgressiveOrder::placement, ProgressiveOrder::voids}) {
+      HierarchyOptions options;
+      options.count = c.count;
+      options.ratio = 2.0;
+      options.levels = c.levels;
+      options.seed = 1;
+      options.rank_order = order;
+      options.void_sigma = sigma;
+      const auto start = Clock::now();
+      const std::vector<PointSet> sets =
+          add_levels([] { return std::make_unique<ExactEngine>(); }, std::vector<PointSet>(seeds), options);
+      seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+      std::vector<std::size_t> boundaries;
+      for (std::size_t i = 1; i < sets[0].levels.size(); ++i)
+        if (sets[0].levels[i] != sets[0].levels[i - 1]) boundaries.push_back(i);
+      sweep = prefix_sweep(sets[0].points.size(), boundaries);
+      sweep.erase(std::remove_if(sweep.begin(), sweep.end(), [](std::size_t k) { return k < 2; }), sweep.end());
+      results.push_back(measure_sweep(sets, sweep));
+    }
+    std::printf("\n%s (%zu points), worst / mean of seeds 1-%zu; built in %.2f s and %.2f s (%zu threads), sigma %.2f\n",
+                c.name, sweep.back(), seeds, seconds[0], seconds[1], thread_count(), sigma);
+    std::printf("| k | k / N | placement rho | placement LF | voids rho | voids LF |\n|---|---|---|---|---|---|\n");
+    for (std::size_t i = 0; i < sweep.size(); ++i) {
+      const SweepRow& a = results[0][i];
+      const SweepRow& b = results[1][i];
+      std::printf("| %zu | %.4f | %.3f / %.3f | %.4f / %.4f | %.3f / %.3f | %.4f / %.4f |\n", sweep[i],
+                  static_cast<double>(sweep[i]) / static_cast<double>(sweep.back()), a.worst_rho, a.mean_rho, a.worst_lf,
+                  a.mean_lf, b.worst_rho, b.mean_rho, b.worst_lf, b.mean_lf);
+    }
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "experiments") == 0)
+    return experiments(std::strtoul(argv[2], nullptr, 10), std::strtoul(argv[3], nullptr, 10), std::atoi(argv[4]),
+                       std::strtod(argv[5], nullptr));
+  if (argc > 1 && std::strcmp(argv[1], "prefixes") == 0) {
+    const std::size_t n = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 4096;
+    const std::size_t seeds = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 4;
+    const double sigma = argc > 4 ? std::strtod(argv[4], nullptr) : kVoidSigmaFactor;
+    return compare_prefixes(n, seeds, sigma);
+  }
   if (argc > 1 && std::strcmp(argv[1], "sets") == 0) {
     const std::size_t sets = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 256;
     const std::size_t n = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 64;

@@ -29,6 +29,7 @@ struct ProgressiveOptions {
   double tolerance = 0.0;
   std::uint64_t seed = 1;
   std::string placement = "gaps";
+  std::string rank_order = "placement";
   long long sets = 1;
   PointOutputOptions output;
   EngineOptions engine;
@@ -58,6 +59,7 @@ void run_progressive(const ProgressiveOptions& o) {
   options.iterations = o.iterations;
   options.tolerance = o.tolerance;
   options.placement = o.placement == "random" ? Placement::random : Placement::gaps;
+  options.rank_order = parse_rank_order(o.rank_order);
   // Every set's levels and sizes, and the memory of them all, checked before any work.
   int target_levels = 0;
   double total = 0.0;
@@ -116,7 +118,7 @@ void run_progressive(const ProgressiveOptions& o) {
   const std::vector<std::string> header = {
       "bluetile progressive: " + what + " in " + std::to_string(target_levels) + " levels " + how + ", " +
           std::to_string(o.iterations) + " iterations per level, engine " + std::string(engine->name()) +
-          ", placement " + o.placement,
+          ", placement " + o.placement + (options.rank_order == ProgressiveOrder::placement ? "" : ", rank order " + o.rank_order),
       "columns: x y level"};
   output.write(sets, header);
   outputs.publish();
@@ -147,6 +149,12 @@ void add_progressive_command(CLI::App& app) {
   add_seed_option(cmd, o->seed, "Seed of the random placement");
   cmd->add_option("--placement", o->placement, "Start of new points: gaps (best candidate) or random (the paper)")
       ->check(CLI::IsMember({"gaps", "random"}))
+      ->capture_default_str();
+  cmd->add_option("--rank-order", o->rank_order,
+                  "Row order within the levels: placement (each level relaxed alone, its points as placed) or voids "
+                  "(levels relaxed in stages of at least 64 points, each stage's points ranked by voids: every "
+                  "prefix blue noise)")
+      ->check(CLI::IsMember({"placement", "voids"}))
       ->capture_default_str();
   add_integer_option(cmd, "--sets", o->sets, 1LL, 10000000LL,
                      "Build K independent hierarchies; set k is the one --seed S+k gives alone")

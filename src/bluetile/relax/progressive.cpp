@@ -8,6 +8,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/relax/void_order.h"
 
 namespace bluetile {
 namespace {
@@ -160,8 +161,71 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
   return sizes;
 }
 
+const char* rank_order_name(ProgressiveOrder order) { return order == ProgressiveOrder::voids ? "voids" : "placement"; }
+
+ProgressiveOrder parse_rank_order(const std::string& name) {
+  if (name == "placement") return ProgressiveOrder::placement;
+  if (name == "voids") return ProgressiveOrder::voids;
+  throw Error("rank order: expected 'placement' or 'voids', got '" + name + "'");
+}
+
+std::vector<std::size_t> hierarchy_stages(std::size_t base_count, const std::vector<std::size_t>& level_sizes) {
+  std::vector<std::size_t> stages;
+  std::size_t before = base_count, in_stage = 0, levels_in_stage = 0;
+  for (std::size_t i = 0; i < level_sizes.size(); ++i) {
+    in_stage += level_sizes[i];
+    ++levels_in_stage;
+    if (i + 1 == level_sizes.size() || (in_stage >= kMinStagePoints && 2 * in_stage >= before)) {
+      stages.push_back(levels_in_stage);
+      before += in_stage;
+      in_stage = levels_in_stage = 0;
+    }
+  }
+  return stages;
+}
+
+namespace {
+
+// The voids order: each stage relaxed as one level, then its new points reordered by voids and
+// given the levels their ranks fall in.
+PointSet add_stages(CentroidEngine& engine, PointSet set, const HierarchyOptions& options,
+                    const std::vector<std::size_t>& sizes) {
+  const int base_levels = count_levels(set);
+  LevelOptions level;
+  level.iterations = options.iterations;
+  level.tolerance = options.tolerance;
+  level.placement = options.placement;
+  std::size_t first = 0;  // index in sizes of the stage's first level
+  for (std::size_t stage_levels : hierarchy_stages(set.points.size(), sizes)) {
+    const int l = base_levels + static_cast<int>(first);
+    level.add = 0;
+    for (std::size_t i = first; i < first + stage_levels; ++i) level.add += sizes[i];
+    level.seed = derive_seed(options.seed, static_cast<std::uint64_t>(l));
+    if (options.on_iteration) {
+      level.on_iteration = [&options, l](const LloydIteration& it) { options.on_iteration(l, it); };
+    }
+    const std::size_t before = set.points.size();
+    PointSet relaxed = add_level(engine, set, level);
+    const std::vector<std::uint32_t> order = void_order(relaxed.points, before, options.void_sigma);
+    const std::vector<Point> placed(relaxed.points.begin() + static_cast<std::ptrdiff_t>(before), relaxed.points.end());
+    std::size_t rank = before;
+    for (std::size_t i = first; i < first + stage_levels; ++i) {
+      for (std::size_t k = 0; k < sizes[i]; ++k, ++rank) {
+        relaxed.points[rank] = placed[order[rank - before] - before];
+        relaxed.levels[rank] = base_levels + static_cast<int>(i);
+      }
+    }
+    set = std::move(relaxed);
+    first += stage_levels;
+  }
+  return set;
+}
+
+}  // namespace
+
 PointSet add_levels(CentroidEngine& engine, PointSet set, const HierarchyOptions& options) {
   const std::vector<std::size_t> sizes = hierarchy_level_sizes(set, options);
+  if (options.rank_order == ProgressiveOrder::voids) return add_stages(engine, std::move(set), options, sizes);
   const int base_levels = count_levels(set);
   LevelOptions level;
   level.iterations = options.iterations;

@@ -7,10 +7,12 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bluetile/core/point_file.h"
 #include "bluetile/relax/lloyd.h"
+#include "bluetile/relax/void_order.h"
 
 namespace bluetile {
 
@@ -19,6 +21,29 @@ enum class Placement {
   random,  // uniform random, as in the paper
   gaps,    // Mitchell's best candidate: of several random candidates, the farthest from all points
 };
+
+// The order of the points in a hierarchy, which is the rank a renderer or a density map thins by.
+// (wang_relax.h's RankOrder is the tiled counterpart: its voids is this voids inside tiles; its
+// farthest has no untiled use here.)
+enum class ProgressiveOrder : std::uint8_t {
+  // Each level relaxed around the fixed earlier ones (the paper), its points in the order they were
+  // placed: every level boundary is blue noise, the prefixes inside a level less so.
+  placement,
+  // Levels relaxed in stages of at least kMinStagePoints points and at least half the points
+  // before them (a stage is one level or several), the points of each stage in void order
+  // (void_order.h) after every earlier one: every prefix is well spread, not only the boundaries.
+  voids,
+};
+
+// The rank order's names, as the tool and the Python module spell them; parse_rank_order throws
+// Error naming the value otherwise.
+const char* rank_order_name(ProgressiveOrder order);
+ProgressiveOrder parse_rank_order(const std::string& name);
+
+// The smallest stage of the voids order: fewer points relaxed around fixed ones settle in the same
+// arrangement in every set (one point at a time from one: nested square lattices, an ordered
+// dither), where 64 relaxed together settle in one of many irregular ones.
+inline constexpr std::size_t kMinStagePoints = 64;
 
 struct LevelOptions {
   std::size_t add = 0;  // points to add (>= 1)
@@ -51,11 +76,17 @@ struct HierarchyOptions {
   double tolerance = 0.0;
   std::uint64_t seed = 1;  // level l places its points with derive_seed(seed, l)
   Placement placement = Placement::gaps;
+  ProgressiveOrder rank_order = ProgressiveOrder::placement;
+  double void_sigma = kVoidSigmaFactor;  // the voids order's kernel width (void_order.h)
+  // With the voids order, level is the first level of the stage being relaxed.
   std::function<void(int level, const LloydIteration&)> on_iteration;
 };
 
 // A hierarchy as `bluetile progressive` builds it: the base (kept bit for bit), then levels up
-// to options.levels, each added by add_level with seed derive_seed(options.seed, level).
+// to options.levels, each added by add_level with seed derive_seed(options.seed, level). With
+// ProgressiveOrder::voids the levels are relaxed in stages (hierarchy_stages), each added by add_level
+// with the seed of its first level, and the new points of a stage are reordered by void_order and
+// given the levels of their ranks; stages of one level keep today's points, in another order.
 // Throws Error (before any work) when there is nothing to add, the base already has that many
 // levels, or the total would pass kMaxHierarchyPoints.
 PointSet add_levels(CentroidEngine& engine, PointSet base, const HierarchyOptions& options);
@@ -75,6 +106,11 @@ std::vector<PointSet> add_levels(const EngineMaker& new_engine, std::vector<Poin
 
 // The number of points each new level of add_levels adds, checked as add_levels checks them.
 std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const HierarchyOptions& options);
+
+// The stages of the voids order for new levels of these sizes on a base of base_count points: the
+// number of levels each stage relaxes together. A stage ends at the first level boundary where it
+// holds at least kMinStagePoints points and at least half the points before it, or at the end.
+std::vector<std::size_t> hierarchy_stages(std::size_t base_count, const std::vector<std::size_t>& level_sizes);
 
 // Levels in a set: 0 when empty, 1 without a level column, else the highest level + 1.
 int count_levels(const PointSet& set);
