@@ -2,7 +2,7 @@
 // stats.json, radial.csv, rdf.csv, report.txt (also printed), and points, spectrum, radial and
 // rdf images as PNG and SVG in the output folder; optionally a one-page summary (PDF or SVG).
 // One set; the mean over several (--average); several series side by side (--compare); or every
-// prefix of a hierarchical set (--by-level).
+// prefix of a hierarchical set (--by-level); or the prefixes of a set in rank (row) order (--by-rank).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -19,6 +19,7 @@
 #include "bluetile/analysis/radial_power.h"
 #include "bluetile/analysis/summary.h"
 #include "bluetile/analysis/summary_record.h"
+#include "bluetile/analysis/tiling_metrics.h"
 #include "cli/analysis_budget.h"
 #include "cli/commands.h"
 #include "cli/memory_budget.h"
@@ -45,6 +46,7 @@ struct AnalyzeOptions {
   bool average = false;
   bool compare = false;
   bool by_level = false;
+  std::vector<std::string> by_rank;  // prefix sizes: counts K or fractions P/Q of N
   std::vector<std::string> labels;
   bool cells = false;
   std::string from;
@@ -70,6 +72,8 @@ struct Series {
   std::string label;
   std::string input;
   int level = -1;
+  std::size_t rank_prefix = 0;  // by rank: the first rank_prefix points
+  double low_frequency = 0.0;   // by rank: LF (tiling_metrics.h)
   PointSet first;         // drawn in points.png
   std::size_t sets = 1;   // sets in the input (points.png shows the first)
   Summary summary;
@@ -418,7 +422,7 @@ constexpr double kAnalyzeBytesPerAnnulus = 400.0;
 
 // Refuses, before the analysis, a --bin-width that makes more annuli than the limit or than the
 // memory holds (every series has floor((F / 2) / w) of them, F the largest set's periodogram).
-void check_annuli(const AnalyzeOptions& o, const std::vector<std::vector<PointSet>>& inputs) {
+void check_annuli(const AnalyzeOptions& o, const std::vector<std::vector<PointSet>>& inputs, std::size_t rank_series) {
   std::size_t largest = 0;
   for (const auto& sets : inputs)
     for (const PointSet& s : sets) largest = std::max(largest, s.points.size());
@@ -439,6 +443,7 @@ void check_annuli(const AnalyzeOptions& o, const std::vector<std::vector<PointSe
   double series = 1.0;
   if (o.compare) series = static_cast<double>(inputs.size());
   if (o.by_level) series = static_cast<double>(std::set<int>(inputs[0][0].levels.begin(), inputs[0][0].levels.end()).size());
+  if (rank_series > 0) series = static_cast<double>(rank_series);
   char what[160];
   std::snprintf(what, sizeof what, "--bin-width %s (%.0f annuli%s)", width, annuli,
                 series > 1.0 ? (" in each of " + std::to_string(static_cast<long long>(series)) + " series").c_str() : "");
@@ -477,10 +482,83 @@ std::vector<std::pair<OutputFile*, const PointSet*>> declare_psa_points(const An
   return files;
 }
 
+// --by-rank K...: each value a count (2 to N) or a fraction P/Q of the N points (rounded to the
+// nearest count); sorted and distinct. Throws Error naming the value otherwise.
+std::vector<std::size_t> rank_prefixes(const std::vector<std::string>& values, std::size_t n, const std::string& input) {
+  std::vector<std::size_t> counts;
+  const WholeNumber one = whole(1), most = whole(kMaxCount);
+  for (const std::string& text : values) {
+    WholeNumber value;
+    std::size_t count = 0;
+    if (const std::size_t slash = text.find('/'); slash != std::string::npos) {
+      WholeNumber below;
+      std::string why = check_integer(std::string_view(text).substr(0, slash), one, most, value);
+      if (why.empty()) why = check_integer(std::string_view(text).substr(slash + 1), one, most, below);
+      if (!why.empty()) throw Error("--by-rank " + text + ": not a fraction P/Q of two integers from 1 to " + std::to_string(kMaxCount));
+      if (value.magnitude > below.magnitude) throw Error("--by-rank " + text + ": a fraction of the points must be at most 1");
+      count = static_cast<std::size_t>((n * value.magnitude + below.magnitude / 2) / below.magnitude);
+    } else {
+      if (!check_integer(text, one, most, value).empty())
+        throw Error("--by-rank " + text + ": not a count or a fraction P/Q of the points");
+      count = static_cast<std::size_t>(value.magnitude);
+    }
+    if (count > n)
+      throw Error("--by-rank " + text + ": " + input + " holds " + std::to_string(n) + " points, fewer than " + std::to_string(count));
+    if (count < 2)
+      throw Error("--by-rank " + text + ": the first " + std::to_string(count) + " of " + std::to_string(n) +
+                  " points; a prefix needs at least 2 to analyse" + (count == 1 && text == "1" ? " (the whole set is 1/1)" : ""));
+    counts.push_back(count);
+  }
+  std::sort(counts.begin(), counts.end());
+  counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
+  return counts;
+}
+
+// LF of a prefix, from its summary's periodogram when that holds every frequency LF uses.
+double prefix_low_frequency(std::span<const Point> prefix, const Summary& summary) {
+  if (summary.periodogram.size >= tiling_metrics_periodogram_size(prefix.size()))
+    return measure_tiling(prefix, summary.periodogram, 0, 0).low_frequency;
+  return measure_tiling(prefix, 0, 0).low_frequency;
+}
+
+// The prefix series of --by-rank: the first K points of the set, for each K.
+std::vector<Series> rank_series(const PointSet& set, const std::vector<std::size_t>& prefixes, const std::string& input,
+                                const SummaryOptions& options) {
+  std::vector<Series> series;
+  for (std::size_t k : prefixes) {
+    std::vector<std::vector<Point>> prefix(1, std::vector<Point>(set.points.begin(), set.points.begin() + static_cast<std::ptrdiff_t>(k)));
+    Series s{"first " + std::to_string(k), input, -1, k, 0.0, set, 1, summarize(prefix, options)};
+    s.low_frequency = prefix_low_frequency(prefix[0], s.summary);
+    s.first.points.resize(k);
+    if (s.first.has_levels()) s.first.levels.resize(k);
+    series.push_back(std::move(s));
+  }
+  return series;
+}
+
+// The by-rank table: report_table's columns with the prefix's share of N and LF.
+void report_rank_table(std::ostringstream& out, const std::vector<Series>& series, std::size_t n) {
+  char row[256];
+  std::snprintf(row, sizeof row, "%-12s %8s %8s %8s %8s %8s %8s %8s\n", "prefix", "k / N", "rho", "LF", "avg min",
+                "nu_eff", "Omega", "psi6");
+  out << row;
+  for (const Series& s : series) {
+    const Summary& m = s.summary;
+    const std::string nu_eff = m.has_spectral_measures ? fixed(m.measures.nu_eff, 3) : "-";
+    const std::string omega = m.has_spectral_measures ? fixed(m.measures.omega, 3) : "-";
+    std::snprintf(row, sizeof row, "%-12s %8.4f %8.4f %8.4f %8.4f %8s %8s %8s\n", s.label.c_str(),
+                  static_cast<double>(s.rank_prefix) / static_cast<double>(n), m.nn.rho(), s.low_frequency,
+                  m.nn.rho_mean(), nu_eff.c_str(), omega.c_str(), m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
+    out << row;
+  }
+  out << "LF: mean periodogram over integer frequencies f with 0 < |f|^2 < k / 4 (white noise 1)\n\n";
+}
+
 void run_analyze(const AnalyzeOptions& o) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
-  if ((o.average ? 1 : 0) + (o.compare ? 1 : 0) + (o.by_level ? 1 : 0) > 1)
-    throw Error("choose one of --average, --compare and --by-level");
+  const bool by_rank = !o.by_rank.empty();
+  if ((o.average ? 1 : 0) + (o.compare ? 1 : 0) + (o.by_level ? 1 : 0) + (by_rank ? 1 : 0) > 1)
+    throw Error("choose one of --average, --compare, --by-level and --by-rank");
   if (o.size != 0 && (o.size < 2 || o.size % 2 != 0)) throw Error("--size must be an even number >= 2");
   if (!(o.bin_width > 0.0) || !std::isfinite(o.bin_width)) throw Error("--bin-width must be positive");
   if (!(o.rdf_range >= 0.0) || !std::isfinite(o.rdf_range)) throw Error("--rdf-range must be a positive number of hexagonal spacings");
@@ -532,6 +610,8 @@ void run_analyze(const AnalyzeOptions& o) {
                 " files): use --average to analyse their mean (with a table of each set) or --compare to plot them together");
   if (o.by_level && !inputs[0][0].has_levels())
     throw Error(o.inputs[0] + ": --by-level needs a level column (x y level)");
+  const std::vector<std::size_t> prefixes =
+      by_rank ? rank_prefixes(o.by_rank, inputs[0][0].points.size(), o.inputs[0]) : std::vector<std::size_t>{};
   const Boundary boundary = choose_boundary(o, inputs);
   if (o.cells && boundary == Boundary::bounded)
     throw Error("--cells draws periodic Voronoi cells: not for a bounded set");
@@ -546,7 +626,7 @@ void run_analyze(const AnalyzeOptions& o) {
       throw Error(o.from + ": --from has " + std::to_string(from.size()) + " points but the input has " +
                   std::to_string(inputs[0][0].points.size()));
   }
-  check_annuli(o, inputs);
+  check_annuli(o, inputs, prefixes.size());
   const std::vector<std::pair<OutputFile*, const PointSet*>> psa_files = declare_psa_points(o, inputs, outputs);
   // The estimate, before any work: a set too large for psa's O(N^2) measures or for the memory
   // is refused with what it would take.
@@ -558,6 +638,8 @@ void run_analyze(const AnalyzeOptions& o) {
     std::sort(levels.begin(), levels.end());
     for (std::size_t i = 0; i < levels.size(); ++i)
       if (i + 1 == levels.size() || levels[i + 1] != levels[i]) jobs.push_back({i + 1, 1, o.size});
+  } else if (by_rank) {
+    for (std::size_t k : prefixes) jobs.push_back({k, 1, o.size});
   } else {
     jobs.push_back({inputs[0][0].points.size(), total_sets, o.size});
   }
@@ -597,7 +679,7 @@ void run_analyze(const AnalyzeOptions& o) {
   if (o.compare) {
     for (std::size_t i = 0; i < inputs.size(); ++i) {
       auto sets = points_of(inputs[i]);
-      series.push_back({label_of(i), o.inputs[i], -1, inputs[i][0], inputs[i].size(), summarize(sets, options)});
+      series.push_back({label_of(i), o.inputs[i], -1, 0, 0.0, inputs[i][0], inputs[i].size(), summarize(sets, options)});
       bar.reset();
     }
   } else if (o.by_level) {
@@ -605,8 +687,11 @@ void run_analyze(const AnalyzeOptions& o) {
     std::vector<LevelSummary> levels = summarize_levels(set.points, set.levels, options);
     for (LevelSummary& l : levels) {
       std::string label = l.level == 0 ? "level 0" : "levels 0-" + std::to_string(l.level);
-      series.push_back({label, o.inputs[0], l.level, set, 1, std::move(l.summary)});
+      series.push_back({label, o.inputs[0], l.level, 0, 0.0, set, 1, std::move(l.summary)});
     }
+    bar.reset();
+  } else if (by_rank) {
+    series = rank_series(inputs[0][0], prefixes, o.inputs[0], options);
     bar.reset();
   } else {
     std::vector<std::vector<Point>> sets;
@@ -614,7 +699,7 @@ void run_analyze(const AnalyzeOptions& o) {
       for (const PointSet& s : file) sets.push_back(s.points);
     std::string label = inputs.size() == 1 ? label_of(0) : "mean of " + std::to_string(sets.size()) + " sets";
     if (!o.labels.empty() && o.labels.size() == 1) label = o.labels[0];
-    series.push_back({label, o.inputs[0], -1, inputs[0][0], sets.size(), summarize(sets, options)});
+    series.push_back({label, o.inputs[0], -1, 0, 0.0, inputs[0][0], sets.size(), summarize(sets, options)});
     bar.reset();
   }
 
@@ -637,6 +722,7 @@ void run_analyze(const AnalyzeOptions& o) {
       figure.points = s.first.points;
       if (s.first.has_levels()) figure.levels = s.first.levels;
       figure.from = from;
+      if (by_rank && !from.empty()) figure.from.resize(s.rank_prefix);
     }
     if (s.sets > 1) figure.note = "set 1 of " + std::to_string(s.sets) + " (the analysis covers all " + std::to_string(s.sets) + ")";
     figure.cells = o.cells;
@@ -647,7 +733,7 @@ void run_analyze(const AnalyzeOptions& o) {
     spectrum_images.push_back(draw_spectrum(s.summary.periodogram, several ? 512 : 1024, several ? 384 : 512));
     spectrum_svgs.push_back(spectrum_svg(s.summary.periodogram, several ? 512 : 1024, several ? 384 : 512));
     // By-level prefixes each have their own frequency range: say which.
-    captions.push_back(o.by_level ? s.label + ", F = " + std::to_string(s.summary.periodogram.size) : s.label);
+    captions.push_back(o.by_level || by_rank ? s.label + ", F = " + std::to_string(s.summary.periodogram.size) : s.label);
     figures.push_back(std::move(figure));
   }
   Canvas points_png = several ? montage(point_images, captions) : point_images[0];
@@ -661,7 +747,9 @@ void run_analyze(const AnalyzeOptions& o) {
     rdf_curves.push_back({s.label, s.summary.rdf});
   }
   std::string title = !several ? series[0].label + ": " + std::to_string(series[0].summary.count) + " points"
-                               : (o.by_level ? "prefixes of " + label_of(0) : "comparison");
+                               : (o.by_level ? "prefixes of " + label_of(0)
+                                  : by_rank  ? "rank prefixes of " + label_of(0)
+                                             : "comparison");
   if (!o.title.empty())
     title = o.title;
   else if (!several && series[0].summary.sets > 1)
@@ -682,7 +770,7 @@ void run_analyze(const AnalyzeOptions& o) {
   if (!o.summary.empty()) {
     const Series& s = series.back();  // by level: the whole set
     SummaryPage page;
-    page.title = o.title.empty() ? (several && !o.by_level ? "comparison" : title) : o.title;
+    page.title = o.title.empty() ? (several && !o.by_level && !by_rank ? "comparison" : title) : o.title;
     page.subtitle = "bluetile analyze";
     for (const std::string& in : o.inputs) page.subtitle += " " + in;
     page.points = figures.back();
@@ -698,7 +786,7 @@ void run_analyze(const AnalyzeOptions& o) {
   }
 
   nlohmann::json stats;
-  stats["mode"] = o.compare ? "compare" : o.by_level ? "by-level" : o.average ? "average" : "single";
+  stats["mode"] = o.compare ? "compare" : o.by_level ? "by-level" : by_rank ? "by-rank" : o.average ? "average" : "single";
   if (!o.compare) {
     // One set, a mean, or the whole leveled set (its last prefix); compare mode has no single
     // set to describe, so its figures are only under "compare", each with its label.
@@ -720,6 +808,17 @@ void run_analyze(const AnalyzeOptions& o) {
     }
     stats[o.compare ? "compare" : "levels"] = std::move(list);
   }
+  if (by_rank) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const Series& s : series) {
+      nlohmann::json j = summary_json(s.summary);
+      j["label"] = s.label;
+      j["rank_prefix"] = s.rank_prefix;
+      j["low_frequency"] = number(s.low_frequency);
+      list.push_back(std::move(j));
+    }
+    stats["ranks"] = std::move(list);
+  }
   const std::vector<std::string> images = {"points.png", "points.svg", "spectrum.png", "spectrum.svg",
                                            "radial.png", "radial.svg", "rdf.png",      "rdf.svg"};
   stats["images"] = images;
@@ -728,7 +827,8 @@ void run_analyze(const AnalyzeOptions& o) {
   report << "bluetile analyze";
   for (const std::string& in : o.inputs) report << " " << in;
   report << "\n\n";
-  if (several) report_table(report, series);
+  if (by_rank) report_rank_table(report, series, inputs[0][0].points.size());
+  else if (several) report_table(report, series);
   for (const Series& s : series) {
     report_series(report, s);
     report << "\n";
@@ -741,7 +841,7 @@ void run_analyze(const AnalyzeOptions& o) {
   }
   report << "As psa --stats prints them:\n";
   report_psa_table(report, series);
-  if (!o.by_level && series[0].sets > 1 && !o.compare)
+  if (!o.by_level && !by_rank && series[0].sets > 1 && !o.compare)
     report << "points.png and points.svg show the first of the " << series[0].sets << " sets.\n";
   report << "written: stats.json radial.csv rdf.csv report.txt points spectrum radial rdf (.png .svg)";
   if (!o.summary.empty()) report << ", " << o.summary;
@@ -792,6 +892,10 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--average", o->average, "Analyse the mean over all sets of all inputs (equal sizes)");
   cmd->add_flag("--compare", o->compare, "One series per input file (its sets averaged), plotted together");
   cmd->add_flag("--by-level", o->by_level, "Analyse every prefix (levels 0..l) of a hierarchical set");
+  cmd->add_option("--by-rank", o->by_rank,
+                  "Analyse the first K points of a set whose rows are in rank order, for each K: a count, or a "
+                  "fraction P/Q of the points (1/16: the first N/16, rounded); with LF in the table")
+      ->expected(1, 1000);
   cmd->add_option("--label", o->labels, "Legend label per input (default: file names)");
   cmd->add_flag("--bounded", o->bounded,
                 "The sets were made in the bounded unit square: Euclidean distances, edge-corrected RDF (also "
