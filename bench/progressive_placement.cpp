@@ -86,70 +86,6 @@ std::vector<SweepRow> measure_sweep(const std::vector<PointSet>& sets, const std
   return rows;
 }
 
-// EXPERIMENT: joint iterations with the ranks fixed: every point moves by the mean of its Lloyd
-// displacements in the prefixes it belongs to.
-void relax_prefixes(CentroidEngine& engine, std::vector<Point>& points, const std::vector<std::size_t>& prefixes,
-                    int iterations) {
-  const Domain torus{};
-  for (int it = 0; it < iterations; ++it) {
-    std::vector<Point> sum(points.size(), Point{0.0, 0.0});
-    std::vector<double> weight(points.size(), 0.0);
-    for (std::size_t p : prefixes) {
-      Scene scene = make_scene(std::vector<Point>(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(p)));
-      SceneCells cells = engine.compute(scene);
-      for (std::size_t i = 0; i < p; ++i) {
-        const Point d = torus_offset(points[i], cells.cells[i].centroid, torus);
-        sum[i].x += d.x;
-        sum[i].y += d.y;
-        weight[i] += 1.0;
-      }
-    }
-    for (std::size_t i = 0; i < points.size(); ++i)
-      points[i] = wrap_point({points[i].x + sum[i].x / weight[i], points[i].y + sum[i].y / weight[i]}, torus);
-  }
-}
-
-void print_sweep(const char* name, const std::vector<PointSet>& sets) {
-  std::vector<std::size_t> boundaries;
-  std::vector<std::size_t> sweep = prefix_sweep(sets[0].points.size(), boundaries);
-  std::vector<SweepRow> rows = measure_sweep(sets, sweep);
-  std::printf("%s:", name);
-  for (std::size_t i = 0; i < sweep.size(); ++i) std::printf(" %zu %.3f/%.4f", sweep[i], rows[i].worst_rho, rows[i].worst_lf);
-  std::printf("\n");
-}
-
-int experiments(std::size_t n, std::size_t seeds, int joint_iterations, double ratio) {
-  ExactEngine engine;
-  std::vector<PointSet> joint, staged_joint;
-  for (std::size_t k = 0; k < seeds; ++k) {
-    LevelOptions all;
-    all.add = n;
-    all.seed = derive_seed(1 + k, 0);
-    PointSet set = add_level(engine, PointSet{}, all);
-    std::vector<std::uint32_t> order = void_order(set.points, 0);
-    PointSet ranked;
-    for (std::uint32_t i : order) ranked.points.push_back(set.points[i]);
-    joint.push_back(ranked);
-    HierarchyOptions options;
-    options.count = n / 16;
-    options.ratio = 2.0;
-    options.levels = 5;
-    options.seed = 1 + k;
-    options.rank_order = ProgressiveOrder::voids;
-    PointSet staged = add_levels(engine, PointSet{}, options);
-    std::vector<std::size_t> prefixes;
-    for (double p = static_cast<double>(n); p >= static_cast<double>(n) / 16.0; p /= ratio)
-      prefixes.push_back(static_cast<std::size_t>(std::llround(p)));
-    relax_prefixes(engine, staged.points, prefixes, joint_iterations);
-    staged_joint.push_back(staged);
-  }
-  print_sweep("all relaxed, then voids", joint);
-  char name[128];
-  std::snprintf(name, sizeof name, "staged voids + %d joint iterations, prefixes ratio %.2f", joint_iterations, ratio);
-  print_sweep(name, staged_joint);
-  return 0;
-}
-
 int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
   struct Construction {
     const char* name;
@@ -201,9 +137,6 @@ int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc > 1 && std::strcmp(argv[1], "experiments") == 0)
-    return experiments(std::strtoul(argv[2], nullptr, 10), std::strtoul(argv[3], nullptr, 10), std::atoi(argv[4]),
-                       std::strtod(argv[5], nullptr));
   if (argc > 1 && std::strcmp(argv[1], "prefixes") == 0) {
     const std::size_t n = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 4096;
     const std::size_t seeds = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 4;
