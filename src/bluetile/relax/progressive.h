@@ -86,7 +86,9 @@ struct HierarchyOptions {
 // to options.levels, each added by add_level with seed derive_seed(options.seed, level). With
 // ProgressiveOrder::voids the levels are relaxed in stages (hierarchy_stages), each added by add_level
 // with the seed of its first level, and the new points of a stage are reordered by void_order and
-// given the levels of their ranks; stages of one level keep today's points, in another order.
+// given the levels of their ranks. A stage of one level is placed and relaxed as the placement
+// order does it; its points differ by rounding (the earlier points are in another order) grown
+// over the iterations, not in kind.
 // Throws Error (before any work) when there is nothing to add, the base already has that many
 // levels, or the total would pass kMaxHierarchyPoints.
 PointSet add_levels(CentroidEngine& engine, PointSet base, const HierarchyOptions& options);
