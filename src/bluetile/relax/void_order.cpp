@@ -58,6 +58,59 @@ class CandidateGrid {
   std::vector<std::vector<std::uint32_t>> buckets_;
 };
 
+// The choice of each step in O(log M) typically, instead of a scan of every unranked point: a
+// binary tree over the candidates (in index order) holding, per subtree, the largest nearest
+// distance and the least energy of its unranked candidates. The farthest distance is the root's;
+// the least energy among candidates at or above the floor is found by a search that skips
+// subtrees wholly below the floor or with no energy under the best found (ties: lower index).
+class ChoiceTree {
+ public:
+  explicit ChoiceTree(std::size_t count) : leaves_(1) {
+    while (leaves_ < count) leaves_ *= 2;
+    nearest_.assign(2 * leaves_, -HUGE_VAL);
+    energy_.assign(2 * leaves_, HUGE_VAL);
+  }
+
+  // Candidate m's values, or its removal (ranked) with nearest -infinity and energy infinity.
+  void set(std::size_t m, double nearest, double energy) {
+    std::size_t node = leaves_ + m;
+    nearest_[node] = nearest;
+    energy_[node] = energy;
+    for (node /= 2; node >= 1; node /= 2) {
+      nearest_[node] = std::max(nearest_[2 * node], nearest_[2 * node + 1]);
+      energy_[node] = std::min(energy_[2 * node], energy_[2 * node + 1]);
+    }
+  }
+
+  double farthest() const { return nearest_[1]; }
+
+  // The candidate of least energy among those with nearest >= floor (the lowest index on ties).
+  std::size_t least_energy_above(double floor) const {
+    std::size_t best = 0;  // no node yet (the nodes are 1 ...)
+    double best_energy = HUGE_VAL;
+    search(1, floor, best, best_energy);
+    return best - leaves_;
+  }
+
+ private:
+  void search(std::size_t node, double floor, std::size_t& best, double& best_energy) const {
+    if (nearest_[node] < floor || energy_[node] > best_energy) return;
+    if (node >= leaves_) {
+      // Left to right, so an equal energy found later has a higher index.
+      if (best == 0 || energy_[node] < best_energy) {
+        best = node;
+        best_energy = energy_[node];
+      }
+      return;
+    }
+    search(2 * node, floor, best, best_energy);
+    search(2 * node + 1, floor, best, best_energy);
+  }
+
+  std::size_t leaves_;
+  std::vector<double> nearest_, energy_;
+};
+
 }  // namespace
 
 std::vector<std::uint32_t> void_order(std::span<const Point> points, std::size_t ranked, double sigma_factor) {
@@ -71,19 +124,20 @@ std::vector<std::uint32_t> void_order(std::span<const Point> points, std::size_t
   const Domain torus{};
   std::vector<double> energy(count, 0.0);
   std::vector<double> nearest(count, HUGE_VAL);  // squared distance to the nearest ranked point within reach
-  std::vector<std::uint32_t> unranked(count);   // candidates not yet ranked, in no particular order
-  for (std::size_t m = 0; m < count; ++m) unranked[m] = static_cast<std::uint32_t>(m);
+  std::vector<bool> is_ranked(count, false);
+  ChoiceTree tree(count);
 
   double inv2s2 = 0.0, reach = 0.0;
   // Adds ranked point y's energy to every candidate within reach and, unless only the energies
   // are being rebuilt, lowers their nearest distances.
-  auto add_ranked = [&](Point y, bool energy_only) {
+  auto add_ranked = [&](Point y, bool energy_only, bool update_tree) {
     const double reach2 = reach * reach;
     grid.near(y, reach, [&](std::uint32_t m) {
       const double d2 = torus_distance_squared(candidates[m], y, torus);
-      if (d2 >= reach2) return;
+      if (d2 >= reach2 || is_ranked[m]) return;
       energy[m] += std::exp(-d2 * inv2s2);
       if (!energy_only) nearest[m] = std::min(nearest[m], d2);
+      if (update_tree) tree.set(m, nearest[m], energy[m]);
     });
   };
   // Sets sigma for a prefix of `prefix` points and rebuilds every energy from the ranked points.
@@ -92,8 +146,10 @@ std::vector<std::uint32_t> void_order(std::span<const Point> points, std::size_t
     inv2s2 = 1.0 / (2.0 * sigma * sigma);
     reach = kReachSigmas * sigma;
     std::fill(energy.begin(), energy.end(), 0.0);
-    for (std::size_t k = 0; k < ranked; ++k) add_ranked(points[k], !first);
-    for (std::uint32_t m : order) add_ranked(candidates[m - ranked], !first);
+    for (std::size_t k = 0; k < ranked; ++k) add_ranked(points[k], !first, false);
+    for (std::uint32_t m : order) add_ranked(candidates[m - ranked], !first, false);
+    for (std::size_t m = 0; m < count; ++m)
+      if (!is_ranked[m]) tree.set(m, nearest[m], energy[m]);
   };
 
   std::size_t sigma_prefix = 0;
@@ -103,24 +159,13 @@ std::vector<std::uint32_t> void_order(std::span<const Point> points, std::size_t
       set_sigma(prefix, sigma_prefix == 0);
       sigma_prefix = prefix;
     }
-    double farthest = 0.0;
-    for (std::uint32_t m : unranked) farthest = std::max(farthest, nearest[m]);
-    const double floor = kVoidSpacingFloor * kVoidSpacingFloor * farthest;  // squared distances
-    std::size_t best = unranked.size();
-    for (std::size_t i = 0; i < unranked.size(); ++i) {
-      const std::uint32_t m = unranked[i];
-      if (nearest[m] < floor) continue;
-      if (best == unranked.size() || energy[m] < energy[unranked[best]] ||
-          (energy[m] == energy[unranked[best]] && m < unranked[best]))
-        best = i;
-    }
-    assert(best < unranked.size());
-    const std::uint32_t chosen = unranked[best];
-    unranked[best] = unranked.back();
-    unranked.pop_back();
-    nearest[chosen] = 0.0;
+    const double floor = kVoidSpacingFloor * kVoidSpacingFloor * tree.farthest();  // squared distances
+    const std::size_t chosen = tree.least_energy_above(floor);
+    assert(chosen < count && !is_ranked[chosen]);
+    is_ranked[chosen] = true;
+    tree.set(chosen, -HUGE_VAL, HUGE_VAL);
     order.push_back(static_cast<std::uint32_t>(ranked + chosen));
-    add_ranked(candidates[chosen], false);
+    add_ranked(candidates[chosen], false, true);
   }
   return order;
 }

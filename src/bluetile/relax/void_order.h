@@ -23,8 +23,8 @@ namespace bluetile {
 inline constexpr double kVoidSigmaFactor = 0.5;
 
 // The indices of points[ranked, n) in rank order; points[0, ranked) are ranked already, in their
-// order, and count as earlier points. Deterministic; O(M^2) time for M = n - ranked points (the
-// choice scans every unranked point) plus O(n) energy updates per quarter growth of the prefix.
+// order, and count as earlier points. Deterministic; about O(M log M) for M = n - ranked points
+// plus O(n) energy updates each time the prefix grows by a quarter.
 std::vector<std::uint32_t> void_order(std::span<const Point> points, std::size_t ranked,
                                       double sigma_factor = kVoidSigmaFactor);
 
