@@ -96,6 +96,19 @@ def test_progressive_matches_the_tool(tool, tmp_path):
     assert np.array_equal(more[:90], points) and list(np.unique(more_levels)) == [0, 1, 2, 3]
 
 
+def test_progressive_rank_order_matches_the_tool(tool, tmp_path):
+    out = tmp_path / "voids.txt"
+    tool("progressive", "--count", 1, "--add", 1, "--levels", 64, "--iterations", 10, "--seed", 3, "--engine", "exact",
+         "--rank-order", "voids", "--output", out)
+    reference = np.loadtxt(out, comments="#")
+    points, levels = bt.progressive(count=1, add=1, levels=64, iterations=10, seed=3, engine="exact",
+                                    rank_order="voids")
+    assert np.array_equal(points, reference[:, :2]) and np.array_equal(levels, reference[:, 2])
+    assert list(levels) == list(range(64))
+    with pytest.raises(ValueError, match="rank order: expected 'placement' or 'voids', got 'farthest'"):
+        bt.progressive(count=10, rank_order="farthest", engine="exact")
+
+
 def test_dart_matches_the_tool(tool, tmp_path):
     tool("dart", "--count", 200, "--seed", 3, "--output", tmp_path / "d.txt")
     points, info = bt.dart(200, seed=3, info=True)
