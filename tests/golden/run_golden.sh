@@ -70,6 +70,7 @@ outputs() {
   run - progressive -n 16 -l 3 -k 4 -s 2 --placement random --ratio 1.5 --engine exact -o progressive_random.txt
   run - progressive -n 8 -l 2 -k 2 -s 2 --sets 2 --engine exact -o progressive_sets.npy
   run - progressive -i relax.txt -a 32 -k 3 --engine exact -o progressive_from_relax.bpt
+  run - progressive -n 1 -a 1 -l 64 -k 4 -s 2 --rank-order voids --engine exact -o progressive_voids.txt
 
   # centroids: both engines.
   run - centroids -i relax.txt --engine exact -o centroids.txt
@@ -81,6 +82,7 @@ outputs() {
   run analyze analyze -i relax.txt -o analyze_one --summary analyze_one/summary.svg --cells --from dart.txt \
     --image-size 128 --threads 1
   run analyze_levels analyze -i progressive.txt -o analyze_levels --by-level --axis integer --image-size 96
+  run analyze_ranks analyze -i progressive_voids.txt -o analyze_ranks --by-rank 1/4 3/8 1/2 1/1 --image-size 96
   run analyze_compare analyze -i relax.txt -i dart.txt -o analyze_compare --compare --label relaxed --label dart \
     --rdf-range 4 --rdf-bins 40 --size 32 --bin-width 2 --image-size 64 --no-centroids --title golden
   run analyze_average analyze -i relax_sets.txt -o analyze_average --average --no-psa-measures --image-size 64
