@@ -118,7 +118,7 @@ void run_progressive(const ProgressiveOptions& o) {
   const std::vector<std::string> header = {
       "bluetile progressive: " + what + " in " + std::to_string(target_levels) + " levels " + how + ", " +
           std::to_string(o.iterations) + " iterations per level, engine " + std::string(engine->name()) +
-          ", placement " + o.placement + (options.rank_order == ProgressiveOrder::placement ? "" : ", rank order " + o.rank_order),
+          ", placement " + o.placement + (options.rank_order == ProgressiveOrder::placement ? "" : ", rank order " + std::string(rank_order_name(options.rank_order))),
       "columns: x y level"};
   output.write(sets, header);
   outputs.publish();
