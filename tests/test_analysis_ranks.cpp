@@ -41,6 +41,30 @@ TEST(AnalyzeByRank, PrefixesOfAHandMadeRankedSet) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("ranks/points.png")));
 }
 
+// Several sets: the mean over their prefixes. The hand-made set, then the same rows with the moved
+// point back on the lattice (all 16: nn_min 1/4, LF 0).
+TEST(AnalyzeByRank, SeveralSetsGiveTheMeanOfTheirPrefixes) {
+  test::TempDir dir;
+  std::string text = test::read_text(BLUETILE_TEST_DATA "/ranks_square.txt") + "#\n";
+  const std::string moved = "0.375 0.25\n";
+  std::string second = test::read_text(BLUETILE_TEST_DATA "/ranks_square.txt");
+  second.replace(second.find(moved), moved.size(), "0.25 0.25\n");
+  const std::string both = dir.write("both.txt", text + second.substr(second.find("\n0 0\n") + 1));
+  auto r = test::run_bluetile({"analyze", "-i", both, "-o", dir.file("ranks"), "--by-rank", "1/2", "1/1", "--image-size", "64"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json stats = nlohmann::json::parse(test::read_text(dir.file("ranks/stats.json")));
+  ASSERT_EQ(stats["ranks"].size(), 2u);
+  EXPECT_EQ(stats["ranks"][1]["sets"], 2);
+  EXPECT_NEAR(stats["ranks"][0]["nn_min"].get<double>(), 0.25, 1e-15);
+  EXPECT_NEAR(stats["ranks"][1]["nn_min"].get<double>(), (0.125 + 0.25) / 2.0, 1e-15);
+  EXPECT_NEAR(stats["ranks"][1]["low_frequency"].get<double>(), 3.0 * (2.0 - std::sqrt(2.0)) / 128.0, 1e-12);
+  // Sets of different sizes are refused.
+  const std::string uneven = dir.write("uneven.txt", text + "0.1 0.1\n0.6 0.6\n");
+  r = test::run_bluetile({"analyze", "-i", uneven, "-o", dir.file("uneven"), "--by-rank", "2"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("set 1 has 2 points and the first 16"), std::string::npos) << r.err;
+}
+
 TEST(AnalyzeByRank, BadPrefixesAreRefusedBeforeAnyOutput) {
   test::TempDir dir;
   const std::string ranked = BLUETILE_TEST_DATA "/ranks_square.txt";

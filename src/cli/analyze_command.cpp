@@ -514,21 +514,28 @@ std::vector<std::size_t> rank_prefixes(const std::vector<std::string>& values, s
   return counts;
 }
 
-// LF of a prefix, from its summary's periodogram when that holds every frequency LF uses.
-double prefix_low_frequency(std::span<const Point> prefix, const Summary& summary) {
-  if (summary.periodogram.size >= tiling_metrics_periodogram_size(prefix.size()))
-    return measure_tiling(prefix, summary.periodogram, 0, 0).low_frequency;
-  return measure_tiling(prefix, 0, 0).low_frequency;
+// LF of a prefix (the mean over sets for several), from its summary's mean periodogram when that
+// holds every frequency LF uses (LF is linear in the periodogram).
+double prefix_low_frequency(const std::vector<std::vector<Point>>& prefixes, const Summary& summary) {
+  const std::size_t k = prefixes[0].size();
+  if (summary.periodogram.size >= tiling_metrics_periodogram_size(k))
+    return measure_tiling(prefixes[0], summary.periodogram, 0, 0).low_frequency;
+  double sum = 0.0;
+  for (const std::vector<Point>& p : prefixes) sum += measure_tiling(p, 0, 0).low_frequency;
+  return sum / static_cast<double>(prefixes.size());
 }
 
-// The prefix series of --by-rank: the first K points of the set, for each K.
-std::vector<Series> rank_series(const PointSet& set, const std::vector<std::size_t>& prefixes, const std::string& input,
-                                const SummaryOptions& options) {
+// The prefix series of --by-rank: the first K points of every set, for each K (several sets: the
+// mean over them, as --average takes it).
+std::vector<Series> rank_series(const std::vector<PointSet>& sets, const std::vector<std::size_t>& prefixes,
+                                const std::string& input, const SummaryOptions& options) {
   std::vector<Series> series;
   for (std::size_t k : prefixes) {
-    std::vector<std::vector<Point>> prefix(1, std::vector<Point>(set.points.begin(), set.points.begin() + static_cast<std::ptrdiff_t>(k)));
-    Series s{"first " + std::to_string(k), input, -1, k, 0.0, set, 1, summarize(prefix, options)};
-    s.low_frequency = prefix_low_frequency(prefix[0], s.summary);
+    std::vector<std::vector<Point>> prefix;
+    for (const PointSet& set : sets)
+      prefix.emplace_back(set.points.begin(), set.points.begin() + static_cast<std::ptrdiff_t>(k));
+    Series s{"first " + std::to_string(k), input, -1, k, 0.0, sets[0], sets.size(), summarize(prefix, options)};
+    s.low_frequency = prefix_low_frequency(prefix, s.summary);
     s.first.points.resize(k);
     if (s.first.has_levels()) s.first.levels.resize(k);
     series.push_back(std::move(s));
@@ -605,13 +612,22 @@ void run_analyze(const AnalyzeOptions& o) {
   for (const std::string& path : o.inputs) inputs.push_back(read_sets(path, read));
   std::size_t total_sets = 0;
   for (const auto& sets : inputs) total_sets += sets.size();
-  if (!o.average && !o.compare && total_sets > 1)
+  if (!o.average && !o.compare && !by_rank && total_sets > 1)
     throw Error(std::to_string(total_sets) + " point sets given (" + std::to_string(o.inputs.size()) +
                 " files): use --average to analyse their mean (with a table of each set) or --compare to plot them together");
   if (o.by_level && !inputs[0][0].has_levels())
     throw Error(o.inputs[0] + ": --by-level needs a level column (x y level)");
   const std::vector<std::size_t> prefixes =
       by_rank ? rank_prefixes(o.by_rank, inputs[0][0].points.size(), o.inputs[0]) : std::vector<std::size_t>{};
+  if (by_rank) {
+    // The prefixes of several sets are averaged: every set must have the first one's size.
+    for (std::size_t i = 0; i < inputs.size(); ++i)
+      for (std::size_t k = 0; k < inputs[i].size(); ++k)
+        if (inputs[i][k].points.size() != inputs[0][0].points.size())
+          throw Error(o.inputs[i] + ": set " + std::to_string(k) + " has " + std::to_string(inputs[i][k].points.size()) +
+                      " points and the first " + std::to_string(inputs[0][0].points.size()) +
+                      "; --by-rank averages the prefixes of sets of one size");
+  }
   const Boundary boundary = choose_boundary(o, inputs);
   if (o.cells && boundary == Boundary::bounded)
     throw Error("--cells draws periodic Voronoi cells: not for a bounded set");
@@ -639,7 +655,7 @@ void run_analyze(const AnalyzeOptions& o) {
     for (std::size_t i = 0; i < levels.size(); ++i)
       if (i + 1 == levels.size() || levels[i + 1] != levels[i]) jobs.push_back({i + 1, 1, o.size});
   } else if (by_rank) {
-    for (std::size_t k : prefixes) jobs.push_back({k, 1, o.size});
+    for (std::size_t k : prefixes) jobs.push_back({k, total_sets, o.size});
   } else {
     jobs.push_back({inputs[0][0].points.size(), total_sets, o.size});
   }
@@ -691,7 +707,9 @@ void run_analyze(const AnalyzeOptions& o) {
     }
     bar.reset();
   } else if (by_rank) {
-    series = rank_series(inputs[0][0], prefixes, o.inputs[0], options);
+    std::vector<PointSet> sets;
+    for (const auto& file : inputs) sets.insert(sets.end(), file.begin(), file.end());
+    series = rank_series(sets, prefixes, o.inputs[0], options);
     bar.reset();
   } else {
     std::vector<std::vector<Point>> sets;
@@ -832,7 +850,7 @@ void run_analyze(const AnalyzeOptions& o) {
   for (const Series& s : series) {
     report_series(report, s);
     report << "\n";
-    report_set_table(report, s);
+    if (!by_rank) report_set_table(report, s);  // by rank: one table per prefix would repeat every set
   }
   if (series.back().summary.count == 1000) {
     report << "The paper (section 2, N = 1000, x1000): dart throwing min 21.64 max 33.44, Lloyd 80 iterations\n"
@@ -894,7 +912,8 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--by-level", o->by_level, "Analyse every prefix (levels 0..l) of a hierarchical set");
   cmd->add_option("--by-rank", o->by_rank,
                   "Analyse the first K points of a set whose rows are in rank order, for each K: a count, or a "
-                  "fraction P/Q of the points (1/16: the first N/16, rounded); with LF in the table")
+                  "fraction P/Q of the points (1/16: the first N/16, rounded); with LF in the table. Several sets "
+                  "(of one size): the mean over their prefixes")
       ->expected(1, 1000);
   cmd->add_option("--label", o->labels, "Legend label per input (default: file names)");
   cmd->add_flag("--bounded", o->bounded,
