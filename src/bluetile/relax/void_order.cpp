@@ -20,10 +20,10 @@ constexpr double kReachSigmas = 4.0;
 // 25 % larger is 11 % smaller): rebuilding every energy costs O(n), so not at every step.
 constexpr double kSigmaRefreshGrowth = 1.25;
 
-// The unranked points in uniform buckets, so that a ranked point updates only those within reach.
+// The points to rank in uniform buckets, so that a newly ranked point updates only those within reach.
 class CandidateGrid {
  public:
-  CandidateGrid(std::span<const Point> candidates) {
+  explicit CandidateGrid(std::span<const Point> candidates) {
     // About two candidates per bucket.
     side_ = std::clamp<long>(static_cast<long>(std::sqrt(static_cast<double>(candidates.size()) / 2.0)), 1, 4096);
     buckets_.resize(static_cast<std::size_t>(side_ * side_));
