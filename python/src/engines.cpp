@@ -301,11 +301,11 @@ Returns (centroids, areas): shapes (N, 2) and (N,) for points of shape (N, 2), o
   m.def("progressive", &progressive,
         nb::sig("def progressive(base: NDArray[numpy.float64] | None = None, base_levels: NDArray[numpy.integer] | None = None, *, "
                 "count: int = 0, add: int = 0, ratio: float = 0.0, levels: int = 0, iterations: int = 80, "
-                "tolerance: float = 0.0, seed: int = 1, placement: str = 'gaps', rank_order: str = 'placement', engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
+                "tolerance: float = 0.0, seed: int = 1, placement: str = 'gaps', rank_order: str = 'voids', engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
                 "-> tuple[NDArray[numpy.float64], NDArray[numpy.int32]]"),
         "base"_a = nb::none(), "base_levels"_a = nb::none(), nb::kw_only(),
         "count"_a = 0, "add"_a = 0, "ratio"_a = 0.0, "levels"_a = 0, "iterations"_a = 80, "tolerance"_a = 0.0,
-        "seed"_a = 1, "placement"_a = "gaps", "rank_order"_a = "placement", "engine"_a = "raster", "resolution"_a = 0, "coverage"_a = "area",
+        "seed"_a = 1, "placement"_a = "gaps", "rank_order"_a = "voids", "engine"_a = "raster", "resolution"_a = 0, "coverage"_a = "area",
         "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto",
         R"(Hierarchical point sets, as ``bluetile progressive`` (the paper, section 2.1).
 
@@ -313,9 +313,10 @@ From scratch (``count``: level 0 has N relaxed random points, then ``levels`` le
 4 by default), or on a ``base`` of shape (N, 2) with optional ``base_levels`` (N,), kept bit for
 bit. Each level adds ``add`` points (default ``count``) or multiplies the total by ``ratio``;
 new points start in the gaps (``placement="gaps"``, best candidate) or at random, and are
-relaxed around the fixed earlier levels. ``rank_order="voids"`` relaxes the levels in stages of at
-least 64 points and orders each stage's points by voids, so that every prefix of the rows is well
-spread, as ``--rank-order voids``. Returns (points (M, 2), levels (M,) int32), rows in rank order.)");
+relaxed around the fixed earlier levels. ``rank_order="voids"`` (the default, as the tool's
+``--rank-order``) relaxes the levels in stages of at least 64 points and orders each stage's points
+by voids, so that every prefix of the rows is well spread; ``"placement"`` keeps each level as
+placed and relaxed alone (the paper). Returns (points (M, 2), levels (M,) int32), rows in rank order.)");
 }
 
 }  // namespace pybluetile

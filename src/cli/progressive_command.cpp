@@ -29,7 +29,7 @@ struct ProgressiveOptions {
   double tolerance = 0.0;
   std::uint64_t seed = 1;
   std::string placement = "gaps";
-  std::string rank_order = "placement";
+  std::string rank_order = "voids";
   long long sets = 1;
   PointOutputOptions output;
   EngineOptions engine;
@@ -118,7 +118,7 @@ void run_progressive(const ProgressiveOptions& o) {
   const std::vector<std::string> header = {
       "bluetile progressive: " + what + " in " + std::to_string(target_levels) + " levels " + how + ", " +
           std::to_string(o.iterations) + " iterations per level, engine " + std::string(engine->name()) +
-          ", placement " + o.placement + (options.rank_order == ProgressiveOrder::placement ? "" : ", rank order " + std::string(rank_order_name(options.rank_order))),
+          ", placement " + o.placement + ", rank order " + rank_order_name(options.rank_order),
       "columns: x y level"};
   output.write(sets, header);
   outputs.publish();
@@ -151,9 +151,9 @@ void add_progressive_command(CLI::App& app) {
       ->check(CLI::IsMember({"gaps", "random"}))
       ->capture_default_str();
   cmd->add_option("--rank-order", o->rank_order,
-                  "Row order within the levels: placement (each level relaxed alone, its points as placed) or voids "
-                  "(levels relaxed in stages of at least 64 points, each stage's points ranked by voids: every "
-                  "prefix blue noise)")
+                  "Row order within the levels: voids (levels relaxed in stages of at least 64 points, each stage's "
+                  "points ranked by voids: every prefix well spread, not only the level boundaries) or placement "
+                  "(each level relaxed alone, its points as placed: the paper's order)")
       ->check(CLI::IsMember({"placement", "voids"}))
       ->capture_default_str();
   add_integer_option(cmd, "--sets", o->sets, 1LL, 10000000LL,

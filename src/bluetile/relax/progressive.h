@@ -76,7 +76,7 @@ struct HierarchyOptions {
   double tolerance = 0.0;
   std::uint64_t seed = 1;  // level l places its points with derive_seed(seed, l)
   Placement placement = Placement::gaps;
-  ProgressiveOrder rank_order = ProgressiveOrder::placement;
+  ProgressiveOrder rank_order = ProgressiveOrder::voids;  // LF between boundaries about half placement's (docs/RESULTS.md)
   double void_sigma = kVoidSigmaFactor;  // the voids order's kernel width (void_order.h)
   // With the voids order, level is the first level of the stage being relaxed.
   std::function<void(int level, const LloydIteration&)> on_iteration;
