@@ -62,11 +62,6 @@ std::string default_engine(const std::optional<std::string>& engine, bool weight
   return engine ? *engine : weighted_or_bounded ? "exact" : "raster";
 }
 
-void check_weight_exponent(double exponent) {
-  if (!(exponent >= 0.0 && exponent <= 8.0))
-    throw nb::value_error(("weight_exponent: expected 0 to 8, got " + std::to_string(exponent)).c_str());
-}
-
 nb::object relax(std::optional<AnyArray> points, long long count, long long sets, int iterations, std::uint64_t seed,
                  long long fixed, double tolerance, std::optional<AnyArray> density_map, double weight_exponent,
                  bool bounded, const std::optional<std::string>& engine, int resolution, const std::string& coverage,
@@ -76,7 +71,7 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
   check_engine_choice(choice);
   check_range("iterations", iterations, 0, 100000000);
   check_non_negative("tolerance", tolerance);
-  check_weight_exponent(weight_exponent);
+  bluetile::check_weight_exponent(weight_exponent, "weight_exponent");
   // The map is stretched over the unit square, as `relax --density-map` stretches it; random
   // starts follow it and the cells are weighted so that the relaxed set keeps following it.
   std::shared_ptr<const bluetile::DensityGrid> density, weight;
@@ -138,7 +133,7 @@ nb::object stipple(const AnyArray& density_map, long long count, int iterations,
   check_range("count", count, 1, 100000000);
   check_range("iterations", iterations, 0, 100000000);
   check_non_negative("tolerance", tolerance);
-  check_weight_exponent(weight_exponent);
+  bluetile::check_weight_exponent(weight_exponent, "weight_exponent");
   const bluetile::DensityGrid map = density_grid(density_map, "density_map");
   bluetile::StippleStart start;
   start.count = static_cast<std::size_t>(count);

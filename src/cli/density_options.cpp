@@ -1,6 +1,7 @@
 #include "cli/density_options.h"
 
 #include "cli/numeric_options.h"
+#include "bluetile/relax/lloyd.h"
 
 namespace bluetile::cli {
 
@@ -19,7 +20,7 @@ void add_density_transfer_options(CLI::App* command, DensityMapOptions& options)
 }
 
 void add_weight_exponent_option(CLI::App* command, double& exponent) {
-  add_real_option(command, "--weight-exponent", exponent, {0.0, 8.0},
+  add_real_option(command, "--weight-exponent", exponent, {0.0, kMaxWeightExponent},
                   "Weight Lloyd's cells by density^E: 2 keeps the point density proportional to the map (a "
                   "centroidal Voronoi diagram's point density goes as the square root of its weight), 1 is Secord "
                   "2002's weighting, whose contrast flattens as the set converges");

@@ -2,10 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 
+void check_weight_exponent(double exponent, const char* name) {
+  if (!(exponent >= 0.0 && exponent <= kMaxWeightExponent))
+    throw Error(std::string(name) + ": expected 0 to " + exact_text(kMaxWeightExponent) + ", got " + exact_text(exponent));
+}
+
 DensityGrid weight_for_point_density(const DensityGrid& target, double exponent) {
+  check_weight_exponent(exponent);
   DensityGrid weight = target;
   if (exponent == 1.0) return weight;
   for (float& t : weight.texels) t = exponent == 2.0 ? t * t : static_cast<float>(std::pow(static_cast<double>(t), exponent));

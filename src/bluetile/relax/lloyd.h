@@ -55,7 +55,12 @@ struct LloydResult {
 // weight in the plane (Gersho 1979; Du, Faber, Gunzburger 1999, section 2.3), so exponent 2 keeps
 // a set drawn in proportion to `target` where it is; exponent 1 is Secord 2002's weighting, under
 // which the density ratio between regions drifts toward its square root as the set converges.
+// Throws Error when the exponent is not in [0, kMaxWeightExponent] (past 8 a map's contrast of 10
+// becomes 10^8 between cells, beyond what float texels keep apart); check_weight_exponent names
+// it as `name` (a front end's spelling of the argument).
 DensityGrid weight_for_point_density(const DensityGrid& target, double exponent = 2.0);
+inline constexpr double kMaxWeightExponent = 8.0;
+void check_weight_exponent(double exponent, const char* name = "weight exponent");
 
 // The move of a site to the centroid of its cell, in domain units: the shortest periodic offset
 // on a torus, the plain difference in a bounded rectangle.
