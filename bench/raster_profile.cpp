@@ -5,6 +5,8 @@
 //
 //   bluetile_raster_profile [--jobs paper,n1e4,n1e5,sets256,sets4096,point] [--repeats 3]
 //                           [--device-pixels]   (also the per-pixel work on the device)
+//                           [--stages]          (and a table of every stage, host and device
+//                                                pixel work side by side; implies --device-pixels)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -71,6 +73,24 @@ void run_loop(CentroidEngine& engine, const Job& job, Timing& t) {
   t.cpu.push_back(cpu_seconds() - c0);
 }
 
+// One row of the stage table: the difference of two stats snapshots over `n` iterations.
+std::string stage_row(const std::string& job, const std::string& label, const RasterStats& s, const RasterStats& b, double n,
+                      double wall_per_iteration, double exact_per_iteration) {
+  const auto ms = [&](double RasterStats::*field) { return (s.*field - b.*field) / n * 1e3; };
+  const double cones = ms(&RasterStats::cone_seconds);
+  const double drawn = static_cast<double>(s.cones_drawn - b.cones_drawn) / n;
+  const double timed = cones + ms(&RasterStats::classify_seconds) + ms(&RasterStats::split_seconds) + ms(&RasterStats::readback_seconds);
+  char row[640];
+  std::snprintf(row, sizeof row,
+                "| %s | %s | %.2f | %.1fx | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f | %.2f |",
+                job.c_str(), label.c_str(), wall_per_iteration * 1e3, wall_per_iteration / exact_per_iteration, cones,
+                drawn > 0.0 ? cones * 1e3 / drawn : 0.0, ms(&RasterStats::classify_seconds), ms(&RasterStats::split_seconds),
+                ms(&RasterStats::readback_seconds), ms(&RasterStats::device_seconds) - timed, ms(&RasterStats::upload_seconds),
+                ms(&RasterStats::prepare_seconds), ms(&RasterStats::host_readback_seconds), ms(&RasterStats::host_classify_seconds),
+                ms(&RasterStats::host_split_seconds), ms(&RasterStats::host_reduce_seconds), ms(&RasterStats::cells_seconds));
+  return row;
+}
+
 }  // namespace
 }  // namespace bluetile
 
@@ -84,8 +104,12 @@ int main(int argc, char** argv) {
   app.add_option("--jobs", jobs_text, "comma-separated jobs: paper, n1e4, n1e5, sets256, sets4096, point");
   app.add_option("--repeats", repeats, "interleaved repeats per job");
   app.add_flag("--device-pixels", device_pixels, "also run the per-pixel work on the device (PixelWork::device)");
+  bool stages = false;
+  app.add_flag("--stages", stages, "also print every stage's time per iteration, host and device pixel work side by side");
   app.add_option("--pixels-per-cell", pixels_per_cell, "resolution from this many pixels per cell (default: the engine's)");
   CLI11_PARSE(app, argc, argv);
+  if (stages) device_pixels = true;
+  std::vector<std::string> stage_rows;
 
   const std::vector<Job> all = {
       {"paper", 1000, 1, 80, Coverage::area},   {"n1e4", 10000, 1, 10, Coverage::area},
@@ -150,11 +174,19 @@ int main(int argc, char** argv) {
                     (s.device_seconds - b.device_seconds) / n * 1e3, (s.cone_seconds - b.cone_seconds) / n * 1e3,
                     (s.classify_seconds - b.classify_seconds) / n * 1e3, (s.split_seconds - b.split_seconds) / n * 1e3,
                     (s.host_seconds - b.host_seconds) / n * 1e3, e.startup_ms);
+        if (stages) stage_rows.push_back(stage_row(job.name, e.label, s, b, n, median(e.t.wall) / its, exact_wall / its));
       } else {
         std::printf(" | | | | | | | | | | |\n");
       }
       std::fflush(stdout);
     }
+  }
+  if (stages && !stage_rows.empty()) {
+    std::printf("\nStages, ms per iteration (device: timestamps; other: recording, submission and wait beyond them; host: wall)\n\n");
+    std::printf("| job | pixel work | wall | / exact | cones | us per cone | classify | split | readback | device other | upload | prepare | "
+                "IDs from atlas | host classify | host split | host reduce | coverage + cells |\n");
+    std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+    for (const std::string& row : stage_rows) std::printf("%s\n", row.c_str());
   }
   return 0;
 }

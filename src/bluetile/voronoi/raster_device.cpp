@@ -39,6 +39,8 @@ struct HostBuffer {
 constexpr double kBytesPerSample = 32.0;
 // Atlas samples of one pass at most, whatever the memory: bounds one submission's latency.
 constexpr double kMaxPassSamples = 256.0 * 1024 * 1024;
+// Device timestamps of a pass: before the cones, after the cones, classify, split and readback.
+constexpr std::uint32_t kTimestamps = 5;
 
 }  // namespace
 
@@ -142,7 +144,7 @@ struct RasterDevice::Impl {
     if (gpu->properties().limits.timestampComputeAndGraphics) {
       VkQueryPoolCreateInfo query_info{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
       query_info.queryType = VK_QUERY_TYPE_TIMESTAMP;
-      query_info.queryCount = 4;
+      query_info.queryCount = kTimestamps;
       BLUETILE_VK_CHECK(vkCreateQueryPool(d, &query_info, nullptr, &timestamps));
     }
   }
@@ -387,7 +389,7 @@ struct RasterDevice::Impl {
     VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
     begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
     BLUETILE_VK_CHECK(vkBeginCommandBuffer(cb, &begin));
-    if (timestamps) vkCmdResetQueryPool(cb, timestamps, 0, 4);
+    if (timestamps) vkCmdResetQueryPool(cb, timestamps, 0, kTimestamps);
     auto stamp = [&](std::uint32_t q) {
       if (timestamps) vkCmdWriteTimestamp(cb, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, timestamps, q);
     };
@@ -479,6 +481,7 @@ struct RasterDevice::Impl {
       copy.imageExtent = {width, height, 1};
       vkCmdCopyImageToBuffer(cb, id_image.image, VK_IMAGE_LAYOUT_GENERAL, id_readback.buffer, 1, &copy);
     }
+    stamp(4);
     VkMemoryBarrier to_host{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
     to_host.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_WRITE_BIT;
     to_host.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
@@ -486,15 +489,17 @@ struct RasterDevice::Impl {
                          &to_host, 0, nullptr, 0, nullptr);
     BLUETILE_VK_CHECK(vkEndCommandBuffer(cb));
     gpu->submit_and_wait(cb);
-    timing.cones = timing.classify = timing.split = 0.0;
+    timing.cones = timing.classify = timing.split = timing.readback = 0.0;
+    timing.cones_drawn = instance_count;
     if (timestamps) {
-      std::uint64_t t[4] = {};
-      if (vkGetQueryPoolResults(gpu->device(), timestamps, 0, 4, sizeof t, t, sizeof t[0],
+      std::uint64_t t[kTimestamps] = {};
+      if (vkGetQueryPoolResults(gpu->device(), timestamps, 0, kTimestamps, sizeof t, t, sizeof t[0],
                                 VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) == VK_SUCCESS) {
         const double period = 1e-9 * static_cast<double>(gpu->properties().limits.timestampPeriod);
         timing.cones = static_cast<double>(t[1] - t[0]) * period;
         timing.classify = static_cast<double>(t[2] - t[1]) * period;
         timing.split = static_cast<double>(t[3] - t[2]) * period;
+        timing.readback = static_cast<double>(t[4] - t[3]) * period;
       }
     }
 

@@ -26,8 +26,10 @@ struct RasterDeviceSettings {
 struct RasterPassTiming {
   double upload = 0.0;  // filling the input buffers on the host
   double device = 0.0;  // recording, submission and wait
-  // Device timestamps (0 where the device has none): the cone pass, classify.comp, the split.
-  double cones = 0.0, classify = 0.0, split = 0.0;
+  // Device timestamps (0 where the device has none): the cone pass, classify.comp, the split,
+  // the copies back (the ID image; staged sums and counters).
+  double cones = 0.0, classify = 0.0, split = 0.0, readback = 0.0;
+  std::size_t cones_drawn = 0;  // cone instances (sites and periodic replicas)
 };
 
 class RasterDevice {

@@ -211,6 +211,7 @@ struct RasterEngine::Impl {
       }
     }
     stats.host_seconds += seconds_since(host_start);
+    stats.prepare_seconds += seconds_since(host_start);
 
     for (;;) {
       std::vector<RasterScene*> pending;
@@ -233,6 +234,7 @@ struct RasterEngine::Impl {
         for (std::size_t i = 0; i < job->size(); ++i)
           if (!job->coincident[i]) stats.drawn_radius_sum += job->radius[i];
       stats.host_seconds += seconds_since(host_start);
+      stats.prepare_seconds += seconds_since(host_start);
 
       const bool read_ids = options.keep_id_images || options.keep_pass_data;
       device.run(group, width, height, read_ids, pixel_work_here);
@@ -243,6 +245,8 @@ struct RasterEngine::Impl {
       stats.cone_seconds += device.timing().cones;
       stats.classify_seconds += device.timing().classify;
       stats.split_seconds += device.timing().split;
+      stats.readback_seconds += device.timing().readback;
+      stats.cones_drawn += device.timing().cones_drawn;
 
       host_start = Clock::now();
       // Pixels left to the host, per scene of the group (in increasing order).
@@ -255,22 +259,36 @@ struct RasterEngine::Impl {
       std::vector<std::vector<WeightedSums>> weighted_sums(group.size());
       // Many scenes: one per thread; a few: each threaded over its rows.
       const bool across_scenes = group.size() >= 2 * thread_count();
+      // Per scene stage times (the profile's): ID image readback, the per-pixel work, cells.
+      struct FinishTiming {
+        double readback = 0.0, cells = 0.0;
+        ReferenceTiming pixels;
+      };
+      std::vector<FinishTiming> finish_timing(group.size());
       auto finish = [&](std::size_t k) {
         RasterScene& job = *group[k];
+        FinishTiming& timing = finish_timing[k];
         std::span<const gpu::SiteSums> sums;
         std::vector<std::uint32_t> ids;
         if (pixel_work_here) {
           sums = device.sums(job);
           uncovered[k] = device.uncovered(k);
         } else {
+          const auto readback_start = Clock::now();
           ids = device.ids(job);
+          timing.readback = seconds_since(readback_start);
           host_sums[k].assign(job.size(), gpu::SiteSums{});
           if (job.density) weighted_sums[k].assign(job.size(), WeightedSums{});
-          uncovered[k] = reference_pass(job, ids, host_sums[k], true, !across_scenes, host_pixels[k], boundary[k], weighted_sums[k]);
+          uncovered[k] = reference_pass(job, ids, host_sums[k], true, !across_scenes, host_pixels[k], boundary[k], weighted_sums[k],
+                                        &timing.pixels);
           sums = host_sums[k];
         }
+        const auto cells_start = Clock::now();
         accepted[k] = check_coverage(job, sums, uncovered[k]);
-        if (!accepted[k]) return;
+        if (!accepted[k]) {
+          timing.cells = seconds_since(cells_start);
+          return;
+        }
         std::vector<PieceSums> pieces;
         if (!host_pixels[k].empty()) {
           pieces.assign(job.size(), PieceSums{});
@@ -284,6 +302,7 @@ struct RasterEngine::Impl {
         SceneCells& cells = out[job.index];
         assemble_cells(job, sums, pieces, cells, weighted_sums[k]);
         finish_scene(job, sums, cells, host_pixels[k], std::move(ids));
+        timing.cells = seconds_since(cells_start);
       };
       if (across_scenes) {
         parallel_for(group.size(), 1, [&](std::size_t begin, std::size_t end) {
@@ -292,6 +311,7 @@ struct RasterEngine::Impl {
       } else {
         for (std::size_t k = 0; k < group.size(); ++k) finish(k);
       }
+      add_finish_timing(finish_timing, across_scenes ? seconds_since(host_start) : 0.0);
       if (pixel_work_here) {
         stats.boundary_pixels += device.boundary_pixels();
       } else {
@@ -314,6 +334,27 @@ struct RasterEngine::Impl {
       }
       stats.host_seconds += seconds_since(host_start);
     }
+  }
+
+  // Adds the finish stages to the stats; `parallel_wall` > 0: the scenes ran in parallel for
+  // that long, and their summed stage times are scaled to it.
+  template <class Timing>
+  void add_finish_timing(const std::vector<Timing>& timing, double parallel_wall) {
+    double readback = 0.0, classify = 0.0, split = 0.0, reduce = 0.0, cells = 0.0;
+    for (const Timing& t : timing) {
+      readback += t.readback;
+      classify += t.pixels.classify;
+      split += t.pixels.split;
+      reduce += t.pixels.reduce;
+      cells += t.cells;
+    }
+    const double total = readback + classify + split + reduce + cells;
+    const double scale = parallel_wall > 0.0 && total > 0.0 ? parallel_wall / total : 1.0;
+    stats.host_readback_seconds += scale * readback;
+    stats.host_classify_seconds += scale * classify;
+    stats.host_split_seconds += scale * split;
+    stats.host_reduce_seconds += scale * reduce;
+    stats.cells_seconds += scale * cells;
   }
 
   // What an accepted pass leaves behind: the radius memory, ID images, pass data.

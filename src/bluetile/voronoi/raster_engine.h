@@ -78,9 +78,17 @@ struct RasterStats {
   double upload_seconds = 0.0;  // filling the device's input buffers
   double device_seconds = 0.0;  // recording, submission and wait
   // Parts of device_seconds from device timestamps (0 where the device has none): the cone
-  // pass, classify.comp, the split.
-  double cone_seconds = 0.0, classify_seconds = 0.0, split_seconds = 0.0;
+  // pass, classify.comp, the split, the copies back (the ID image with host pixel work).
+  double cone_seconds = 0.0, classify_seconds = 0.0, split_seconds = 0.0, readback_seconds = 0.0;
+  std::uint64_t cones_drawn = 0;  // cone instances drawn (sites and periodic replicas), redos included
   double host_seconds = 0.0;    // scene preparation, coverage check, host splits, assembling cells
+  // Parts of host_seconds (wall; where scenes finish in parallel, their stage times are scaled to
+  // the wall time of that loop): scenes prepared (wrapping, radii, close-site flags, scales); the
+  // ID image taken out of the atlas; the host's per-pixel work (classification and sums, split,
+  // the threads' sums merged); the coverage check, pixels left to the host and cells assembled.
+  double prepare_seconds = 0.0, host_readback_seconds = 0.0;
+  double host_classify_seconds = 0.0, host_split_seconds = 0.0, host_reduce_seconds = 0.0;
+  double cells_seconds = 0.0;
 };
 
 // One scene's ID buffer: ids[j * width + i] is the index of the site that owns pixel (i, j)'s

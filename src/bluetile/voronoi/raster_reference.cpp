@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cmath>
 
 #include "bluetile/core/parallel.h"
@@ -104,7 +105,14 @@ std::uint32_t reference_classify(const RasterScene& scene, std::span<const std::
 
 std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
                              bool split, bool parallel, std::vector<std::uint32_t>& host_pixels, std::uint64_t& boundary_count,
-                             std::span<WeightedSums> weighted) {
+                             std::span<WeightedSums> weighted, ReferenceTiming* timing) {
+  using Clock = std::chrono::steady_clock;
+  auto stage_start = Clock::now();
+  auto end_stage = [&](double ReferenceTiming::*stage) {
+    const auto now = Clock::now();
+    if (timing) timing->*stage += std::chrono::duration<double>(now - stage_start).count();
+    stage_start = now;
+  };
   const std::vector<std::uint32_t> masks = scene.area ? raster_site_masks(scene) : std::vector<std::uint32_t>{};
   const std::size_t n = scene.size();
   // One slice of rows per thread, each with its own sums (exact integers: merged in any order).
@@ -140,6 +148,7 @@ std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint
     uncovered += slice_uncovered[k];
     boundary_count += slice_boundary[k].size();
   }
+  end_stage(&ReferenceTiming::classify);
   if (split && uncovered == 0) {
     parallel_for(slices, 1, [&](std::size_t first, std::size_t last) {
       for (std::size_t k = first; k < last; ++k) {
@@ -150,6 +159,7 @@ std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint
       }
     });
   }
+  end_stage(&ReferenceTiming::split);
   for (std::size_t k = 1; k < slices; ++k)
     for (std::size_t i = 0; i < n; ++i) add_sums(sums[i], slice_sums[k][i]);
   for (std::size_t k = 1; k < slices && !weighted.empty(); ++k)
@@ -160,6 +170,7 @@ std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint
       weighted[i].second += slice_weighted[k][i].second;
     }
   for (std::size_t k = 0; k < slices; ++k) host_pixels.insert(host_pixels.end(), slice_host[k].begin(), slice_host[k].end());
+  end_stage(&ReferenceTiming::reduce);
   return uncovered;
 }
 

@@ -37,15 +37,23 @@ struct WeightedSums {
 std::uint32_t reference_classify(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
                                  std::vector<std::uint32_t>& boundary, std::span<WeightedSums> weighted = {});
 
+// Wall seconds of reference_pass's stages, added to (for the profile: docs/BENCHMARKS.md).
+struct ReferenceTiming {
+  double classify = 0.0;  // sums of samples and whole pixels, boundary pixels listed
+  double split = 0.0;     // boundary pixels split
+  double reduce = 0.0;    // the threads' sums merged
+};
+
 // The whole per-pixel work of a pass on the host, threaded over rows when `parallel`: classify
 // as reference_classify, then (when no sample is uncovered and `split` is set) split every
 // boundary pixel as reference_split. Pixels the device would leave to the host are appended to
 // `host_pixels` (in increasing order). The sums are exact integers, so they do not depend on the
 // threads. Returns the uncovered samples; sets `boundary_count`. A scene with a varying density
-// also fills `weighted` (one per site; empty otherwise).
+// also fills `weighted` (one per site; empty otherwise). `timing`, when given, gets each stage's
+// wall time added.
 std::uint32_t reference_pass(const RasterScene& scene, std::span<const std::uint32_t> ids, std::span<gpu::SiteSums> sums,
                              bool split, bool parallel, std::vector<std::uint32_t>& host_pixels, std::uint64_t& boundary_count,
-                             std::span<WeightedSums> weighted = {});
+                             std::span<WeightedSums> weighted = {}, ReferenceTiming* timing = nullptr);
 
 // Adds b's sums into a (farthest: the larger).
 void add_sums(gpu::SiteSums& a, const gpu::SiteSums& b);
