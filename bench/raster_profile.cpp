@@ -7,6 +7,7 @@
 //                           [--device-pixels]   (also the per-pixel work on the device)
 //                           [--stages]          (and a table of every stage, host and device
 //                                                pixel work side by side; implies --device-pixels)
+//                           [--cone-draws triangles,indexed,instanced,points]  (one engine each)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -104,6 +105,10 @@ int main(int argc, char** argv) {
   app.add_option("--jobs", jobs_text, "comma-separated jobs: paper, n1e4, n1e5, sets256, sets4096, point");
   app.add_option("--repeats", repeats, "interleaved repeats per job");
   app.add_flag("--device-pixels", device_pixels, "also run the per-pixel work on the device (PixelWork::device)");
+  std::string cone_draws_text;
+  app.add_option("--cone-draws", cone_draws_text,
+                 "comma-separated ways to draw the cones, each a raster engine of its own (host pixel work): "
+                 "triangles, indexed, instanced, points");
   bool stages = false;
   app.add_flag("--stages", stages, "also print every stage's time per iteration, host and device pixel work side by side");
   app.add_option("--pixels-per-cell", pixels_per_cell, "resolution from this many pixels per cell (default: the engine's)");
@@ -130,8 +135,29 @@ int main(int argc, char** argv) {
     };
     std::vector<Entry> entries;
     entries.push_back({"exact", std::make_unique<ExactEngine>(), 0.0, {}});
-    for (PixelWork work : works) {
+    struct Variant {
+      PixelWork work;
+      std::string draw;
+    };
+    std::vector<Variant> variants;
+    for (PixelWork work : works) variants.push_back({work, ""});
+    for (std::size_t at = 0; at < cone_draws_text.size();) {
+      const std::size_t comma = std::min(cone_draws_text.find(',', at), cone_draws_text.size());
+      variants.push_back({PixelWork::host, cone_draws_text.substr(at, comma - at)});
+      at = comma + 1;
+    }
+    for (const Variant& variant : variants) {
+      const PixelWork work = variant.work;
       RasterOptions options;
+      if (variant.draw == "triangles") options.cone_draw = ConeDraw::triangles;
+      else if (variant.draw == "indexed") options.cone_draw = ConeDraw::indexed;
+      else if (variant.draw == "instanced") options.cone_draw = ConeDraw::instanced;
+      else if (variant.draw == "points") options.cone_draw = ConeDraw::points;
+      else if (!variant.draw.empty()) {
+        std::fprintf(stderr, "bluetile_raster_profile: --cone-draws: unknown '%s' (triangles, indexed, instanced, points)\n",
+                     variant.draw.c_str());
+        return 1;
+      }
       options.coverage = job.coverage;
       options.pixel_work = work;
       if (pixels_per_cell > 0.0)
@@ -139,7 +165,8 @@ int main(int argc, char** argv) {
       const auto w0 = Clock::now();
       auto engine = std::make_unique<RasterEngine>(options);
       const double startup = std::chrono::duration<double>(Clock::now() - w0).count() * 1e3;
-      const std::string label = std::string("raster ") + (engine->pixel_work_on_device() ? "device pixels" : "host pixels");
+      std::string label = std::string("raster ") + (engine->pixel_work_on_device() ? "device pixels" : "host pixels");
+      if (!variant.draw.empty()) label += ", cones " + variant.draw;
       entries.push_back({label, std::move(engine), startup, {}});
     }
     // A warm-up loop each (shader JIT, first allocations), then interleaved repeats.

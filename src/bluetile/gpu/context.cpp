@@ -138,6 +138,7 @@ DeviceInfo describe(VkPhysicalDevice device, std::size_t index) {
   vkGetPhysicalDeviceFormatProperties(device, VK_FORMAT_D32_SFLOAT, &format);
   if (!(format.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) missing.push_back("D32_SFLOAT depth");
   info.float64 = features.features.shaderFloat64 == VK_TRUE;
+  info.large_points = features.features.largePoints == VK_TRUE;
   info.suitable = missing.empty();
   for (std::size_t i = 0; i < missing.size(); ++i) info.missing += (i ? ", " : "") + missing[i];
   return info;
@@ -315,6 +316,7 @@ Context::Context(const std::string& wanted_device) {
     features.pNext = &f12;
     features.features.shaderInt64 = VK_TRUE;
     features.features.shaderFloat64 = info_.float64 ? VK_TRUE : VK_FALSE;
+    features.features.largePoints = info_.large_points ? VK_TRUE : VK_FALSE;
     features.features.shaderClipDistance = VK_TRUE;
     VkDeviceCreateInfo device_info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     device_info.pNext = &features;

@@ -39,6 +39,7 @@ struct DeviceInfo {
   bool suitable = false;    // has what the raster engine needs
   std::string missing;      // what it lacks when not suitable
   bool float64 = false;     // shaderFloat64: the exact boundary split runs in double precision
+  bool large_points = false;  // largePoints: point primitives wider than one pixel
 };
 
 // Every Vulkan device the loader sees. Throws Error when there is no Vulkan at all.
@@ -99,6 +100,8 @@ class Context {
   VkDeviceSize memory_budget() const { return memory_budget_; }
   // Whether shaders may use 64-bit floats (enabled when the device has shaderFloat64).
   bool float64() const { return info_.float64; }
+  // Largest point primitive side in pixels (1 without largePoints, which is enabled where present).
+  float max_point_size() const { return info_.large_points ? properties_.limits.pointSizeRange[1] : 1.0f; }
 
   // A buffer of `size` bytes (at least 1), mapped for its whole life when its memory is
   // host-visible. Throws Error naming the limit when `size` exceeds the device's storage

@@ -54,6 +54,11 @@ struct RasterDevice::Impl {
   VkDescriptorSet set = VK_NULL_HANDLE;
   VkRenderPass render_pass = VK_NULL_HANDLE;
   VkPipeline cone_pipeline = VK_NULL_HANDLE, classify_pipeline = VK_NULL_HANDLE, split_pipeline = VK_NULL_HANDLE;
+  // ConeDraw::points: the point pipeline (cone_pipeline is then the triangles it falls back to).
+  VkPipeline point_pipeline = VK_NULL_HANDLE;
+  // ConeDraw::indexed: 0 1 2 2 1 3 per cone, offset by 4 per cone, for this many cones.
+  HostBuffer cone_indices;
+  std::size_t indexed_cones = 0;
   VkCommandBuffer commands = VK_NULL_HANDLE;
   VkQueryPool timestamps = VK_NULL_HANDLE;  // per-stage device times (where the device has them)
   gpu::Image id_image, depth_image;
@@ -87,7 +92,7 @@ struct RasterDevice::Impl {
     if (!gpu) return;
     VkDevice d = gpu->device();
     vkDeviceWaitIdle(d);
-    for (HostBuffer* b : {&instances, &scenes, &sites, &positions, &masks, &grid, &sums, &counters, &overflow}) {
+    for (HostBuffer* b : {&instances, &scenes, &sites, &positions, &masks, &grid, &sums, &counters, &overflow, &cone_indices}) {
       gpu->destroy(b->device);
       gpu->destroy(b->staging);
     }
@@ -97,7 +102,7 @@ struct RasterDevice::Impl {
     gpu->destroy(id_image);
     gpu->destroy(depth_image);
     if (commands) vkFreeCommandBuffers(d, gpu->command_pool(), 1, &commands);
-    for (VkPipeline p : {cone_pipeline, classify_pipeline, split_pipeline})
+    for (VkPipeline p : {cone_pipeline, point_pipeline, classify_pipeline, split_pipeline})
       if (p) vkDestroyPipeline(d, p, nullptr);
     if (render_pass) vkDestroyRenderPass(d, render_pass, nullptr);
     if (timestamps) vkDestroyQueryPool(d, timestamps, nullptr);
@@ -113,7 +118,7 @@ struct RasterDevice::Impl {
     std::fill(std::begin(types), std::end(types), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     types[BLUETILE_BINDING_ID_IMAGE] = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     set_layout = gpu::create_set_layout(d, types);
-    layout = gpu::create_pipeline_layout(d, set_layout, VK_SHADER_STAGE_VERTEX_BIT, 8);
+    layout = gpu::create_pipeline_layout(d, set_layout, VK_SHADER_STAGE_VERTEX_BIT, 16);
 
     VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, BLUETILE_BINDING_COUNT - 1},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
@@ -129,11 +134,27 @@ struct RasterDevice::Impl {
     BLUETILE_VK_CHECK(vkAllocateDescriptorSets(d, &alloc, &set));
 
     gpu::GraphicsPipelineDesc cones;
-    cones.vertex_shader = settings.fan ? "cone_fan.vert" : "cone_quad.vert";
-    cones.fragment_shader = settings.fan ? "cone_fan.frag" : "cone_quad.frag";
+    cones.vertex_shader = "cone_quad.vert";
+    cones.fragment_shader = "cone_quad.frag";
     cones.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+    if (settings.fan) {
+      cones.vertex_shader = "cone_fan.vert";
+      cones.fragment_shader = "cone_fan.frag";
+    } else if (settings.cone_draw == ConeDraw::indexed) {
+      cones.vertex_shader = "cone_quad_indexed.vert";
+    } else if (settings.cone_draw == ConeDraw::instanced) {
+      cones.vertex_shader = "cone_quad_instanced.vert";
+      cones.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_STRIP;
+    }
     render_pass = gpu::create_render_pass(d, cones);
     cone_pipeline = gpu::create_graphics_pipeline(*gpu, layout, render_pass, cones);
+    if (!settings.fan && settings.cone_draw == ConeDraw::points) {
+      gpu::GraphicsPipelineDesc points = cones;
+      points.vertex_shader = "cone_point.vert";
+      points.fragment_shader = "cone_point.frag";
+      points.topology = VK_PRIMITIVE_TOPOLOGY_POINT_LIST;
+      point_pipeline = gpu::create_graphics_pipeline(*gpu, layout, render_pass, points);
+    }
 
     VkCommandBufferAllocateInfo command_info{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
     command_info.commandPool = gpu->command_pool();
@@ -323,6 +344,18 @@ struct RasterDevice::Impl {
     starts[buckets] = filled;
   }
 
+  // The widest cone square of a pass in samples (with a pixel of margin for float rounding).
+  static double widest_cone_pixels(std::span<RasterScene* const> group) {
+    double widest = 0.0;
+    for (const RasterScene* job : group) {
+      double radius = 0.0;
+      for (std::size_t i = 0; i < job->size(); ++i)
+        if (!job->coincident[i]) radius = std::max(radius, job->radius[i]);
+      widest = std::max(widest, 2.0 * radius / std::min(job->hx, job->hy) + 1.0);
+    }
+    return widest;
+  }
+
   void run(std::span<RasterScene* const> group, std::uint32_t width, std::uint32_t height, bool read_ids, bool pixel_work) {
     read_ids = read_ids || !pixel_work;
     if (pixel_work) create_compute_pipelines();
@@ -363,6 +396,15 @@ struct RasterDevice::Impl {
     reserve(counters, (BLUETILE_COUNTER_UNCOVERED + group.size()) * 4, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     reserve(overflow, pixel_total * sizeof(gpu::uvec2), storage);
     reserve(boundary, pixel_total * sizeof(gpu::uvec2), storage, gpu::MemoryUse::device);
+    const bool indexed = !settings.fan && settings.cone_draw == ConeDraw::indexed;
+    if (indexed && indexed_cones < instance_total) {
+      reserve(cone_indices, instance_total * 6 * sizeof(std::uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT);
+      indexed_cones = cone_indices.device.size / (6 * sizeof(std::uint32_t));
+      auto* index = static_cast<std::uint32_t*>(cone_indices.host());
+      const std::uint32_t pattern[6] = {0, 1, 2, 2, 1, 3};
+      for (std::size_t c = 0; c < indexed_cones; ++c)
+        for (int v = 0; v < 6; ++v) index[6 * c + v] = static_cast<std::uint32_t>(4 * c) + pattern[v];
+    }
     if (read_ids)
       reserve(id_readback, std::size_t{width} * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT, gpu::MemoryUse::staging);
     update_descriptors();
@@ -399,6 +441,7 @@ struct RasterDevice::Impl {
       vkCmdCopyBuffer(cb, b.staging.buffer, b.device.buffer, 1, &region);
     };
     upload(instances, instance_count * sizeof(gpu::ConeInstance));
+    if (indexed) upload(cone_indices, instance_count * 6 * sizeof(std::uint32_t));
     upload(scenes, group.size() * sizeof(gpu::SceneInfo));
     upload(sites, site_total * sizeof(gpu::SiteInfo));
     upload(positions, site_total * 16);
@@ -426,19 +469,38 @@ struct RasterDevice::Impl {
     pass.clearValueCount = 2;
     pass.pClearValues = clears;
     vkCmdBeginRenderPass(cb, &pass, VK_SUBPASS_CONTENTS_INLINE);
-    VkViewport viewport{0.0f, 0.0f, static_cast<float>(width), static_cast<float>(height), 0.0f, 1.0f};
+    // Point cones: a point whose centre leaves the clip volume may be dropped whole, and a
+    // replica's centre lies up to half its side outside the atlas; so the viewport reaches that
+    // far past the atlas on every side (the scissor stays the atlas).
+    const float point_margin = std::ceil(0.5f * gpu->max_point_size());
+    const VkPhysicalDeviceLimits& limits = gpu->properties().limits;
+    const bool points = point_pipeline && widest_cone_pixels(group) <= gpu->max_point_size() &&
+                        static_cast<float>(std::max(width, height)) + 2.0f * point_margin <=
+                            static_cast<float>(std::min(limits.maxViewportDimensions[0], limits.maxViewportDimensions[1])) &&
+                        -point_margin >= limits.viewportBoundsRange[0] &&
+                        static_cast<float>(std::max(width, height)) + point_margin <= limits.viewportBoundsRange[1];
+    const float margin = points ? point_margin : 0.0f;
+    const float push[4] = {static_cast<float>(width) + 2.0f * margin, static_cast<float>(height) + 2.0f * margin, margin, margin};
+    VkViewport viewport{-margin, -margin, push[0], push[1], 0.0f, 1.0f};
     VkRect2D scissor{{0, 0}, {width, height}};
     vkCmdSetViewport(cb, 0, 1, &viewport);
     vkCmdSetScissor(cb, 0, 1, &scissor);
-    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, cone_pipeline);
+    vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, points ? point_pipeline : cone_pipeline);
     vkCmdBindDescriptorSets(cb, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 0, 1, &set, 0, nullptr);
-    const float atlas_size[2] = {static_cast<float>(width), static_cast<float>(height)};
-    vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof atlas_size, atlas_size);
-    if (instance_count == 0) {
+    vkCmdPushConstants(cb, layout, VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, push);
+    const auto cones = static_cast<std::uint32_t>(instance_count);
+    if (cones == 0) {
     } else if (settings.fan) {
-      vkCmdDraw(cb, 3 * BLUETILE_FAN_SEGMENTS, static_cast<std::uint32_t>(instance_count), 0, 0);
+      vkCmdDraw(cb, 3 * BLUETILE_FAN_SEGMENTS, cones, 0, 0);
+    } else if (points) {
+      vkCmdDraw(cb, cones, 1, 0, 0);
+    } else if (indexed) {
+      vkCmdBindIndexBuffer(cb, cone_indices.device.buffer, 0, VK_INDEX_TYPE_UINT32);
+      vkCmdDrawIndexed(cb, 6 * cones, 1, 0, 0, 0);
+    } else if (settings.cone_draw == ConeDraw::instanced) {
+      vkCmdDraw(cb, 4, cones, 0, 0);
     } else {
-      vkCmdDraw(cb, static_cast<std::uint32_t>(6 * instance_count), 1, 0, 0);
+      vkCmdDraw(cb, 6 * cones, 1, 0, 0);
     }
     vkCmdEndRenderPass(cb);
     stamp(1);
@@ -491,6 +553,7 @@ struct RasterDevice::Impl {
     gpu->submit_and_wait(cb);
     timing.cones = timing.classify = timing.split = timing.readback = 0.0;
     timing.cones_drawn = instance_count;
+    timing.point_cones = points;
     if (timestamps) {
       std::uint64_t t[kTimestamps] = {};
       if (vkGetQueryPoolResults(gpu->device(), timestamps, 0, kTimestamps, sizeof t, t, sizeof t[0],

@@ -16,9 +16,21 @@
 
 namespace bluetile {
 
+// How the exact-depth cones (squares) are drawn; every choice gives the same ID image (the
+// fragment shader computes each sample's depth), so it changes speed only. Measured on lavapipe:
+// docs/BENCHMARKS.md, "The cone pass per cone".
+enum class ConeDraw {
+  triangles,  // six vertices per cone, one non-indexed triangle list
+  indexed,    // four vertices per cone and an index buffer
+  instanced,  // one instance of a four-vertex strip per cone
+  points,     // one point per cone, its size the square's side (passes with a cone wider than the
+              // device's largest point fall back to triangles)
+};
+
 struct RasterDeviceSettings {
   std::string device;       // name or index; empty for the default (lavapipe first)
   bool fan = false;         // tessellated cones instead of exact-depth quads
+  ConeDraw cone_draw = ConeDraw::points;
   bool force_float32 = false;  // the float32 split even where the device has shaderFloat64
 };
 
@@ -30,6 +42,7 @@ struct RasterPassTiming {
   // the copies back (the ID image; staged sums and counters).
   double cones = 0.0, classify = 0.0, split = 0.0, readback = 0.0;
   std::size_t cones_drawn = 0;  // cone instances (sites and periodic replicas)
+  bool point_cones = false;     // drawn as points (ConeDraw::points and within the device's limits)
 };
 
 class RasterDevice {

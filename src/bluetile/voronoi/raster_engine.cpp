@@ -95,7 +95,7 @@ struct RasterEngine::Impl {
   bool on_device = true;
 
   explicit Impl(const RasterOptions& o)
-      : options(o), device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.force_float32}) {
+      : options(o), device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.cone_draw, o.force_float32}) {
     on_device = o.pixel_work == PixelWork::device || (o.pixel_work == PixelWork::automatic && !device.is_cpu());
     // Asked for by name, the device path is the exact one or none: never moved to the host, and
     // never the float32 split unless that is asked for too.
@@ -247,6 +247,7 @@ struct RasterEngine::Impl {
       stats.split_seconds += device.timing().split;
       stats.readback_seconds += device.timing().readback;
       stats.cones_drawn += device.timing().cones_drawn;
+      stats.point_cone_submits += device.timing().point_cones ? 1 : 0;
 
       host_start = Clock::now();
       // Pixels left to the host, per scene of the group (in increasing order).

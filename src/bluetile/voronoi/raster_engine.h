@@ -13,6 +13,7 @@
 #include "bluetile/core/output_file.h"
 #include "bluetile/gpu/raster_layout.h"
 #include "bluetile/voronoi/engine.h"
+#include "bluetile/voronoi/raster_device.h"
 #include "bluetile/voronoi/raster_scene.h"
 
 namespace bluetile {
@@ -44,6 +45,8 @@ struct RasterOptions {
   int resolution = 0;
   Coverage coverage = Coverage::area;
   ConeShape cone = ConeShape::quad;
+  // How quad cones are drawn (speed only: every choice gives the same bits); for measurements.
+  ConeDraw cone_draw = ConeDraw::points;
   // First pass of a scene: every cone has radius radius_factor * sqrt(area / N). Later passes
   // on the same batch use per-site radii from the last cell radius and the sites' motion.
   double radius_factor = 2.5;
@@ -81,6 +84,7 @@ struct RasterStats {
   // pass, classify.comp, the split, the copies back (the ID image with host pixel work).
   double cone_seconds = 0.0, classify_seconds = 0.0, split_seconds = 0.0, readback_seconds = 0.0;
   std::uint64_t cones_drawn = 0;  // cone instances drawn (sites and periodic replicas), redos included
+  std::uint64_t point_cone_submits = 0;  // submissions whose cones were drawn as points (ConeDraw::points)
   double host_seconds = 0.0;    // scene preparation, coverage check, host splits, assembling cells
   // Parts of host_seconds (wall; where scenes finish in parallel, their stage times are scaled to
   // the wall time of that loop): scenes prepared (wrapping, radii, close-site flags, scales); the
