@@ -163,7 +163,9 @@ TEST(RasterCones, EveryDrawGivesTheSameIdImagesAndCells) {
         EXPECT_EQ(engine->id_image(k).ids, triangles->id_image(k).ids) << "draw " << name << " scene " << k;
         EXPECT_TRUE(test::identical_cells(cells[k], expected[k])) << "draw " << name << " scene " << k;
       }
-      if (draw == ConeDraw::points) EXPECT_EQ(engine->stats().point_cone_submits, engine->stats().submits);
+      if (draw == ConeDraw::points) {
+        EXPECT_EQ(engine->stats().point_cone_submits, engine->stats().submits);
+      }
     }
   }
   // A cone wider than the device's largest point (one site's cone covers the torus: about 1000
@@ -178,7 +180,9 @@ TEST(RasterCones, EveryDrawGivesTheSameIdImagesAndCells) {
   RasterEngine points(options);
   const Scene one_site = make_scene({{0.3, 0.7}});
   EXPECT_TRUE(test::identical_cells(points.compute(one_site), triangles.compute(one_site)));
-  if (points.cpu_device()) EXPECT_EQ(points.stats().point_cone_submits, 0u);
+  if (points.cpu_device()) {
+    EXPECT_EQ(points.stats().point_cone_submits, 0u);
+  }
 }
 
 }  // namespace

@@ -16,17 +16,6 @@
 
 namespace bluetile {
 
-// How the exact-depth cones (squares) are drawn; every choice gives the same ID image (the
-// fragment shader computes each sample's depth), so it changes speed only. Measured on lavapipe:
-// docs/BENCHMARKS.md, "The cone pass per cone".
-enum class ConeDraw {
-  triangles,  // six vertices per cone, one non-indexed triangle list
-  indexed,    // four vertices per cone and an index buffer
-  instanced,  // one instance of a four-vertex strip per cone
-  points,     // one point per cone, its size the square's side (passes with a cone wider than the
-              // device's largest point fall back to triangles)
-};
-
 struct RasterDeviceSettings {
   std::string device;       // name or index; empty for the default (lavapipe first)
   bool fan = false;         // tessellated cones instead of exact-depth quads

@@ -13,7 +13,6 @@
 #include "bluetile/core/output_file.h"
 #include "bluetile/gpu/raster_layout.h"
 #include "bluetile/voronoi/engine.h"
-#include "bluetile/voronoi/raster_device.h"
 #include "bluetile/voronoi/raster_scene.h"
 
 namespace bluetile {
