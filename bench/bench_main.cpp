@@ -35,7 +35,7 @@
 #include "cgal_reference.h"
 #endif
 #ifdef BLUETILE_BENCH_RASTER
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 #endif
 
 namespace bluetile::bench {

@@ -20,7 +20,7 @@
 #include "bluetile/sampling/density_sampling.h"
 #include "bluetile/voronoi/exact_engine.h"
 #if BLUETILE_BENCH_RASTER
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 #endif
 
 using namespace bluetile;

@@ -32,7 +32,7 @@
 #include "machine.h"
 
 #ifdef BLUETILE_BENCH_RASTER
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 #endif
 
 namespace bluetile::bench {

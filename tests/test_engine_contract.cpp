@@ -9,7 +9,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/voronoi/exact_engine.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 #include "bluetile/voronoi/scene.h"
 #include "test_support.h"
 

@@ -19,9 +19,9 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/relax/lloyd.h"
-#include "bluetile/voronoi/engine_choice.h"
+#include "bluetile/raster/engine_choice.h"
 #include "bluetile/voronoi/exact_engine.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 #include "test_raster_support.h"
 #include "test_support.h"
 

@@ -15,7 +15,7 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/voronoi/exact_engine.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 #include "density_reference.h"
 #include "test_raster_support.h"
 #include "test_support.h"

@@ -10,8 +10,8 @@
 
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/exact_engine.h"
-#include "bluetile/voronoi/raster_engine.h"
-#include "bluetile/voronoi/raster_reference.h"
+#include "bluetile/raster/raster_engine.h"
+#include "bluetile/raster/raster_reference.h"
 #include "test_raster_support.h"
 #include "test_support.h"
 

@@ -7,10 +7,10 @@
 
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/exact_engine.h"
-#include "bluetile/voronoi/raster_cells.h"
-#include "bluetile/voronoi/raster_coverage.h"
-#include "bluetile/voronoi/raster_reference.h"
-#include "bluetile/voronoi/raster_scene.h"
+#include "bluetile/raster/raster_cells.h"
+#include "bluetile/raster/raster_coverage.h"
+#include "bluetile/raster/raster_reference.h"
+#include "bluetile/raster/raster_scene.h"
 #include "test_raster_support.h"
 #include "test_support.h"
 

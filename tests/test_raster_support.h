@@ -11,7 +11,7 @@
 
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/engine.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 
 namespace bluetile::test {
 

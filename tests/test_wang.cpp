@@ -21,7 +21,7 @@
 #include "bluetile/relax/wang_step.h"
 #include "bluetile/tiling/seam_check.h"
 #include "bluetile/voronoi/exact_engine.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 #include "test_raster_support.h"
 #include "test_support.h"
 

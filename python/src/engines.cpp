@@ -15,7 +15,7 @@
 #include "bluetile/relax/stipple.h"
 #include "bluetile/sampling/density_sampling.h"
 #include "bluetile/voronoi/exact_engine.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 
 namespace pybluetile {
 

@@ -6,11 +6,11 @@
 #include <string>
 
 #include "bluetile/voronoi/engine.h"
-#include "bluetile/voronoi/engine_choice.h"
+#include "bluetile/raster/engine_choice.h"
 
 namespace pybluetile {
 
-// The library's engine choice (bluetile/voronoi/engine_choice.h): its names, defaults and
+// The library's engine choice (bluetile/raster/engine_choice.h): its names, defaults and
 // ranges; a bad one raises pybluetile.Error (a ValueError) naming the argument.
 using bluetile::EngineChoice;
 

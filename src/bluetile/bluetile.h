@@ -59,7 +59,7 @@
 // raster: the Vulkan centroid engine and the device list.
 #include "bluetile/gpu/context.h"
 #include "bluetile/gpu/raster_layout.h"
-#include "bluetile/voronoi/engine_choice.h"
-#include "bluetile/voronoi/raster_engine.h"
-#include "bluetile/voronoi/raster_scene.h"
+#include "bluetile/raster/engine_choice.h"
+#include "bluetile/raster/raster_engine.h"
+#include "bluetile/raster/raster_scene.h"
 #endif

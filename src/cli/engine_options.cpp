@@ -6,7 +6,7 @@
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 
 namespace bluetile::cli {
 

@@ -8,7 +8,7 @@
 
 #include "bluetile/core/output_file.h"
 #include "bluetile/voronoi/engine.h"
-#include "bluetile/voronoi/engine_choice.h"
+#include "bluetile/raster/engine_choice.h"
 
 namespace bluetile::cli {
 

@@ -1,5 +1,5 @@
 // The coverage check (see raster_coverage.h).
-#include "bluetile/voronoi/raster_coverage.h"
+#include "bluetile/raster/raster_coverage.h"
 
 #include <algorithm>
 #include <bit>

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "bluetile/gpu/raster_layout.h"
-#include "bluetile/voronoi/raster_scene.h"
+#include "bluetile/raster/raster_scene.h"
 
 namespace bluetile {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "bluetile/voronoi/engine.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 
 namespace bluetile {
 

@@ -3,7 +3,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/io/image_file.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 
 namespace bluetile {
 namespace {

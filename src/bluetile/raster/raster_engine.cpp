@@ -28,7 +28,7 @@
 // nothing; a varying density weighs whole pixels by their moments under the texels they cover
 // (a table per map and resolution) and pieces by density_moments, into fixed-point sums (Secord
 // 2002's weighted centroids, exact to rounding). Both run on the host per-pixel path only.
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 
 #include <algorithm>
 #include <bit>
@@ -39,10 +39,10 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
-#include "bluetile/voronoi/raster_cells.h"
-#include "bluetile/voronoi/raster_coverage.h"
-#include "bluetile/voronoi/raster_device.h"
-#include "bluetile/voronoi/raster_reference.h"
+#include "bluetile/raster/raster_cells.h"
+#include "bluetile/raster/raster_coverage.h"
+#include "bluetile/raster/raster_device.h"
+#include "bluetile/raster/raster_reference.h"
 #include "bluetile/voronoi/scene.h"
 
 namespace bluetile {

@@ -1,4 +1,4 @@
-#include "bluetile/voronoi/engine_choice.h"
+#include "bluetile/raster/engine_choice.h"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
 // The host reference of the raster engine's device passes (see raster_reference.h): the same
 // method as shaders/classify.comp and shaders/split_body.glsl, written out again in C++.
-#include "bluetile/voronoi/raster_reference.h"
+#include "bluetile/raster/raster_reference.h"
 
 #include <algorithm>
 #include <bit>

@@ -13,7 +13,7 @@
 #include "bluetile/core/output_file.h"
 #include "bluetile/gpu/raster_layout.h"
 #include "bluetile/voronoi/engine.h"
-#include "bluetile/voronoi/raster_scene.h"
+#include "bluetile/raster/raster_scene.h"
 
 namespace bluetile {
 

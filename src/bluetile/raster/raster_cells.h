@@ -7,8 +7,8 @@
 
 #include "bluetile/gpu/raster_layout.h"
 #include "bluetile/voronoi/engine.h"
-#include "bluetile/voronoi/raster_reference.h"
-#include "bluetile/voronoi/raster_scene.h"
+#include "bluetile/raster/raster_reference.h"
+#include "bluetile/raster/raster_scene.h"
 
 namespace bluetile {
 

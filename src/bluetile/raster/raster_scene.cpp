@@ -1,5 +1,5 @@
 // Scene preparation for the raster engine (see raster_scene.h).
-#include "bluetile/voronoi/raster_scene.h"
+#include "bluetile/raster/raster_scene.h"
 
 #include <algorithm>
 #include <atomic>
@@ -11,7 +11,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
-#include "bluetile/voronoi/raster_engine.h"
+#include "bluetile/raster/raster_engine.h"
 
 namespace bluetile {
 namespace {

@@ -1,5 +1,5 @@
 // The raster engine's device side (see raster_device.h and the method in raster_engine.cpp).
-#include "bluetile/voronoi/raster_device.h"
+#include "bluetile/raster/raster_device.h"
 
 #include <algorithm>
 #include <bit>
@@ -11,7 +11,7 @@
 #include "bluetile/core/parallel.h"
 #include "bluetile/gpu/context.h"
 #include "bluetile/gpu/pipelines.h"
-#include "bluetile/voronoi/raster_reference.h"
+#include "bluetile/raster/raster_reference.h"
 
 namespace bluetile {
 namespace {

@@ -1,12 +1,12 @@
 // Assembling raster cells (see raster_cells.h).
-#include "bluetile/voronoi/raster_cells.h"
+#include "bluetile/raster/raster_cells.h"
 
 #include <cmath>
 
 #include "bluetile/voronoi/density_moments.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/voronoi/polygon.h"
-#include "bluetile/voronoi/raster_coverage.h"
+#include "bluetile/raster/raster_coverage.h"
 
 namespace bluetile {
 

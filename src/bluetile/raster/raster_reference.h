@@ -13,7 +13,7 @@
 
 #include "bluetile/gpu/raster_layout.h"
 #include "bluetile/voronoi/polygon.h"
-#include "bluetile/voronoi/raster_scene.h"
+#include "bluetile/raster/raster_scene.h"
 #include "bluetile/voronoi/site_grid.h"
 
 namespace bluetile {
