@@ -79,8 +79,8 @@ DensityGrid density_from_image(const ImageFile& image, const DensityTransfer& tr
   return grid;
 }
 
-DensityGrid load_density_map(const std::string& path, const DensityTransfer& transfer) {
-  return density_from_image(read_image_file(path), transfer, path);
+DensityGrid load_density_map(const std::string& path, const DensityTransfer& transfer, std::uint64_t max_pixels) {
+  return density_from_image(read_image_file(path, max_pixels), transfer, path);
 }
 
 }  // namespace bluetile

@@ -39,7 +39,9 @@ double srgb_to_linear(double encoded);
 DensityGrid density_from_image(const ImageFile& image, const DensityTransfer& transfer, const std::string& name);
 
 // Reads the image at `path` and converts it as above. Throws Error naming the path when the file
-// cannot be read or its content is refused.
-DensityGrid load_density_map(const std::string& path, const DensityTransfer& transfer);
+// cannot be read or its content is refused, or when it has more than `max_pixels` pixels
+// (read_image_file; checked on the header, before decoding).
+DensityGrid load_density_map(const std::string& path, const DensityTransfer& transfer,
+                             std::uint64_t max_pixels = kMaxImagePixels);
 
 }  // namespace bluetile

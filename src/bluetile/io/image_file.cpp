@@ -27,6 +27,7 @@ struct Plugin {
   bluetile_oiio_write_fn write = nullptr;
   bluetile_oiio_read_fn read = nullptr;
   bluetile_oiio_check_fn check = nullptr;
+  bluetile_oiio_info_fn info = nullptr;
 };
 
 // The static initialisers of OpenImageIO and its dependencies start thread pools while the module
@@ -151,7 +152,8 @@ const Plugin& plugin() {
         loaded.write = reinterpret_cast<bluetile_oiio_write_fn>(dlsym(handle, "bluetile_oiio_write"));
         loaded.read = reinterpret_cast<bluetile_oiio_read_fn>(dlsym(handle, "bluetile_oiio_read"));
         loaded.check = reinterpret_cast<bluetile_oiio_check_fn>(dlsym(handle, "bluetile_oiio_check"));
-        if (loaded.encode && loaded.write && loaded.read && loaded.check) return;
+        loaded.info = reinterpret_cast<bluetile_oiio_info_fn>(dlsym(handle, "bluetile_oiio_info"));
+        if (loaded.encode && loaded.write && loaded.read && loaded.check && loaded.info) return;
         loaded = Plugin{};
         why = path + ": not a bluetile OpenImageIO plugin (or one of another version)";
       } else {
@@ -253,18 +255,33 @@ void write_image_file(const std::string& path, int width, int height, int channe
   outputs.publish();
 }
 
-ImageFile read_image_file(const std::string& path) {
+ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
   const Plugin& p = plugin();
   ImageFile image;
+  char error[512];
+  // The header first: a file that claims more pixels than allowed is refused before any buffer
+  // for them is allocated (a few bytes of PNG header can claim 2^62 samples).
+  if (p.info(path.c_str(), &image.width, &image.height, &image.channels, error, sizeof error) != 0)
+    throw Error(path + ": cannot read image: " + error);
+  if (image.width <= 0 || image.height <= 0 || image.channels <= 0)
+    throw Error(path + ": cannot read image: it is empty (" + std::to_string(image.width) + " x " +
+                std::to_string(image.height) + " pixels, " + std::to_string(image.channels) + " channels)");
+  const std::uint64_t pixels = static_cast<std::uint64_t>(image.width) * static_cast<std::uint64_t>(image.height);
+  if (pixels > max_pixels)
+    throw Error(path + ": the image is too large (" + std::to_string(image.width) + " x " +
+                std::to_string(image.height) + " pixels, more than " + std::to_string(max_pixels) + ")");
   float* values = nullptr;
   int is_float = 0;
-  char error[512];
   if (p.read(path.c_str(), &image.width, &image.height, &image.channels, &is_float, &values, error, sizeof error) != 0)
     throw Error(path + ": cannot read image: " + error);
+  std::unique_ptr<float, decltype(&std::free)> owned(values, &std::free);
+  // The file may have changed between the two opens.
+  if (static_cast<std::uint64_t>(image.width) * static_cast<std::uint64_t>(image.height) > max_pixels)
+    throw Error(path + ": the image is too large (" + std::to_string(image.width) + " x " +
+                std::to_string(image.height) + " pixels, more than " + std::to_string(max_pixels) + ")");
   image.floating_point = is_float != 0;
   image.values.assign(values, values + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
                                            static_cast<std::size_t>(image.channels));
-  std::free(values);
   return image;
 }
 

@@ -53,7 +53,13 @@ struct ImageFile {
   bool floating_point = false;  // the file stores floating-point samples
 };
 
-// Reads any image OpenImageIO knows. Throws Error naming the path on failure.
-ImageFile read_image_file(const std::string& path);
+// The most pixels an image may have by default: the engines index texels with int.
+inline constexpr std::uint64_t kMaxImagePixels = 2147483647;
+
+// Reads any image OpenImageIO knows. Throws Error("<path>: ...") on one line when the file cannot
+// be opened or decoded (what the image libraries print goes into the message, not on stderr),
+// when it is empty, and when its header claims more than `max_pixels` pixels (before anything is
+// decoded).
+ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels = kMaxImagePixels);
 
 }  // namespace bluetile

@@ -5,15 +5,104 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <vector>
+
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 namespace {
 
+// OpenImageIO gathers one line per layer that failed (its own, libpng's, ...), and libpng prints
+// its errors on stderr as well: the caller's message is one line. Lines contained in another
+// (the same cause, said twice) are dropped; what is left is joined with "; ".
+std::string one_line(const std::string& text) {
+  std::vector<std::string> lines;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string::npos) end = text.size();
+    std::string line = text.substr(start, end - start);
+    start = end + 1;
+    for (const char* prefix : {"libpng error: ", "libpng warning: "})
+      if (line.rfind(prefix, 0) == 0) line.erase(0, std::strlen(prefix));
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '.')) line.pop_back();
+    while (!line.empty() && line.front() == ' ') line.erase(0, 1);
+    if (!line.empty()) lines.push_back(line);
+  }
+  std::string joined;
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    bool repeated = false;
+    for (std::size_t j = 0; j < lines.size() && !repeated; ++j)
+      repeated = j != i && lines[j].find(lines[i]) != std::string::npos && (lines[j] != lines[i] || j < i);
+    if (!repeated) joined += (joined.empty() ? "" : "; ") + lines[i];
+  }
+  return joined;
+}
+
 int fail(const std::string& message, char* error, size_t error_size) {
-  std::snprintf(error, error_size, "%s", message.empty() ? "unknown OpenImageIO error" : message.c_str());
+  const std::string line = one_line(message);
+  std::snprintf(error, error_size, "%s", line.empty() ? "unknown OpenImageIO error" : line.c_str());
   return 1;
+}
+
+// While an image is read, what the image libraries print on standard error (libpng writes its
+// errors there besides returning them) goes to a memory file: on failure it joins the message,
+// on success it is passed on as it came. Reading happens before a command's work starts, when no
+// other thread of ours writes to stderr.
+class StderrCapture {
+ public:
+  StderrCapture() {
+    std::fflush(stderr);
+    memory_ = memfd_create("bluetile-image-messages", MFD_CLOEXEC);
+    if (memory_ < 0) return;
+    saved_ = dup(STDERR_FILENO);
+    if (saved_ < 0 || dup2(memory_, STDERR_FILENO) < 0) {
+      restore();
+      return;
+    }
+  }
+  ~StderrCapture() { restore(); }
+  StderrCapture(const StderrCapture&) = delete;
+  StderrCapture& operator=(const StderrCapture&) = delete;
+
+  // Ends the capture and returns what was printed.
+  std::string finish() {
+    std::fflush(stderr);
+    std::string text;
+    if (memory_ >= 0 && saved_ >= 0) {
+      char buffer[4096];
+      for (off_t at = 0;;) {
+        const ssize_t n = pread(memory_, buffer, sizeof buffer, at);
+        if (n <= 0) break;
+        text.append(buffer, static_cast<std::size_t>(n));
+        at += n;
+        if (text.size() > 65536) break;  // enough to say why; never a flood
+      }
+    }
+    restore();
+    return text;
+  }
+
+ private:
+  void restore() {
+    if (saved_ >= 0) {
+      std::fflush(stderr);
+      dup2(saved_, STDERR_FILENO);
+      close(saved_);
+      saved_ = -1;
+    }
+    if (memory_ >= 0) close(memory_);
+    memory_ = -1;
+  }
+  int memory_ = -1, saved_ = -1;
+};
+
+// Passes on what the libraries printed during a read that succeeded (a warning, say).
+void pass_on(const std::string& printed) {
+  if (!printed.empty()) std::fwrite(printed.data(), 1, printed.size(), stderr);
 }
 
 }  // namespace
@@ -63,23 +152,51 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_write(const 
   return 0;
 }
 
+extern "C" __attribute__((visibility("default"))) int bluetile_oiio_info(const char* path, int* width, int* height,
+                                                                         int* channels, char* error,
+                                                                         size_t error_size) {
+  StderrCapture capture;
+  auto in = OIIO::ImageInput::open(path);
+  if (!in) {
+    const std::string why = OIIO::geterror();
+    return fail(why + "\n" + capture.finish(), error, error_size);
+  }
+  *width = in->spec().width;
+  *height = in->spec().height;
+  *channels = in->spec().nchannels;
+  in->close();
+  pass_on(capture.finish());
+  return 0;
+}
+
 extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const char* path, int* width, int* height,
                                                                          int* channels, int* is_float, float** values,
                                                                          char* error, size_t error_size) {
+  StderrCapture capture;
   auto in = OIIO::ImageInput::open(path);
-  if (!in) return fail(OIIO::geterror(), error, error_size);
+  if (!in) {
+    const std::string why = OIIO::geterror();
+    return fail(why + "\n" + capture.finish(), error, error_size);
+  }
   const OIIO::ImageSpec& spec = in->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    return fail("the image is empty (" + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels, " +
+                    std::to_string(spec.nchannels) + " channels)\n" + capture.finish(),
+                error, error_size);
   size_t count = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) * static_cast<size_t>(spec.nchannels);
   auto* data = static_cast<float*>(std::malloc(count * sizeof(float)));
-  if (!data) return fail("out of memory", error, error_size);
+  if (!data) return fail("out of memory for " + std::to_string(count) + " samples", error, error_size);
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data)) {
     std::free(data);
-    return fail(in->geterror(), error, error_size);
+    const std::string why = in->geterror();
+    return fail(why + "\n" + capture.finish(), error, error_size);
   }
   *width = spec.width;
   *height = spec.height;
   *channels = spec.nchannels;
   *is_float = spec.format.is_floating_point() ? 1 : 0;
   *values = data;
+  in->close();
+  pass_on(capture.finish());
   return 0;
 }

@@ -6,7 +6,8 @@
 
 extern "C" {
 
-// Each returns 0 on success, or non-zero with a message in `error` (always terminated).
+// Each returns 0 on success, or non-zero with a message in `error` (always terminated, one line:
+// what the image libraries would print on stderr while reading goes into it instead).
 // Encodes pixels in the format that the extension of `name` names into *bytes (allocated with
 // malloc; the caller frees it); the library then streams them to the output (output_file.h),
 // checking every write. Nothing is written under `name`; OpenImageIO's messages use it. `bits`
@@ -25,6 +26,10 @@ typedef int (*bluetile_oiio_write_fn)(const char* path, int width, int height, i
 typedef int (*bluetile_oiio_check_fn)(const char* name, char* error, size_t error_size);
 typedef int (*bluetile_oiio_read_fn)(const char* path, int* width, int* height, int* channels, int* is_float,
                                      float** values, char* error, size_t error_size);
+// The size of the image at `path` from its header alone, nothing decoded: the library refuses an
+// image too large for memory before any pixel buffer is allocated.
+typedef int (*bluetile_oiio_info_fn)(const char* path, int* width, int* height, int* channels, char* error,
+                                     size_t error_size);
 }
 
 #define BLUETILE_OIIO_PLUGIN_NAME "libbluetile_oiio.so"
