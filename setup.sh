@@ -87,15 +87,24 @@ python_tests() {
 # that fails is kept in build-fuzz/ as crash-*). A fixed seed makes the run repeatable.
 fuzz_readers() {
   local dir="$build_dir-fuzz"
+  # Images on (density_map: OpenImageIO through the plugin module, not instrumented); no raster.
   build "$dir" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLUETILE_FUZZ=ON \
-    -DBLUETILE_IMAGES=OFF -DBLUETILE_RASTER=OFF -DBLUETILE_BUILD_TOOL=OFF -DBLUETILE_BUILD_TESTS=OFF \
+    -DBLUETILE_IMAGES=ON -DBLUETILE_RASTER=OFF -DBLUETILE_BUILD_TOOL=OFF -DBLUETILE_BUILD_TESTS=OFF \
     -DBLUETILE_BUILD_BENCH=OFF -DBLUETILE_INSTALL=OFF --target bluetile_fuzzers
   local scratch
   scratch=$(mktemp -d)
-  for reader in point_file tile_set point_table; do
+  for reader in point_file tile_set tile_set_semantics point_table density_map; do
     mkdir -p "$scratch/$reader"
-    "$dir/bluetile_fuzz_$reader" -max_total_time="${BLUETILE_FUZZ_SECONDS:-10}" -rss_limit_mb=2048 \
-      -malloc_limit_mb=1024 -timeout=10 -seed=1 -print_final_stats=1 -artifact_prefix="$dir/" \
+    local malloc_limit=1024 leaks=
+    if [ "$reader" = density_map ]; then
+      # OpenEXR allocates what a damaged header claims (2 GB for an attribute) before it finds the
+      # file short; those pages are never touched (the RSS limit still holds). One leak inside
+      # OpenImageIO is suppressed (fuzz/density_map.supp says which).
+      malloc_limit=8192
+      leaks="suppressions=$here/fuzz/density_map.supp"
+    fi
+    LSAN_OPTIONS="$leaks" "$dir/bluetile_fuzz_$reader" -max_total_time="${BLUETILE_FUZZ_SECONDS:-10}" -rss_limit_mb=2048 \
+      -malloc_limit_mb="$malloc_limit" -timeout=10 -seed=1 -print_final_stats=1 -artifact_prefix="$dir/" \
       "$scratch/$reader" "fuzz/corpus/$reader" \
       2>"$scratch/$reader.log" || { tail -50 "$scratch/$reader.log" >&2; rm -rf "$scratch"; exit 1; }
     grep -h "stat::number_of_executed_units" "$scratch/$reader.log" | sed "s/^/setup: fuzz $reader: /" >&2

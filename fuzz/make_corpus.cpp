@@ -5,12 +5,17 @@
 // fuzz/corpus/README.md's commands).
 #include <cstdio>
 #include <fstream>
+#include <iterator>
 #include <string>
+#include <vector>
 
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/tiling/tile_set.h"
+#if BLUETILE_FUZZ_IMAGES
+#include "bluetile/io/image_file.h"
+#endif
 
 using namespace bluetile;
 
@@ -59,6 +64,34 @@ std::string table_bytes(TableFormat format, const std::vector<PointSet>& sets, b
   return bytes;
 }
 
+// Seeds of tile_set_semantics_fuzzer.cpp: a kind byte, then per tile a shape byte and a damage
+// byte (see there). All zeros: a sound set of 2 points a tile.
+std::string semantics_seed(std::uint8_t kind, std::size_t tiles, std::size_t tile, std::uint8_t shape,
+                           std::uint8_t damage) {
+  std::string bytes(1 + 2 * tiles, '\0');
+  bytes[0] = static_cast<char>(kind);
+  for (std::size_t id = 0; id < tiles; ++id) bytes[2 + 2 * id] = static_cast<char>(0x40);  // 3 points, no damage
+  bytes[1 + 2 * tile] = static_cast<char>(shape);
+  bytes[2 + 2 * tile] = static_cast<char>(damage);
+  return bytes;
+}
+
+#if BLUETILE_FUZZ_IMAGES
+// A seed of density_map_fuzzer.cpp: the extension's index (its kExtensions), then the file that
+// write_image_file makes for a small map.
+void save_image(const std::string& root, const std::string& name, std::uint8_t extension, int width, int height,
+                int channels, SampleFormat format) {
+  const std::string scratch = root + "/density_map/scratch-" + name;
+  std::vector<float> values(static_cast<std::size_t>(width * height * channels));
+  for (std::size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>((i * 5) % 7) / 6.0f;
+  write_image_file(scratch, width, height, channels, values, format);
+  std::ifstream in(scratch, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::remove(scratch.c_str());
+  save(root + "/density_map/" + name, std::string(1, static_cast<char>(extension)) + bytes);
+}
+#endif
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -72,5 +105,17 @@ int main(int argc, char** argv) {
   save(root + "/point_table/two-sets.bpt", table_bytes(TableFormat::binary, two, false));
   save(root + "/point_table/levels-float32.bpt", table_bytes(TableFormat::binary, levels, true));
   save(root + "/point_file/levels.txt", format_points(levels[0], {"made by bluetile_fuzz_make_corpus"}));
+  save(root + "/tile_set_semantics/wang8-sound.bin", semantics_seed(0, 8, 0, 0x40, 0xFF));
+  save(root + "/tile_set_semantics/wang16-empty-tile.bin", semantics_seed(1, 16, 3, 5, 0xFF));
+  save(root + "/tile_set_semantics/corner16-levels-fall.bin", semantics_seed(2, 16, 5, 0x40, 4));
+#if BLUETILE_FUZZ_IMAGES
+  save_image(root, "grey8.png", 0, 4, 3, 1, SampleFormat::uint8);
+  save_image(root, "rgba16.png", 0, 2, 2, 4, SampleFormat::uint16);
+  save_image(root, "grey.pgm", 1, 3, 2, 1, SampleFormat::uint8);
+  save_image(root, "float.tif", 2, 2, 2, 1, SampleFormat::float32);
+  save_image(root, "float.exr", 3, 2, 2, 1, SampleFormat::float32);
+  save_image(root, "rgb.hdr", 4, 2, 2, 3, SampleFormat::float32);
+  save_image(root, "rgb.bmp", 5, 2, 2, 3, SampleFormat::uint8);
+#endif
   return 0;
 }
