@@ -1,0 +1,413 @@
+// The contract harness: every subcommand of the tool's own app (cli/app.h), with the inputs and
+// outputs it declares (cli/command_files.h), through one matrix. Every output goes to a full
+// device, a FIFO, a read-only folder, a symbolic link, an input's own path (and a hard link to
+// it) and under ulimit -f; every input is given truncated, empty and as binary garbage. A refusal
+// is exit status 1, one `bluetile:` line naming the path, and the folder exactly as before (no
+// staging file left); a FIFO output receives the bytes and a link is followed. Devices need
+// mknod (root) and the read-only folder an unprivileged user: skipped with a message otherwise.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <csignal>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
+#include "bluetile/core/point_file.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/io/image_file.h"
+#include "cli/app.h"
+#include "cli/command_files.h"
+#include "robustness_support.h"
+#include "test_support.h"
+
+namespace bluetile::robustness {
+namespace {
+
+namespace fs = std::filesystem;
+using cli::CommandFiles;
+using cli::InputKind;
+using test::read_text;
+using test::TempDir;
+using Names = std::vector<std::string>;
+
+constexpr int kParallelRuns = 4;                    // children at once: the runs mostly wait on the loader
+constexpr long kFileSizeLimit = 512;               // bytes: under every quick run's output, over any message
+constexpr auto kRunLimit = std::chrono::seconds(60);  // a run still going then is a hang: killed, and failed
+
+// Sound inputs of each kind, made once in-process.
+struct Fixtures {
+  TempDir dir;
+  std::string points, tiles, image;
+  Fixtures() {
+    PointSet set;
+    Rng rng(7);
+    for (int i = 0; i < 30; ++i) set.points.push_back(rng.point(Domain{}));
+    points = dir.write("points.txt", format_points(set));
+    // A small set (4 points a tile) from the tool itself: wang-check on the built-in set takes 20 s.
+    tiles = dir.file("tiles.txt");
+    const Outcome made = run({"wang", "-n", "4", "-k", "1", "--warm", "0", "--lattice-steps", "0",
+                              "--lattice-steps-per-iteration", "0", "--strategy", "rounds", "-o", tiles});
+    EXPECT_EQ(made.exit_code, 0) << made.err;
+    std::vector<float> values(8 * 8);
+    for (std::size_t i = 0; i < values.size(); ++i) values[i] = 0.1f + static_cast<float>(i % 7) / 8.0f;
+    image = dir.file("map.png");
+    write_image_file(image, 8, 8, 1, values, SampleFormat::uint8);
+  }
+  const std::string& of(InputKind kind) const {
+    return kind == InputKind::points ? points : kind == InputKind::tiles ? tiles : image;
+  }
+};
+
+const Fixtures& fixtures() {
+  static const Fixtures made;
+  return made;
+}
+
+std::string extension_of(InputKind kind) { return kind == InputKind::image ? ".png" : ".txt"; }
+
+// The copy of the sound input that folder_for() made for `in`.
+std::string input_file(const cli::InputOption& in, const TempDir& dir) {
+  return dir.file("input-" + std::string(in.option == "" ? "positional" : in.option.substr(in.option.find_first_not_of('-'))) +
+                  extension_of(in.kind));
+}
+
+// One run of the matrix: its arguments, what it must do, and checks of its own.
+struct Case {
+  std::string what;  // "relax --log: full device", for failure messages
+  std::unique_ptr<TempDir> dir;
+  Invocation call;
+  bool refused = true;
+  std::string named;                     // a refusal's message must contain this path
+  Names before;                          // refused: the folder must be left as it was
+  std::function<void(const Outcome&)> check;  // more checks (run after the common ones)
+  std::string fifo;                      // an output FIFO to drain while the run goes
+};
+
+// The command's quick run in `dir`: inputs copied there, outputs there; `input_value` and
+// `output_value` replace (or add) the value of one input or output option.
+std::vector<std::string> arguments(const CommandFiles& c, const TempDir& dir, const std::string& input_option,
+                                   const std::string& input_value, const std::string& output_option,
+                                   const std::string& output_value) {
+  std::vector<std::string> args = {std::string(c.command)};
+  for (std::string_view a : c.quick_run) args.emplace_back(a);
+  for (const auto& in : c.inputs) {
+    std::string value;
+    if (std::string(in.option) == input_option && !input_value.empty()) value = input_value;
+    else if (in.always) value = input_file(in, dir);
+    if (value.empty()) continue;
+    if (!in.option.empty()) args.emplace_back(in.option);
+    args.push_back(value);
+  }
+  for (const auto& out : c.outputs) {
+    std::string value;
+    if (std::string(out.option) == output_option && !output_value.empty()) value = output_value;
+    else if (out.always) value = dir.file(std::string(out.name));
+    if (value.empty()) continue;
+    args.emplace_back(out.option);
+    args.push_back(value);
+  }
+  return args;
+}
+
+// A fresh folder holding a copy of each input the command's quick run reads (by option).
+std::unique_ptr<TempDir> folder_for(const CommandFiles& c) {
+  auto dir = std::make_unique<TempDir>();
+  chmod(dir->path().c_str(), 0755);  // readable by the unprivileged runs
+  for (const auto& in : c.inputs) fs::copy_file(fixtures().of(in.kind), input_file(in, *dir));
+  return dir;
+}
+
+bool no_staging_left(const Names& names) {
+  return std::none_of(names.begin(), names.end(), [](const std::string& n) { return n.find(".bluetile") != std::string::npos; });
+}
+
+std::vector<Case> output_cases(const CommandFiles& c, bool& devices_skipped) {
+  std::vector<Case> cases;
+  for (const auto& out : c.outputs) {
+    const std::string option(out.option), label = std::string(c.command) + " " + option + ": ";
+    auto add = [&](Case k) { cases.push_back(std::move(k)); };
+
+    {  // A full device: nothing fits (files), or no folder (folders).
+      Case k;
+      k.what = label + "full device";
+      k.dir = folder_for(c);
+      const std::string device = k.dir->file("full-" + std::string(out.name));
+      if (mknod(device.c_str(), S_IFCHR | 0666, makedev(1, 7)) != 0) {
+        devices_skipped = true;
+      } else {
+        k.call.arguments = arguments(c, *k.dir, "", "", option, device);
+        k.named = device;
+        k.before = entries(k.dir->path());
+        add(std::move(k));
+      }
+    }
+    {  // A FIFO: streamed into it (files); not a folder (folders).
+      Case k;
+      k.what = label + "FIFO";
+      k.dir = folder_for(c);
+      const std::string fifo = k.dir->file("pipe-" + std::string(out.name));
+      EXPECT_EQ(mkfifo(fifo.c_str(), 0666), 0);
+      k.call.arguments = arguments(c, *k.dir, "", "", option, fifo);
+      k.named = fifo;
+      k.before = entries(k.dir->path());
+      if (!out.folder) {
+        k.refused = false;
+        k.fifo = fifo;
+      }
+      add(std::move(k));
+    }
+    {  // A read-only folder, as a user without rights over it.
+      Case k;
+      k.what = label + "read-only folder";
+      k.dir = folder_for(c);
+      chmod(k.dir->path().c_str(), 0777);  // the other outputs of the run may be written
+      const std::string locked = k.dir->file("locked");
+      fs::create_directory(locked);
+      chmod(locked.c_str(), 0555);
+      k.call.arguments = arguments(c, *k.dir, "", "", option, locked + "/" + std::string(out.name));
+      k.call.unprivileged = true;
+      k.named = locked;
+      k.before = entries(k.dir->path());
+      add(std::move(k));
+    }
+    {  // A symbolic link: followed, and still a link afterwards.
+      Case k;
+      k.what = label + "symbolic link";
+      k.dir = folder_for(c);
+      const std::string real = k.dir->file("real"), link = k.dir->file("link-" + std::string(out.name));
+      fs::create_directory(real);
+      const std::string target = real + "/" + std::string(out.name);
+      if (out.folder) fs::create_directory(target);
+      else k.dir->write("real/" + std::string(out.name), "old\n");
+      fs::create_symlink(target, link);
+      k.call.arguments = arguments(c, *k.dir, "", "", option, link);
+      k.refused = false;
+      const bool folder = out.folder;
+      k.check = [link, target, folder, what = k.what](const Outcome&) {
+        EXPECT_TRUE(fs::is_symlink(link)) << what;
+        if (folder) {
+          EXPECT_FALSE(fs::is_empty(target)) << what;
+        } else {
+          EXPECT_NE(read_text(target), "old\n") << what;
+        }
+      };
+      add(std::move(k));
+    }
+    for (const auto& in : c.inputs) {
+      // Every input's own path, a hard link to it and a symbolic link to it: refused, the input
+      // untouched. An input the quick run does not read is added for the case.
+      for (const char* how : {"path", "hard link", "symbolic link"}) {
+        Case k;
+        k.what = label + "same file as " + (in.option.empty() ? "the input" : std::string(in.option)) + " (" + how + ")";
+        k.dir = folder_for(c);
+        const std::string input = input_file(in, *k.dir);
+        std::string path = input;
+        if (std::string(how) == "hard link") {
+          path = k.dir->file("hard-link" + extension_of(in.kind));
+          fs::create_hard_link(input, path);
+        } else if (std::string(how) == "symbolic link") {
+          path = k.dir->file("link" + extension_of(in.kind));
+          fs::create_symlink(input, path);
+        }
+        k.call.arguments = arguments(c, *k.dir, std::string(in.option), input, option, path);
+        k.named = path;
+        k.before = entries(k.dir->path());
+        const std::string bytes = read_text(input);
+        k.check = [input, bytes, what = k.what](const Outcome&) { EXPECT_EQ(read_text(input), bytes) << what; };
+        add(std::move(k));
+      }
+    }
+    {  // ulimit -f: no output fits (the limit holds for the captured stderr too: a message fits).
+      Case k;
+      k.what = label + "ulimit -f";
+      k.dir = folder_for(c);
+      k.call.arguments = arguments(c, *k.dir, "", "", option, k.dir->file(std::string(out.name)));
+      k.call.file_size_bytes = kFileSizeLimit;
+      k.before = entries(k.dir->path());
+      add(std::move(k));
+    }
+  }
+  return cases;
+}
+
+// Damaged copies of a sound input: cut inside its last line (text) or halfway (binary), empty,
+// and bytes that are no file of any kind.
+std::vector<std::pair<std::string, std::string>> damaged(InputKind kind) {
+  const std::string sound = read_text(fixtures().of(kind));
+  std::string truncated = kind == InputKind::image ? sound.substr(0, sound.size() / 2) : sound.substr(0, sound.rfind(' '));
+  std::string garbage;
+  Rng rng(11);
+  for (int i = 0; i < 300; ++i) garbage.push_back(static_cast<char>(rng.below(256)));
+  return {{"truncated", truncated}, {"empty", ""}, {"garbage", garbage}};
+}
+
+std::vector<Case> input_cases(const CommandFiles& c) {
+  std::vector<Case> cases;
+  for (const auto& in : c.inputs) {
+    for (const auto& [how, bytes] : damaged(in.kind)) {
+      Case k;
+      k.what = std::string(c.command) + " " + (in.option.empty() ? "(positional)" : std::string(in.option)) + ": " + how;
+      k.dir = folder_for(c);
+      const std::string path = k.dir->write(how + extension_of(in.kind), bytes);
+      k.call.arguments = arguments(c, *k.dir, std::string(in.option), path, "", "");
+      k.named = path;
+      k.before = entries(k.dir->path());
+      cases.push_back(std::move(k));
+    }
+  }
+  return cases;
+}
+
+// Reads a FIFO until `stop` is set and nothing is left, without waiting for a writer.
+class FifoDrain {
+ public:
+  explicit FifoDrain(const std::string& path) {
+    fd_ = open(path.c_str(), O_RDONLY | O_NONBLOCK);
+    thread_ = std::thread([this] {
+      char buffer[65536];
+      for (;;) {
+        const ssize_t n = read(fd_, buffer, sizeof buffer);
+        if (n > 0) {
+          bytes_ += static_cast<std::size_t>(n);
+          continue;
+        }
+        if (stop_) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      }
+    });
+  }
+  // The bytes read in all, once the writer is gone.
+  std::size_t finish() {
+    stop_ = true;
+    thread_.join();
+    close(fd_);
+    return bytes_;
+  }
+
+ private:
+  int fd_ = -1;
+  std::atomic<bool> stop_{false};
+  std::size_t bytes_ = 0;
+  std::thread thread_;
+};
+
+// Waits for the child; one still running after kRunLimit is killed (and so fails its case).
+Outcome wait_or_kill(Child& child) {
+  std::mutex mutex;
+  std::condition_variable finished;
+  bool done = false;
+  std::thread watchdog([&] {
+    std::unique_lock<std::mutex> lock(mutex);
+    if (!finished.wait_for(lock, kRunLimit, [&] { return done; })) kill(child.pid(), SIGKILL);
+  });
+  Outcome outcome = child.wait();
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    done = true;
+  }
+  finished.notify_one();
+  watchdog.join();
+  return outcome;
+}
+
+void run_cases(std::vector<Case>& cases) {
+  for (std::size_t start = 0; start < cases.size(); start += kParallelRuns) {
+    const std::size_t end = std::min(cases.size(), start + kParallelRuns);
+    std::vector<std::unique_ptr<FifoDrain>> drains;
+    std::vector<std::unique_ptr<Child>> children;
+    for (std::size_t i = start; i < end; ++i) {
+      drains.push_back(cases[i].fifo.empty() ? nullptr : std::make_unique<FifoDrain>(cases[i].fifo));
+      children.push_back(std::make_unique<Child>(cases[i].call));
+    }
+    for (std::size_t i = start; i < end; ++i) {
+      Case& k = cases[i];
+      const Outcome r = wait_or_kill(*children[i - start]);
+      const std::size_t drained = drains[i - start] ? drains[i - start]->finish() : 0;
+      if (k.refused) {
+        EXPECT_EQ(r.exit_code, 1) << k.what << ": " << r.err;
+        EXPECT_EQ(r.err.rfind("bluetile: ", 0), 0u) << k.what << ": " << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << k.what << ": " << r.err;
+        EXPECT_NE(r.err.find(k.named), std::string::npos) << k.what << ": the message names " << k.named << ": " << r.err;
+        EXPECT_EQ(entries(k.dir->path()), k.before) << k.what << ": " << r.err;
+      } else {
+        EXPECT_EQ(r.exit_code, 0) << k.what << ": " << r.err;
+        EXPECT_TRUE(no_staging_left(entries(k.dir->path()))) << k.what;
+        if (!k.fifo.empty()) {
+          EXPECT_GT(drained, 0u) << k.what << ": nothing came through the FIFO";
+        }
+      }
+      if (k.check) k.check(r);
+    }
+  }
+}
+
+const CommandFiles* declared(std::string_view command) {
+  for (const CommandFiles& c : cli::command_files())
+    if (c.command == command) return &c;
+  return nullptr;
+}
+
+// Every option of every subcommand that takes free text (no fixed choices) is a declared input,
+// output or non-file option: a new command or option cannot slip past the harness.
+TEST(Contract, EveryFileOptionOfEveryCommandIsDeclared) {
+  std::unique_ptr<CLI::App> app = cli::make_app();
+  std::set<std::string_view> commands;
+  for (const CLI::App* command : app->get_subcommands([](CLI::App*) { return true; })) {
+    const std::string name = command->get_name();
+    const CommandFiles* files = declared(name);
+    ASSERT_NE(files, nullptr) << name << " is missing from cli/command_files.cpp";
+    commands.insert(files->command);
+    for (const CLI::Option* option : command->get_options()) {
+      const std::string type = option->get_type_name();
+      if (type.rfind("TEXT", 0) != 0 || type.find('{') != std::string::npos) continue;
+      const std::string flag = option->get_lnames().empty() ? "" : "--" + option->get_lnames().front();
+      const std::string shortest = option->get_snames().empty() ? flag : "-" + option->get_snames().front();
+      bool known = false;
+      for (const auto& in : files->inputs) known |= in.option == shortest || in.option == flag || (in.option.empty() && flag.empty());
+      for (const auto& out : files->outputs) known |= out.option == shortest || out.option == flag;
+      for (std::string_view other : files->not_files) known |= other == flag;
+      EXPECT_TRUE(known) << name << " " << option->get_name() << " takes text but cli/command_files.cpp does not say "
+                         << "whether it is an input, an output or no file";
+    }
+  }
+  EXPECT_EQ(commands.size(), cli::command_files().size()) << "a declared command the app does not have";
+}
+
+TEST(Contract, EveryOutputOfEveryCommandUnderTheMatrix) {
+  bool devices_skipped = false;
+  std::vector<Case> cases;
+  for (const CommandFiles& c : cli::command_files())
+    for (Case& k : output_cases(c, devices_skipped)) cases.push_back(std::move(k));
+  if (geteuid() != 0) {
+    // Without root the read-only folder does not hold root out, and the run as nobody is not
+    // possible: those cases are for root only.
+    std::erase_if(cases, [](const Case& k) { return k.call.unprivileged; });
+    std::printf("contract: not root: read-only folder cases skipped\n");
+  }
+  if (devices_skipped) std::printf("contract: mknod refused (needs root): device outputs skipped\n");
+  EXPECT_GT(cases.size(), 60u);
+  run_cases(cases);
+}
+
+TEST(Contract, EveryInputOfEveryCommandDamaged) {
+  std::vector<Case> cases;
+  for (const CommandFiles& c : cli::command_files())
+    for (Case& k : input_cases(c)) cases.push_back(std::move(k));
+  EXPECT_GT(cases.size(), 25u);
+  run_cases(cases);
+}
+
+}  // namespace
+}  // namespace bluetile::robustness
