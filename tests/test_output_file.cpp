@@ -238,6 +238,32 @@ TEST(OutputFile, MissingFolderAppearsWholeAtPublish) {
                                                                  "deep/er/analysis/one.txt", "deep/er/analysis/two.txt"}));
 }
 
+// A folder used again keeps the files of an earlier run that this one does not write (another
+// run's options wrote more): nothing of them is removed, and one line says which they are.
+TEST(OutputFile, ReusedFolderNamesTheFilesThisRunDidNotWrite) {
+  TempDir dir;
+  const std::string folder = dir.file("analysis");
+  auto publish = [&](const std::string& path, const std::vector<std::string>& names) {
+    testing::internal::CaptureStderr();
+    OutputSet outputs;
+    outputs.add_folder(path);
+    for (const std::string& name : names) outputs.add(folder + "/" + name).write(name + "\n");
+    outputs.publish();
+    return testing::internal::GetCapturedStderr();
+  };
+  EXPECT_EQ(publish(folder, {"a.txt", "b.png", "c.csv"}), "");  // new: nothing to say
+  EXPECT_EQ(publish(folder, {"a.txt", "b.png", "c.csv"}), "");  // the same files again
+  dir.write("analysis/.hidden", "mine\n");                     // hidden files and folders are no outputs
+  fs::create_directory(dir.file("analysis/sub"));
+  EXPECT_EQ(publish(folder + "/", {"a.txt"}),
+            "bluetile: note: " + folder + "/ also holds 2 files this run did not write (from an earlier run?): b.png, c.csv\n");
+  EXPECT_EQ(read_text(dir.file("analysis/b.png")), "b.png\n");  // kept
+  for (const char* name : {"d", "e", "f", "g"}) dir.write(std::string("analysis/") + name, "\n");
+  EXPECT_EQ(publish(folder, {"e"}),
+            "bluetile: note: " + folder +
+                " also holds 6 files this run did not write (from an earlier run?): a.txt, b.png, c.csv, d and 2 more\n");
+}
+
 TEST(OutputFile, StreamsAndReportsEveryFailedWrite) {
   TempDir dir;
   // A point file far larger than the stream's buffer, written point by point.

@@ -1,6 +1,7 @@
 // Output files (see output_file.h for what is promised).
 #include "bluetile/core/output_file.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <charconv>
@@ -11,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <mutex>
+#include <set>
 #include <streambuf>
 #include <thread>
 
@@ -432,6 +434,7 @@ void OutputSet::add_folder(const std::string& path) {
   Resolved r = resolve(path);
   if (r.type == Resolved::Type::folder) {
     writable_folder(r.path, path);
+    reused_folders_.push_back({path, r.path});
     return;
   }
   if (r.type != Resolved::Type::absent) throw Error(path + ": exists and is not a folder");
@@ -649,6 +652,42 @@ void OutputSet::publish() {
       fs::remove_all(folder->staging, ignored);  // the staging folder and the kept old files
     }
     unregister_staging_locked(folder->staging);
+  }
+  lock.unlock();
+  note_files_of_earlier_runs();
+}
+
+void OutputSet::note_files_of_earlier_runs() const {
+  constexpr std::size_t kNamesShown = 4;  // enough to recognise them; the count says the rest
+  for (const auto& [user_path, resolved] : reused_folders_) {
+    struct stat folder {};
+    if (stat(resolved.c_str(), &folder) != 0) continue;
+    // The set's files in it, by the folder's identity (the paths may be spelled differently).
+    std::set<std::string> written;
+    for (const auto& output : outputs_) {
+      if (output->target_.empty()) continue;
+      const fs::path target(output->target_);
+      struct stat parent {};
+      const std::string parent_path = target.has_parent_path() ? target.parent_path().string() : ".";
+      if (stat(parent_path.c_str(), &parent) == 0 && parent.st_dev == folder.st_dev && parent.st_ino == folder.st_ino)
+        written.insert(target.filename().string());
+    }
+    std::vector<std::string> others;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(resolved, ec)) {
+      const std::string name = entry.path().filename().string();
+      std::error_code type_error;
+      // Hidden files and folders are no output of ours; staging folders are hidden too.
+      if (name.empty() || name[0] == '.' || !entry.is_regular_file(type_error) || written.count(name)) continue;
+      others.push_back(name);
+    }
+    if (others.empty()) continue;
+    std::sort(others.begin(), others.end());
+    std::string list;
+    for (std::size_t i = 0; i < others.size() && i < kNamesShown; ++i) list += (i ? ", " : "") + others[i];
+    if (others.size() > kNamesShown) list += " and " + std::to_string(others.size() - kNamesShown) + " more";
+    std::fprintf(stderr, "bluetile: note: %s also holds %zu file%s this run did not write (from an earlier run?): %s\n",
+                 user_path.c_str(), others.size(), others.size() == 1 ? "" : "s", list.c_str());
   }
 }
 

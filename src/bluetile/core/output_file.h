@@ -31,7 +31,10 @@
 // the earlier ones back; where the file system refuses hard links that rollback is not possible).
 // A set destroyed without publish() (an exception, an error) removes everything it staged.
 // add_folder() declares a folder of outputs (analyze): a missing folder is staged whole and
-// appears, with its files, in one rename at publish.
+// appears, with its files, in one rename at publish. In a folder that was already there, nothing
+// but the set's own files is touched; after publishing, one line on stderr ("bluetile: note:
+// DIR also holds N files this run did not write ...") names the visible regular files it holds
+// besides them, which may be outputs of an earlier run with other options.
 //
 // Interrupts: install_interrupt_cleanup() (called by OutputSet, and first thing by the tool's
 // main) blocks SIGINT, SIGTERM and SIGHUP in the calling thread (threads started later inherit
@@ -46,6 +49,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace bluetile {
@@ -148,11 +152,13 @@ class OutputSet {
   void remember(const Identity& id, const std::string& path, bool is_input);
   std::size_t staging_folder_for(const std::string& directory, const std::string& user_path);
   void discard() noexcept;
+  void note_files_of_earlier_runs() const;
 
   std::vector<std::unique_ptr<Folder>> folders_;
   std::vector<std::unique_ptr<OutputFile>> outputs_;
   std::vector<std::unique_ptr<Known>> known_;  // declared inputs and outputs, by identity
   std::vector<std::string> new_folders_;  // add_folder() paths not yet there, lexically normal
+  std::vector<std::pair<std::string, std::string>> reused_folders_;  // add_folder() of a folder already there: user's path, resolved
   bool published_ = false;
 };
 
