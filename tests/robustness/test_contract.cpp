@@ -417,5 +417,54 @@ TEST(Contract, EveryInputOfEveryCommandDamaged) {
   run_cases(cases);
 }
 
+// Ctrl-C at some moment of a run that writes every output the command has: either the run was
+// done (status 0) or it ends by SIGINT with the folder exactly as before, or, when the signal came
+// after the outputs were published, with every one of them there (all or none) and no staging
+// file. The moments fall in the
+// image plugin's loading, the reading and the writing, depending on the command and the load.
+TEST(Contract, EveryCommandInterruptedLeavesNothing) {
+  int interrupted = 0, finished = 0;
+  for (const int delay_ms : {30, 150, 400}) {
+    std::vector<Case> cases;
+    std::vector<std::unique_ptr<Child>> children;
+    for (const CommandFiles& c : cli::command_files()) {
+      if (c.outputs.empty()) continue;
+      Case k;
+      k.what = std::string(c.command) + ": SIGINT after " + std::to_string(delay_ms) + " ms";
+      k.dir = folder_for(c);
+      k.call.arguments = arguments(c, *k.dir, "", "", "", "");
+      for (const auto& out : c.outputs)
+        if (!out.always) k.call.arguments.insert(k.call.arguments.end(), {std::string(out.option), k.dir->file(std::string(out.name))});
+      k.before = entries(k.dir->path());
+      std::vector<std::string> outputs;
+      for (const auto& out : c.outputs) outputs.push_back(k.dir->file(std::string(out.name)));
+      k.check = [outputs, what = k.what](const Outcome& r) {
+        if (r.signal != SIGINT) return;
+        std::size_t present = 0;
+        for (const std::string& path : outputs) present += fs::exists(path);
+        EXPECT_TRUE(present == 0 || present == outputs.size()) << what << ": " << present << " of " << outputs.size()
+                                                             << " outputs published";
+      };
+      cases.push_back(std::move(k));
+    }
+    for (const Case& k : cases) children.push_back(std::make_unique<Child>(k.call));
+    std::this_thread::sleep_for(std::chrono::milliseconds(delay_ms));
+    for (const auto& child : children) kill(child->pid(), SIGINT);
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const Outcome r = wait_or_kill(*children[i]);
+      if (r.signal == SIGINT) {
+        ++interrupted;
+        EXPECT_TRUE(no_staging_left(entries(cases[i].dir->path()))) << cases[i].what;
+        cases[i].check(r);
+      } else {
+        ++finished;
+        EXPECT_EQ(r.exit_code, 0) << cases[i].what << ": " << r.err;
+        EXPECT_TRUE(no_staging_left(entries(cases[i].dir->path()))) << cases[i].what;
+      }
+    }
+  }
+  std::printf("contract: %d runs interrupted, %d finished first\n", interrupted, finished);
+}
+
 }  // namespace
 }  // namespace bluetile::robustness
