@@ -108,7 +108,7 @@ TEST(AnalyzeOutputs, SvgHoldsThePointsAndCurvesAndThePdfHasOnePage) {
 
   r = test::run_bluetile({"analyze", "-i", noise, "-o", dir.file("bad"), "--summary", dir.file("s.png")});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_NE(r.err.find("--summary writes .pdf or .svg"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("this output writes .pdf (PDF), .svg (SVG), not '.png'"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad")));
 }
 

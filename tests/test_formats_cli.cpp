@@ -78,9 +78,9 @@ TEST(FormatsCli, UnknownExtensionsAreRefusedBeforeAnyWork) {
   TempDir dir;
   auto r = run_bluetile({"relax", "-n", "10", "--engine", "exact", "-o", dir.file("points.png")});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_EQ(r.err, "bluetile: " + dir.file("points.png") +
-                       ": unknown extension '.png' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header; or say "
-                       "--format)\n");
+  EXPECT_EQ(r.err, "bluetile: --output '" + dir.file("points.png") +
+                       "': this output writes .txt .dat .pts (text points), .npy (NumPy), .bpt (point table), .h .hpp "
+                       "(C header), not '.png'; or say --format\n");
   EXPECT_TRUE(dir.list().empty());
 }
 

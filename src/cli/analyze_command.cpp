@@ -24,6 +24,7 @@
 #include "cli/commands.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
+#include "cli/output_names.h"
 #include "cli/point_output.h"
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
@@ -574,10 +575,8 @@ void run_analyze(const AnalyzeOptions& o) {
   const FrequencyAxis axis = o.axis == "integer" ? FrequencyAxis::integer : FrequencyAxis::normalised;
   std::string summary_format;
   if (!o.summary.empty()) {
-    const std::string extension = std::filesystem::path(o.summary).extension().string();
-    if (extension == ".pdf") summary_format = "pdf";
-    else if (extension == ".svg") summary_format = "svg";
-    else throw Error(o.summary + ": --summary writes .pdf or .svg, not '" + extension + "'");
+    static constexpr OutputFormat summary_formats[] = {OutputFormat::pdf, OutputFormat::svg};
+    summary_format = output_format("--summary", o.summary, summary_formats) == OutputFormat::pdf ? "pdf" : "svg";
     if (summary_format == "pdf" && !pdf_unavailable_reason().empty())
       throw Error(o.summary + ": " + pdf_unavailable_reason());
   }

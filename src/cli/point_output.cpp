@@ -1,11 +1,18 @@
 #include "cli/point_output.h"
 
 #include "bluetile/core/error.h"
+#include "cli/output_names.h"
 
 namespace bluetile::cli {
 namespace {
 
 bool one_file_each(const std::string& output) { return output.find("{}") != std::string::npos; }
+
+// --format, else the output-name rule (cli/output_names.h).
+TableFormat format_of(const std::string& path, const PointOutputOptions& options) {
+  if (!options.format.empty()) return table_format_for(path, options.format);
+  return table_format_of(output_format("--output", path, kPointTableFormats, "or say --format"));
+}
 
 // One set of a table, as its own table.
 TableView single_set(const TableView& table, std::size_t set) {
@@ -18,10 +25,10 @@ TableView single_set(const TableView& table, std::size_t set) {
 
 }  // namespace
 
-void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what) {
-  command->add_option("-o,--output", options.output,
-                      what + " (every {} becomes the set index: one file per set)")
-      ->required();
+void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what, bool required) {
+  CLI::Option* output =
+      command->add_option("-o,--output", options.output, what + " (every {} becomes the set index: one file per set)");
+  if (required) output->required();
   command->add_option("--format", options.format,
                       "text, npy (shape K x N x 2, or K x N x 3 with a level column), binary (.bpt, see README) or header (C/C++); "
                       "default: by the extension (.txt .dat .pts, .npy, .bpt, .h .hpp)")
@@ -46,12 +53,12 @@ PointOutput::PointOutput(OutputSet& outputs, const PointOutputOptions& options, 
     for (std::size_t k = 0; k < sets; ++k) {
       const std::string path = set_file_name(options.output, k, sets);
       // An unknown extension, or a header's array name that is no C name, is refused before any work.
-      if (table_format_for(path, options.format) == TableFormat::header) checked_table_name(path, options.name);
+      if (format_of(path, options) == TableFormat::header) checked_table_name(path, options.name);
       files_.push_back(&outputs.add(path));
     }
     return;
   }
-  TableFormat format = table_format_for(options.output, options.format);
+  TableFormat format = format_of(options.output, options);
   if (format == TableFormat::header) checked_table_name(options.output, options.name);
   if (format == TableFormat::text && sets > 1 && options.output.find('#') != std::string::npos)
     throw Error("--output '" + options.output + "': file names with '#' cannot hold several sets");
@@ -78,7 +85,7 @@ void PointOutput::write(const TableView& table, const std::vector<std::string>& 
 
 void PointOutput::write_one(OutputFile& file, const TableView& table, std::span<const PointSet> point_sets,
                             const std::vector<std::string>& header) {
-  const TableFormat format = table_format_for(file.path(), options_.format);
+  const TableFormat format = format_of(file.path(), options_);
   TableWriteOptions w;
   w.float32 = options_.float32;
   w.name = options_.name;

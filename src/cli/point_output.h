@@ -25,8 +25,10 @@ struct PointOutputOptions {
   std::string name;  // C header: the array's name
 };
 
-// Adds -o/--output (required), --format, --float32 and --name; `what` says what is written.
-void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what);
+// Adds -o/--output (required unless `required` is false), --format, --float32 and --name; `what`
+// says what is written.
+void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what,
+                              bool required = true);
 
 // `pattern` with every "{}" replaced by the set's index, zero-padded to the width of the last.
 std::string set_file_name(const std::string& pattern, std::size_t set, std::size_t sets);

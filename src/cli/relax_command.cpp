@@ -9,6 +9,7 @@
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/point_output.h"
+#include "cli/output_names.h"
 #include "cli/relax_log.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
@@ -54,6 +55,8 @@ void run_relax(const RelaxOptions& o) {
   }
   // The image plugin is loaded, and an image's format checked, before any output is staged.
   if (!o.density_map.empty() || !o.id_image.empty()) load_image_plugin();
+  static constexpr OutputFormat id_image_formats[] = {OutputFormat::image};
+  if (!o.id_image.empty()) output_format("--id-image", o.id_image, id_image_formats);
   if (!o.id_image.empty()) check_image_output(o.id_image);
   OutputSet outputs;
   if (!o.input.empty()) outputs.add_input(o.input);

@@ -13,6 +13,8 @@
 #include "cli/engine_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
+#include "cli/output_names.h"
+#include "cli/point_output.h"
 #include "cli/relax_log.h"
 #include "cli/stipple_drawing.h"
 #include "bluetile/core/error.h"
@@ -34,7 +36,7 @@ struct StippleOptions {
   std::uint64_t seed = 1;
   double tolerance = 0.0;
   bool periodic = false;
-  std::string output;
+  PointOutputOptions points;
   std::string svg;
   std::string png;
   int png_width = 1024;
@@ -93,16 +95,23 @@ void write_render(OutputFile& out, const std::vector<Point>& points, const std::
 }
 
 void run_stipple(const StippleOptions& o) {
+  if (o.points.output.empty() && o.svg.empty() && o.png.empty())
+    throw Error("stipple writes nothing without --output, --svg or --png: say at least one");
   // Refused at once, as relax does, rather than after the start is drawn.
   check_memory(static_cast<double>(o.count) * kRelaxBytesPerSite, "--count " + std::to_string(o.count));
   // Every output is declared, and so checked, before any work; they appear together at the end.
   // The image plugin is loaded, and the render's format checked, before any output is staged.
+  static constexpr OutputFormat svg_formats[] = {OutputFormat::svg};
+  static constexpr OutputFormat png_formats[] = {OutputFormat::image};
+  if (!o.svg.empty()) output_format("--svg", o.svg, svg_formats);
+  if (!o.png.empty()) output_format("--png", o.png, png_formats);
   load_image_plugin();
   if (!o.png.empty()) check_image_output(o.png);
   if (!o.drawing.size.empty()) parse_printed_length(o.drawing.size, "--size");
   OutputSet outputs;
   outputs.add_input(o.image);
-  OutputFile& points_file = outputs.add(o.output, {.allow_stdout = true});
+  std::unique_ptr<PointOutput> points_file =
+      o.points.output.empty() ? nullptr : std::make_unique<PointOutput>(outputs, o.points, 1);
   OutputFile* svg_file = o.svg.empty() ? nullptr : &outputs.add(o.svg, {.allow_stdout = true});
   OutputFile* png_file = o.png.empty() ? nullptr : &outputs.add(o.png);
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
@@ -129,7 +138,7 @@ void run_stipple(const StippleOptions& o) {
           " iterations, engine " + std::string(engine->name()) + ", seed " + std::to_string(o.seed) + ", image " +
           o.image,
       std::string("domain ") + size + (o.periodic ? ", periodic" : ", bounded") + " (y up: image row 0 at the top)"};
-  points_file.write([&](OutputStream& out) { write_points(out, PointSet{scene.sites, {}}, header); });
+  if (points_file) points_file->write(std::vector<PointSet>{PointSet{scene.sites, {}}}, header);
   const std::vector<double> radii = dot_radii(scene.sites, *map, domain, radius, o.drawing.follow_density);
   if (svg_file) {
     const PenTravel travel = write_stipple_svg(*svg_file, scene.sites, radii, domain, o.drawing);
@@ -157,11 +166,12 @@ void add_stipple_command(CLI::App& app) {
   add_seed_option(cmd, o->seed, "Seed of the density-proportional start");
   add_real_option(cmd, "--tolerance", o->tolerance, {}, "Stop early once no dot moves more than this (domain units)");
   cmd->add_flag("--periodic", o->periodic, "Cells wrap around the picture's edges (default: they end at the border)");
-  cmd->add_option("-o,--output", o->output,
-                  "Output point file: the picture's longer side spans [0, 1), y up (image row 0 is the top)")
-      ->required();
-  cmd->add_option("--svg", o->svg, "Also write the drawing as SVG (one black disc per dot)");
-  cmd->add_option("--png", o->png, "Also render the drawing as a PNG");
+  add_point_output_options(cmd, o->points,
+                           "Output points (optional when --svg or --png is given): the picture's longer side spans "
+                           "[0, 1), y up (image row 0 is the top)",
+                           false);
+  cmd->add_option("--svg", o->svg, "Write the drawing as SVG (.svg; one black disc per dot)");
+  cmd->add_option("--png", o->png, "Render the drawing as an image (.png .tif .tiff .jpg .jpeg .exr .bmp)");
   add_integer_option(cmd, "--png-width", o->png_width, 16, 32768, "Width of the --png render in pixels");
   add_real_option(cmd, "--dot-radius", o->dot_radius, {0.0, kInfinity, true, false},
                   "Dot radius in domain units (default: dots just touch where the image is darkest)")

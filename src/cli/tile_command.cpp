@@ -5,13 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 
 #include "cli/commands.h"
 #include "cli/density_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
+#include "cli/output_names.h"
 #include "cli/progress.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/error.h"
@@ -19,6 +19,7 @@
 #include "bluetile/io/density_map.h"
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
+#include "bluetile/io/pdf.h"
 #include "bluetile/tiling/default_tile_set.h"
 #include "bluetile/drawing/tiled_drawing.h"
 #include "bluetile/tiling/tiled_output.h"
@@ -56,19 +57,12 @@ struct TileOptions {
   bool verbose = false;
 };
 
-enum class OutputKind { text, binary, svg, image };
+// What -o writes, by the output-name rule (cli/output_names.h): "-" and names without an
+// extension are point files.
+constexpr OutputFormat kTileFormats[] = {OutputFormat::points_text, OutputFormat::raw_columns, OutputFormat::svg,
+                                         OutputFormat::image, OutputFormat::pdf};
 
-OutputKind output_kind(const std::string& path) {
-  if (path == "-") return OutputKind::text;
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (ext == ".svg") return OutputKind::svg;
-  if (ext == ".bin") return OutputKind::binary;
-  if (ext == ".png" || ext == ".tif" || ext == ".tiff" || ext == ".jpg" || ext == ".jpeg" || ext == ".exr" ||
-      ext == ".bmp")
-    return OutputKind::image;
-  return OutputKind::text;
-}
+OutputFormat output_kind(const std::string& path) { return output_format("--output", path, kTileFormats); }
 
 std::string number(double v) {
   char text[40];
@@ -173,9 +167,11 @@ void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files, int
                 number(plan.tiler->tile_size()) + ", more than the limit of " + std::to_string(kMaxCount) +
                 " tiles: use a larger --tile-size or a smaller region");
   for (const OutputFile* file : files) {
-    if (output_kind(file->path()) == OutputKind::svg)
-      check_memory(points * kSvgBytesPerDot, file->path() + ": an SVG of about " + rounded(points) + " dots");
-    if (output_kind(file->path()) == OutputKind::image)
+    const OutputFormat kind = output_kind(file->path());
+    if (kind == OutputFormat::svg || kind == OutputFormat::pdf)
+      check_memory(points * kSvgBytesPerDot, file->path() + (kind == OutputFormat::svg ? ": an SVG" : ": a PDF") +
+                                                " of about " + rounded(points) + " dots");
+    if (kind == OutputFormat::image)
       check_memory(static_cast<double>(width_pixels) * height_pixels * kCanvasBytesPerPixel,
                    file->path() + ": a render of " + std::to_string(width_pixels) + " x " + rounded(height_pixels) +
                        " pixels");
@@ -192,7 +188,7 @@ double render_height(const TileOptions& o, int width_pixels) {
 // A render's height, refused before any work when it is beyond what an image may be.
 void check_render_height(const TileOptions& o, const std::vector<OutputFile*>& files) {
   bool render = false;
-  for (const OutputFile* file : files) render = render || output_kind(file->path()) == OutputKind::image;
+  for (const OutputFile* file : files) render = render || output_kind(file->path()) == OutputFormat::image;
   const double width = o.region[2] - o.region[0], height = o.region[3] - o.region[1];
   for (double v : o.region)
     if (!std::isfinite(v)) return;  // a bad region is make_plan's to report
@@ -245,15 +241,23 @@ void run_tile(const TileOptions& o) {
   // Every output is declared, and so checked (folders, the same file twice), before any work;
   // all of them are published together at the end.
   // The image plugin is loaded before any output is staged.
+  // Every name is checked against the formats tile writes first.
   bool images = !o.density_map.empty();
-  for (const std::string& path : o.outputs) images = images || output_kind(path) == OutputKind::image;
+  for (const std::string& path : o.outputs) {
+    const OutputFormat kind = output_kind(path);
+    images = images || kind == OutputFormat::image;
+    if (kind == OutputFormat::pdf && !pdf_unavailable_reason().empty())
+      throw Error(path + ": " + pdf_unavailable_reason());
+  }
   if (images) load_image_plugin();
+  for (const std::string& path : o.outputs)
+    if (output_kind(path) == OutputFormat::image) check_image_output(path);
   OutputSet outputs;
   if (!o.tiles.empty()) outputs.add_input(o.tiles);
   if (!o.density_map.empty()) outputs.add_input(o.density_map);
   std::vector<OutputFile*> files;
   for (const std::string& path : o.outputs)
-    files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputKind::text}));
+    files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputFormat::points_text}));
   if (o.normalize && o.region[2] - o.region[0] != o.region[3] - o.region[1])
     throw Error("--normalize maps a square region onto the unit square; this region is " +
                 number(o.region[2] - o.region[0]) + " x " + number(o.region[3] - o.region[1]));
@@ -267,19 +271,24 @@ void run_tile(const TileOptions& o) {
   dots.follow_density = o.dots_follow_density;
   for (OutputFile* file : files) {
     switch (output_kind(file->path())) {
-      case OutputKind::text:
-      case OutputKind::binary: {
+      case OutputFormat::points_text:
+      case OutputFormat::raw_columns: {
         TiledFormat f = format;
-        f.binary = output_kind(file->path()) == OutputKind::binary;
+        f.binary = output_kind(file->path()) == OutputFormat::raw_columns;
         write_points(*file, plan, f, o.verbose);
         break;
       }
-      case OutputKind::svg:
+      case OutputFormat::svg:
         file->write(dots_svg(*plan.tiler, plan.window, plan.thinning.get(), dots));
         break;
-      case OutputKind::image:
+      case OutputFormat::pdf:
+        write_pdf(dots_drawing(*plan.tiler, plan.window, plan.thinning.get(), dots), *file);
+        break;
+      case OutputFormat::image:
         write_image(*file, render_dots(*plan.tiler, plan.window, plan.thinning.get(), dots, o.image_size));
         break;
+      default:
+        throw Error("internal: tile cannot write " + file->path());
     }
   }
   outputs.publish();
@@ -315,8 +324,8 @@ void add_tile_command(CLI::App& app) {
       ->default_str("");
   add_seed_option(cmd, o->seed, "Seed of the tiling");
   cmd->add_option("-o,--output", o->outputs,
-                  "Output, by extension: .svg dots, .png (.tif .exr ...) a render, .bin raw float64 columns, "
-                  "anything else (or - for stdout) a point file; repeat for several")
+                  "Output, by extension: .txt .dat .pts (or none, or - for stdout) a point file, .bin raw float64 "
+                  "columns, .svg or .pdf dots, .png .tif .tiff .jpg .jpeg .exr .bmp a render; repeat for several")
       ->required();
   cmd->add_option("--columns", o->columns, "Point-file columns, from x,y,i,j,tile,level,rank (i j: the cell)")
       ->capture_default_str();

@@ -26,6 +26,7 @@
 #include "cli/engine_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
+#include "cli/output_names.h"
 #include "cli/progress.h"
 
 namespace bluetile::cli {
@@ -129,6 +130,8 @@ void check_points_per_tile(const WangCommandOptions& o, int tiles) {
 }
 
 void run_wang(const WangCommandOptions& o) {
+  static constexpr OutputFormat tile_set_formats[] = {OutputFormat::tile_set};
+  output_format("--output", o.output, tile_set_formats);
   OutputSet outputs;  // checked before the work, written at the end
   OutputFile& output = outputs.add(o.output, {.allow_stdout = true});
   WangOptions w;
@@ -463,7 +466,7 @@ void add_wang_command(CLI::App& app) {
       ->capture_default_str();
   add_real_option(cmd, "--void-sigma", o->void_sigma, {0.1, 4.0}, "voids: kernel width in hexagonal spacings of the prefix");
   add_seed_option(cmd, o->seed);
-  cmd->add_option("-o,--output", o->output, "Output tile-set file")->required();
+  cmd->add_option("-o,--output", o->output, "Output tile-set file (.tiles or .txt; - for stdout)")->required();
   cmd->add_flag("--check", o->check, "Print the seam check of the result");
   cmd->add_flag("-v,--verbose", o->verbose, "Print displacement, energy and scene counts of every iteration on stderr");
   // The exact engine by default: a step is thousands of small cropped scenes, which it measures

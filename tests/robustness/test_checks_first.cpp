@@ -61,14 +61,16 @@ TEST(ChecksFirst, AnUnknownImageFormatIsRefusedBeforeTheRelaxation) {
                             "--id-image", dir.file("a.xyz")}});
   EXPECT_EQ(r.signal, 0) << "not refused before the relaxation";
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_EQ(r.err.rfind("bluetile: " + dir.file("a.xyz") + ": cannot write image: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err, "bluetile: --id-image '" + dir.file("a.xyz") +
+                       "': this output writes .png .tif .tiff .jpg .jpeg .exr .bmp (image), not '.xyz'\n");
   // stipple's --png the same.
   write_image_file(dir.file("map.png"), 2, 2, 1, std::vector<std::uint8_t>(4, 100));
   r = run_or_kill({{"stipple", "--image", dir.file("map.png"), "-n", "200", "-k", "100000000", "-o", dir.file("s.txt"),
                     "--png", dir.file("s.xyz")}});
   EXPECT_EQ(r.signal, 0) << "not refused before the relaxation";
   EXPECT_EQ(r.exit_code, 1) << r.err;
-  EXPECT_EQ(r.err.rfind("bluetile: " + dir.file("s.xyz") + ": cannot write image: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err, "bluetile: --png '" + dir.file("s.xyz") +
+                       "': this output writes .png .tif .tiff .jpg .jpeg .exr .bmp (image), not '.xyz'\n");
   EXPECT_EQ(entries(dir.path()), Names{"map.png"});
 }
 

@@ -28,14 +28,6 @@ constexpr char kNpyMagic[6] = {'\x93', 'N', 'U', 'M', 'P', 'Y'};
 // vanishes, small enough to stay in cache.
 constexpr std::size_t kSinkChunk = 1 << 16;
 
-// The extension of the file name in `path`, with its dot, lower case; "" when none.
-std::string extension_of(const std::string& path) {
-  std::size_t slash = path.find_last_of('/');
-  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
-  std::size_t dot = name.find_last_of('.');
-  if (dot == std::string::npos || dot == 0) return "";
-  return lower_case(name.substr(dot));
-}
 
 // Buffers bytes for a sink.
 class ChunkedWriter {
@@ -362,6 +354,28 @@ bool starts_with(std::string_view bytes, const char* magic, std::size_t size) {
 
 }  // namespace
 
+std::string file_extension(const std::string& path) {
+  std::size_t slash = path.find_last_of('/');
+  std::string name = slash == std::string::npos ? path : path.substr(slash + 1);
+  std::size_t dot = name.find_last_of('.');
+  if (dot == std::string::npos || dot == 0) return "";
+  return lower_case(name.substr(dot));
+}
+
+std::span<const std::string_view> table_format_extensions(TableFormat format) {
+  static constexpr std::string_view text[] = {".txt", ".dat", ".pts", ""};
+  static constexpr std::string_view npy[] = {".npy"};
+  static constexpr std::string_view binary[] = {".bpt"};
+  static constexpr std::string_view header[] = {".h", ".hpp"};
+  switch (format) {
+    case TableFormat::text: return text;
+    case TableFormat::npy: return npy;
+    case TableFormat::binary: return binary;
+    case TableFormat::header: return header;
+  }
+  return text;
+}
+
 TableFormat table_format_for(const std::string& path, const std::string& requested) {
   if (!requested.empty()) {
     for (TableFormat f : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header})
@@ -369,11 +383,10 @@ TableFormat table_format_for(const std::string& path, const std::string& request
     throw Error("unknown table format '" + requested + "' (text, npy, binary, header)");
   }
   if (path == "-") return TableFormat::text;
-  std::string ext = extension_of(path);
-  if (ext.empty() || ext == ".txt" || ext == ".dat" || ext == ".pts") return TableFormat::text;
-  if (ext == ".npy") return TableFormat::npy;
-  if (ext == ".bpt") return TableFormat::binary;
-  if (ext == ".h" || ext == ".hpp") return TableFormat::header;
+  const std::string ext = file_extension(path);
+  for (TableFormat f : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header})
+    for (std::string_view named : table_format_extensions(f))
+      if (ext == named) return f;
   throw Error(path + ": unknown extension '" + ext +
               "' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header; or say --format)");
 }
@@ -561,7 +574,7 @@ std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string&
   return builder.finish();
 }
 
-bool is_rps_path(const std::string& path) { return extension_of(path) == ".rps"; }
+bool is_rps_path(const std::string& path) { return file_extension(path) == ".rps"; }
 
 PointSet parse_rps_points(std::string_view bytes, const std::string& name, const ReadOptions& options) {
   constexpr std::size_t kPointBytes = 2 * sizeof(float);
@@ -714,7 +727,7 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
 }
 
 std::vector<PointSet> read_points_by_extension(const std::string& path, const ReadOptions& options) {
-  const std::string extension = path == "-" ? "" : extension_of(path);
+  const std::string extension = path == "-" ? "" : file_extension(path);
   std::vector<PointSet> sets;
   if (extension == ".npy") sets = parse_npy_table(read_input(path), input_name(path), options);
   else if (extension == ".bpt") sets = parse_binary_table(read_input(path), input_name(path), options);

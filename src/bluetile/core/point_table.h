@@ -39,6 +39,14 @@ enum class TableFormat { text, npy, binary, header };
 // The largest level a table may hold: as point files.
 inline constexpr int kMaxTableLevel = kMaxLevel;
 
+// The extension of the file name in `path` (after its last '/'), lower case, with its dot: "" when
+// it has none or its only dot starts the name (".hidden"). Every format-by-extension rule reads it.
+std::string file_extension(const std::string& path);
+
+// The extensions (as file_extension gives them) that name `format` when a table is written;
+// "" stands for a name without one: .txt .dat .pts and "" for text, .npy, .bpt, .h .hpp.
+std::span<const std::string_view> table_format_extensions(TableFormat format);
+
 // The format to write `path` in: `requested` when not empty ("text", "npy", "binary",
 // "header"), else by the extension: .txt .dat .pts or none -> text, .npy -> npy, .bpt -> binary,
 // .h .hpp -> header; "-" (standard output) -> text. Throws Error naming the path or the name for

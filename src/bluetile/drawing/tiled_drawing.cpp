@@ -50,7 +50,7 @@ Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thi
   return canvas;
 }
 
-std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style) {
+SvgDocument dots_drawing(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style) {
   const double display_width = 800.0;
   const double display_height = display_width * window.height() / window.width();
   SvgDocument svg(0.0, 0.0, window.width(), window.height(), display_width, display_height, "px");
@@ -65,7 +65,11 @@ std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* t
                                          window.width(), window.height()));
   for_each_dot(tiler, window, thinning, style, [&](Point p, double r) { svg.circle(p, r); });
   svg.end_group();
-  return svg.str();
+  return svg;
+}
+
+std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style) {
+  return dots_drawing(tiler, window, thinning, style).str();
 }
 
 }  // namespace bluetile

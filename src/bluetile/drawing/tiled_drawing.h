@@ -6,6 +6,7 @@
 #include <string>
 
 #include "bluetile/io/image.h"
+#include "bluetile/io/svg.h"
 #include "bluetile/tiling/density_thinning.h"
 #include "bluetile/tiling/tiler.h"
 
@@ -27,7 +28,9 @@ double default_dot_radius(double max_density);
 Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style,
                    int width_pixels);
 
-// The same as an SVG document: the view box is the window in plane units (y up), shown 800 px wide.
+// The same as a vector drawing: the view box is the window in plane units (y up), shown 800 px
+// wide; dots_svg is its SVG text (io/pdf.h draws it as PDF).
+SvgDocument dots_drawing(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style);
 std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style);
 
 }  // namespace bluetile
