@@ -352,3 +352,41 @@ TEST(Tiler, BadInputIsRefused) {
 
 }  // namespace
 }  // namespace bluetile
+
+namespace bluetile {
+namespace {
+
+TEST(Tiler, MapFitsPlaceTheMapByHand) {
+  // A 3 x 2 map on the 64:75 region [0, 64] x [0, 75] (narrower than the map): contain spans the
+  // width, 64 x 128/3 centred at y 37.5; cover spans the height, 112.5 x 75 centred at x 32.
+  const Window region{0.0, 0.0, 64.0, 75.0};
+  const Window contain = fit_map_rectangle(region, 3, 2, MapFit::contain);
+  EXPECT_EQ(contain.x0, 0.0);
+  EXPECT_EQ(contain.x1, 64.0);
+  EXPECT_DOUBLE_EQ(contain.y0, 37.5 - 64.0 / 3.0);
+  EXPECT_DOUBLE_EQ(contain.y1, 37.5 + 64.0 / 3.0);
+  const Window cover = fit_map_rectangle(region, 3, 2, MapFit::cover);
+  EXPECT_DOUBLE_EQ(cover.x0, 32.0 - 56.25);
+  EXPECT_DOUBLE_EQ(cover.x1, 32.0 + 56.25);
+  EXPECT_EQ(cover.y0, 0.0);
+  EXPECT_EQ(cover.y1, 75.0);
+  // A map of the region's aspect is the region, to the bit, whatever the fit (0.1 x 0.3 is not 1:3
+  // in binary).
+  const Window thin{0.0, 0.0, 0.1, 0.3};
+  for (MapFit fit : {MapFit::contain, MapFit::cover, MapFit::stretch}) {
+    const Window w = fit_map_rectangle(thin, 100, 300, fit);
+    EXPECT_TRUE(w.x0 == thin.x0 && w.x1 == thin.x1 && w.y0 == thin.y0 && w.y1 == thin.y1) << map_fit_name(fit);
+  }
+  EXPECT_EQ(parse_map_fit("cover"), MapFit::cover);
+  EXPECT_THROW(parse_map_fit("fill"), Error);
+  // contain: zero beside the map, the map's own values inside it.
+  const std::vector<float> texels(6, 1.0f);
+  const Thinning t = Thinning::from_fitted_map(3, 2, texels, region, MapFit::contain, 0.5);
+  EXPECT_EQ(t.fraction_at({32.0, 37.5}), 0.5);
+  EXPECT_EQ(t.fraction_at({32.0, contain.y1 + 64.0 / 3.0 / 2.0 + 1e-9}), 0.0);  // half a texel beyond the edge
+  EXPECT_EQ(t.fraction_at({32.0, 0.5}), 0.0);
+  EXPECT_DOUBLE_EQ(t.fraction_at({32.0, contain.y1}), 0.25);  // halfway down the bilinear step
+}
+
+}  // namespace
+}  // namespace bluetile

@@ -3,8 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <sstream>
 
 #include "bluetile/core/point_file.h"
@@ -119,6 +121,79 @@ TEST(TileCommand, NormalizedWindowIsAPointFileOnTheUnitSquare) {
     EXPECT_LT(row[1], 1.0);
   }
   EXPECT_NE(text.find("# tile grid "), std::string::npos);
+}
+
+// Centroid and spread of a tile point file's points (first two columns).
+struct Spread {
+  std::size_t count = 0;
+  double mean_x = 0.0, mean_y = 0.0, sd_x = 0.0, sd_y = 0.0, min_x = 1e300, max_x = -1e300;
+};
+
+Spread spread_of(const std::vector<std::vector<double>>& rows) {
+  Spread s;
+  for (const auto& row : rows) s.mean_x += row[0], s.mean_y += row[1], ++s.count;
+  s.mean_x /= static_cast<double>(s.count), s.mean_y /= static_cast<double>(s.count);
+  for (const auto& row : rows) {
+    s.sd_x += (row[0] - s.mean_x) * (row[0] - s.mean_x), s.sd_y += (row[1] - s.mean_y) * (row[1] - s.mean_y);
+    s.min_x = std::min(s.min_x, row[0]), s.max_x = std::max(s.max_x, row[0]);
+  }
+  s.sd_x = std::sqrt(s.sd_x / static_cast<double>(s.count)), s.sd_y = std::sqrt(s.sd_y / static_cast<double>(s.count));
+  return s;
+}
+
+TEST(TileCommand, FitKeepsTheMapsAspectOnARegionOfAnother) {
+  // A square map, black disc of radius 16 texels in 64 x 64 (a quarter of the side), on a 2:1
+  // region: a disc of radius R has spread R / 2 along each axis (the second moment of a uniform
+  // disc is R^2 / 4). contain puts the map's square on [0.5, 1.5] x [0, 1]: R = 0.25; cover on
+  // [0, 2] x [-0.5, 1.5]: R = 0.5; stretch makes the disc an ellipse of radii 0.5 x 0.25.
+  TempDir dir;
+  std::vector<std::uint8_t> pixels(64 * 64, 255);
+  for (int r = 0; r < 64; ++r)
+    for (int c = 0; c < 64; ++c)
+      if (std::hypot(c + 0.5 - 32.0, r + 0.5 - 32.0) < 16.0) pixels[static_cast<std::size_t>(r * 64 + c)] = 0;
+  write_image_file(dir.file("disc.png"), 64, 64, 1, pixels);
+  struct Case {
+    const char* fit;
+    double spread_x, spread_y;
+  };
+  for (const Case& c : {Case{"contain", 0.125, 0.125}, Case{"cover", 0.25, 0.25}, Case{"stretch", 0.25, 0.125}}) {
+    auto r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--density-map", dir.file("disc.png"), "--invert",
+                           "--transfer", "linear", "--max-density", "8000", "--fit", c.fit, "-o",
+                           dir.file(std::string(c.fit) + ".txt")});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Spread s = spread_of(data_rows(read_text(dir.file(std::string(c.fit) + ".txt"))));
+    // The disc's area (pi R_x R_y) at 8000 points per unit area, within 5 %.
+    EXPECT_NEAR(static_cast<double>(s.count), 8000.0 * 3.14159265358979 * 4.0 * c.spread_x * c.spread_y,
+                0.05 * 8000.0 * 3.14159265358979 * 4.0 * c.spread_x * c.spread_y)
+        << c.fit;
+    EXPECT_NEAR(s.mean_x, 1.0, 0.005) << c.fit;
+    EXPECT_NEAR(s.mean_y, 0.5, 0.005) << c.fit;
+    EXPECT_NEAR(s.sd_x, c.spread_x, 0.02 * c.spread_x) << c.fit;
+    EXPECT_NEAR(s.sd_y, c.spread_y, 0.02 * c.spread_y) << c.fit;
+  }
+  // contain by default; a uniform map then fills exactly its square, [0.5, 1.5] in x (the bilinear
+  // step takes half a texel, 1/16, each side of the edge), nothing beside it.
+  write_image_file(dir.file("white.png"), 8, 8, 1, std::vector<std::uint8_t>(64, 255));
+  auto r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--density-map", dir.file("white.png"), "--transfer",
+                         "linear", "--max-density", "4000", "-o", dir.file("white.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string text = read_text(dir.file("white.txt"));
+  EXPECT_NE(text.find("(fit contain)"), std::string::npos);
+  const Spread s = spread_of(data_rows(text));
+  EXPECT_NEAR(static_cast<double>(s.count), 4000.0, 3.0 * std::sqrt(4000.0));
+  EXPECT_GE(s.min_x, 0.5 - 1.0 / 16.0);
+  EXPECT_LT(s.min_x, 0.5 + 0.02);
+  EXPECT_LE(s.max_x, 1.5 + 1.0 / 16.0);
+  EXPECT_GT(s.max_x, 1.5 - 0.02);
+  // Refused: an unknown fit, and a fit without a map.
+  r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--density-map", dir.file("white.png"), "--fit", "fill",
+                    "-o", dir.file("bad.txt")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: --fit: fill not in {contain,cover,stretch} (see --help)\n");
+  r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--fit", "cover", "-o", dir.file("bad.txt")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --fit cover places a --density-map: give one\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("bad.txt")));
 }
 
 TEST(TileCommand, DensityMapFromAnImageSetsTheCountsPerRegion) {

@@ -49,6 +49,7 @@ struct TileOptions {
   std::string columns = "x,y";
   bool normalize = false;
   std::string density_map;
+  std::string fit = "contain";
   DensityMapOptions transfer;
   double dot_radius = 0.0;
   bool dots_follow_density = false;
@@ -68,6 +69,21 @@ std::string number(double v) {
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", v);
   return text;
+}
+
+// Midpoints per side of the grid on which the mean of a fitted map over the window is taken: the
+// count it sets is "about" (within a fraction of a percent for maps up to some 500 texels a side).
+constexpr int kMeanSamplesPerSide = 512;
+
+// The mean over `window` of the map's fraction (1 at its largest texel) when placed by `fit`.
+double mean_fraction_over(const DensityGrid& grid, const Window& window, MapFit fit) {
+  const Thinning probe = Thinning::from_fitted_map(grid.width, grid.height, grid.texels, window, fit, 1.0);
+  double sum = 0.0;
+  for (int j = 0; j < kMeanSamplesPerSide; ++j)
+    for (int i = 0; i < kMeanSamplesPerSide; ++i)
+      sum += probe.fraction_at({window.x0 + (i + 0.5) / kMeanSamplesPerSide * window.width(),
+                                window.y0 + (j + 0.5) / kMeanSamplesPerSide * window.height()});
+  return sum / (static_cast<double>(kMeanSamplesPerSide) * kMeanSamplesPerSide);
 }
 
 // The tiling, thinning and window the options describe.
@@ -111,6 +127,8 @@ Plan make_plan(const TileOptions& o) {
     for (float v : grid.texels) largest = std::max(largest, static_cast<double>(v)), mean += v;
     mean /= static_cast<double>(grid.texels.size());
   }
+  const MapFit fit = parse_map_fit(o.fit);
+  if (map && fit != MapFit::stretch) mean = largest * mean_fraction_over(grid, plan.window, fit);
 
   // The density where it is highest: given, from --count, or the full tiling's.
   double tile_size = o.tile_size;
@@ -133,7 +151,7 @@ Plan make_plan(const TileOptions& o) {
   plan.mean_density = target * mean / largest;
   if (map) {
     plan.thinning = std::make_unique<Thinning>(
-        Thinning::from_map(grid.width, grid.height, grid.texels, plan.window, fraction));
+        Thinning::from_fitted_map(grid.width, grid.height, grid.texels, plan.window, fit, fraction));
   } else if (fraction < 1.0) {
     plan.thinning = std::make_unique<Thinning>(Thinning::uniform(fraction));
   }
@@ -209,8 +227,8 @@ std::vector<std::string> header_lines(const TileOptions& o, const Plan& plan, co
                   ", tile size " + number(plan.tiler->tile_size()) + ", region " + number(w.x0) + " " + number(w.y0) +
                   " " + number(w.x1) + " " + number(w.y1) + (o.normalize ? " (normalized by its width)" : ""));
   if (!o.density_map.empty())
-    lines.push_back("density map " + o.density_map + ", max density " + number(plan.max_density) +
-                    " points per unit area");
+    lines.push_back("density map " + o.density_map + " (fit " + o.fit + "), max density " +
+                    number(plan.max_density) + " points per unit area");
   else
     lines.push_back("density " + number(plan.max_density) + " points per unit area");
   lines.push_back("columns " + tiled_column_names(format.columns));
@@ -313,7 +331,13 @@ void add_tile_command(CLI::App& app) {
                   "Points per unit area of a uniform tiling (with --tile-size: thinned to it by rank)")
       ->default_str("");
   cmd->add_option("--density-map", o->density_map,
-                  "Image whose values set the density (any format OpenImageIO reads), stretched over the region");
+                  "Image whose values set the density (any format OpenImageIO reads), placed on the region by --fit");
+  CLI::Option* fit = cmd->add_option("--fit", o->fit,
+                  "How --density-map meets a region of another aspect: contain (the whole picture, centred, its "
+                  "aspect kept; no points beside it), cover (the region filled, aspect kept, the overflow cut off "
+                  "evenly) or stretch")
+      ->check(CLI::IsMember({"contain", "cover", "stretch"}))
+      ->capture_default_str();
   add_density_transfer_options(cmd, o->transfer);
   add_real_option(cmd, "--max-density", o->max_density, positive,
                   "With --density-map: points per unit area at the densest texel")
@@ -339,7 +363,10 @@ void add_tile_command(CLI::App& app) {
   add_integer_option(cmd, "--image-size", o->image_size, 16, 16384, "Width of .png renders in pixels");
   add_threads_option(cmd, o->threads);
   cmd->add_flag("-v,--verbose", o->verbose, "Print counts and the time split (generate, format, write) on stderr");
-  cmd->callback([o] { run_tile(*o); });
+  cmd->callback([o, fit] {
+    if (fit->count() > 0 && o->density_map.empty()) throw Error("--fit " + o->fit + " places a --density-map: give one");
+    run_tile(*o);
+  });
 }
 
 }  // namespace bluetile::cli

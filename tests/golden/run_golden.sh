@@ -104,6 +104,8 @@ outputs() {
   run - tile --region 0 0 2 1 -s 7 --density-map "$image" --count 300 --dots-follow-density --dot-radius 0.01 \
     -o tile_density.txt -o tile_density.svg -o tile_density.png --image-size 64
   run - tile --region 0 0 2 1 -s 7 --density-map "$image" --invert --max-density 200 -o tile_density_inverted.txt
+  run - tile --region 0 0 2 1 -s 7 --density-map "$image" --fit stretch --count 300 -o tile_density_stretch.txt
+  run - tile --region 0 0 2 1 -s 7 --density-map "$image" --fit cover --count 300 -o tile_density_cover.txt
 
   # stipple: the point file, SVG, PNG and log, bounded and periodic.
   run - stipple --image "$image" -n 40 -k 4 -s 2 -o stipple.txt --svg stipple.svg --png stipple.png \

@@ -21,6 +21,61 @@ void check_fraction(double fraction, const char* what) {
 
 }  // namespace
 
+MapFit parse_map_fit(const std::string& name) {
+  for (MapFit fit : {MapFit::contain, MapFit::cover, MapFit::stretch})
+    if (name == map_fit_name(fit)) return fit;
+  throw Error("map fit '" + name + "': expected contain, cover or stretch");
+}
+
+const char* map_fit_name(MapFit fit) {
+  switch (fit) {
+    case MapFit::contain: return "contain";
+    case MapFit::cover: return "cover";
+    case MapFit::stretch: return "stretch";
+  }
+  return "stretch";
+}
+
+Window fit_map_rectangle(const Window& window, int width, int height, MapFit fit) {
+  if (fit == MapFit::stretch || width < 1 || height < 1) return window;
+  const double map_aspect = static_cast<double>(width) / height;
+  const double window_aspect = window.width() / window.height();
+  // contain spans the window's width when the map is the wider one; cover spans it otherwise.
+  const bool full_width = (fit == MapFit::contain) == (map_aspect > window_aspect);
+  Window fitted = window;
+  if (full_width) {
+    const double side = window.width() / map_aspect, middle = 0.5 * (window.y0 + window.y1);
+    // A map of the window's aspect, up to rounding, covers the window exactly.
+    if (std::abs(side - window.height()) > 1e-12 * window.height())
+      fitted.y0 = middle - 0.5 * side, fitted.y1 = middle + 0.5 * side;
+  } else {
+    const double side = window.height() * map_aspect, middle = 0.5 * (window.x0 + window.x1);
+    if (std::abs(side - window.width()) > 1e-12 * window.width())
+      fitted.x0 = middle - 0.5 * side, fitted.x1 = middle + 0.5 * side;
+  }
+  return fitted;
+}
+
+Thinning Thinning::from_fitted_map(int width, int height, std::span<const float> texels, const Window& window,
+                                   MapFit fit, double max_fraction) {
+  const Window rectangle = fit_map_rectangle(window, width, height, fit);
+  const bool pad_x = fit == MapFit::contain && (rectangle.x0 > window.x0 || rectangle.x1 < window.x1);
+  const bool pad_y = fit == MapFit::contain && (rectangle.y0 > window.y0 || rectangle.y1 < window.y1);
+  Thinning unpadded = from_map(width, height, texels, rectangle, max_fraction);  // checks the map as given
+  if (!pad_x && !pad_y) return unpadded;
+  // One zero texel beyond each padded side, the rectangle grown by one texel there.
+  const int border_x = pad_x ? 1 : 0, border_y = pad_y ? 1 : 0;
+  const int padded_width = width + 2 * border_x, padded_height = height + 2 * border_y;
+  std::vector<float> padded(static_cast<std::size_t>(padded_width) * static_cast<std::size_t>(padded_height), 0.0f);
+  for (int r = 0; r < height; ++r)
+    std::copy_n(texels.begin() + static_cast<std::ptrdiff_t>(r) * width, width,
+                padded.begin() + static_cast<std::ptrdiff_t>(r + border_y) * padded_width + border_x);
+  const double texel_x = rectangle.width() / width, texel_y = rectangle.height() / height;
+  const Window grown{rectangle.x0 - border_x * texel_x, rectangle.y0 - border_y * texel_y,
+                     rectangle.x1 + border_x * texel_x, rectangle.y1 + border_y * texel_y};
+  return from_map(padded_width, padded_height, padded, grown, max_fraction);
+}
+
 Thinning Thinning::uniform(double fraction) {
   check_fraction(fraction, "thinning fraction");
   Thinning t;

@@ -20,12 +20,29 @@
 
 #include <cstdint>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "bluetile/core/torus.h"
 #include "bluetile/tiling/tiler.h"
 
 namespace bluetile {
+
+// How a density map of one aspect ratio is placed on a window of another.
+enum class MapFit {
+  contain,  // the whole map, its aspect kept, centred; nothing beside it
+  cover,    // the window filled, the map's aspect kept, centred; what overflows is cut off
+  stretch,  // the map stretched over the window
+};
+
+// "contain", "cover", "stretch"; and back. parse_map_fit throws Error naming the value and the list.
+MapFit parse_map_fit(const std::string& name);
+const char* map_fit_name(MapFit fit);
+
+// The rectangle of the plane a `width` x `height` texel map covers when placed on `window` by
+// `fit`: the window itself for stretch (and for a map of the window's aspect, to the bit), else the
+// centred rectangle of the map's aspect that fits inside it (contain) or holds it (cover).
+Window fit_map_rectangle(const Window& window, int width, int height, MapFit fit);
 
 class Thinning {
  public:
@@ -41,6 +58,12 @@ class Thinning {
   // (outside (0, 1]).
   static Thinning from_map(int width, int height, std::span<const float> texels, const Window& rectangle,
                            double max_fraction);
+
+  // The map placed on `window` by `fit` (fit_map_rectangle). contain leaves no points beside the
+  // map: the grid gains a border of zero texels on the sides with room, so the density falls to
+  // zero over the half texel each side of the map's edge (the bilinear step) and is zero beyond.
+  static Thinning from_fitted_map(int width, int height, std::span<const float> texels, const Window& window,
+                                  MapFit fit, double max_fraction);
 
   bool constant() const { return grid_.empty(); }
   // f(p), in [0, max_fraction].
