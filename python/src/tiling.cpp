@@ -138,7 +138,7 @@ nb::dict tile_set(const std::optional<std::string>& tiles) {
 
 nb::object tile(std::tuple<double, double, double, double> region, const std::optional<std::string>& tiles,
                 double tile_size, double density, std::uint64_t seed, std::optional<AnyArray> density_map,
-                double max_density, bool columns) {
+                double max_density, const std::string& fit, bool columns) {
   const auto [x0, y0, x1, y1] = region;
   const bluetile::Window window{x0, y0, x1, y1};
   for (double v : {x0, y0, x1, y1})
@@ -148,9 +148,12 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
       !std::isfinite(max_density))
     throw nb::value_error("tile_size, density and max_density: expected finite numbers >= 0 (0: not given)");
   if (density_map && density > 0.0) throw nb::value_error("density is for uniform tilings; with density_map give max_density");
+  if (fit != "contain" && fit != "cover" && fit != "stretch")
+    throw nb::value_error(("fit: expected 'contain', 'cover' or 'stretch', got '" + fit + "'").c_str());
+  const bluetile::MapFit map_fit = bluetile::parse_map_fit(fit);
   if (!density_map && max_density > 0.0) throw nb::value_error("max_density needs density_map");
 
-  // The map, stretched over the region.
+  // The map, placed on the region by `fit` (as `bluetile tile --fit`).
   std::optional<bluetile::DensityGrid> map;
   if (density_map) map = density_grid(*density_map, "density_map");
 
@@ -173,7 +176,7 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
     const double fraction = target == 0.0 || target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
     std::optional<bluetile::Thinning> thinning;
     if (density_map)
-      thinning = bluetile::Thinning::from_map(map->width, map->height, map->texels, window, fraction);
+      thinning = bluetile::Thinning::from_fitted_map(map->width, map->height, map->texels, window, map_fit, fraction);
     else if (fraction < 1.0)
       thinning = bluetile::Thinning::uniform(fraction);
     points = tiler.tiled_points(window, thinning ? &*thinning : nullptr);
@@ -229,15 +232,18 @@ the text of a tile-set file, a path to one, or None for the set built into the l
   m.def("tile", &tile,
         nb::sig("def tile(region: tuple[float, float, float, float], *, tiles: str | None = None, tile_size: float = 0, "
                 "density: float = 0, seed: int = 1, density_map: NDArray[numpy.floating] | None = None, "
-                "max_density: float = 0, columns: bool = False) -> NDArray[numpy.float64] | dict[str, NDArray]"),
+                "max_density: float = 0, fit: str = 'contain', columns: bool = False) -> NDArray[numpy.float64] | "
+                "dict[str, NDArray]"),
         "region"_a, nb::kw_only(), "tiles"_a = nb::none(), "tile_size"_a = 0.0, "density"_a = 0.0, "seed"_a = 1,
-        "density_map"_a = nb::none(), "max_density"_a = 0.0, "columns"_a = false,
+        "density_map"_a = nb::none(), "max_density"_a = 0.0, "fit"_a = "contain", "columns"_a = false,
         R"(The points of the window ``region`` = (x0, y0, x1, y1) (half-open) of the aperiodic tiling of
 the plane by a tile set, as ``bluetile tile --region``: the same points on every overlap for the
 same seed. ``tile_size`` (plane units per tile) or ``density`` (points per unit area; the tile
 size follows from it, and a lower density than the tiles hold thins every tile by rank); with
-``density_map`` (2-D array, row 0 at the top, stretched over the region) points are kept by rank
-where the map is dense, ``max_density`` where it is highest. Returns an (M, 2) array, or with
+``density_map`` (2-D array, row 0 at the top, placed on the region by ``fit`` as ``--fit`` does:
+'contain', the whole map centred with its aspect kept and no points beside it; 'cover', the region
+filled with the aspect kept; 'stretch') points are kept by rank where the map is dense,
+``max_density`` where it is highest. Returns an (M, 2) array, or with
 ``columns=True`` a dict of 'points', 'i', 'j' (cells), 'tile', 'level', 'rank'.)");
 }
 

@@ -317,6 +317,23 @@ def test_tile_matches_the_tool(tool, tmp_path):
     assert np.array_equal(np.sort(left.view("f8,f8"), axis=0), np.sort(inside.copy().view("f8,f8"), axis=0))
 
 
+def test_tile_fits_a_density_map_as_the_tool(tool, tmp_path):
+    # A uniform 4 x 4 map on a 2:1 region: 'contain' fills only its square [0.5, 1.5] x [0, 1] (the
+    # bilinear step reaches half a texel, 1/8, beyond), as `bluetile tile --fit contain` does.
+    white = tmp_path / "white.pgm"
+    white.write_text("P2\n4 4\n255\n" + "255 255 255 255\n" * 4)
+    for fit in ("contain", "cover", "stretch"):
+        out = tmp_path / f"{fit}.txt"
+        tool("tile", "--region", 0, 0, 2, 1, "--density-map", white, "--transfer", "linear", "--max-density", 400,
+             "--fit", fit, "--seed", 3, "--output", out)
+        got = bt.tile((0, 0, 2, 1), density_map=np.ones((4, 4)), max_density=400, fit=fit, seed=3)
+        assert np.array_equal(got, np.loadtxt(out, comments="#", ndmin=2)), fit
+    contained = bt.tile((0, 0, 2, 1), density_map=np.ones((4, 4)), max_density=400, seed=3)
+    assert contained[:, 0].min() >= 0.5 - 0.125 and contained[:, 0].max() <= 1.5 + 0.125
+    with pytest.raises(ValueError, match="fit"):
+        bt.tile((0, 0, 2, 1), density_map=np.ones((4, 4)), max_density=400, fit="fill")
+
+
 def test_tile_follows_a_density_map():
     # Dense on the left column of the map, empty on the right: row 0 is the top.
     density_map = np.array([[1.0, 0.0], [1.0, 0.0]])

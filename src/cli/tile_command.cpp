@@ -356,7 +356,7 @@ void add_tile_command(CLI::App& app) {
   cmd->add_flag("--normalize", o->normalize,
                 "Write coordinates relative to the (square) region, scaled onto [0,1)^2, for `bluetile analyze`");
   add_real_option(cmd, "--dot-radius", o->dot_radius, positive,
-                  "Dot radius in plane units for .svg and .png (default: dots cover 35 % where densest)")
+                  "Dot radius in plane units for .svg, .pdf and .png (default: dots cover 35 % where densest)")
       ->default_str("");
   cmd->add_flag("--dots-follow-density", o->dots_follow_density,
                 "Dot area proportional to the local density (radius r sqrt(density / max density))");
