@@ -36,6 +36,9 @@ constexpr double kDefaultStippleCount = 30000.0;
 // document's items and its text. Measured (peak RSS of a 10^6-dot `tile -o x.svg`, 140 bytes)
 // and rounded up.
 constexpr double kSvgBytesPerDot = 160.0;
+// The same for a PDF drawing: the document, then cairo's page. Measured (peak RSS of `tile -o x.pdf`
+// at 3 and 6 x 10^5 dots: 980 bytes a dot between them) and rounded up.
+constexpr double kPdfBytesPerDot = 1100.0;
 
 struct TileOptions {
   std::string tiles;
@@ -187,8 +190,9 @@ void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files, int
   for (const OutputFile* file : files) {
     const OutputFormat kind = output_kind(file->path());
     if (kind == OutputFormat::svg || kind == OutputFormat::pdf)
-      check_memory(points * kSvgBytesPerDot, file->path() + (kind == OutputFormat::svg ? ": an SVG" : ": a PDF") +
-                                                " of about " + rounded(points) + " dots");
+      check_memory(points * (kind == OutputFormat::svg ? kSvgBytesPerDot : kPdfBytesPerDot),
+                   file->path() + (kind == OutputFormat::svg ? ": an SVG" : ": a PDF") + " of about " +
+                       rounded(points) + " dots");
     if (kind == OutputFormat::image)
       check_memory(static_cast<double>(width_pixels) * height_pixels * kCanvasBytesPerPixel,
                    file->path() + ": a render of " + std::to_string(width_pixels) + " x " + rounded(height_pixels) +
