@@ -75,7 +75,7 @@ std::string number(double v) {
 }
 
 // Midpoints per side of the grid on which the mean of a fitted map over the window is taken: the
-// count it sets is "about" (within a fraction of a percent for maps up to some 500 texels a side).
+// count it sets is "about", like the texel mean of a map that covers the window exactly.
 constexpr int kMeanSamplesPerSide = 512;
 
 // The mean over `window` of the map's fraction (1 at its largest texel) when placed by `fit`.
@@ -131,7 +131,13 @@ Plan make_plan(const TileOptions& o) {
     mean /= static_cast<double>(grid.texels.size());
   }
   const MapFit fit = parse_map_fit(o.fit);
-  if (map && fit != MapFit::stretch) mean = largest * mean_fraction_over(grid, plan.window, fit);
+  // A map that covers the window exactly (stretched, or of its aspect) keeps the texel mean.
+  if (map) {
+    const Window placed = fit_map_rectangle(plan.window, grid.width, grid.height, fit);
+    const bool exact = placed.x0 == plan.window.x0 && placed.x1 == plan.window.x1 && placed.y0 == plan.window.y0 &&
+                       placed.y1 == plan.window.y1;
+    if (!exact) mean = largest * mean_fraction_over(grid, plan.window, fit);
+  }
 
   // The density where it is highest: given, from --count, or the full tiling's.
   double tile_size = o.tile_size;
