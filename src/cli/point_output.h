@@ -1,9 +1,10 @@
-// The point-set output of a command (relax, dart, progressive, centroids): --output (a '{}' in
-// it, every occurrence, is the set index: one file per set), --format, --float32, --name. The
-// names and formats are checked when the output is made, before any work; the format comes from
-// --format or each file's extension (core/point_table.h), never silently text. The files are
-// outputs of the command's OutputSet (core/output_file.h): checked when declared, published with
-// the command's other outputs. '-' is standard output (text, or --format).
+// The point-set output of a command (relax, dart, progressive, centroids, stipple): --output (a
+// '{}' in it, every occurrence, is the set index: one file per set), --format, --float32, --name.
+// The names and formats are checked when the output is made, before any work; the format comes
+// from --format or each file's extension (the output-name rule, cli/output_names.h), never
+// silently text. The files are outputs of the command's OutputSet (core/output_file.h): checked
+// when declared, published with the command's other outputs. '-' is standard output (text, or
+// --format).
 #pragma once
 
 #include <span>
