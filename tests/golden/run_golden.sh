@@ -111,6 +111,8 @@ outputs() {
   run - stipple --image "$image" -n 40 -k 4 -s 2 -o stipple.txt --svg stipple.svg --png stipple.png \
     --png-width 64 --log stipple_log.csv
   run - stipple --image "$image" -n 40 -k 4 -s 2 --periodic --no-invert --tolerance 1e-12 -o stipple_periodic.txt
+  run - stipple --image "$image" -n 40 -k 4 -s 2 -o stipple.npy
+  run - stipple --image "$image" -n 40 -k 4 -s 2 --svg stipple_only.svg
 
   # devices: the machine's own list; it only has to run.
   run - devices
