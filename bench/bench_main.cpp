@@ -1,4 +1,4 @@
-// bluetile_bench: the centroid engines side by side on the same inputs, in one process (issue 5).
+// bluetile_bench: the centroid engines side by side on the same inputs, in one process.
 //
 // For every N and start (uniform random sites, or sites after some exact Lloyd iterations) and
 // every engine: time of one Lloyd iteration (engine call plus moving the sites; median of

@@ -1,4 +1,4 @@
-// The exact engine on sites far from uniform (issue 13, item 7): one Lloyd step's cells for sites
+// The exact engine on sites far from uniform: one Lloyd step's cells for sites
 // on a line, on a diagonal line, nearly on a line and in a small cluster, next to uniform sites
 // of the same N, as milliseconds per iteration and as a ratio to uniform. Repeats interleave the
 // sets so that a machine shared with others drifts alike for all (docs/BENCHMARKS.md).

@@ -9,7 +9,7 @@
 // exact engine and in parallel with an engine per worker, side by side in one run; checks that
 // both give the same bits.
 //
-// `bluetile_progressive_bench prefixes N seeds [sigma...]`: the prefix sweep of untiled
+// `bluetile_progressive_bench prefixes N seeds [sigma...]`: the prefix sweep (docs/RESULTS.md) of untiled
 // progressive sets of N points (k at 1/16 ... 1 of N and every level boundary), rho and LF worst
 // (and mean) over seeds 1..seeds, for the placement and voids rank orders side by side, built as
 // `bluetile progressive --count N/16 --ratio 2 --levels 5 --engine exact` and as

@@ -1,4 +1,4 @@
-// Where a raster pass spends its time (issue 11): Lloyd loops on the raster engine and on the
+// Where a raster pass spends its time: Lloyd loops on the raster engine and on the
 // exact engine, interleaved in one process, with the raster engine's own stage times (upload,
 // device submission and wait, host work), CPU time beside wall time, passes, redos and boundary
 // pixels per iteration. Engine construction (Vulkan device, pipelines) is timed apart.

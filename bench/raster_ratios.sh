@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The raster engine against the exact engine on the jobs of issue 11, as a user runs them:
+# The raster engine against the exact engine on the jobs docs/RASTER.md measures, as a user runs them:
 # `bluetile relax` wall time and peak resident memory, raster (default: area coverage) and
 # `--engine exact` interleaved in one run (round r runs every job once), so that load from
 # other processes falls on both alike. Prints a markdown table of medians and ratios.

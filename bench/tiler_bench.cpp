@@ -1,4 +1,4 @@
-// bluetile_tiler_bench: the plane tiler's throughput and density control (issue 10; figures in
+// bluetile_tiler_bench: the plane tiler's throughput and density control (figures in
 // docs/BENCHMARKS.md and docs/RESULTS.md with the command that made them).
 //   throughput  uniform points into memory (one big array, and cell by cell into a buffer that
 //               stays in cache), density tests per second with a 1024^2 map, 10^6 stipples from

@@ -1,4 +1,4 @@
-// bluetile_wang_bench: build time and quality of Wang-tile sample sets (issue 9; the paper,
+// bluetile_wang_bench: build time and quality of Wang-tile sample sets (the paper,
 // section 3), over seeds, for the figures table in docs/RESULTS.md.
 //
 //   quality: for every kind, points per tile, strategy and seed, builds a set and reports the

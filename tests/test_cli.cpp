@@ -12,7 +12,7 @@ using test::run_bluetile;
 using test::TempDir;
 
 TEST(Cli, HelpOnEverySubcommand) {
-  // Issue 13, item 17: this covered 2 of the subcommands.
+  // This covered 2 of the subcommands.
   for (std::string sub : {"relax", "centroids", "analyze", "dart", "progressive", "devices", "stipple"}) {
     auto r = run_bluetile({sub, "--help"});
     EXPECT_EQ(r.exit_code, 0) << sub;

@@ -195,7 +195,7 @@ TEST(ExactEngine, MatchesBruteForceOnRandomSets) {
 }
 
 TEST(ExactEngine, MatchesBruteForceOnNonSquareDomains) {
-  // Issue 13, item 17: rectangular periodic domains had no independent reference.
+  // Rectangular periodic domains had no independent reference.
   for (Domain domain : {Domain{{2.0, 0.5}}, Domain{{0.25, 3.0}}, Domain{{1.0, 0.1}}, Domain{{7.0, 3.0}}}) {
     for (std::uint64_t seed = 1; seed <= 3; ++seed) {
       std::vector<Point> sites = uniform_points(150, seed + 40);

@@ -74,7 +74,7 @@ TEST(Lloyd, StopsOnceBelowTheTolerance) {
 }
 
 TEST(Lloyd, KeepsNoHistoryUnlessAsked) {
-  // Issue 13, item 10: a million iterations on 10 sites once took 176 MB for the history.
+  // A million iterations on 10 sites once took 176 MB for the history.
   Scene scene = make_scene(test::uniform_points(10, 3));
   ExactEngine engine;
   LloydOptions options;

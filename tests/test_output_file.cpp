@@ -58,7 +58,7 @@ TEST(OutputFile, NewAndReplacedRegularFilesKeepThePermissionBits) {
   umask(umask_now);
   EXPECT_EQ(mode_of(dir.file("new.txt")) & 0777, 0666 & ~umask_now);
 
-  // Issue 13, item 1: a 0600 file once came back 0644.
+  // A 0600 file once came back 0644.
   dir.write("secret.txt", "old\n");
   chmod(dir.file("secret.txt").c_str(), 0600);
   write_output(dir.file("secret.txt"), "new\n");
@@ -117,7 +117,7 @@ TEST(OutputFile, DeviceNodesAreWrittenDirectly) {
     GTEST_SKIP() << "mknod is not permitted here (needs CAP_MKNOD): device outputs not tested";
   }
   write_output(null_device, "into the void\n");
-  EXPECT_TRUE(S_ISCHR(mode_of(null_device)));  // issue 13, item 1: it became a regular file
+  EXPECT_TRUE(S_ISCHR(mode_of(null_device)));  // it became a regular file
   EXPECT_EQ(error_of([&] { write_output(full_device, "x"); }), full_device + ": cannot write: No space left on device");
   EXPECT_TRUE(S_ISCHR(mode_of(full_device)));
   EXPECT_EQ(everything_in(dir.path()), (std::vector<std::string>{"myfull", "mynull"}));
@@ -136,7 +136,7 @@ TEST(OutputFile, DescriptorPathsWriteThatDescriptor) {
 }
 
 TEST(OutputFile, StandardOutputIsKnownAsSuch) {
-  // Issue 24, item 2: "-" is kept as a copy of descriptor 1, and is_stdout() tested for 1 itself.
+  // "-" is kept as a copy of descriptor 1, and is_stdout() tested for 1 itself.
   // One set each: where standard output is a file, "-" and /dev/stdout are the same output.
   TempDir dir;
   EXPECT_TRUE(OutputSet().add("-", {.allow_stdout = true}).is_stdout());
@@ -160,7 +160,7 @@ TEST(OutputFile, RefusedBeforeAnyWork) {
   EXPECT_EQ(refused([&](OutputSet& o) { o.add(dir.file("folder")); }), dir.file("folder") + ": is a folder");
   EXPECT_EQ(refused([&](OutputSet& o) { o.add(dir.file("no/such/x.txt")); }),
             dir.file("no/such/x.txt") + ": folder '" + dir.file("no/such") + "' does not exist");
-  // Issue 13, item 11: --log pointed at the input replaced the input.
+  // --log pointed at the input replaced the input.
   for (const char* same : {"input.txt", "input-link.txt", "input-hard.txt", "folder/../input.txt"}) {
     EXPECT_EQ(refused([&](OutputSet& o) { o.add(dir.file(same)); }),
               dir.file(same) + ": is the same file as the input " + dir.file("input.txt"));

@@ -82,7 +82,7 @@ TEST(PointFile, MalformedLinesNameFileLineAndValue) {
 }
 
 TEST(PointFile, ByteOrderMarkIsSkippedAtTheStartOnly) {
-  // Issue 13, item 13: "\xEF\xBB\xBF0.1 0.2" was "not a number '\xEF\xBB\xBF0.1'".
+  // "\xEF\xBB\xBF0.1 0.2" was "not a number '\xEF\xBB\xBF0.1'".
   PointSet set = parse_points("\xEF\xBB\xBF" "0.1 0.2\n0.3 0.4\n", "x");
   EXPECT_EQ(set.points, (std::vector<Point>{{0.1, 0.2}, {0.3, 0.4}}));
   EXPECT_EQ(parse_error("0.1 0.2\n\xEF\xBB\xBF" "0.3 0.4\n"), "pts.txt:2: not a number '\xEF\xBB\xBF" "0.3'");
@@ -109,7 +109,7 @@ TEST(PointFile, PiecesCutAnywhereParseAsTheWhole) {
 }
 
 TEST(PointFile, QuotedValuesAreCut) {
-  // Issue 13, item 13: a 10 MB bad line was quoted whole.
+  // A 10 MB bad line was quoted whole.
   const std::string long_token(1000, 'z');
   EXPECT_EQ(parse_error("0.1 " + long_token + "\n"), "pts.txt:1: not a number '" + std::string(40, 'z') + "...' (1000 bytes)");
   EXPECT_EQ(parse_error("0.1 0.2 3 " + long_token + "\n"),

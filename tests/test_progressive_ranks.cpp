@@ -85,7 +85,7 @@ std::vector<PointSet> build_sets(ProgressiveOrder order, std::size_t sets) {
   return add_levels([] { return std::make_unique<ExactEngine>(); }, std::vector<PointSet>(sets), options);
 }
 
-// The sweep on 1024 points, seeds 1-3 (bluetile_progressive_bench prefixes 1024 3: worst
+// The prefix sweep of docs/RESULTS.md on 1024 points, seeds 1-3 (bluetile_progressive_bench prefixes 1024 3: worst
 // LF of the in-between prefixes 0.169-0.196 placement, 0.085-0.102 voids; worst voids rho 0.576).
 TEST(ProgressiveRanks, VoidsPrefixesBeatPlacementBetweenBoundaries) {
   const std::vector<PointSet> placement = build_sets(ProgressiveOrder::placement, 3);

@@ -333,7 +333,7 @@ TEST(TileSet, MalformedFilesNameLineAndValue) {
 }
 
 TEST(TileSet, TilesWithoutPointsOrFarFromEqualAreRefused) {
-  // Issue 24, item 8: the reader accepted a tile without points, and tiles of wildly unequal
+  // The reader accepted a tile without points, and tiles of wildly unequal
   // counts; both name the tile's line.
   EXPECT_EQ(parse_error(wang8_file("# tile 3 0 1 1 1\n")), "t.txt:9: tile 3 has no points");
   std::string tile3 = "# tile 3 0 1 1 1\n";

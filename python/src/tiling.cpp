@@ -18,6 +18,7 @@
 #include "bluetile/tiling/density_thinning.h"
 #include "bluetile/tiling/tile_set.h"
 #include "bluetile/tiling/tiler.h"
+#include "bluetile/tiling/tiling_plan.h"
 
 namespace pybluetile {
 
@@ -138,48 +139,26 @@ nb::dict tile_set(const std::optional<std::string>& tiles) {
 
 nb::object tile(std::tuple<double, double, double, double> region, const std::optional<std::string>& tiles,
                 double tile_size, double density, std::uint64_t seed, std::optional<AnyArray> density_map,
-                double max_density, const std::string& fit, bool columns) {
+                double max_density, double count, const std::string& fit, bool columns) {
+  // The request as `bluetile tile` reads it (tiling/tiling_plan.h); bad values raise
+  // pybluetile.Error (a ValueError) naming them.
   const auto [x0, y0, x1, y1] = region;
-  const bluetile::Window window{x0, y0, x1, y1};
-  for (double v : {x0, y0, x1, y1})
-    if (!std::isfinite(v)) throw nb::value_error("region: coordinates must be finite");
-  if (!(x1 > x0) || !(y1 > y0)) throw nb::value_error("region: expected (x0, y0, x1, y1) with x1 > x0 and y1 > y0");
-  if (tile_size < 0.0 || density < 0.0 || max_density < 0.0 || !std::isfinite(tile_size) || !std::isfinite(density) ||
-      !std::isfinite(max_density))
-    throw nb::value_error("tile_size, density and max_density: expected finite numbers >= 0 (0: not given)");
-  if (density_map && density > 0.0) throw nb::value_error("density is for uniform tilings; with density_map give max_density");
-  if (fit != "contain" && fit != "cover" && fit != "stretch")
-    throw nb::value_error(("fit: expected 'contain', 'cover' or 'stretch', got '" + fit + "'").c_str());
-  const bluetile::MapFit map_fit = bluetile::parse_map_fit(fit);
-  if (!density_map && max_density > 0.0) throw nb::value_error("max_density needs density_map");
-
-  // The map, placed on the region by `fit` (as `bluetile tile --fit`).
+  bluetile::TilingRequest request;
+  request.window = {x0, y0, x1, y1};
+  request.tile_size = tile_size;
+  request.density = density;
+  request.max_density = max_density;
+  request.count = count;
+  request.seed = seed;
+  request.fit = bluetile::parse_map_fit(fit);
   std::optional<bluetile::DensityGrid> map;
   if (density_map) map = density_grid(*density_map, "density_map");
 
   std::vector<bluetile::TiledPoint> points;
   {
     nb::gil_scoped_release release;
-    bluetile::TileSet set = load_tile_set(tiles);
-    double per_tile = 0.0;
-    for (const bluetile::Tile& t : set.tiles) per_tile += static_cast<double>(t.points.size());
-    per_tile /= static_cast<double>(std::max<std::size_t>(1, set.tiles.size()));
-    // As `bluetile tile`: the tile size from the density when only that is given; the density
-    // where it is highest sets the thinning.
-    const double target = density_map ? max_density : density;
-    const double size = tile_size > 0.0 ? tile_size : target > 0.0 ? std::sqrt(per_tile / target) : 1.0;
-    const bluetile::Tiler tiler(std::move(set), seed, size);
-    const double full = tiler.full_density();
-    if (target > full * (1.0 + 1e-12))
-      throw bluetile::Error("density " + std::to_string(target) + " is more than tiles of size " + std::to_string(size) +
-                            " hold (" + std::to_string(full) + " points per unit area)");
-    const double fraction = target == 0.0 || target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
-    std::optional<bluetile::Thinning> thinning;
-    if (density_map)
-      thinning = bluetile::Thinning::from_fitted_map(map->width, map->height, map->texels, window, map_fit, fraction);
-    else if (fraction < 1.0)
-      thinning = bluetile::Thinning::uniform(fraction);
-    points = tiler.tiled_points(window, thinning ? &*thinning : nullptr);
+    const bluetile::TilingPlan plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request);
+    points = plan.tiler->tiled_points(plan.window, plan.thinning.get());
   }
   const std::size_t n = points.size();
   std::vector<double> xy;
@@ -232,10 +211,11 @@ the text of a tile-set file, a path to one, or None for the set built into the l
   m.def("tile", &tile,
         nb::sig("def tile(region: tuple[float, float, float, float], *, tiles: str | None = None, tile_size: float = 0, "
                 "density: float = 0, seed: int = 1, density_map: NDArray[numpy.floating] | None = None, "
-                "max_density: float = 0, fit: str = 'contain', columns: bool = False) -> NDArray[numpy.float64] | "
+                "max_density: float = 0, count: float = 0, fit: str = 'contain', columns: bool = False) -> "
+                "NDArray[numpy.float64] | "
                 "dict[str, NDArray]"),
         "region"_a, nb::kw_only(), "tiles"_a = nb::none(), "tile_size"_a = 0.0, "density"_a = 0.0, "seed"_a = 1,
-        "density_map"_a = nb::none(), "max_density"_a = 0.0, "fit"_a = "contain", "columns"_a = false,
+        "density_map"_a = nb::none(), "max_density"_a = 0.0, "count"_a = 0.0, "fit"_a = "contain", "columns"_a = false,
         R"(The points of the window ``region`` = (x0, y0, x1, y1) (half-open) of the aperiodic tiling of
 the plane by a tile set, as ``bluetile tile --region``: the same points on every overlap for the
 same seed. ``tile_size`` (plane units per tile) or ``density`` (points per unit area; the tile
@@ -243,7 +223,8 @@ size follows from it, and a lower density than the tiles hold thins every tile b
 ``density_map`` (2-D array, row 0 at the top, placed on the region by ``fit`` as ``--fit`` does:
 'contain', the whole map centred with its aspect kept and no points beside it; 'cover', the region
 filled with the aspect kept; 'stretch') points are kept by rank where the map is dense,
-``max_density`` where it is highest. Returns an (M, 2) array, or with
+``max_density`` where it is highest, or about ``count`` points over the region (neither: 30000,
+as the tool). Returns an (M, 2) array, or with
 ``columns=True`` a dict of 'points', 'i', 'j' (cells), 'tile', 'level', 'rank'.)");
 }
 

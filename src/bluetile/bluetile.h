@@ -42,6 +42,7 @@
 #include "bluetile/tiling/tile_set.h"
 #include "bluetile/tiling/tiled_output.h"
 #include "bluetile/tiling/tiler.h"
+#include "bluetile/tiling/tiling_plan.h"
 
 #if BLUETILE_WITH_IMAGES
 // images: density maps, image files, figures, SVG, PDF, plots, drawings of tiled windows.

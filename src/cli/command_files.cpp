@@ -19,7 +19,7 @@ std::span<const CommandFiles> command_files() {
        {"--no-psa-measures", "--no-discrepancy", "--no-centroids"},
        {{"-i", K::points, true}, {"--from", K::points}},
        {{"-o", "analysis", true, true}, {"--summary", "summary.svg"}, {"--psa-points", "psa.txt"}},
-       {"--label", "--title"}},
+       {"--label", "--title", "--by-rank"}},
       {"dart", {"-n", "30"}, {}, {{"-o", "points.txt", false, true}}, {"--name"}},
       {"progressive",
        {"--add", "10", "-k", "1", "--engine", "exact"},
@@ -43,7 +43,7 @@ std::span<const CommandFiles> command_files() {
        {"-n", "20", "-k", "1"},
        {{"--image", K::image, true}},
        {{"-o", "dots.txt", false, true}, {"--svg", "dots.svg"}, {"--png", "dots.png"}, {"--log", "log.csv"}},
-       {"--device"}},
+       {"--device", "--name"}},
   };
   return table;
 }

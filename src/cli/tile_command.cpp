@@ -24,13 +24,10 @@
 #include "bluetile/drawing/tiled_drawing.h"
 #include "bluetile/tiling/tiled_output.h"
 #include "bluetile/tiling/tiler.h"
+#include "bluetile/tiling/tiling_plan.h"
 
 namespace bluetile::cli {
 namespace {
-
-// Stipples a density map gets when nothing sets the density: a drawing a person recognises,
-// small enough for an SVG viewer.
-constexpr double kDefaultStippleCount = 30000.0;
 
 // Peak memory per dot of an SVG drawing, which is built whole before it is written: the
 // document's items and its text. Measured (peak RSS of a 10^6-dot `tile -o x.svg`, 140 bytes)
@@ -74,96 +71,26 @@ std::string number(double v) {
   return text;
 }
 
-// Midpoints per side of the grid on which the mean of a fitted map over the window is taken: the
-// count it sets is "about", like the texel mean of a map that covers the window exactly.
-constexpr int kMeanSamplesPerSide = 512;
-
-// The mean over `window` of the map's fraction (1 at its largest texel) when placed by `fit`.
-double mean_fraction_over(const DensityGrid& grid, const Window& window, MapFit fit) {
-  const Thinning probe = Thinning::from_fitted_map(grid.width, grid.height, grid.texels, window, fit, 1.0);
-  double sum = 0.0;
-  for (int j = 0; j < kMeanSamplesPerSide; ++j)
-    for (int i = 0; i < kMeanSamplesPerSide; ++i)
-      sum += probe.fraction_at({window.x0 + (i + 0.5) / kMeanSamplesPerSide * window.width(),
-                                window.y0 + (j + 0.5) / kMeanSamplesPerSide * window.height()});
-  return sum / (static_cast<double>(kMeanSamplesPerSide) * kMeanSamplesPerSide);
-}
-
-// The tiling, thinning and window the options describe.
-struct Plan {
-  std::unique_ptr<Tiler> tiler;
-  std::unique_ptr<Thinning> thinning;  // null: every point of every tile
-  Window window;
-  double max_density = 0.0;  // points per unit area where the density is highest
-  double mean_density = 0.0;  // points per unit area over the window, on average
+// The tiling, thinning and window the options describe (tiling/tiling_plan.h), and the set's name.
+struct Plan : TilingPlan {
   std::string tiles_name;
 };
 
 Plan make_plan(const TileOptions& o) {
-  Plan plan;
-  plan.window = {o.region[0], o.region[1], o.region[2], o.region[3]};
-  for (double v : o.region)
-    if (!std::isfinite(v)) throw Error("--region: coordinates must be finite, got " + number(v));
-  if (!(plan.window.x1 > plan.window.x0))
-    throw Error("--region: X1 must be greater than X0, got X0 " + number(plan.window.x0) + ", X1 " + number(plan.window.x1));
-  if (!(plan.window.y1 > plan.window.y0))
-    throw Error("--region: Y1 must be greater than Y0, got Y0 " + number(plan.window.y0) + ", Y1 " + number(plan.window.y1));
-  TileSet set = o.tiles.empty() ? default_tile_set() : read_tile_set(o.tiles);
-  plan.tiles_name = o.tiles.empty() ? std::string("default (") + kDefaultTileSetName + ")" : o.tiles;
-  double points_per_tile = 0.0;
-  for (const Tile& t : set.tiles) points_per_tile += static_cast<double>(t.points.size());
-  points_per_tile /= static_cast<double>(std::max<std::size_t>(1, set.tiles.size()));
-
-  const bool map = !o.density_map.empty();
-  if (map && o.density > 0.0) throw Error("--density is for uniform tilings; with --density-map use --max-density or --count");
-  if (!map && (o.max_density > 0.0 || o.count > 0.0)) throw Error("--max-density and --count need --density-map");
-  if (o.count > 0.0 && o.max_density > 0.0) throw Error("--count and --max-density exclude each other");
-
+  TilingRequest request;
+  request.window = {o.region[0], o.region[1], o.region[2], o.region[3]};
+  request.tile_size = o.tile_size;
+  request.density = o.density;
+  request.max_density = o.max_density;
+  request.count = o.count;
+  request.seed = o.seed;
+  request.fit = parse_map_fit(o.fit);
   DensityGrid grid;
-  if (map) grid = load_density_map(o.density_map, density_transfer(o.transfer));
-  // The map's mean and largest texel: the window's mean density over its highest. Bilinear
-  // interpolation keeps the mean of the texels up to the half-texel border: close enough to set
-  // a density by and to size a run by.
-  double largest = 1.0, mean = 1.0;
-  if (map) {
-    largest = 0.0, mean = 0.0;
-    for (float v : grid.texels) largest = std::max(largest, static_cast<double>(v)), mean += v;
-    mean /= static_cast<double>(grid.texels.size());
-  }
-  const MapFit fit = parse_map_fit(o.fit);
-  // A map that covers the window exactly (stretched, or of its aspect) keeps the texel mean.
-  if (map) {
-    const Window placed = fit_map_rectangle(plan.window, grid.width, grid.height, fit);
-    const bool exact = placed.x0 == plan.window.x0 && placed.x1 == plan.window.x1 && placed.y0 == plan.window.y0 &&
-                       placed.y1 == plan.window.y1;
-    if (!exact) mean = largest * mean_fraction_over(grid, plan.window, fit);
-  }
-
-  // The density where it is highest: given, from --count, or the full tiling's.
-  double tile_size = o.tile_size;
-  double target = map ? o.max_density : o.density;
-  if (map && (o.count > 0.0 || (target == 0.0 && tile_size == 0.0))) {
-    double count = o.count > 0.0 ? o.count : kDefaultStippleCount;
-    target = count / (plan.window.area() * mean / largest);
-  }
-  if (tile_size == 0.0) tile_size = target > 0.0 ? std::sqrt(points_per_tile / target) : 1.0;
-  plan.tiler = std::make_unique<Tiler>(std::move(set), o.seed, tile_size);
-  const double full = plan.tiler->full_density();
-  if (target == 0.0) target = full;
-  // A hair of rounding (sqrt then square) must not refuse the density it came from.
-  if (target > full * (1.0 + 1e-12))
-    throw Error("density " + number(target) + " is more than tiles of size " + number(tile_size) + " hold (" +
-                number(full) + " points per unit area): use a smaller --tile-size or leave it out");
-  // Within rounding of the full density: every point, no thinning.
-  double fraction = target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
-  plan.max_density = target;
-  plan.mean_density = target * mean / largest;
-  if (map) {
-    plan.thinning = std::make_unique<Thinning>(
-        Thinning::from_fitted_map(grid.width, grid.height, grid.texels, plan.window, fit, fraction));
-  } else if (fraction < 1.0) {
-    plan.thinning = std::make_unique<Thinning>(Thinning::uniform(fraction));
-  }
+  if (!o.density_map.empty()) grid = load_density_map(o.density_map, density_transfer(o.transfer));
+  Plan plan;
+  static_cast<TilingPlan&>(plan) =
+      plan_tiling(o.tiles.empty() ? default_tile_set() : read_tile_set(o.tiles), o.density_map.empty() ? nullptr : &grid, request);
+  plan.tiles_name = o.tiles.empty() ? std::string("default (") + kDefaultTileSetName + ")" : o.tiles;
   return plan;
 }
 

@@ -1,4 +1,4 @@
-// Checks that come before the work, and smaller findings (issue 24, items 5, 6, 7 and 8): a run that would take hours
+// Checks that come before the work, and smaller findings: a run that would take hours
 // (-k 100000000) is refused in seconds with one line naming the file or option, and leaves
 // nothing behind.
 #include <gtest/gtest.h>
@@ -55,7 +55,7 @@ std::string point_file(const TempDir& dir, const std::string& name, int side) {
 }
 
 TEST(ChecksFirst, AnUnknownImageFormatIsRefusedBeforeTheRelaxation) {
-  // Issue 24, item 7: --id-image a.xyz was found unknown after the relaxation (5 s there).
+  // --id-image a.xyz was found unknown after the relaxation (5 s there).
   TempDir dir;
   Outcome r = run_or_kill({{"relax", "-n", "200", "-k", "100000000", "--engine", "exact", "-o", dir.file("a.txt"),
                             "--id-image", dir.file("a.xyz")}});
@@ -75,7 +75,7 @@ TEST(ChecksFirst, AnUnknownImageFormatIsRefusedBeforeTheRelaxation) {
 }
 
 TEST(ChecksFirst, MixedLevelColumnsAreRefusedWhenTheFileIsRead) {
-  // Issue 24, item 7: found when the result was written, after the relaxation, naming no file.
+  // Found when the result was written, after the relaxation, naming no file.
   TempDir dir;
   const std::string mixed = dir.write("mixed.txt", "0.1 0.2 0\n0.3 0.4 1\n#\n0.5 0.6\n0.7 0.8\n");
   Outcome r = run_or_kill({{"relax", "-i", mixed, "-k", "100000000", "--engine", "exact", "-o", dir.file("o.txt")}});
@@ -92,7 +92,7 @@ TEST(ChecksFirst, MixedLevelColumnsAreRefusedWhenTheFileIsRead) {
 }
 
 TEST(ChecksFirst, TextThatIsNotUtf8IsWrittenWithReplacementCharacters) {
-  // Issue 24, items 7 and 8: a title not in UTF-8 failed the PDF after the whole analysis, and a
+  // A title not in UTF-8 failed the PDF after the whole analysis, and a
   // file name or label not in UTF-8 failed stats.json with the JSON library's message.
   TempDir dir;
   const std::string input = point_file(dir, "p\xff.txt", 12);
@@ -119,7 +119,7 @@ TEST(ChecksFirst, TextThatIsNotUtf8IsWrittenWithReplacementCharacters) {
 }
 
 TEST(ChecksFirst, AnnulusWidthsAreCheckedAgainstTheLimitAndTheMemory) {
-  // Issue 24, item 6: --bin-width 1e-6 took 7 GB before failing; 1e-300 was "wider than half the
+  // --bin-width 1e-6 took 7 GB before failing; 1e-300 was "wider than half the
   // periodogram size". 144 points: F = 2 floor(5 sqrt(144)) = 120.
   TempDir dir;
   const std::string input = point_file(dir, "p.txt", 12);
@@ -144,7 +144,7 @@ TEST(ChecksFirst, AnnulusWidthsAreCheckedAgainstTheLimitAndTheMemory) {
 }
 
 TEST(ChecksFirst, TooLittleMemoryForTheImagePluginOrThreadsIsSaid) {
-  // Issue 24, item 5: under ulimit -v 400000-450000 KiB stipple aborted (rc 134) while the image
+  // Under ulimit -v 400000-450000 KiB stipple aborted (rc 134) while the image
   // plugin loaded, leaving its staging folder; under 30 MB tile said "internal error: Resource
   // temporarily unavailable".
   if (sanitized()) GTEST_SKIP() << "the address sanitizer reserves terabytes of address space: ulimit -v cannot apply";
@@ -172,7 +172,7 @@ TEST(ChecksFirst, TooLittleMemoryForTheImagePluginOrThreadsIsSaid) {
 }
 
 TEST(ChecksFirst, HeaderArrayNamesAreCheckedBeforeTheWork) {
-  // Issue 24, item 8: a C keyword was accepted as the array name, and a name that is no C name
+  // A C keyword was accepted as the array name, and a name that is no C name
   // was found only when the header was written, after the relaxation.
   TempDir dir;
   Outcome r = run_or_kill({{"relax", "-n", "50", "-k", "100000000", "--engine", "exact", "-o", dir.file("p.h"),
@@ -191,7 +191,7 @@ TEST(ChecksFirst, HeaderArrayNamesAreCheckedBeforeTheWork) {
 }
 
 TEST(ChecksFirst, TwoOutputsIntoOnePipeAreRefused) {
-  // Issue 24, item 8: two outputs into one pipe interleaved their bytes, where two into one
+  // Two outputs into one pipe interleaved their bytes, where two into one
   // regular standard output are refused.
   TempDir dir;
   const std::string fifo = dir.file("pipe");
@@ -211,7 +211,7 @@ TEST(ChecksFirst, TwoOutputsIntoOnePipeAreRefused) {
 }
 
 TEST(ChecksFirst, SmallWordingsAndMinusZero) {
-  // Issue 24, item 8: "0 point"; "-0" written back as it was read.
+  // "0 point"; "-0" written back as it was read.
   TempDir dir;
   dir.write("zero.txt", "0\n");
   Outcome r = run({"analyze", "-i", dir.file("zero.txt"), "-o", dir.file("a")});
@@ -226,7 +226,7 @@ TEST(ChecksFirst, SmallWordingsAndMinusZero) {
 }
 
 TEST(ChecksFirst, AFifoInputWithoutAWriterIsSaidAndThenRead) {
-  // Issue 24, item 8: an input FIFO nobody writes to held the run without a word; and its first
+  // An input FIFO nobody writes to held the run without a word; and its first
   // bytes, read to tell the format, were lost to a second open, which then waited for ever.
   TempDir dir;
   const std::string fifo = dir.file("in");
@@ -247,7 +247,7 @@ TEST(ChecksFirst, AFifoInputWithoutAWriterIsSaidAndThenRead) {
   EXPECT_NE(read_text(dir.file("o.txt")).find("3 points, 1 iterations"), std::string::npos);
 }
 
-// Issue 25, item 7: a long raster job on a CPU device says, before it starts, how long it should
+// A long raster job on a CPU device says, before it starts, how long it should
 // take and how long the exact engine would (killed once the line had time to appear).
 TEST(ChecksFirst, ALongRasterJobOnACpuDeviceNamesTheFasterEngine) {
   TempDir dir;

@@ -1,4 +1,4 @@
-// The tool against bad inputs (issue 13, items 2, 12, 13): one clear line, exit status 1, and
+// The tool against bad inputs: one clear line, exit status 1, and
 // nothing left behind.
 #include <gtest/gtest.h>
 
@@ -24,7 +24,7 @@ void expect_failure(const Outcome& r, const std::string& message) {
 TEST(Inputs, StandardInputAndByteOrderMark) {
   TempDir dir;
   dir.write("bom.txt", "\xEF\xBB\xBF" "0.25 0.5\n0.75 0.5\n");
-  // Issue 13, item 13: a byte-order mark was "not a number".
+  // A byte-order mark was "not a number".
   Outcome r = run({"centroids", "-i", dir.file("bom.txt"), "--engine", "exact", "-o", "-"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.out.find("\n0.25 0.5 0.5\n0.75 0.5 0.5\n"), std::string::npos) << r.out;
@@ -42,7 +42,7 @@ TEST(Inputs, StandardInputAndByteOrderMark) {
 
 TEST(Inputs, LongLinesAreQuotedShort) {
   TempDir dir;
-  // Issue 13, item 13: a 10 MB bad line was quoted whole.
+  // A 10 MB bad line was quoted whole.
   std::string line = "0.5 " + std::string(10 << 20, '7') + "x\n";
   dir.write("long.txt", "0.1 0.2\n" + line);
   Outcome r = run({"relax", "-i", dir.file("long.txt"), "-k", "1", "--engine", "exact", "-o", dir.file("o.txt")});
@@ -65,7 +65,7 @@ TEST(Inputs, ReadErrorsAreErrors) {
 
 TEST(Inputs, RunningOutOfMemoryWhileReadingIsAnError) {
   if (sanitized()) GTEST_SKIP() << "the address sanitizer reserves terabytes of address space: ulimit -v cannot apply";
-  // Issue 13, item 2: under ulimit -v the file was silently cut short (3,355,485 of 5,000,000
+  // Under ulimit -v the file was silently cut short (3,355,485 of 5,000,000
   // points read, exit status 0). Ten million points take 160 MB, twice that while growing.
   TempDir dir;
   {
@@ -85,7 +85,7 @@ TEST(Inputs, RunningOutOfMemoryWhileReadingIsAnError) {
 
 TEST(Inputs, ProgressiveLevelsStayReadable) {
   TempDir dir;
-  // Issue 13, item 12: a level the reader rejects was written, and an empty base accepted.
+  // A level the reader rejects was written, and an empty base accepted.
   dir.write("top.txt", "0.1 0.1 0\n0.6 0.6 1000000\n");
   Outcome r = run({"progressive", "-i", dir.file("top.txt"), "--add", "2", "-k", "1", "--engine", "exact", "-o",
                    dir.file("o.txt")});
@@ -105,7 +105,7 @@ TEST(Inputs, ProgressiveLevelsStayReadable) {
 
 TEST(Inputs, EnvironmentIsCheckedNotIgnored) {
   TempDir dir;
-  // Issue 13, item 13: BLUETILE_THREADS=2x was silently ignored.
+  // BLUETILE_THREADS=2x was silently ignored.
   Invocation r{{"relax", "-n", "10", "-k", "1", "--engine", "exact", "-o", dir.file("o.txt")}};
   r.environment = {{"BLUETILE_THREADS", "2x"}};
   expect_failure(run(r), "BLUETILE_THREADS='2x': expected an integer from 1 to 1024");

@@ -1,4 +1,4 @@
-// Numbers on the command line (issue 13, items 9 and 14): refused with the option, the value and
+// Numbers on the command line: refused with the option, the value and
 // the accepted range, never clamped; whole numbers in scientific notation accepted.
 #include <gtest/gtest.h>
 
@@ -48,7 +48,7 @@ TEST(Options, OutOfRangeNanAndInfinityAreRefused) {
        "--bin-width 0: out of range; expected a number above 0 and at most 65536 (see --help)"},
       {{"relax", "-n", "10", "--resolution", "15", "-o", out},
        "--resolution 15: out of range; expected an integer from 16 to 65536 (see --help)"},
-      // Issue 23, item 2: every command takes numbers the one way.
+      // Every command takes numbers the one way.
       {{"tile", "--region", "0", "0", "1", "1", "-s", "-1", "-o", out}, "--seed -1: out of range; " + seeds},
       {{"wang", "-s", "18446744073709551616", "-o", out}, "--seed 18446744073709551616: out of range; " + seeds},
       {{"wang-check", "/dev/null", "-s", "-1"}, "--seed -1: out of range; " + seeds},
@@ -79,7 +79,7 @@ TEST(Options, OutOfRangeNanAndInfinityAreRefused) {
 
 TEST(Options, WholeNumbersInScientificNotationAreAccepted) {
   TempDir dir;
-  // Issue 13, item 9: "-n 1e2" said "not in range".
+  // "-n 1e2" said "not in range".
   Outcome r = run({"relax", "-n", "1e2", "-k", "2.5e1", "-s", "7E0", "--engine", "exact", "-o", dir.file("a.txt")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = run({"relax", "-n", "100", "-k", "25", "-s", "7", "--engine", "exact", "-o", dir.file("b.txt")});
@@ -92,7 +92,7 @@ TEST(Options, WholeNumbersInScientificNotationAreAccepted) {
 
 TEST(Options, WangTakesCountsAsRelaxDoes) {
   TempDir dir;
-  // Issue 23, item 2: "wang --points 1e3" was refused where "relax -n 1e3" is accepted.
+  // "wang --points 1e3" was refused where "relax -n 1e3" is accepted.
   Outcome r = run({"wang", "-n", "1.3e1", "-k", "0", "--warm", "0", "--lattice-steps", "0", "--seam-steps", "0",
                    "--ratio", "+2", "-o", dir.file("a.tiles")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -104,7 +104,7 @@ TEST(Options, WangTakesCountsAsRelaxDoes) {
 
 TEST(Options, RunsTooLargeForTheMachineAreRefusedUpFront) {
   TempDir dir;
-  // Issue 13, item 14: nothing bounded --count x --sets.
+  // Nothing bounded --count x --sets.
   Outcome r = run({"relax", "-n", "100000000", "--sets", "10000000", "--engine", "exact", "-o", dir.file("o.txt")});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 x --sets 10000000 needs about 142.1 PiB of memory, more than the ", 0), 0u)
@@ -125,7 +125,7 @@ TEST(Options, RunsTooLargeForTheMachineAreRefusedUpFront) {
 }
 
 TEST(Options, TilingsTooLargeAreRefusedUpFront) {
-  // Issue 24, item 1: a tiled window's count is known before any point is made (cells x points x
+  // A tiled window's count is known before any point is made (cells x points x
   // thinning), and nothing bounded it: 10^12 points were written until the disk was full.
   TempDir dir;
   const std::string map = dir.file("map.png");
@@ -172,7 +172,7 @@ TEST(Options, TilingsTooLargeAreRefusedUpFront) {
 }
 
 TEST(Options, RendersTallerThanAnImageMayBeAreRefusedUpFront) {
-  // Issue 24, item 4: the render's height went through static_cast<int> of 1.6e10 and came out a
+  // The render's height went through static_cast<int> of 1.6e10 and came out a
   // 16384 x 1 PNG, exit 0.
   TempDir dir;
   Outcome r = run({"tile", "--region", "0", "0", "1", "1000000", "--density", "1", "--image-size", "16384", "-o",
@@ -191,7 +191,7 @@ TEST(Options, RendersTallerThanAnImageMayBeAreRefusedUpFront) {
 }
 
 TEST(Options, StipplesTooLargeForTheMachineAreRefusedUpFront) {
-  // Issue 24, item 5: stipple -n 1e8 failed after 20 s where relax -n 1e8 is refused at once.
+  // stipple -n 1e8 failed after 20 s where relax -n 1e8 is refused at once.
   if (sanitized()) GTEST_SKIP() << "ulimit -v stands in for a small machine, and the sanitizer needs terabytes of it";
   TempDir dir;
   write_image_file(dir.file("map.png"), 2, 2, 1, std::vector<std::uint8_t>(4, 100));
@@ -204,7 +204,7 @@ TEST(Options, StipplesTooLargeForTheMachineAreRefusedUpFront) {
 }
 
 TEST(Options, WangSetsTooLargeAreRefusedUpFront) {
-  // Issue 24, item 6: the levels' counts are known before any relaxation; --ratio 1e7 (1.3e8
+  // The levels' counts are known before any relaxation; --ratio 1e7 (1.3e8
   // points per tile) and --levels 32 ran on.
   TempDir dir;
   const std::vector<Refusal> cases = {

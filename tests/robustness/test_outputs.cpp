@@ -1,4 +1,4 @@
-// The tool against special and broken output paths (issue 13, items 1, 3, 5, 6, 11, 13): exit
+// The tool against special and broken output paths: exit
 // status, message and exactly what is left behind. Devices, FIFOs and links are made in a
 // temporary folder; what needs root (mknod, mount) is skipped with a message otherwise.
 #include <gtest/gtest.h>
@@ -68,7 +68,7 @@ TEST(Outputs, DeviceNodesAreWrittenNotReplaced) {
   TempDir dir;
   if (!make_device(dir.file("mynull"), 1, 3) || !make_device(dir.file("myfull"), 1, 7))
     GTEST_SKIP() << "mknod needs CAP_MKNOD (root): device outputs not tested here";
-  // Issue 13, item 1: the device node became a regular file.
+  // The device node became a regular file.
   Outcome r = run(relax({"-o", dir.file("mynull"), "--log", dir.file("mynull")}));
   EXPECT_EQ(r.exit_code, 0) << r.err;
   r = run(relax({"-o", dir.file("myfull")}));
@@ -92,7 +92,7 @@ TEST(Outputs, FifoGetsTheBytesAndStaysAFifo) {
 }
 
 TEST(Outputs, TiledPointsStreamIntoAFifoWithoutATemporaryCopy) {
-  // Issue 24, item 2: tile wrote a FIFO's (or a device's) points into a temporary file in $TMPDIR
+  // tile wrote a FIFO's (or a device's) points into a temporary file in $TMPDIR
   // first, whole, and copied it over: as large as the output, and nothing reached the reader
   // before the end.
   TempDir dir, tmp;
@@ -167,7 +167,7 @@ TEST(Outputs, LinksAreFollowedAndPermissionsKept) {
   EXPECT_EQ(read_text(dir.file("real/fresh.txt")).rfind("iteration,energy", 0), 0u);
   struct stat st {};
   stat(dir.file("real/points.txt").c_str(), &st);
-  EXPECT_EQ(st.st_mode & 07777, 0600u);  // issue 13, item 1: became 0644
+  EXPECT_EQ(st.st_mode & 07777, 0600u);  // it became 0644
   EXPECT_EQ(entries(dir.path()), (Names{"dangling.txt@", "link.txt@", "real/", "real/fresh.txt", "real/points.txt"}));
 }
 
@@ -177,7 +177,7 @@ TEST(Outputs, OutputsThatAreInputsOrEachOtherAreRefused) {
   const std::string before = read_text(dir.file("p.txt"));
   fs::create_symlink("p.txt", dir.file("alias.txt"));
   const std::string input = dir.file("p.txt");
-  // Issue 13, item 11: --log pointed at the input replaced the input.
+  // --log pointed at the input replaced the input.
   Outcome r = run({"relax", "-i", input, "-k", "1", "--engine", "exact", "-o", dir.file("q.txt"), "--log", input});
   expect_failure(r, input + ": is the same file as the input " + input);
   r = run({"relax", "-i", input, "-k", "1", "--engine", "exact", "-o", dir.file("alias.txt")});
@@ -193,7 +193,7 @@ TEST(Outputs, OutputsThatAreInputsOrEachOtherAreRefused) {
 }
 
 TEST(Outputs, ImagesACommandReadsAreInputsToo) {
-  // Issue 24, item 3: relax --density-map m.png --id-image m.png overwrote the map and exited 0.
+  // relax --density-map m.png --id-image m.png overwrote the map and exited 0.
   TempDir dir;
   const std::string map = dir.file("m.png");
   write_image_file(map, 4, 4, 1, std::vector<std::uint8_t>(16, 100));
@@ -217,7 +217,7 @@ TEST(Outputs, ImagesACommandReadsAreInputsToo) {
 
 TEST(Outputs, EveryPathIsCheckedBeforeTheWork) {
   TempDir dir;
-  // Issue 13, item 5: --log into a missing folder failed only after the whole run.
+  // --log into a missing folder failed only after the whole run.
   Outcome r = run(relax({"-k", "3", "--verbose", "-o", dir.file("p.txt"), "--log", dir.file("nodir/x.csv")}));
   expect_failure(r, dir.file("nodir/x.csv") + ": folder '" + dir.file("nodir") + "' does not exist");
   // ...and --sets with {} left the first sets when a later one failed.
@@ -254,7 +254,7 @@ TEST(Outputs, ReadOnlyFoldersAndFiles) {
 TEST(Outputs, AnalyzePublishesAllOrNothing) {
   TempDir dir;
   ASSERT_EQ(run(relax({"-o", dir.file("p.txt")})).exit_code, 0);
-  // Issue 13, item 5: a folder in the way of points.png left stats.json and radial.csv behind.
+  // A folder in the way of points.png left stats.json and radial.csv behind.
   fs::create_directories(dir.file("an/points.png"));
   Outcome r = run({"analyze", "-i", dir.file("p.txt"), "-o", dir.file("an"), "--no-centroids"});
   expect_failure(r, dir.file("an/points.png") + ": is a folder");
@@ -271,7 +271,7 @@ TEST(Outputs, AnalyzePublishesAllOrNothing) {
 
 TEST(Outputs, FileSizeLimitIsAWriteErrorAndLeavesNothing) {
   // ulimit -f stands in for a full disk without root: every staged write is checked, images too
-  // (issue 13, item 3: a truncated PNG was published with exit status 0).
+  // (a truncated PNG was published with exit status 0).
   TempDir dir;
   Invocation r;
   // 200 cells at 512^2 make a PNG of about 28 KB (the points about 8 KB).
@@ -321,7 +321,7 @@ bool wait_until(Ready ready) {
 }
 
 TEST(Outputs, InterruptsRemoveStagedFiles) {
-  // Issue 13, item 6: SIGINT during a write left a 46 MB hidden temporary file. The run is held
+  // SIGINT during a write left a 46 MB hidden temporary file. The run is held
   // mid-write deterministically: its point file goes to a FIFO nobody reads.
   for (int signal_number : {SIGINT, SIGTERM}) {
     TempDir dir;
@@ -347,7 +347,7 @@ TEST(Outputs, InterruptsRemoveStagedFiles) {
 
 TEST(Outputs, ImageMessagesNameTheUsersPath) {
   TempDir dir;
-  // Issue 13, item 13: image errors named the hidden temporary file.
+  // Image errors named the hidden temporary file.
   Outcome r = run(relax({"-o", dir.file("p.txt"), "--id-image", dir.file("cells.nosuchformat"), "--engine", "raster"}));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err.rfind("bluetile: --id-image '" + dir.file("cells.nosuchformat") + "': this output writes ", 0), 0u)

@@ -4,7 +4,7 @@
 // diagonal neighbours, so the corner problem of edge tiles counts): no tiling of the plane by the
 // set can have two points of different tiles closer. Beside it, the minimum within tiles and
 // their ratio; distances also in hexagonal spacings of the tiled density (seamX, X/W of the
-// Wang-tile issue). And the points of a seeded torus tiling, for analysing a tiled plane.
+// docs/RESULTS.md, "Wang tiles"). And the points of a seeded torus tiling, for analysing a tiled plane.
 #pragma once
 
 #include <cstdint>

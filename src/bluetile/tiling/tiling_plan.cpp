@@ -1,0 +1,98 @@
+#include "bluetile/tiling/tiling_plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
+
+namespace bluetile {
+namespace {
+
+// Midpoints per side of the grid on which the mean of a fitted map over the window is taken: the
+// count it sets is "about", like the texel mean of a map that covers the window exactly.
+constexpr int kMeanSamplesPerSide = 512;
+
+// The mean over `window` of the map's fraction (1 at its largest texel) when placed by `fit`.
+double mean_fraction_over(const DensityGrid& grid, const Window& window, MapFit fit) {
+  const Thinning probe = Thinning::from_fitted_map(grid.width, grid.height, grid.texels, window, fit, 1.0);
+  double sum = 0.0;
+  for (int j = 0; j < kMeanSamplesPerSide; ++j)
+    for (int i = 0; i < kMeanSamplesPerSide; ++i)
+      sum += probe.fraction_at({window.x0 + (i + 0.5) / kMeanSamplesPerSide * window.width(),
+                                window.y0 + (j + 0.5) / kMeanSamplesPerSide * window.height()});
+  return sum / (static_cast<double>(kMeanSamplesPerSide) * kMeanSamplesPerSide);
+}
+
+void check_amount(const char* field, double v) {
+  if (!(v >= 0.0) || !std::isfinite(v))
+    throw Error(std::string(field) + ": expected a finite number >= 0 (0: not given), got " + exact_text(v));
+}
+
+}  // namespace
+
+TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request) {
+  TilingPlan plan;
+  plan.window = request.window;
+  const Window& w = plan.window;
+  for (double v : {w.x0, w.y0, w.x1, w.y1})
+    if (!std::isfinite(v)) throw Error("region: coordinates must be finite, got " + exact_text(v));
+  if (!(w.x1 > w.x0)) throw Error("region: X1 must be greater than X0, got X0 " + exact_text(w.x0) + ", X1 " + exact_text(w.x1));
+  if (!(w.y1 > w.y0)) throw Error("region: Y1 must be greater than Y0, got Y0 " + exact_text(w.y0) + ", Y1 " + exact_text(w.y1));
+  check_amount("tile size", request.tile_size);
+  check_amount("density", request.density);
+  check_amount("max density", request.max_density);
+  check_amount("count", request.count);
+  if (map && request.density > 0.0)
+    throw Error("density is for uniform tilings; with a density map give the max density or the count");
+  if (!map && (request.max_density > 0.0 || request.count > 0.0)) throw Error("max density and count need a density map");
+  if (request.count > 0.0 && request.max_density > 0.0) throw Error("count and max density exclude each other");
+
+  double points_per_tile = 0.0;
+  for (const Tile& t : set.tiles) points_per_tile += static_cast<double>(t.points.size());
+  points_per_tile /= static_cast<double>(std::max<std::size_t>(1, set.tiles.size()));
+
+  // The map's mean and largest texel: the window's mean density over its highest. Bilinear
+  // interpolation keeps the mean of the texels up to the half-texel border: close enough to set
+  // a density by and to size a run by. A map that covers the window exactly (stretched, or of its
+  // aspect) keeps the texel mean; otherwise the fitted map's mean over the window is sampled.
+  double largest = 1.0, mean = 1.0;
+  if (map) {
+    largest = 0.0, mean = 0.0;
+    for (float v : map->texels) largest = std::max(largest, static_cast<double>(v)), mean += v;
+    mean /= static_cast<double>(map->texels.size());
+    const Window placed = fit_map_rectangle(w, map->width, map->height, request.fit);
+    const bool exact = placed.x0 == w.x0 && placed.x1 == w.x1 && placed.y0 == w.y0 && placed.y1 == w.y1;
+    if (!exact) mean = largest * mean_fraction_over(*map, w, request.fit);
+  }
+
+  // The density where it is highest: given, from the count, or the full tiling's.
+  double tile_size = request.tile_size;
+  double target = map ? request.max_density : request.density;
+  if (map && (request.count > 0.0 || (target == 0.0 && tile_size == 0.0))) {
+    const double count = request.count > 0.0 ? request.count : kDefaultTiledStippleCount;
+    target = count / (w.area() * mean / largest);
+  }
+  if (tile_size == 0.0) tile_size = target > 0.0 ? std::sqrt(points_per_tile / target) : 1.0;
+  plan.tiler = std::make_unique<Tiler>(std::move(set), request.seed, tile_size);
+  const double full = plan.tiler->full_density();
+  if (target == 0.0) target = full;
+  // A hair of rounding (sqrt then square) must not refuse the density it came from.
+  if (target > full * (1.0 + 1e-12))
+    throw Error("density " + exact_text(target) + " is more than tiles of size " + exact_text(tile_size) + " hold (" +
+                exact_text(full) + " points per unit area): use a smaller tile size or leave it out");
+  // Within rounding of the full density: every point, no thinning.
+  const double fraction = target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
+  plan.max_density = target;
+  plan.mean_density = target * mean / largest;
+  if (map) {
+    plan.thinning = std::make_unique<Thinning>(
+        Thinning::from_fitted_map(map->width, map->height, map->texels, w, request.fit, fraction));
+  } else if (fraction < 1.0) {
+    plan.thinning = std::make_unique<Thinning>(Thinning::uniform(fraction));
+  }
+  return plan;
+}
+
+}  // namespace bluetile

@@ -1,0 +1,46 @@
+// What a tiled window is asked for, and the tiler, thinning and densities that follow from it:
+// the one reading of a request that `bluetile tile` and the Python module's tile() share. A
+// request gives at most one of a density (uniform tilings) or, with a density map, the density
+// where the map is densest or an approximate count over the window; what it leaves out is worked
+// out here, with the same tolerances for both front ends.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "bluetile/core/density_grid.h"
+#include "bluetile/tiling/density_thinning.h"
+#include "bluetile/tiling/tile_set.h"
+#include "bluetile/tiling/tiler.h"
+
+namespace bluetile {
+
+struct TilingRequest {
+  Window window;             // x1 > x0, y1 > y0, finite
+  double tile_size = 0.0;    // plane units per tile; 0: from the density, else 1
+  double density = 0.0;      // uniform: points per unit area (0: every point of every tile)
+  double max_density = 0.0;  // with a map: points per unit area where it is densest (0: not given)
+  double count = 0.0;        // with a map: about this many points over the window (0: not given)
+  std::uint64_t seed = 1;
+  MapFit fit = MapFit::contain;  // how a map is placed on the window
+};
+
+// Stipples a density map gets when nothing sets the density: a drawing a person recognises,
+// small enough for an SVG viewer.
+inline constexpr double kDefaultTiledStippleCount = 30000.0;
+
+struct TilingPlan {
+  std::unique_ptr<Tiler> tiler;
+  std::unique_ptr<Thinning> thinning;  // null: every point of every tile
+  Window window;
+  double max_density = 0.0;   // points per unit area where the density is highest
+  double mean_density = 0.0;  // points per unit area over the window, on average
+};
+
+// The plan for `request` over `set`, thinned by `map` when given (texels as in DensityGrid, the
+// map placed on the window by request.fit). Throws Error naming the field (window, tile_size,
+// density, max_density, count) for a bad or contradictory request, and for a density the tiles
+// cannot hold.
+TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request);
+
+}  // namespace bluetile
