@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <set>
 
@@ -256,6 +257,55 @@ TEST(WangStep, RasterEngineMeasuresTheExactEnginesStep) {
   WangStep raster = measure_wang_step(test::shared_engine(0, Coverage::area), configurations, points, options, raster_reach);
   EXPECT_LT(max_difference(raster.displacement, exact.displacement), 1e-12);
   EXPECT_GT(raster.scenes, 1000u);
+}
+
+TEST(WangOptions, EveryFieldIsCheckedByItsNameAndRange) {
+  auto message = [](const WangOptions& options) {
+    try {
+      validate(options);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(message({}), "accepted");
+  WangOptions o;
+  o.points = 0;
+  EXPECT_EQ(message(o), "points: expected 1 to 1000000, got 0");
+  o = {};
+  o.levels = 33;
+  EXPECT_EQ(message(o), "levels: expected 1 to 32, got 33");
+  o = {};
+  o.levels = 2;
+  o.ratio = 1.0;
+  EXPECT_EQ(message(o), "ratio: expected above 1 to 1e+08, got 1");
+  o.ratio = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(message(o), "ratio: expected above 1 to 1e+08, got nan");
+  o = {};
+  o.level.edge_margin = 0.3;
+  EXPECT_EQ(message(o), "margin: expected 0 to 0.25 tile units, got 0.3");
+  o = {};
+  o.level.refine.lattice_step = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(message(o), "lattice_step: expected 0.0001 to 0.1 hexagonal spacings, got nan");
+  o = {};
+  o.level.period = 1;
+  EXPECT_EQ(message(o), "period: expected 2 to 1024, got 1");
+  o = {};
+  o.level.void_sigma = 5.0;
+  EXPECT_EQ(message(o), "void_sigma: expected 0.1 to 4 hexagonal spacings, got 5");
+  // The public entry checks too, before any work.
+  ExactEngine engine;
+  o = {};
+  o.points = 0;
+  EXPECT_THROW(relax_wang_tiles(engine, o), Error);
+  EXPECT_EQ(parse_wang_strategy("rounds"), WangStrategy::rounds);
+  EXPECT_EQ(parse_wang_rank_order("voids"), RankOrder::voids);
+  try {
+    parse_wang_strategy("fast");
+    ADD_FAILURE() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "strategy: expected one of 'exact', 'instances', 'rounds', got 'fast'");
+  }
 }
 
 }  // namespace

@@ -35,13 +35,6 @@ bluetile::TileSet load_tile_set(const std::optional<std::string>& tiles) {
   return bluetile::read_tile_set(*tiles);
 }
 
-bluetile::WangStrategy strategy_named(const std::string& name) {
-  if (name == "exact") return bluetile::WangStrategy::exact;
-  if (name == "instances") return bluetile::WangStrategy::instances;
-  if (name == "rounds") return bluetile::WangStrategy::rounds;
-  throw nb::value_error(("strategy: expected one of 'exact', 'instances', 'rounds', got '" + name + "'").c_str());
-}
-
 void check_whole(const char* name, long long value, long long low, long long high) {
   if (value < low || value > high)
     throw nb::value_error((std::string(name) + ": expected " + std::to_string(low) + " to " + std::to_string(high) +
@@ -55,27 +48,8 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
                        std::uint64_t seed, const std::string& engine) {
   const auto kind = bluetile::parse_tile_set_kind(set);
   if (!kind) throw nb::value_error(("set: expected one of 'wang8', 'wang16', 'corner16', got '" + set + "'").c_str());
-  check_whole("points", points, 1, 1000000);
-  check_whole("iterations", iterations, 0, 100000000);
-  check_whole("warm", warm, 0, 100000000);
-  check_whole("levels", levels, 1, 32);
-  check_whole("period", period, 2, 1024);
-  if (levels > 1 && !(ratio > 1.0 && std::isfinite(ratio)))
-    throw nb::value_error(("ratio: expected a finite number above 1, got " + std::to_string(ratio)).c_str());
-  if (!(margin >= 0.0 && margin <= 0.25))
-    throw nb::value_error(("margin: expected 0 to 0.25 tile units, got " + std::to_string(margin)).c_str());
-  check_whole("lattice_steps", lattice_steps, 0, 100000);
-  check_whole("lattice_steps_per_iteration", lattice_steps_per_iteration, 0, 1000);
-  if (!(lattice_step >= 0.0001 && lattice_step <= 0.1))
-    throw nb::value_error(("lattice_step: expected 0.0001 to 0.1 hexagonal spacings, got " + std::to_string(lattice_step)).c_str());
-  check_whole("seam_steps", seam_steps, 0, 100000);
-  for (auto [name, value] : {std::pair{"seam_spacing", seam_spacing}, std::pair{"level_seam_spacing", level_seam_spacing}})
-    if (!(value >= 0.01 && value <= 2.0))
-      throw nb::value_error((std::string(name) + ": expected 0.01 to 2 hexagonal spacings, got " + std::to_string(value)).c_str());
-  if (rank_order != "farthest" && rank_order != "voids")
-    throw nb::value_error(("rank_order: expected 'farthest' or 'voids', got '" + rank_order + "'").c_str());
-  if (!(void_sigma >= 0.1 && void_sigma <= 4.0))
-    throw nb::value_error(("void_sigma: expected 0.1 to 4 hexagonal spacings, got " + std::to_string(void_sigma)).c_str());
+  // Counts are checked here only to fit the library's types; their ranges are the library's.
+  check_whole("points", points, 1, static_cast<long long>(bluetile::kMaxWangPoints));
   EngineChoice choice;
   choice.engine = engine;
   check_engine_choice(choice);
@@ -88,7 +62,7 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
   w.seed = seed;
   w.level.iterations = iterations;
   w.level.warm_iterations = warm;
-  w.level.strategy = strategy_named(strategy);
+  w.level.strategy = bluetile::parse_wang_strategy(strategy);
   w.level.period = period;
   w.level.edge_margin = margin;
   w.level.refine = {.lattice_steps_per_iteration = lattice_steps_per_iteration,
@@ -97,8 +71,9 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
                     .seam_iterations = seam_steps,
                     .seam_spacing = seam_spacing,
                     .later_seam_spacing = level_seam_spacing};
-  w.level.rank_order = rank_order == "voids" ? bluetile::RankOrder::voids : bluetile::RankOrder::farthest;
+  w.level.rank_order = bluetile::parse_wang_rank_order(rank_order);
   w.level.void_sigma = void_sigma;
+  bluetile::validate(w);
   std::string text;
   {
     nb::gil_scoped_release release;

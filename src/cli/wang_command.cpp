@@ -56,15 +56,8 @@ struct WangCommandOptions {
   EngineOptions engine;
 };
 
-// More points per tile than this is almost surely a mistyped option (the progressive sets of the
-// issue have 2048); the limit keeps memory sane.
-constexpr long long kMaxPointsPerTile = 1'000'000;
-
-WangStrategy parse_strategy(const std::string& name) {
-  if (name == "instances") return WangStrategy::instances;
-  if (name == "rounds") return WangStrategy::rounds;
-  return WangStrategy::exact;
-}
+// Points per tile past the library's limit (wang_relax.h), counted over the levels.
+constexpr long long kMaxPointsPerTile = static_cast<long long>(kMaxWangPoints);
 
 std::string fixed(double v, int decimals) {
   char buffer[48];
@@ -142,11 +135,11 @@ void run_wang(const WangCommandOptions& o) {
   w.seed = o.seed;
   w.level.iterations = o.iterations;
   w.level.warm_iterations = o.warm;
-  w.level.strategy = parse_strategy(o.strategy);
+  w.level.strategy = parse_wang_strategy(o.strategy);
   w.level.period = o.period;
   w.level.edge_margin = o.margin;
   w.level.refine = o.refine;
-  w.level.rank_order = o.rank_order == "voids" ? RankOrder::voids : RankOrder::farthest;
+  w.level.rank_order = parse_wang_rank_order(o.rank_order);
   w.level.void_sigma = o.void_sigma;
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
   check_points_per_tile(o, TileRules(w.kind).tile_count());
@@ -429,34 +422,35 @@ void add_wang_command(CLI::App& app) {
       ->check(CLI::IsMember({"wang8", "wang16", "corner16"}))
       ->capture_default_str();
   add_integer_option(cmd, "-n,--points", o->points, 1LL, kMaxPointsPerTile, "Points per tile in level 0");
-  add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Constrained Lloyd iterations per level");
-  add_integer_option(cmd, "--warm", o->warm, 0, kMaxIterations,
+  add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxWangIterations, "Constrained Lloyd iterations per level");
+  add_integer_option(cmd, "--warm", o->warm, 0, kMaxWangIterations,
                      "Warm start: periodic iterations of each tile alone before the constrained ones");
-  add_integer_option(cmd, "-l,--levels", o->levels, 1, 32, "Levels (hierarchical sets that tile)");
+  add_integer_option(cmd, "-l,--levels", o->levels, 1, kMaxWangLevels, "Levels (hierarchical sets that tile)");
   // Above 10^8 a second level would pass the point limit at once (as progressive --ratio).
-  add_real_option(cmd, "--ratio", o->ratio, {1.0, 1e8, true, false},
+  add_real_option(cmd, "--ratio", o->ratio, {1.0, kMaxWangRatio, true, false},
                   "Each further level brings a tile's count to round(R x count)");
   cmd->add_option("--strategy", o->strategy,
                   "Neighbour configurations: exact (every admissible 3x3 block), instances (random torus tilings), "
                   "rounds (one block per fitting neighbour)")
       ->check(CLI::IsMember({"exact", "instances", "rounds"}))
       ->capture_default_str();
-  add_integer_option(cmd, "--period", o->period, 2, 1024, "instances: the torus tiling is M x M tiles");
-  add_real_option(cmd, "--margin", o->margin, {0.0, 0.25}, "Keep points this far inside their tile (tile units)");
-  add_integer_option(cmd, "--lattice-steps", o->refine.lattice_iterations, 0, 100000,
+  add_integer_option(cmd, "--period", o->period, kMinWangPeriod, kMaxWangPeriod, "instances: the torus tiling is M x M tiles");
+  add_real_option(cmd, "--margin", o->margin, {0.0, kMaxEdgeMargin}, "Keep points this far inside their tile (tile units)");
+  add_integer_option(cmd, "--lattice-steps", o->refine.lattice_iterations, 0, kMaxLatticeSteps,
                      "Lattice decorrelation after each level's iterations: gradient steps that lower the tile-lattice "
                      "peaks C_LF (and, in level 0, C_mid) (0: none)");
-  add_integer_option(cmd, "--lattice-steps-per-iteration", o->refine.lattice_steps_per_iteration, 0, 1000,
+  add_integer_option(cmd, "--lattice-steps-per-iteration", o->refine.lattice_steps_per_iteration, 0,
+                     kMaxLatticeStepsPerIteration,
                      "Lattice steps after each constrained iteration of the second half, which Lloyd's next iteration "
                      "repairs (0: none)");
-  add_real_option(cmd, "--lattice-step", o->refine.lattice_step, {0.0001, 0.1},
+  add_real_option(cmd, "--lattice-step", o->refine.lattice_step, {kMinLatticeStep, kMaxLatticeStep},
                   "Largest move of one lattice step, in hexagonal spacings");
-  add_integer_option(cmd, "--seam-steps", o->refine.seam_iterations, 0, 100000,
+  add_integer_option(cmd, "--seam-steps", o->refine.seam_iterations, 0, kMaxSeamSteps,
                      "Seam spacing after each level's iterations: repulsion steps for points closer than the spacing "
                      "to a point they can meet in a tiling (0: none)");
-  add_real_option(cmd, "--seam-spacing", o->refine.seam_spacing, {0.01, 2.0},
+  add_real_option(cmd, "--seam-spacing", o->refine.seam_spacing, {kMinSeamSpacing, kMaxSeamSpacing},
                   "Seam spacing of level 0, in hexagonal spacings of the tile's points");
-  add_real_option(cmd, "--level-seam-spacing", o->refine.later_seam_spacing, {0.01, 2.0},
+  add_real_option(cmd, "--level-seam-spacing", o->refine.later_seam_spacing, {kMinSeamSpacing, kMaxSeamSpacing},
                   "Seam spacing of levels 1 and up, in hexagonal spacings of the tile's points");
   cmd->add_option("--rank-order", o->rank_order,
                   "Progressive order inside each level: farthest (greedy farthest point) or voids (tiled "
@@ -464,7 +458,7 @@ void add_wang_command(CLI::App& app) {
                   "closer nearest pairs)")
       ->check(CLI::IsMember({"farthest", "voids"}))
       ->capture_default_str();
-  add_real_option(cmd, "--void-sigma", o->void_sigma, {0.1, 4.0}, "voids: kernel width in hexagonal spacings of the prefix");
+  add_real_option(cmd, "--void-sigma", o->void_sigma, {kMinVoidSigma, kMaxVoidSigma}, "voids: kernel width in hexagonal spacings of the prefix");
   add_seed_option(cmd, o->seed);
   cmd->add_option("-o,--output", o->output, "Output tile-set file (.tiles or .txt; - for stdout)")->required();
   cmd->add_flag("--check", o->check, "Print the seam check of the result");

@@ -2,6 +2,7 @@
 
 #include <cctype>
 #include <cstdio>
+#include <cstdlib>
 
 namespace bluetile {
 
@@ -9,6 +10,15 @@ std::string exact_text(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", v);
   return buffer;
+}
+
+std::string shortest_text(double v) {
+  char buffer[32];
+  for (int digits = 1; digits < 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    if (std::strtod(buffer, nullptr) == v) return buffer;
+  }
+  return exact_text(v);  // NaN, and doubles that need all 17 digits
 }
 
 std::string fixed_text(double v, int decimals) {

@@ -93,6 +93,31 @@ struct WangOptions {
   WangLevelOptions level;
 };
 
+// The values the tool's options and the Python module's arguments accept, defined once. More
+// points per tile than kMaxWangPoints is almost surely a mistyped option (the largest sets of
+// docs/RESULTS.md have 2048) and keeps memory sane; the step and spacing ranges are in hexagonal
+// spacings of the tile's points.
+inline constexpr std::size_t kMaxWangPoints = 1'000'000;
+inline constexpr int kMaxWangLevels = 32;
+inline constexpr int kMinWangPeriod = 2, kMaxWangPeriod = 1024;
+inline constexpr int kMaxWangIterations = 100'000'000;
+inline constexpr double kMaxWangRatio = 1e8;
+inline constexpr double kMaxEdgeMargin = 0.25;  // tile units
+inline constexpr int kMaxLatticeSteps = 100'000, kMaxLatticeStepsPerIteration = 1000, kMaxSeamSteps = 100'000;
+inline constexpr double kMinLatticeStep = 0.0001, kMaxLatticeStep = 0.1;
+inline constexpr double kMinSeamSpacing = 0.01, kMaxSeamSpacing = 2.0;
+inline constexpr double kMinVoidSigma = 0.1, kMaxVoidSigma = 4.0;
+
+// Throws Error naming the first field outside those ranges ("points: expected 1 to 1000000, got
+// 0"), by the Python module's names of the fields.
+void validate(const WangOptions& options);
+
+// Names of the strategies and rank orders as the front ends spell them; the parsers throw Error
+// naming the field, the value and the list.
+WangStrategy parse_wang_strategy(const std::string& name);
+RankOrder parse_wang_rank_order(const std::string& name);
+const char* wang_rank_order_name(RankOrder order);
+
 // A whole set: level 0, then levels 1 .. levels-1. The seed of level l is derive_seed(seed, l), so
 // a set with more levels starts with the same points as one with fewer.
 TileSet relax_wang_tiles(CentroidEngine& engine, const WangOptions& options);
