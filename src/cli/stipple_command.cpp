@@ -20,11 +20,10 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
-#include "bluetile/core/rng.h"
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/relax/lloyd.h"
-#include "bluetile/sampling/density_sampling.h"
+#include "bluetile/relax/stipple.h"
 
 namespace bluetile::cli {
 namespace {
@@ -48,19 +47,6 @@ struct StippleOptions {
   EngineOptions engine;
   StippleDrawingOptions drawing;
 };
-
-// The drawing's domain: the image's aspect ratio, its longer side 1, so points stay in [0,1)^2.
-Domain image_domain(const DensityGrid& map) {
-  const double longer = std::max(map.width, map.height);
-  return Domain{{map.width / longer, map.height / longer}};
-}
-
-// Dots that just touch where the map is densest: half the hexagonal spacing of the point count
-// that would fill the domain at that density.
-double default_dot_radius(const DensityGrid& map, const Domain& domain, std::size_t count) {
-  const double peak = *std::max_element(map.texels.begin(), map.texels.end());
-  return 0.5 * hexagonal_spacing(static_cast<double>(count) * peak / map.mean(), domain.area());
-}
 
 // The render's height in pixels, in double: a tall image's does not fit an int.
 double render_height(const Domain& domain, int width) {
@@ -116,13 +102,16 @@ void run_stipple(const StippleOptions& o) {
   OutputFile* png_file = o.png.empty() ? nullptr : &outputs.add(o.png);
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
   auto map = std::make_shared<DensityGrid>(load_density_map(o.image, density_transfer(o.transfer)));
-  const Domain domain = image_domain(*map);
+  // The start and the domain Python's stipple() shares (relax/stipple.h).
+  const Domain domain = stipple_domain(*map);
   if (png_file) check_render(*png_file, *map, domain, o.png_width);
   const auto count = static_cast<std::size_t>(o.count);
-  Rng rng(derive_seed(o.seed, 0));
-  Scene scene = make_scene(sample_density(*map, domain, count, rng), domain);
-  scene.boundary = o.periodic ? Boundary::periodic : Boundary::bounded;
-  scene.density = std::make_shared<DensityGrid>(weight_for_point_density(*map, o.weight_exponent));
+  StippleStart start;
+  start.count = count;
+  start.seed = o.seed;
+  start.periodic = o.periodic;
+  start.weight_exponent = o.weight_exponent;
+  Scene scene = stipple_scene(*map, start);
 
   auto engine = make_engine(o.engine);
   note_faster_engine(*engine, static_cast<double>(count) * o.iterations);
@@ -130,7 +119,7 @@ void run_stipple(const StippleOptions& o) {
   LloydResult result = relax_lloyd(*engine, scene, log.lloyd_options(o.iterations, o.tolerance));
   log.finish(result, o.tolerance, o.iterations);
 
-  const double radius = o.dot_radius > 0.0 ? o.dot_radius : default_dot_radius(*map, domain, count);
+  const double radius = o.dot_radius > 0.0 ? o.dot_radius : stipple_dot_radius(*map, domain, count);
   char size[64];
   std::snprintf(size, sizeof size, "%.17g x %.17g", domain.size.x, domain.size.y);
   const std::vector<std::string> header = {

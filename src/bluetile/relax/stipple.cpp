@@ -20,8 +20,7 @@ Domain stipple_domain(const DensityGrid& map) {
 
 Scene stipple_scene(const DensityGrid& map, const StippleStart& start) {
   if (start.count == 0) throw Error("stipple: the count of dots must be at least 1");
-  if (!(start.weight_exponent >= 0.0) || !std::isfinite(start.weight_exponent))
-    throw Error("stipple: the weight exponent must be finite and >= 0, not " + std::to_string(start.weight_exponent));
+  check_weight_exponent(start.weight_exponent);
   const Domain domain = stipple_domain(map);
   Rng rng(derive_seed(start.seed, 0));
   Scene scene = make_scene(sample_density(map, domain, start.count, rng), domain);

@@ -26,7 +26,7 @@ Domain stipple_domain(const DensityGrid& map);
 
 // The scene weighted Lloyd relaxes: `start.count` sites drawn in proportion to `map` over its
 // stipple_domain, the weighted map as the scene's density. Throws Error for an empty map, a map
-// that is zero everywhere, no dots or a weight exponent that is not finite and >= 0.
+// that is zero everywhere, no dots or a weight exponent out of range (check_weight_exponent).
 Scene stipple_scene(const DensityGrid& map, const StippleStart& start);
 
 // Dots that just touch where the map is densest: half the hexagonal spacing of the count that
