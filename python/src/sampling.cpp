@@ -34,6 +34,7 @@ of ``bluetile relax --count N --seed S``, bit for bit.)");
         o.max_failures = max_failures;
         o.shrink = shrink;
         o.start = start;
+        bluetile::validate(o);  // before the GIL is released: a bad value raises at once
         bluetile::DartResult r;
         {
           nb::gil_scoped_release release;

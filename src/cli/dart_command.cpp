@@ -26,14 +26,14 @@ void add_dart_command(CLI::App& app) {
   auto sets = std::make_shared<long long>(1);
   auto verbose = std::make_shared<bool>(false);
   CLI::App* cmd = app.add_subcommand("dart", "Dart throwing with radius reduction on the unit torus");
-  add_integer_option(cmd, "-n,--count", o->count, std::size_t{1}, static_cast<std::size_t>(kMaxCount), "Number of points")
+  add_integer_option(cmd, "-n,--count", o->count, std::size_t{1}, kMaxDartCount, "Number of points")
       ->required();
   add_seed_option(cmd, o->seed);
   add_integer_option(cmd, "--sets", *sets, 1LL, 10000000LL, "Throw K independent sets; set k is the set --seed S+k gives alone");
-  add_integer_option(cmd, "--max-failures", o->max_failures, std::size_t{1}, std::size_t{1000000000},
+  add_integer_option(cmd, "--max-failures", o->max_failures, std::size_t{1}, kMaxDartFailures,
                      "Rejections in a row before the radius shrinks");
-  add_real_option(cmd, "--shrink", o->shrink, {1e-6, 0.999999}, "Factor applied to the radius at each reduction");
-  add_real_option(cmd, "--start", o->start, {1e-6, 4.0}, "Starting radius in hexagonal spacings sqrt(2/(sqrt(3) N))");
+  add_real_option(cmd, "--shrink", o->shrink, {kMinDartShrink, kMaxDartShrink}, "Factor applied to the radius at each reduction");
+  add_real_option(cmd, "--start", o->start, {kMinDartStart, kMaxDartStart}, "Starting radius in hexagonal spacings sqrt(2/(sqrt(3) N))");
   add_point_output_options(cmd, *output, "Output points ('-': standard output)");
   cmd->add_flag("-v,--verbose", *verbose, "Print the final radius and the number of trials on stderr");
   cmd->callback([o, output, sets, verbose] {

@@ -189,7 +189,7 @@ void validate(const WangOptions& options) {
   check_whole("warm", l.warm_iterations, 0, kMaxWangIterations);
   check_whole("levels", options.levels, 1, kMaxWangLevels);
   check_whole("period", l.period, kMinWangPeriod, kMaxWangPeriod);
-  if (options.levels > 1 && !(options.ratio > 1.0 && options.ratio <= kMaxWangRatio))
+  if (!(options.ratio > 1.0 && options.ratio <= kMaxWangRatio))
     throw Error("ratio: expected above 1 to " + shortest_text(kMaxWangRatio) + ", got " + shortest_text(options.ratio));
   check_real("margin", l.edge_margin, 0.0, kMaxEdgeMargin, " tile units");
   check_whole("lattice_steps", l.refine.lattice_iterations, 0, kMaxLatticeSteps);

@@ -9,15 +9,28 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 
+void validate(const DartOptions& o) {
+  auto whole = [](const char* field, std::size_t v, std::size_t high) {
+    if (v < 1 || v > high)
+      throw Error(std::string(field) + ": expected 1 to " + std::to_string(high) + ", got " + std::to_string(v));
+  };
+  auto real = [](const char* field, double v, double low, double high, const char* unit) {
+    if (!(v >= low && v <= high))
+      throw Error(std::string(field) + ": expected " + shortest_text(low) + " to " + shortest_text(high) + unit + ", got " +
+                  shortest_text(v));
+  };
+  whole("count", o.count, kMaxDartCount);
+  whole("max_failures", o.max_failures, kMaxDartFailures);
+  real("shrink", o.shrink, kMinDartShrink, kMaxDartShrink, "");
+  real("start", o.start, kMinDartStart, kMaxDartStart, " hexagonal spacings");
+}
+
 DartResult throw_darts(const DartOptions& o) {
-  if (o.count == 0) throw Error("dart throwing needs a count of at least 1");
-  if (o.count > 100000000) throw Error("dart throwing count " + std::to_string(o.count) + " is too large");
-  if (!(o.shrink > 0.0 && o.shrink < 1.0)) throw Error("dart throwing shrink factor must be in (0, 1)");
-  if (o.max_failures == 0) throw Error("dart throwing needs max failures of at least 1");
-  if (!(o.start > 0.0 && o.start <= 4.0)) throw Error("dart throwing start radius must be in (0, 4] hexagonal spacings");
+  validate(o);
 
   const Domain unit;
   DartResult result;

@@ -33,8 +33,16 @@ struct DartResult {
   std::size_t reductions = 0; // times the radius shrank
 };
 
-// Deterministic for given options on every platform (core/rng.h). Throws Error for count 0 or
-// options out of range.
+// The ranges the tool's options and the Python module's arguments accept. Past a billion
+// rejections in a row a run would not end in any time worth waiting for.
+inline constexpr std::size_t kMaxDartCount = 100'000'000, kMaxDartFailures = 1'000'000'000;
+inline constexpr double kMinDartShrink = 1e-6, kMaxDartShrink = 0.999999;
+inline constexpr double kMinDartStart = 1e-6, kMaxDartStart = 4.0;
+
+// Throws Error naming the first field out of range ("shrink: expected 1e-06 to 0.999999, got 1").
+void validate(const DartOptions& options);
+
+// Deterministic for given options on every platform (core/rng.h). Validates the options first.
 DartResult throw_darts(const DartOptions& options);
 
 }  // namespace bluetile

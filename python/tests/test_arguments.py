@@ -1,0 +1,57 @@
+"""Every numeric argument of every function: a bad value raises a ValueError naming the argument
+(or, for a negative count where the binding takes an unsigned integer, nanobind's TypeError),
+before any work. The arguments are read from the functions' own signatures, so a new one is
+covered without a new test."""
+import math
+import re
+
+import numpy as np
+import pytest
+
+import pybluetile as bt
+
+# The smallest valid call of each function; the argument under test is added to it.
+CALLS = {
+    "relax": ((), {"count": 10, "iterations": 1, "engine": "exact"}),
+    "stipple": ((np.ones((4, 4)),), {"count": 10, "iterations": 1}),
+    "progressive": ((), {"count": 8, "levels": 2, "iterations": 1, "engine": "exact"}),
+    "dart": ((10,), {}),
+    "wang_tiles": ((), {"points": 2, "iterations": 1, "warm": 0, "lattice_steps": 0, "lattice_steps_per_iteration": 0,
+                        "seam_steps": 0, "strategy": "rounds"}),
+    "tile": (((0.0, 0.0, 1.0, 1.0),), {}),
+    "analyze": ((np.random.default_rng(1).random((20, 2)),), {"psa_measures": False, "discrepancy": False}),
+    "centroids": ((np.random.default_rng(2).random((20, 2)),), {"engine": "exact"}),
+}
+# Values valid for an argument although they are bad for most: any unsigned 64-bit seed.
+ALSO_VALID = {"seed": {10**15}}
+
+
+def numeric_arguments(function):
+    signature = function.__nb_signature__[0][0]
+    keyword_part = signature.split("*,", 1)[1] if "*," in signature else signature
+    return re.findall(r"(\w+): (int|float) =", keyword_part)
+
+
+CASES = [(name, argument, kind) for name in CALLS for argument, kind in numeric_arguments(getattr(bt, name))]
+
+
+def test_the_table_covers_every_function_with_numeric_arguments():
+    assert len(CASES) > 30
+    assert {name for name, _, _ in CASES} == set(CALLS)
+
+
+@pytest.mark.parametrize("name,argument,kind", CASES)
+def test_bad_values_are_refused_naming_the_argument(name, argument, kind):
+    args, kwargs = CALLS[name]
+    bad = [math.nan, math.inf, -math.inf, -1.0] if kind == "float" else [-1, 10**15]
+    for value in bad:
+        if value in ALSO_VALID.get(argument, set()):
+            continue
+        try:
+            getattr(bt, name)(*args, **{**kwargs, argument: value})
+        except ValueError as e:
+            assert argument in str(e) or argument.replace("_", " ") in str(e), (name, argument, value, str(e))
+        except TypeError:
+            assert kind == "int", (name, argument, value)  # unsigned or narrower C++ integer
+        else:
+            pytest.fail(f"{name}({argument}={value!r}) was accepted")
