@@ -10,7 +10,10 @@
 #include "bluetile/core/text.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/progressive.h"
+#include "bluetile/relax/wang_lattice.h"
 #include "bluetile/relax/wang_ranks.h"
+#include "bluetile/relax/wang_seams.h"
+#include "bluetile/relax/wang_step.h"
 
 namespace bluetile {
 namespace {

@@ -16,12 +16,16 @@
 #include <cstdint>
 #include <functional>
 
-#include "bluetile/relax/wang_lattice.h"
-#include "bluetile/relax/wang_seams.h"
-#include "bluetile/relax/wang_step.h"
+#include <string_view>
+
 #include "bluetile/tiling/tile_set.h"
+#include "bluetile/voronoi/engine.h"
 
 namespace bluetile {
+
+enum class WangStrategy : std::uint8_t { exact, instances, rounds };
+
+std::string_view wang_strategy_name(WangStrategy strategy);
 
 enum class RankOrder : std::uint8_t { farthest, voids };
 

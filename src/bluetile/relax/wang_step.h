@@ -25,13 +25,11 @@
 
 #include "bluetile/relax/wang_blocks.h"
 #include "bluetile/relax/wang_crop.h"
+#include "bluetile/relax/wang_relax.h"
 #include "bluetile/voronoi/engine.h"
 
 namespace bluetile {
 
-enum class WangStrategy : std::uint8_t { exact, instances, rounds };
-
-std::string_view wang_strategy_name(WangStrategy strategy);
 
 // A tile-local coordinate kept in [margin, 1 - margin] and below 1 (tiles cover [0, 1)): where
 // every step of a level's relaxation leaves its moving points.
