@@ -13,9 +13,10 @@
 #include "cli/numeric_options.h"
 #include "cli/output_names.h"
 #include "cli/progress.h"
-#include "bluetile/core/output_file.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/text.h"
 #include "bluetile/io/density_map.h"
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
@@ -65,12 +66,6 @@ constexpr OutputFormat kTileFormats[] = {OutputFormat::points_text, OutputFormat
 
 OutputFormat output_kind(const std::string& path) { return output_format("--output", path, kTileFormats); }
 
-std::string number(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, "%.17g", v);
-  return text;
-}
-
 // The tiling, thinning and window the options describe (tiling/tiling_plan.h), and the set's name.
 struct Plan : TilingPlan {
   std::string tiles_name;
@@ -102,7 +97,7 @@ std::string rounded(double v) {
 }
 
 std::string region_text(const Window& w) {
-  return number(w.x0) + " " + number(w.y0) + " " + number(w.x1) + " " + number(w.y1);
+  return exact_text(w.x0) + " " + exact_text(w.y0) + " " + exact_text(w.x1) + " " + exact_text(w.y1);
 }
 
 // The run's size, known before any point is made (cells x points x thinning): refused past the
@@ -113,12 +108,12 @@ void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files, int
   const double points = plan.window.area() * plan.mean_density;
   if (!(points <= static_cast<double>(kMaxCount)))
     throw Error("--region " + region_text(plan.window) + " holds about " + rounded(points) + " points (" +
-                number(plan.mean_density) + " per unit area), more than the limit of " + std::to_string(kMaxCount) +
+                exact_text(plan.mean_density) + " per unit area), more than the limit of " + std::to_string(kMaxCount) +
                 " points: use a smaller region or a lower density");
   const double cells = static_cast<double>(range.columns()) * static_cast<double>(range.rows());
   if (!(cells <= static_cast<double>(kMaxCount)))
     throw Error("--region " + region_text(plan.window) + " spans about " + rounded(cells) + " tiles of size " +
-                number(plan.tiler->tile_size()) + ", more than the limit of " + std::to_string(kMaxCount) +
+                exact_text(plan.tiler->tile_size()) + ", more than the limit of " + std::to_string(kMaxCount) +
                 " tiles: use a larger --tile-size or a smaller region");
   for (const OutputFile* file : files) {
     const OutputFormat kind = output_kind(file->path());
@@ -150,8 +145,8 @@ void check_render_height(const TileOptions& o, const std::vector<OutputFile*>& f
   if (!render || !(width > 0.0) || !(height > 0.0)) return;
   const double pixels = render_height(o, o.image_size);
   if (!(pixels <= kMaxCanvasSide))
-    throw Error("--image-size " + std::to_string(o.image_size) + ": a render of the region " + number(o.region[0]) +
-                " " + number(o.region[1]) + " " + number(o.region[2]) + " " + number(o.region[3]) + " would be " +
+    throw Error("--image-size " + std::to_string(o.image_size) + ": a render of the region " + exact_text(o.region[0]) +
+                " " + exact_text(o.region[1]) + " " + exact_text(o.region[2]) + " " + exact_text(o.region[3]) + " would be " +
                 rounded(pixels) + " pixels tall, more than the limit of " + std::to_string(kMaxCanvasSide) +
                 ": use a smaller --image-size or a wider region");
 }
@@ -161,13 +156,13 @@ std::vector<std::string> header_lines(const TileOptions& o, const Plan& plan, co
   std::vector<std::string> lines;
   lines.push_back("bluetile tile: tiles " + plan.tiles_name + " (" +
                   std::string(tile_set_kind_name(plan.tiler->tile_set().kind)) + "), seed " + std::to_string(o.seed) +
-                  ", tile size " + number(plan.tiler->tile_size()) + ", region " + number(w.x0) + " " + number(w.y0) +
-                  " " + number(w.x1) + " " + number(w.y1) + (o.normalize ? " (normalized by its width)" : ""));
+                  ", tile size " + exact_text(plan.tiler->tile_size()) + ", region " + exact_text(w.x0) + " " + exact_text(w.y0) +
+                  " " + exact_text(w.x1) + " " + exact_text(w.y1) + (o.normalize ? " (normalized by its width)" : ""));
   if (!o.density_map.empty())
     lines.push_back("density map " + o.density_map + " (fit " + o.fit + "), max density " +
-                    number(plan.max_density) + " points per unit area");
+                    exact_text(plan.max_density) + " points per unit area");
   else
-    lines.push_back("density " + number(plan.max_density) + " points per unit area");
+    lines.push_back("density " + exact_text(plan.max_density) + " points per unit area");
   lines.push_back("columns " + tiled_column_names(format.columns));
   lines.push_back(tile_grid_comment(*plan.tiler, w, o.normalize));
   return lines;
@@ -215,7 +210,7 @@ void run_tile(const TileOptions& o) {
     files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputFormat::points_text}));
   if (o.normalize && o.region[2] - o.region[0] != o.region[3] - o.region[1])
     throw Error("--normalize maps a square region onto the unit square; this region is " +
-                number(o.region[2] - o.region[0]) + " x " + number(o.region[3] - o.region[1]));
+                exact_text(o.region[2] - o.region[0]) + " x " + exact_text(o.region[3] - o.region[1]));
   check_render_height(o, files);
   Plan plan = make_plan(o);
   check_run_size(plan, files, o.image_size, render_height(o, o.image_size));
