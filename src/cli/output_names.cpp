@@ -71,6 +71,20 @@ OutputFormat output_format(std::string_view option, const std::string& path, std
   throw Error(message);
 }
 
+void check_text_output_name(std::string_view option, const std::string& path, std::string_view what) {
+  const std::string extension = path == "-" ? "" : file_extension(path);
+  const auto text = output_format_extensions(OutputFormat::points_text);
+  if (extension.empty() || std::find(text.begin(), text.end(), extension) != text.end()) return;
+  for (OutputFormat format : {OutputFormat::points_npy, OutputFormat::points_binary, OutputFormat::points_header,
+                              OutputFormat::raw_columns, OutputFormat::svg, OutputFormat::image, OutputFormat::pdf,
+                              OutputFormat::tile_set}) {
+    const auto names = output_format_extensions(format);
+    if (std::find(names.begin(), names.end(), extension) != names.end())
+      throw Error(std::string(option) + " '" + path + "': this output writes " + std::string(what) + ", not '" +
+                  extension + "' (" + std::string(output_format_label(format)) + ")");
+  }
+}
+
 TableFormat table_format_of(OutputFormat format) {
   switch (format) {
     case OutputFormat::points_npy: return TableFormat::npy;

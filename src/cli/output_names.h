@@ -43,6 +43,12 @@ inline constexpr OutputFormat kPointTableFormats[] = {OutputFormat::points_text,
 OutputFormat output_format(std::string_view option, const std::string& path, std::span<const OutputFormat> accepted,
                            std::string_view alternative = {});
 
+// For an output of one text format (a CSV log, psa's point text) that takes any other name:
+// refuses an extension that names one of the formats above other than text points (.npy, .svg,
+// .png, ...), which the file would not be, with "<option> '<path>': this output writes <what>, not
+// '<extension>'".
+void check_text_output_name(std::string_view option, const std::string& path, std::string_view what);
+
 // The table format of a point-table output format (only those), and back.
 TableFormat table_format_of(OutputFormat format);
 OutputFormat output_format_of(TableFormat format);

@@ -70,6 +70,7 @@ void run_relax(const RelaxOptions& o) {
   }
   // Every output is declared, and so checked, before any work.
   PointOutput point_output(outputs, o.output, o.input.empty() ? static_cast<std::size_t>(o.sets) : inputs.size());
+  if (!o.log.empty()) check_text_output_name("--log", o.log, "a CSV log");
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
   OutputFile* id_image = o.id_image.empty() ? nullptr : &outputs.add(o.id_image);
 

@@ -166,6 +166,40 @@ TEST(OutputNames, AcceptedExtensionsWriteTheFormatTheyName) {
   }
 }
 
+// A CSV log takes any name but one that says it is another format the tool writes.
+TEST(OutputNames, LogsRefuseAnotherFormatsExtension) {
+  TempDir dir;
+  for (const std::string command : {"relax", "stipple"}) {
+    std::vector<std::string> base = {command, "-n", "10", "-k", "1", "--engine", "exact", "-o", dir.file("p.txt")};
+    if (command == "stipple") {
+      const std::string map = dir.file("map.png");
+      write_image_file(map, 2, 2, 1, std::vector<std::uint8_t>{0, 80, 160, 240});
+      base = {command, "--image", map, "-n", "10", "-k", "1", "-o", dir.file("p.txt")};
+    }
+    const std::vector<std::string> before = dir.list();
+    for (const auto& [extension, label] : std::vector<std::pair<std::string, std::string>>{
+             {".npy", "NumPy"}, {".png", "image"}, {".SVG", "SVG"}, {".tiles", "tile set"}}) {
+      std::vector<std::string> args = base;
+      const std::string log = dir.file("log" + extension);
+      args.insert(args.end(), {"--log", log});
+      Outcome r = run(args);
+      EXPECT_EQ(r.exit_code, 1) << command << " " << extension;
+      std::string lower = extension;
+      for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      EXPECT_EQ(r.err, "bluetile: --log '" + log + "': this output writes a CSV log, not '" + lower + "' (" + label + ")\n")
+          << command;
+      EXPECT_EQ(dir.list(), before) << command << " " << extension << ": something was written";
+    }
+    for (const std::string name : {"log.csv", "log.txt", "log.log", "log"}) {
+      std::vector<std::string> args = base;
+      args.insert(args.end(), {"--log", dir.file(name)});
+      Outcome r = run(args);
+      EXPECT_EQ(r.exit_code, 0) << command << " " << name << ": " << r.err;
+      EXPECT_EQ(read_text(dir.file(name)).rfind("iteration,", 0), 0u) << command << " " << name;
+    }
+  }
+}
+
 TEST(OutputNames, StandardOutputAndNamesWithoutExtensionTakeTheFirstFormat) {
   TempDir dir;
   const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
