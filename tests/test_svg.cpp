@@ -7,6 +7,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/io/image.h"
+#include "bluetile/io/png_encoder.h"
 #include "bluetile/io/svg.h"
 #include "test_support.h"
 #include "xml_support.h"

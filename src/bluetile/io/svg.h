@@ -205,8 +205,4 @@ class SvgDocument {
   std::vector<SvgImage> images_;
 };
 
-// The PNG encoding of an 8-bit grey or RGB image (uncompressed deflate blocks: no zlib needed;
-// the periodograms it embeds are noise and would not compress much anyway).
-std::vector<std::uint8_t> encode_png(const SvgImage& image);
-
 }  // namespace bluetile
