@@ -21,6 +21,7 @@
 
 #include "bluetile/core/parallel.h"
 #include "bluetile/tiling/default_tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/tiling/density_thinning.h"
 #include "bluetile/drawing/tiled_drawing.h"
 #include "bluetile/tiling/tiler.h"

@@ -13,6 +13,7 @@
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/tiling/tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #if BLUETILE_FUZZ_IMAGES
 #include "bluetile/io/image_file.h"
 #endif

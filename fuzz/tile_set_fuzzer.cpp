@@ -6,6 +6,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/tiling/tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "fuzz_support.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

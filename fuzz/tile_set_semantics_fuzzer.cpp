@@ -13,6 +13,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/tiling/tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "fuzz_support.h"
 
 namespace {

@@ -7,6 +7,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/tiling/tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "test_support.h"
 
 namespace bluetile {

@@ -13,6 +13,7 @@
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/tiling/default_tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/tiling/tiler.h"
 #include "test_support.h"
 #include "tiler_support.h"

@@ -20,6 +20,7 @@
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/relax/wang_seams.h"
 #include "bluetile/tiling/seam_check.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "test_support.h"
 

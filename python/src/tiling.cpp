@@ -17,6 +17,7 @@
 #include "bluetile/tiling/default_tile_set.h"
 #include "bluetile/tiling/density_thinning.h"
 #include "bluetile/tiling/tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/tiling/tiler.h"
 #include "bluetile/tiling/tiling_plan.h"
 

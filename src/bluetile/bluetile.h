@@ -40,6 +40,7 @@
 #include "bluetile/tiling/density_thinning.h"
 #include "bluetile/tiling/seam_check.h"
 #include "bluetile/tiling/tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/tiling/tiled_output.h"
 #include "bluetile/tiling/tiler.h"
 #include "bluetile/tiling/tiling_plan.h"

@@ -22,6 +22,7 @@
 #include "bluetile/io/image_file.h"
 #include "bluetile/io/pdf.h"
 #include "bluetile/tiling/default_tile_set.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/drawing/tiled_drawing.h"
 #include "bluetile/tiling/tiled_output.h"
 #include "bluetile/tiling/tiler.h"

@@ -21,6 +21,7 @@
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/tiling/seam_check.h"
+#include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "cli/commands.h"
 #include "cli/engine_options.h"

@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "bluetile/tiling/tile_set_file.h"
+
 // The assembler copies the file in at build time (CMake passes its path and makes this source
 // depend on it): no generated source of hex bytes to compile.
 asm(".section .rodata\n"

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "bluetile/core/error.h"
+#include "bluetile/tiling/tile_set_file.h"
 
 namespace bluetile {
 namespace {

@@ -8,6 +8,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/text.h"
 #include "bluetile/tiling/density_thinning.h"
+#include "bluetile/tiling/tile_set_file.h"
 
 namespace bluetile {
 namespace {
