@@ -15,6 +15,7 @@ std::unique_ptr<CLI::App> make_app() {
   add_progressive_command(*app);
   add_devices_command(*app);
   add_wang_command(*app);
+  add_wang_check_command(*app);
   add_tile_command(*app);
   add_stipple_command(*app);
   return app;

@@ -11,7 +11,8 @@ void add_analyze_command(CLI::App& app);
 void add_dart_command(CLI::App& app);
 void add_progressive_command(CLI::App& app);
 void add_devices_command(CLI::App& app);
-void add_wang_command(CLI::App& app);  // wang and wang-check
+void add_wang_command(CLI::App& app);
+void add_wang_check_command(CLI::App& app);
 void add_tile_command(CLI::App& app);
 void add_stipple_command(CLI::App& app);
 

@@ -1,0 +1,222 @@
+// bluetile wang-check: the seam check of a tile set and the analysis of a plane it tiles.
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/analysis/radial_power.h"
+#include "bluetile/analysis/tiling_metrics.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/output_file.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/drawing/figures.h"
+#include "bluetile/drawing/tile_set_drawing.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/tiling/seam_check.h"
+#include "bluetile/tiling/tile_set_file.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "cli/commands.h"
+#include "cli/memory_budget.h"
+#include "cli/numeric_options.h"
+#include "cli/progress.h"
+#include "cli/seam_report.h"
+
+namespace bluetile::cli {
+namespace {
+
+std::string metrics_row(const std::string& label, const TilingMetrics& m, bool tiled) {
+  char row[256];
+  if (tiled)
+    std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8.5f %8.5f %8.2f %9.2f\n", label.c_str(), m.count, m.rho,
+                  m.low_frequency, m.coherence_low, m.coherence_mid, m.diffuse_anisotropy_db);
+  else
+    std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8.5f %8s %8s %9.2f\n", label.c_str(), m.count, m.rho,
+                  m.low_frequency, "-", "-", m.diffuse_anisotropy_db);
+  return row;
+}
+
+struct CheckOptions {
+  std::string input;
+  int period = 16;
+  std::uint64_t seed = 1;
+  std::string output;
+  bool untiled = false;
+  int untiled_iterations = 80;
+  int image_size = 800;
+};
+
+void run_check(const CheckOptions& o) {
+  // Every output is declared, and so checked, before any work; they appear together at the end.
+  OutputSet outputs;
+  outputs.add_input(o.input);
+  std::vector<OutputFile*> files;
+  if (!o.output.empty()) {
+    outputs.add_folder(o.output);
+    for (const char* name : {"stats.json", "plane.txt", "spectrum.png", "spectrum-untiled.png", "radial.png",
+                             "points.png", "tiles.png"}) {
+      if (std::string(name) == "spectrum-untiled.png" && !o.untiled) continue;
+      files.push_back(&outputs.add((std::filesystem::path(o.output) / name).string()));
+    }
+  }
+  auto file = [&](const std::string& name) -> OutputFile& {
+    for (OutputFile* f : files)
+      if (std::filesystem::path(f->path()).filename() == name) return *f;
+    throw Error("internal: no output " + name);
+  };
+  TileSet set = read_tile_set(o.input);
+  if (!o.output.empty()) {
+    // The spectrum image's periodogram is the largest allocation.
+    std::size_t n = 0;
+    for (const Tile& tile : set.tiles) n += tile.points.size();
+    n = n / set.tiles.size() * static_cast<std::size_t>(o.period) * static_cast<std::size_t>(o.period);
+    check_memory(static_cast<double>(periodogram_memory_bytes(n, default_periodogram_size(n))),
+                 "the spectrum of the " + std::to_string(n) + "-point plane");
+  }
+  SeamCheck seams = check_seams(set);
+  std::printf("%s: %s set, %zu tiles\n%s", o.input.c_str(), std::string(tile_set_kind_name(set.kind)).c_str(),
+              set.tiles.size(), seam_report(seams).c_str());
+
+  const int tiles = static_cast<int>(set.tiles.size());
+  TiledPlane plane = torus_tiling(set, o.period, o.seed);
+  std::printf("\ntiled plane: %dx%d torus tiling, seed %llu\n", o.period, o.period, static_cast<unsigned long long>(o.seed));
+  char head[256];
+  std::snprintf(head, sizeof head, "  %-28s %8s %7s %8s %8s %8s %9s\n", "prefix", "N", "rho", "LF", "C_LF", "C_mid",
+                "aniso dB");
+  std::printf("%s", head);
+  // The plane of the first k ranks of every tile, each measured once (level boundaries are in
+  // the sweep too).
+  std::map<std::size_t, TilingMetrics> measured;
+  auto metrics_at = [&](std::size_t k) -> const TilingMetrics& {
+    auto found = measured.find(k);
+    if (found != measured.end()) return found->second;
+    const auto prefix = static_cast<std::uint32_t>(k);
+    TiledPlane p = torus_tiling(set, o.period, o.seed, prefix);
+    // The plane's own periodogram (the non-uniform FFT above ~100 points): at 2048 points per
+    // tile the per-tile sum (tiled_periodogram) takes minutes a prefix, this a second.
+    Periodogram periodogram = compute_periodogram(p.points, tiling_periodogram_size(p.points.size(), o.period));
+    return measured.emplace(k, measure_tiling(p.points, periodogram, o.period, tiles)).first->second;
+  };
+  nlohmann::json levels_json = nlohmann::json::array();
+  std::size_t total = 0;
+  for (const SeamLevel& level : seams.levels) {
+    const TilingMetrics& m = metrics_at(level.points_per_tile);
+    std::printf("%s", metrics_row("levels 0-" + std::to_string(level.level), m, true).c_str());
+    levels_json.push_back({{"level", level.level},
+                           {"points_per_tile", level.points_per_tile},
+                           {"seam_min", level.cross_min},
+                           {"within_min", level.within_min},
+                           {"seamX", level.cross_relative()},
+                           {"within_relative", level.within_relative()},
+                           {"X_over_W", level.ratio()},
+                           {"plane",
+                            {{"N", m.count},
+                             {"rho", m.rho},
+                             {"LF", m.low_frequency},
+                             {"C_LF", m.coherence_low},
+                             {"C_mid", m.coherence_mid},
+                             {"lattice_peak", m.lattice_peak},
+                             {"diffuse_anisotropy_db", m.diffuse_anisotropy_db}}}});
+    total = level.points_per_tile;
+  }
+  // The prefix sweep: the first k points by rank of every tile, k at fixed fractions of the top
+  // count and at every level boundary.
+  std::vector<std::size_t> boundaries;
+  for (const SeamLevel& level : seams.levels) boundaries.push_back(level.points_per_tile);
+  const std::vector<std::size_t> sweep = prefix_sweep(total, boundaries);
+  std::printf("\nprefix sweep (%dx%d torus tiling):\n  %8s %8s %7s %8s %9s %8s %8s\n", o.period, o.period, "k/tile", "N",
+              "rho", "LF", "lattice", "C_LF", "C_mid");
+  nlohmann::json sweep_json = nlohmann::json::array();
+  for (const std::size_t k : sweep) {
+    if (k * static_cast<std::size_t>(o.period) * static_cast<std::size_t>(o.period) < 2) continue;
+    const TilingMetrics& m = metrics_at(k);
+    std::printf("  %8zu %8zu %7.3f %8.4f %9.2f %8.3f %8.3f\n", k, m.count, m.rho, m.low_frequency, m.lattice_peak,
+                m.coherence_low, m.coherence_mid);
+    sweep_json.push_back({{"k", k}, {"N", m.count}, {"rho", m.rho}, {"LF", m.low_frequency},
+                          {"lattice_peak", m.lattice_peak}, {"C_LF", m.coherence_low}, {"C_mid", m.coherence_mid}});
+  }
+  nlohmann::json stats = {{"input", o.input},
+                          {"set", tile_set_kind_name(set.kind)},
+                          {"tiles", tiles},
+                          {"blocks", seams.blocks},
+                          {"period", o.period},
+                          {"seed", o.seed},
+                          {"levels", levels_json},
+                          {"prefix_sweep", sweep_json}};
+
+  std::vector<Point> untiled;
+  if (o.untiled) {
+    Rng rng(derive_seed(o.seed, 1));
+    untiled.resize(plane.points.size());
+    for (Point& p : untiled) p = rng.point(Domain{});
+    Scene scene = make_scene(untiled);
+    ExactEngine engine;
+    LloydOptions lloyd;
+    lloyd.iterations = o.untiled_iterations;
+    Progress progress("untiled Lloyd", o.untiled_iterations);
+    lloyd.on_iteration = [&](const LloydIteration& it) { progress.update(it.iteration); };
+    relax_lloyd(engine, scene, lloyd);
+    progress.finish();
+    untiled = scene.sites;
+    TilingMetrics m = measure_tiling(untiled, 0, 1);
+    std::printf("%s", metrics_row("untiled Lloyd, " + std::to_string(o.untiled_iterations) + " iterations", m, false).c_str());
+    stats["untiled"] = {{"iterations", o.untiled_iterations},
+                        {"N", m.count},
+                        {"rho", m.rho},
+                        {"LF", m.low_frequency},
+                        {"diffuse_anisotropy_db", m.diffuse_anisotropy_db}};
+  }
+  std::printf("  (rho: min NN distance / hexagonal spacing; LF: mean periodogram for 0 < |k| < 0.5 sqrt(N);\n"
+              "   C_LF, C_mid: tile-lattice coherence for M = %d; anisotropy: mean over annuli 0.5-1.6 sqrt(N),\n"
+              "   lattice frequencies left out; lattice: mean periodogram at k = M m, 0 < |k| < sqrt(N))\n",
+              o.period);
+
+  if (o.output.empty()) return;
+  file("stats.json").write(stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  file("plane.txt").write([&](OutputStream& out) {
+    write_points(out, PointSet{plane.points, plane.levels},
+                 {"bluetile wang-check: " + std::to_string(o.period) + "x" + std::to_string(o.period) +
+                      " torus tiling of " + o.input + ", seed " + std::to_string(o.seed),
+                  "columns: x y level"});
+  });
+  Periodogram full = compute_periodogram(plane.points, default_periodogram_size(plane.points.size()));
+  write_image(file("spectrum.png"), draw_spectrum(full));
+  std::vector<RadialCurve> curves{{"tiled, " + std::to_string(o.period) + "x" + std::to_string(o.period),
+                                   radial_power(full), plane.points.size()}};
+  if (!untiled.empty()) {
+    Periodogram reference = compute_periodogram(untiled, full.size);
+    write_image(file("spectrum-untiled.png"), draw_spectrum(reference));
+    curves.push_back({"untiled Lloyd", radial_power(reference), untiled.size()});
+  }
+  write_image(file("radial.png"), draw_radial(curves, o.input));
+  PointsFigure figure;
+  figure.points = plane.points;
+  write_image(file("points.png"), draw_points(figure, o.image_size));
+  write_image(file("tiles.png"), draw_tile_set(set, o.seed));
+  outputs.publish();
+}
+
+}  // namespace
+
+void add_wang_check_command(CLI::App& app) {
+  auto c = std::make_shared<CheckOptions>();
+  CLI::App* check = app.add_subcommand(
+      "wang-check", "Seam check of a tile set (every admissible 2x2 block) and the analysis of a tiled plane");
+  check->add_option("tiles", c->input, "Tile-set file")->required()->check(CLI::ExistingFile);
+  add_integer_option(check, "--period", c->period, 1, 1024, "The analysed plane is an M x M torus tiling");
+  add_seed_option(check, c->seed, "Seed of the tiling");
+  check->add_option("-o,--output", c->output,
+                    "Folder for stats.json, plane.txt and the images (spectrum, radial power, points, the tile set)");
+  check->add_flag("--untiled", c->untiled, "Compare with untiled Lloyd at the same N (exact engine)");
+  add_integer_option(check, "--untiled-iterations", c->untiled_iterations, 0, 100000,
+                     "Iterations of the untiled reference");
+  add_integer_option(check, "--image-size", c->image_size, 64, 8192, "Side of points.png in pixels");
+  check->callback([c] { run_check(*c); });
+}
+
+}  // namespace bluetile::cli
