@@ -6,9 +6,8 @@
 #include <limits>
 #include <sstream>
 
-#include <sys/resource.h>
-
 #include "bluetile/core/error.h"
+#include "bluetile/core/process_limits.h"
 
 namespace bluetile::cli {
 namespace {
@@ -35,13 +34,6 @@ std::uint64_t read_number(const char* file) {
   return kUnlimited;  // absent, or "max"
 }
 
-std::uint64_t limit_left(int resource, std::uint64_t used) {
-  rlimit limit{};
-  if (getrlimit(resource, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return kUnlimited;
-  const auto cur = static_cast<std::uint64_t>(limit.rlim_cur);
-  return cur > used ? cur - used : 0;
-}
-
 }  // namespace
 
 std::uint64_t available_memory() {
@@ -50,10 +42,8 @@ std::uint64_t available_memory() {
   const std::uint64_t cgroup_used = read_number("/sys/fs/cgroup/memory.current");
   if (cgroup_max != kUnlimited && cgroup_used != kUnlimited)
     available = std::min(available, cgroup_max > cgroup_used ? cgroup_max - cgroup_used : 0);
-  const std::uint64_t mapped = proc_kib("/proc/self/status", "VmSize:");
-  if (mapped != kUnlimited) available = std::min(available, limit_left(RLIMIT_AS, mapped));
-  const std::uint64_t data = proc_kib("/proc/self/status", "VmData:");
-  if (data != kUnlimited) available = std::min(available, limit_left(RLIMIT_DATA, data));
+  if (const auto limit = address_space_limit()) available = std::min(available, limit->left());
+  if (const auto limit = data_limit()) available = std::min(available, limit->left());
   return available;
 }
 

@@ -9,9 +9,8 @@
 #include <optional>
 #include <thread>
 
-#include <sys/resource.h>
-
 #include "bluetile/core/error.h"
+#include "bluetile/core/process_limits.h"
 #include "bluetile/core/text.h"
 
 namespace bluetile::gpu {
@@ -244,32 +243,13 @@ std::size_t driver_address_space_needed() {
   return (512 + 144 * std::min<std::size_t>(threads, 6) + 12 * (threads > 6 ? threads - 6 : 0)) * kMiB;
 }
 
-namespace {
-
-// The process's current virtual size (VmSize), 0 when unknown.
-std::size_t address_space_used() {
-  std::FILE* f = std::fopen("/proc/self/status", "r");
-  if (!f) return 0;
-  char line[256];
-  std::size_t kib = 0;
-  while (std::fgets(line, sizeof line, f))
-    if (std::sscanf(line, "VmSize: %zu kB", &kib) == 1) break;
-  std::fclose(f);
-  return kib * 1024;
-}
-
-}  // namespace
-
 void check_address_space(std::size_t bytes, const std::string& what) {
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
-  const std::size_t allowed = static_cast<std::size_t>(limit.rlim_cur);
-  const std::size_t used = address_space_used();
-  const std::size_t left = allowed > used ? allowed - used : 0;
-  if (left >= bytes) return;
-  auto mib = [](std::size_t b) { return std::to_string((b + (1u << 20) - 1) >> 20); };
+  const std::optional<ProcessLimit> limit = address_space_limit();
+  if (!limit || limit->left() >= bytes) return;
+  auto mib = [](std::uint64_t b) { return std::to_string((b + (1u << 20) - 1) >> 20); };
   throw Error(what + " needs about " + mib(bytes) + " MiB of address space but the limit (ulimit -v " +
-              std::to_string(allowed >> 10) + ") leaves " + mib(left) + " MiB; raise the limit or use the exact engine");
+              std::to_string(limit->limit >> 10) + ") leaves " + mib(limit->left()) +
+              " MiB; raise the limit or use the exact engine");
 }
 
 Context::Context(const std::string& wanted_device) {
