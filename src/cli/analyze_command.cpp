@@ -562,8 +562,11 @@ void report_rank_table(std::ostringstream& out, const std::vector<Series>& serie
   out << "LF: mean periodogram over integer frequencies f with 0 < |f|^2 < k / 4 (white noise 1)\n\n";
 }
 
-void run_analyze(const AnalyzeOptions& o) {
-  if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
+// run_analyze's steps, in its order: check the options, declare the outputs, read the inputs,
+// compute the series of the chosen mode, draw, then write. Every check comes before any work.
+
+// The option checks that need no file, in the order they are reported.
+void check_options(const AnalyzeOptions& o) {
   const bool by_rank = !o.by_rank.empty();
   if ((o.average ? 1 : 0) + (o.compare ? 1 : 0) + (o.by_level ? 1 : 0) + (by_rank ? 1 : 0) > 1)
     throw Error("choose one of --average, --compare, --by-level and --by-rank");
@@ -572,52 +575,86 @@ void run_analyze(const AnalyzeOptions& o) {
   if (!(o.rdf_range >= 0.0) || !std::isfinite(o.rdf_range)) throw Error("--rdf-range must be a positive number of hexagonal spacings");
   if (!o.labels.empty() && o.labels.size() != o.inputs.size())
     throw Error("--label needs one label per input (" + std::to_string(o.inputs.size()) + ")");
-  const FrequencyAxis axis = o.axis == "integer" ? FrequencyAxis::integer : FrequencyAxis::normalised;
-  std::string summary_format;
+}
+
+// --summary's format: "pdf", "svg", or "" without --summary.
+std::string summary_format(const AnalyzeOptions& o) {
+  std::string format;
   if (!o.summary.empty()) {
     static constexpr OutputFormat summary_formats[] = {OutputFormat::pdf, OutputFormat::svg};
-    summary_format = output_format("--summary", o.summary, summary_formats) == OutputFormat::pdf ? "pdf" : "svg";
-    if (summary_format == "pdf" && !pdf_unavailable_reason().empty())
+    format = output_format("--summary", o.summary, summary_formats) == OutputFormat::pdf ? "pdf" : "svg";
+    if (format == "pdf" && !pdf_unavailable_reason().empty())
       throw Error(o.summary + ": " + pdf_unavailable_reason());
   }
+  return format;
+}
 
-  // Every output is declared, and so checked, before any work; they appear together at the end.
+// Every output of the folder, and --summary's file (null without it).
+struct AnalyzeFiles {
   OutputSet outputs;
+  OutputFile* stats = nullptr;
+  OutputFile* radial = nullptr;
+  OutputFile* rdf = nullptr;
+  OutputFile* points_png = nullptr;
+  OutputFile* spectrum_png = nullptr;
+  OutputFile* radial_png = nullptr;
+  OutputFile* rdf_png = nullptr;
+  OutputFile* points_svg = nullptr;
+  OutputFile* spectrum_svg = nullptr;
+  OutputFile* radial_svg = nullptr;
+  OutputFile* rdf_svg = nullptr;
+  OutputFile* report = nullptr;
+  OutputFile* summary = nullptr;
+};
+
+// Every output is declared, and so checked, before any work; they appear together at the end.
+void declare_outputs(const AnalyzeOptions& o, AnalyzeFiles& files) {
+  OutputSet& outputs = files.outputs;
   for (const std::string& path : o.inputs) outputs.add_input(path);
   if (!o.from.empty()) outputs.add_input(o.from);
   check_output_parent(o.output);
   outputs.add_folder(o.output);
   const std::filesystem::path dir(o.output);
-  auto output = [&](const std::string& name) -> OutputFile& { return outputs.add((dir / name).string()); };
-  OutputFile& stats_file = output("stats.json");
-  OutputFile& radial_file = output("radial.csv");
-  OutputFile& rdf_file = output("rdf.csv");
-  OutputFile& points_png_file = output("points.png");
-  OutputFile& spectrum_png_file = output("spectrum.png");
-  OutputFile& radial_png_file = output("radial.png");
-  OutputFile& rdf_png_file = output("rdf.png");
-  OutputFile& points_svg_file = output("points.svg");
-  OutputFile& spectrum_svg_file = output("spectrum.svg");
-  OutputFile& radial_svg_file = output("radial.svg");
-  OutputFile& rdf_svg_file = output("rdf.svg");
-  OutputFile& report_file = output("report.txt");
-  OutputFile* summary_file = o.summary.empty() ? nullptr : &outputs.add(o.summary);
+  auto output = [&](const std::string& name) { return &outputs.add((dir / name).string()); };
+  files.stats = output("stats.json");
+  files.radial = output("radial.csv");
+  files.rdf = output("rdf.csv");
+  files.points_png = output("points.png");
+  files.spectrum_png = output("spectrum.png");
+  files.radial_png = output("radial.png");
+  files.rdf_png = output("rdf.png");
+  files.points_svg = output("points.svg");
+  files.spectrum_svg = output("spectrum.svg");
+  files.radial_svg = output("radial.svg");
+  files.rdf_svg = output("rdf.svg");
+  files.report = output("report.txt");
+  files.summary = o.summary.empty() ? nullptr : &outputs.add(o.summary);
+}
 
-  // Read and check every input before anything is computed.
+struct AnalyzeInputs {
+  std::vector<std::vector<PointSet>> sets;  // per input file
+  std::size_t total_sets = 0;
+  std::vector<std::size_t> prefixes;  // --by-rank's counts, sorted
+  Boundary boundary = Boundary::periodic;
+  std::vector<Point> from;  // --from: where each point started
+};
+
+// Reads and checks every input before anything is computed.
+AnalyzeInputs read_inputs(const AnalyzeOptions& o) {
+  const bool by_rank = !o.by_rank.empty();
+  AnalyzeInputs in;
+  std::vector<std::vector<PointSet>>& inputs = in.sets;
   ReadOptions read;
   read.wrap = o.wrap;
   read.domain = domain_option(o.domain);
-  std::vector<std::vector<PointSet>> inputs;
   for (const std::string& path : o.inputs) inputs.push_back(read_sets(path, read));
-  std::size_t total_sets = 0;
-  for (const auto& sets : inputs) total_sets += sets.size();
-  if (!o.average && !o.compare && !by_rank && total_sets > 1)
-    throw Error(std::to_string(total_sets) + " point sets given (" + std::to_string(o.inputs.size()) +
+  for (const auto& sets : inputs) in.total_sets += sets.size();
+  if (!o.average && !o.compare && !by_rank && in.total_sets > 1)
+    throw Error(std::to_string(in.total_sets) + " point sets given (" + std::to_string(o.inputs.size()) +
                 " files): use --average to analyse their mean (with a table of each set) or --compare to plot them together");
   if (o.by_level && !inputs[0][0].has_levels())
     throw Error(o.inputs[0] + ": --by-level needs a level column (x y level)");
-  const std::vector<std::size_t> prefixes =
-      by_rank ? rank_prefixes(o.by_rank, inputs[0][0].points.size(), o.inputs[0]) : std::vector<std::size_t>{};
+  if (by_rank) in.prefixes = rank_prefixes(o.by_rank, inputs[0][0].points.size(), o.inputs[0]);
   if (by_rank) {
     // The prefixes of several sets are averaged: every set must have the first one's size.
     for (std::size_t i = 0; i < inputs.size(); ++i)
@@ -627,24 +664,26 @@ void run_analyze(const AnalyzeOptions& o) {
                       " points and the first " + std::to_string(inputs[0][0].points.size()) +
                       "; --by-rank averages the prefixes of sets of one size");
   }
-  const Boundary boundary = choose_boundary(o, inputs);
-  if (o.cells && boundary == Boundary::bounded)
+  in.boundary = choose_boundary(o, inputs);
+  if (o.cells && in.boundary == Boundary::bounded)
     throw Error("--cells draws periodic Voronoi cells: not for a bounded set");
-  std::vector<Point> from;
   if (!o.from.empty()) {
     try {
-      from = read_point_file(o.from, read).points;
+      in.from = read_point_file(o.from, read).points;
     } catch (const Error& e) {
       throw Error(append_wrap_hint(e.what()));
     }
-    if (from.size() != inputs[0][0].points.size())
-      throw Error(o.from + ": --from has " + std::to_string(from.size()) + " points but the input has " +
+    if (in.from.size() != inputs[0][0].points.size())
+      throw Error(o.from + ": --from has " + std::to_string(in.from.size()) + " points but the input has " +
                   std::to_string(inputs[0][0].points.size()));
   }
-  check_annuli(o, inputs, prefixes.size());
-  const std::vector<std::pair<OutputFile*, const PointSet*>> psa_files = declare_psa_points(o, inputs, outputs);
-  // The estimate, before any work: a set too large for psa's O(N^2) measures or for the memory
-  // is refused with what it would take.
+  return in;
+}
+
+// The estimate, before any work: a set too large for psa's O(N^2) measures or for the memory
+// is refused with what it would take.
+void check_budget(const AnalyzeOptions& o, const AnalyzeInputs& in) {
+  const std::vector<std::vector<PointSet>>& inputs = in.sets;
   std::vector<AnalysisJob> jobs;
   if (o.compare) {
     for (const auto& sets : inputs) jobs.push_back({sets[0].points.size(), sets.size(), o.size});
@@ -653,18 +692,21 @@ void run_analyze(const AnalyzeOptions& o) {
     std::sort(levels.begin(), levels.end());
     for (std::size_t i = 0; i < levels.size(); ++i)
       if (i + 1 == levels.size() || levels[i + 1] != levels[i]) jobs.push_back({i + 1, 1, o.size});
-  } else if (by_rank) {
-    for (std::size_t k : prefixes) jobs.push_back({k, total_sets, o.size});
+  } else if (!o.by_rank.empty()) {
+    for (std::size_t k : in.prefixes) jobs.push_back({k, in.total_sets, o.size});
   } else {
-    jobs.push_back({inputs[0][0].points.size(), total_sets, o.size});
+    jobs.push_back({inputs[0][0].points.size(), in.total_sets, o.size});
   }
-  if (boundary == Boundary::periodic) check_analysis_budget(jobs, !o.no_psa_measures, o.time_limit_minutes, !o.no_discrepancy);
+  if (in.boundary == Boundary::periodic) check_analysis_budget(jobs, !o.no_psa_measures, o.time_limit_minutes, !o.no_discrepancy);
   else check_analysis_budget(jobs, false, o.time_limit_minutes, !o.no_discrepancy);
+}
 
-  auto label_of = [&](std::size_t i) {
-    return o.labels.empty() ? std::filesystem::path(o.inputs[i]).stem().string() : o.labels[i];
-  };
+// Input i's label: its --label, else its file name without the extension.
+std::string input_label(const AnalyzeOptions& o, std::size_t i) {
+  return o.labels.empty() ? std::filesystem::path(o.inputs[i]).stem().string() : o.labels[i];
+}
 
+SummaryOptions summary_options(const AnalyzeOptions& o, Boundary boundary) {
   SummaryOptions options;
   options.size = o.size;
   options.bin_width = o.bin_width;
@@ -674,27 +716,20 @@ void run_analyze(const AnalyzeOptions& o) {
   options.boundary = boundary;
   options.rdf.range = o.rdf_range;
   options.rdf.bins = static_cast<std::size_t>(o.rdf_bins);
-  std::unique_ptr<Progress> bar;
-  // On a terminal: the step under way, and the periodogram's progress.
-  bool counting = false;  // the bar counts the periodogram's work (else it names a step)
-  options.step = [&](const char* name) {
-    counting = false;
-    bar = std::make_unique<Progress>("analyze:", 0);
-    bar->update(0, name);
-  };
-  options.progress = [&](std::size_t done, std::size_t total) {
-    if (!bar || !counting) {
-      counting = true;
-      bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
-    }
-    bar->update(static_cast<long long>(done));
-  };
+  return options;
+}
 
+// The series of the chosen mode, each summarised: one per input (--compare), per level prefix
+// (--by-level), per rank prefix (--by-rank), or one for the set or the mean of the sets. `bar`
+// is the terminal's progress bar, closed after each summary.
+std::vector<Series> compute_series(const AnalyzeOptions& o, const AnalyzeInputs& in, const SummaryOptions& options,
+                                   std::unique_ptr<Progress>& bar) {
+  const std::vector<std::vector<PointSet>>& inputs = in.sets;
   std::vector<Series> series;
   if (o.compare) {
     for (std::size_t i = 0; i < inputs.size(); ++i) {
       auto sets = points_of(inputs[i]);
-      series.push_back({label_of(i), o.inputs[i], -1, 0, 0.0, inputs[i][0], inputs[i].size(), summarize(sets, options)});
+      series.push_back({input_label(o, i), o.inputs[i], -1, 0, 0.0, inputs[i][0], inputs[i].size(), summarize(sets, options)});
       bar.reset();
     }
   } else if (o.by_level) {
@@ -705,22 +740,35 @@ void run_analyze(const AnalyzeOptions& o) {
       series.push_back({label, o.inputs[0], l.level, 0, 0.0, set, 1, std::move(l.summary)});
     }
     bar.reset();
-  } else if (by_rank) {
+  } else if (!o.by_rank.empty()) {
     std::vector<PointSet> sets;
     for (const auto& file : inputs) sets.insert(sets.end(), file.begin(), file.end());
-    series = rank_series(sets, prefixes, o.inputs[0], options);
+    series = rank_series(sets, in.prefixes, o.inputs[0], options);
     bar.reset();
   } else {
     std::vector<std::vector<Point>> sets;
     for (const auto& file : inputs)
       for (const PointSet& s : file) sets.push_back(s.points);
-    std::string label = inputs.size() == 1 ? label_of(0) : "mean of " + std::to_string(sets.size()) + " sets";
+    std::string label = inputs.size() == 1 ? input_label(o, 0) : "mean of " + std::to_string(sets.size()) + " sets";
     if (!o.labels.empty() && o.labels.size() == 1) label = o.labels[0];
     series.push_back({label, o.inputs[0], -1, 0, 0.0, inputs[0][0], sets.size(), summarize(sets, options)});
     bar.reset();
   }
+  return series;
+}
 
-  // Images, rendered before anything is written: PNG canvases and SVG documents.
+// Every image and the summary page, rendered before anything is written.
+struct AnalyzeDrawings {
+  Canvas points_png, spectrum_png, radial_png, rdf_png;
+  SvgDocument points_svg, spectrum_svg, radial_svg, rdf_svg;
+  std::optional<SvgDocument> summary;
+};
+
+AnalyzeDrawings draw_series(const AnalyzeOptions& o, const std::vector<Series>& series, const AnalyzeInputs& in,
+                            FrequencyAxis axis) {
+  const bool by_rank = !o.by_rank.empty();
+  const Boundary boundary = in.boundary;
+  const std::vector<Point>& from = in.from;
   const bool several = series.size() > 1;
   std::vector<Canvas> point_images, spectrum_images;
   std::vector<SvgDocument> point_svgs, spectrum_svgs;
@@ -764,8 +812,8 @@ void run_analyze(const AnalyzeOptions& o) {
     rdf_curves.push_back({s.label, s.summary.rdf});
   }
   std::string title = !several ? series[0].label + ": " + std::to_string(series[0].summary.count) + " points"
-                               : (o.by_level ? "prefixes of " + label_of(0)
-                                  : by_rank  ? "rank prefixes of " + label_of(0)
+                               : (o.by_level ? "prefixes of " + input_label(o, 0)
+                                  : by_rank  ? "rank prefixes of " + input_label(o, 0)
                                              : "comparison");
   if (!o.title.empty())
     title = o.title;
@@ -789,7 +837,7 @@ void run_analyze(const AnalyzeOptions& o) {
     SummaryPage page;
     page.title = o.title.empty() ? (several && !o.by_level && !by_rank ? "comparison" : title) : o.title;
     page.subtitle = "bluetile analyze";
-    for (const std::string& in : o.inputs) page.subtitle += " " + in;
+    for (const std::string& input : o.inputs) page.subtitle += " " + input;
     page.points = figures.back();
     if (page.points.note.empty()) page.points.note = s.label;
     page.periodogram = s.summary.periodogram;
@@ -801,7 +849,14 @@ void run_analyze(const AnalyzeOptions& o) {
     if (o.compare) add_compare_series(page, series, figures);
     summary_doc = summary_page(page);
   }
+  return {std::move(points_png),     std::move(spectrum_png), std::move(radial_png), std::move(rdf_png),
+          std::move(points_doc),     std::move(spectrum_doc), std::move(radial_svg), std::move(rdf_svg),
+          std::move(summary_doc)};
+}
 
+nlohmann::json stats_json(const AnalyzeOptions& o, const std::vector<Series>& series, Boundary boundary,
+                          FrequencyAxis axis) {
+  const bool by_rank = !o.by_rank.empty();
   nlohmann::json stats;
   stats["mode"] = o.compare ? "compare" : o.by_level ? "by-level" : by_rank ? "by-rank" : o.average ? "average" : "single";
   if (!o.compare) {
@@ -839,12 +894,18 @@ void run_analyze(const AnalyzeOptions& o) {
   const std::vector<std::string> images = {"points.png", "points.svg", "spectrum.png", "spectrum.svg",
                                            "radial.png", "radial.svg", "rdf.png",      "rdf.svg"};
   stats["images"] = images;
+  return stats;
+}
 
+// report.txt, which the tool prints too. `n`: the points of the first set (--by-rank's N).
+std::string report_text(const AnalyzeOptions& o, const std::vector<Series>& series, std::size_t n) {
+  const bool by_rank = !o.by_rank.empty();
+  const bool several = series.size() > 1;
   std::ostringstream report;
   report << "bluetile analyze";
   for (const std::string& in : o.inputs) report << " " << in;
   report << "\n\n";
-  if (by_rank) report_rank_table(report, series, inputs[0][0].points.size());
+  if (by_rank) report_rank_table(report, series, n);
   else if (several) report_table(report, series);
   for (const Series& s : series) {
     report_series(report, s);
@@ -864,27 +925,62 @@ void run_analyze(const AnalyzeOptions& o) {
   if (!o.summary.empty()) report << ", " << o.summary;
   if (!o.psa_points.empty()) report << ", " << o.psa_points << " (psa's text)";
   report << "\n";
+  return report.str();
+}
+
+void run_analyze(const AnalyzeOptions& o) {
+  if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
+  check_options(o);
+  const FrequencyAxis axis = o.axis == "integer" ? FrequencyAxis::integer : FrequencyAxis::normalised;
+  const std::string format = summary_format(o);
+  AnalyzeFiles files;
+  declare_outputs(o, files);
+  const AnalyzeInputs in = read_inputs(o);
+  check_annuli(o, in.sets, in.prefixes.size());
+  const std::vector<std::pair<OutputFile*, const PointSet*>> psa_files = declare_psa_points(o, in.sets, files.outputs);
+  check_budget(o, in);
+
+  SummaryOptions options = summary_options(o, in.boundary);
+  std::unique_ptr<Progress> bar;
+  // On a terminal: the step under way, and the periodogram's progress.
+  bool counting = false;  // the bar counts the periodogram's work (else it names a step)
+  options.step = [&](const char* name) {
+    counting = false;
+    bar = std::make_unique<Progress>("analyze:", 0);
+    bar->update(0, name);
+  };
+  options.progress = [&](std::size_t done, std::size_t total) {
+    if (!bar || !counting) {
+      counting = true;
+      bar = std::make_unique<Progress>("periodogram", static_cast<long long>(total));
+    }
+    bar->update(static_cast<long long>(done));
+  };
+  const std::vector<Series> series = compute_series(o, in, options, bar);
+  const AnalyzeDrawings drawings = draw_series(o, series, in, axis);
+  const nlohmann::json stats = stats_json(o, series, in.boundary, axis);
+  const std::string report = report_text(o, series, in.sets[0][0].points.size());
 
   const std::vector<Series> tables = o.compare ? series : std::vector<Series>{series.back()};
-  stats_file.write(stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
-  radial_file.write(radial_csv(tables, o.compare));
-  rdf_file.write(rdf_csv(tables, o.compare));
-  write_image(points_png_file, points_png);
-  write_image(spectrum_png_file, spectrum_png);
-  write_image(radial_png_file, radial_png);
-  write_image(rdf_png_file, rdf_png);
-  points_svg_file.write(points_doc.str());
-  spectrum_svg_file.write(spectrum_doc.str());
-  radial_svg_file.write(radial_svg.str());
-  rdf_svg_file.write(rdf_svg.str());
-  if (summary_file) {
-    if (summary_format == "pdf") write_pdf(*summary_doc, *summary_file);
-    else summary_file->write(summary_doc->str());
+  files.stats->write(stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");
+  files.radial->write(radial_csv(tables, o.compare));
+  files.rdf->write(rdf_csv(tables, o.compare));
+  write_image(*files.points_png, drawings.points_png);
+  write_image(*files.spectrum_png, drawings.spectrum_png);
+  write_image(*files.radial_png, drawings.radial_png);
+  write_image(*files.rdf_png, drawings.rdf_png);
+  files.points_svg->write(drawings.points_svg.str());
+  files.spectrum_svg->write(drawings.spectrum_svg.str());
+  files.radial_svg->write(drawings.radial_svg.str());
+  files.rdf_svg->write(drawings.rdf_svg.str());
+  if (files.summary) {
+    if (format == "pdf") write_pdf(*drawings.summary, *files.summary);
+    else files.summary->write(drawings.summary->str());
   }
-  report_file.write(report.str());
+  files.report->write(report);
   for (const auto& [file, set] : psa_files) file->write(psa_text(*set));
-  outputs.publish();
-  std::cout << report.str() << std::flush;
+  files.outputs.publish();
+  std::cout << report << std::flush;
 }
 
 }  // namespace
