@@ -468,6 +468,7 @@ std::vector<std::pair<OutputFile*, const PointSet*>> declare_psa_points(const An
                                                                         OutputSet& outputs) {
   std::vector<std::pair<OutputFile*, const PointSet*>> files;
   if (o.psa_points.empty()) return files;
+  check_text_output_name("--psa-points", o.psa_points, "psa's point text");
   std::vector<const PointSet*> sets;
   for (const auto& file : inputs)
     for (const PointSet& set : file) sets.push_back(&set);

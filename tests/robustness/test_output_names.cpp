@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 #include <set>
 #include <sstream>
 
@@ -198,6 +199,13 @@ TEST(OutputNames, LogsRefuseAnotherFormatsExtension) {
       EXPECT_EQ(read_text(dir.file(name)).rfind("iteration,", 0), 0u) << command << " " << name;
     }
   }
+  // psa's point text the same way.
+  const std::string points = dir.write("in.txt", "0.1 0.2\n0.6 0.3\n0.4 0.8\n0.9 0.7\n");
+  const std::string psa = dir.file("psa.svg");
+  Outcome r = run({"analyze", "-i", points, "-o", dir.file("a"), "--psa-points", psa});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --psa-points '" + psa + "': this output writes psa's point text, not '.svg' (SVG)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a")));
 }
 
 TEST(OutputNames, StandardOutputAndNamesWithoutExtensionTakeTheFirstFormat) {
