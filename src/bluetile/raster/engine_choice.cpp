@@ -1,22 +1,10 @@
 #include "bluetile/raster/engine_choice.h"
 
-#include <algorithm>
-
 #include "bluetile/core/error.h"
+#include "bluetile/core/field_checks.h"
 #include "bluetile/voronoi/exact_engine.h"
 
 namespace bluetile {
-namespace {
-
-void check_one_of(const char* field, const std::string& value, const std::vector<std::string>& names) {
-  if (std::find(names.begin(), names.end(), value) != names.end()) return;
-  std::string list;
-  for (const std::string& name : names) list += (list.empty() ? "'" : ", '") + name + "'";
-  throw Error(std::string(field) + ": expected one of " + list + ", got '" + value + "'");
-}
-
-}  // namespace
-
 const std::vector<std::string>& engine_names() {
   static const std::vector<std::string> names{"raster", "exact"};
   return names;
@@ -38,10 +26,10 @@ const std::vector<std::string>& pixel_work_names() {
 }
 
 void validate(const EngineChoice& choice) {
-  check_one_of("engine", choice.engine, engine_names());
-  check_one_of("coverage", choice.coverage, coverage_names());
-  check_one_of("cone", choice.cone, cone_names());
-  check_one_of("pixel_work", choice.pixel_work, pixel_work_names());
+  check_name_field("engine", choice.engine, engine_names());
+  check_name_field("coverage", choice.coverage, coverage_names());
+  check_name_field("cone", choice.cone, cone_names());
+  check_name_field("pixel_work", choice.pixel_work, pixel_work_names());
   if (choice.resolution != 0 && (choice.resolution < kMinResolution || choice.resolution > kMaxResolution))
     throw Error("resolution: expected 0 (from N) or " + std::to_string(kMinResolution) + " to " +
                 std::to_string(kMaxResolution) + ", got " + std::to_string(choice.resolution));

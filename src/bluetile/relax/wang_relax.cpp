@@ -4,8 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/field_checks.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/core/text.h"
 #include "bluetile/relax/lloyd.h"
@@ -161,47 +163,36 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
 
 namespace {
 
-void check_whole(const char* field, long long value, long long low, long long high) {
-  if (value < low || value > high)
-    throw Error(std::string(field) + ": expected " + std::to_string(low) + " to " + std::to_string(high) + ", got " +
-                std::to_string(value));
-}
-
-void check_real(const char* field, double value, double low, double high, const char* unit) {
-  if (!(value >= low && value <= high))
-    throw Error(std::string(field) + ": expected " + shortest_text(low) + " to " + shortest_text(high) + unit + ", got " +
-                shortest_text(value));
-}
-
 template <class Value>
 Value parse_named(const char* field, const std::string& name, std::initializer_list<std::pair<const char*, Value>> names) {
-  std::string list;
+  std::vector<std::string> texts;
   for (const auto& [text, value] : names) {
     if (name == text) return value;
-    list += (list.empty() ? "'" : ", '") + std::string(text) + "'";
+    texts.emplace_back(text);
   }
-  throw Error(std::string(field) + ": expected one of " + list + ", got '" + name + "'");
+  check_name_field(field, name, texts);  // throws: the name is none of them
+  return names.begin()->second;
 }
 
 }  // namespace
 
 void validate(const WangOptions& options) {
   const WangLevelOptions& l = options.level;
-  check_whole("points", static_cast<long long>(options.points), 1, static_cast<long long>(kMaxWangPoints));
-  check_whole("iterations", l.iterations, 0, kMaxWangIterations);
-  check_whole("warm", l.warm_iterations, 0, kMaxWangIterations);
-  check_whole("levels", options.levels, 1, kMaxWangLevels);
-  check_whole("period", l.period, kMinWangPeriod, kMaxWangPeriod);
+  check_whole_field("points", static_cast<long long>(options.points), 1, static_cast<long long>(kMaxWangPoints));
+  check_whole_field("iterations", l.iterations, 0, kMaxWangIterations);
+  check_whole_field("warm", l.warm_iterations, 0, kMaxWangIterations);
+  check_whole_field("levels", options.levels, 1, kMaxWangLevels);
+  check_whole_field("period", l.period, kMinWangPeriod, kMaxWangPeriod);
   if (!(options.ratio > 1.0 && options.ratio <= kMaxWangRatio))
     throw Error("ratio: expected above 1 to " + shortest_text(kMaxWangRatio) + ", got " + shortest_text(options.ratio));
-  check_real("margin", l.edge_margin, 0.0, kMaxEdgeMargin, " tile units");
-  check_whole("lattice_steps", l.refine.lattice_iterations, 0, kMaxLatticeSteps);
-  check_whole("lattice_steps_per_iteration", l.refine.lattice_steps_per_iteration, 0, kMaxLatticeStepsPerIteration);
-  check_real("lattice_step", l.refine.lattice_step, kMinLatticeStep, kMaxLatticeStep, " hexagonal spacings");
-  check_whole("seam_steps", l.refine.seam_iterations, 0, kMaxSeamSteps);
-  check_real("seam_spacing", l.refine.seam_spacing, kMinSeamSpacing, kMaxSeamSpacing, " hexagonal spacings");
-  check_real("level_seam_spacing", l.refine.later_seam_spacing, kMinSeamSpacing, kMaxSeamSpacing, " hexagonal spacings");
-  check_real("void_sigma", l.void_sigma, kMinVoidSigma, kMaxVoidSigma, " hexagonal spacings");
+  check_real_field("margin", l.edge_margin, 0.0, kMaxEdgeMargin, " tile units");
+  check_whole_field("lattice_steps", l.refine.lattice_iterations, 0, kMaxLatticeSteps);
+  check_whole_field("lattice_steps_per_iteration", l.refine.lattice_steps_per_iteration, 0, kMaxLatticeStepsPerIteration);
+  check_real_field("lattice_step", l.refine.lattice_step, kMinLatticeStep, kMaxLatticeStep, " hexagonal spacings");
+  check_whole_field("seam_steps", l.refine.seam_iterations, 0, kMaxSeamSteps);
+  check_real_field("seam_spacing", l.refine.seam_spacing, kMinSeamSpacing, kMaxSeamSpacing, " hexagonal spacings");
+  check_real_field("level_seam_spacing", l.refine.later_seam_spacing, kMinSeamSpacing, kMaxSeamSpacing, " hexagonal spacings");
+  check_real_field("void_sigma", l.void_sigma, kMinVoidSigma, kMaxVoidSigma, " hexagonal spacings");
 }
 
 WangStrategy parse_wang_strategy(const std::string& name) {

@@ -8,25 +8,18 @@
 #include <string>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/field_checks.h"
 #include "bluetile/core/rng.h"
-#include "bluetile/core/text.h"
 
 namespace bluetile {
 
 void validate(const DartOptions& o) {
-  auto whole = [](const char* field, std::size_t v, std::size_t high) {
-    if (v < 1 || v > high)
-      throw Error(std::string(field) + ": expected 1 to " + std::to_string(high) + ", got " + std::to_string(v));
-  };
-  auto real = [](const char* field, double v, double low, double high, const char* unit) {
-    if (!(v >= low && v <= high))
-      throw Error(std::string(field) + ": expected " + shortest_text(low) + " to " + shortest_text(high) + unit + ", got " +
-                  shortest_text(v));
-  };
-  whole("count", o.count, kMaxDartCount);
-  whole("max_failures", o.max_failures, kMaxDartFailures);
-  real("shrink", o.shrink, kMinDartShrink, kMaxDartShrink, "");
-  real("start", o.start, kMinDartStart, kMaxDartStart, " hexagonal spacings");
+  // A count past the long long range reads as the largest one (refused all the same).
+  auto whole = [](std::size_t v) { return static_cast<long long>(std::min<std::size_t>(v, std::size_t{1} << 62)); };
+  check_whole_field("count", whole(o.count), 1, static_cast<long long>(kMaxDartCount));
+  check_whole_field("max_failures", whole(o.max_failures), 1, static_cast<long long>(kMaxDartFailures));
+  check_real_field("shrink", o.shrink, kMinDartShrink, kMaxDartShrink);
+  check_real_field("start", o.start, kMinDartStart, kMaxDartStart, " hexagonal spacings");
 }
 
 DartResult throw_darts(const DartOptions& o) {
