@@ -8,6 +8,7 @@
 //                           [--stages]          (and a table of every stage, host and device
 //                                                pixel work side by side; implies --device-pixels)
 //                           [--cone-draws triangles,indexed,instanced,points]  (one engine each)
+//                           [--split-kernels group,pixel]  (device pixel work, one engine each)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -109,6 +110,9 @@ int main(int argc, char** argv) {
   app.add_option("--cone-draws", cone_draws_text,
                  "comma-separated ways to draw the cones, each a raster engine of its own (host pixel work): "
                  "triangles, indexed, instanced, points");
+  std::string split_kernels_text;
+  app.add_option("--split-kernels", split_kernels_text,
+                 "comma-separated float64 split kernels, each a raster engine of its own (device pixel work): group, pixel");
   bool stages = false;
   app.add_flag("--stages", stages, "also print every stage's time per iteration, host and device pixel work side by side");
   app.add_option("--pixels-per-cell", pixels_per_cell, "resolution from this many pixels per cell (default: the engine's)");
@@ -137,15 +141,19 @@ int main(int argc, char** argv) {
     entries.push_back({"exact", std::make_unique<ExactEngine>(), 0.0, {}});
     struct Variant {
       PixelWork work;
-      std::string draw;
+      std::string draw, split;
     };
     std::vector<Variant> variants;
-    for (PixelWork work : works) variants.push_back({work, ""});
-    for (std::size_t at = 0; at < cone_draws_text.size();) {
-      const std::size_t comma = std::min(cone_draws_text.find(',', at), cone_draws_text.size());
-      variants.push_back({PixelWork::host, cone_draws_text.substr(at, comma - at)});
-      at = comma + 1;
-    }
+    for (PixelWork work : works) variants.push_back({work, "", ""});
+    auto each = [](const std::string& list, auto add) {
+      for (std::size_t at = 0; at < list.size();) {
+        const std::size_t comma = std::min(list.find(',', at), list.size());
+        add(list.substr(at, comma - at));
+        at = comma + 1;
+      }
+    };
+    each(cone_draws_text, [&](std::string draw) { variants.push_back({PixelWork::host, draw, ""}); });
+    each(split_kernels_text, [&](std::string split) { variants.push_back({PixelWork::device, "", split}); });
     for (const Variant& variant : variants) {
       const PixelWork work = variant.work;
       RasterOptions options;
@@ -158,6 +166,11 @@ int main(int argc, char** argv) {
                      variant.draw.c_str());
         return 1;
       }
+      if (variant.split == "pixel") options.split_kernel = SplitKernel::pixel;
+      else if (variant.split != "group" && !variant.split.empty()) {
+        std::fprintf(stderr, "bluetile_raster_profile: --split-kernels: unknown '%s' (group, pixel)\n", variant.split.c_str());
+        return 1;
+      }
       options.coverage = job.coverage;
       options.pixel_work = work;
       if (pixels_per_cell > 0.0)
@@ -167,6 +180,7 @@ int main(int argc, char** argv) {
       const double startup = std::chrono::duration<double>(Clock::now() - w0).count() * 1e3;
       std::string label = std::string("raster ") + (engine->pixel_work_on_device() ? "device pixels" : "host pixels");
       if (!variant.draw.empty()) label += ", cones " + variant.draw;
+      if (!variant.split.empty()) label += ", split " + variant.split;
       entries.push_back({label, std::move(engine), startup, {}});
     }
     // A warm-up loop each (shader JIT, first allocations), then interleaved repeats.

@@ -239,6 +239,10 @@ void main() {
     candidate_offset(kept) = candidate_offset(c);
     ++kept;
   }
+  if (kept > BLUETILE_MAX_PIECES) {  // as split_group_f64.comp, so both leave the same pixels
+    push_overflow(entry);
+    return;
+  }
   for (int c = 0; c < kept; ++c) {
     precise real2 o = candidate_offset(c);
     precise real d = sqrt(o.x * o.x + o.y * o.y);

@@ -17,11 +17,18 @@
 // Boundary pixels per split workgroup: each invocation keeps its candidates and polygons in
 // shared memory (about 1.4 KiB each in float64), within the 32 KiB a lavapipe group has.
 #define BLUETILE_SPLIT_GROUP 16
+// split_group_f64.comp: invocations per workgroup, one subgroup splitting one pixel at a time
+// (lavapipe's SIMD width for 32-bit lanes at 256 bits).
+#define BLUETILE_SPLIT_LANES 8
 // Split workgroups per row of its indirect dispatch (well below the 65535 every device allows).
 #define BLUETILE_SPLIT_ROW 4096u
 // Sites that may own part of one boundary pixel (after pruning); more go to the host (rare:
 // dense clusters at a coarse resolution).
 #define BLUETILE_MAX_CANDIDATES 16
+// Candidates left after pruning that may share one boundary pixel on the device: each piece
+// has at most 4 + (this - 1) vertices, the register slots split_group_f64.comp keeps; more go
+// to the host (a pixel near a vertex where six or more cells meet).
+#define BLUETILE_MAX_PIECES 5
 // Grid buckets a split may visit per axis; a wider window (a huge cell in a dense scene) goes
 // to the host.
 #define BLUETILE_MAX_WINDOW 9
@@ -47,7 +54,11 @@
 #define BLUETILE_BINDING_GRID 8
 #define BLUETILE_BINDING_OVERFLOW 9
 #define BLUETILE_BINDING_ID_IMAGE 10
-#define BLUETILE_BINDING_COUNT 11
+// The positions and the grid again as uniform texel buffers (read by split_group_f64.comp):
+// lavapipe fetches texels for all lanes without the per-lane loop of a storage-buffer load.
+#define BLUETILE_BINDING_POSITION_TEXELS 11
+#define BLUETILE_BINDING_GRID_TEXELS 12
+#define BLUETILE_BINDING_COUNT 13
 
 // Fixed slots of the counters buffer; per-scene uncovered-sample counts follow.
 #define BLUETILE_COUNTER_DISPATCH 0   // 3 words: the split's indirect dispatch (x, y, z)

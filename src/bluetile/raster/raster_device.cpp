@@ -66,6 +66,7 @@ struct RasterDevice::Impl {
   HostBuffer instances, scenes, sites, positions, masks, grid, sums, counters, overflow;
   gpu::Buffer boundary;
   gpu::Buffer id_readback;
+  VkBufferView position_texels = VK_NULL_HANDLE, grid_texels = VK_NULL_HANDLE;
   bool descriptors_dirty = true;
 
   // The last pass.
@@ -96,6 +97,8 @@ struct RasterDevice::Impl {
       gpu->destroy(b->device);
       gpu->destroy(b->staging);
     }
+    for (VkBufferView v : {position_texels, grid_texels})
+      if (v) vkDestroyBufferView(d, v, nullptr);
     gpu->destroy(boundary);
     gpu->destroy(id_readback);
     if (framebuffer) vkDestroyFramebuffer(d, framebuffer, nullptr);
@@ -117,14 +120,16 @@ struct RasterDevice::Impl {
     VkDescriptorType types[BLUETILE_BINDING_COUNT];
     std::fill(std::begin(types), std::end(types), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     types[BLUETILE_BINDING_ID_IMAGE] = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    types[BLUETILE_BINDING_POSITION_TEXELS] = types[BLUETILE_BINDING_GRID_TEXELS] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     set_layout = gpu::create_set_layout(d, types);
     layout = gpu::create_pipeline_layout(d, set_layout, VK_SHADER_STAGE_VERTEX_BIT, 16);
 
-    VkDescriptorPoolSize sizes[2] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, BLUETILE_BINDING_COUNT - 1},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1}};
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, BLUETILE_BINDING_COUNT - 3},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
+                                     {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 2}};
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool_info.maxSets = 1;
-    pool_info.poolSizeCount = 2;
+    pool_info.poolSizeCount = 3;
     pool_info.pPoolSizes = sizes;
     BLUETILE_VK_CHECK(vkCreateDescriptorPool(d, &pool_info, nullptr, &pool));
     VkDescriptorSetAllocateInfo alloc{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
@@ -175,7 +180,10 @@ struct RasterDevice::Impl {
   void create_compute_pipelines() {
     if (classify_pipeline) return;
     classify_pipeline = gpu::create_compute_pipeline(*gpu, layout, "classify.comp");
-    split_pipeline = gpu::create_compute_pipeline(*gpu, layout, float64 ? "split_f64.comp" : "split_f32.comp");
+    const char* split = !float64 ? "split_f32.comp"
+                        : settings.split_kernel == SplitKernel::group && gpu->group_split() ? "split_group_f64.comp"
+                                                                                             : "split_f64.comp";
+    split_pipeline = gpu::create_compute_pipeline(*gpu, layout, split);
   }
 
   // ---- resources -------------------------------------------------------------------------------
@@ -236,7 +244,7 @@ struct RasterDevice::Impl {
     const VkBuffer buffers[BLUETILE_BINDING_COUNT] = {
         instances.device.buffer, scenes.device.buffer, sites.device.buffer, positions.device.buffer,
         sums.device.buffer,      counters.device.buffer, boundary.buffer,   masks.device.buffer,
-        grid.device.buffer,      overflow.device.buffer, VK_NULL_HANDLE};
+        grid.device.buffer,      overflow.device.buffer, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
     VkDescriptorBufferInfo infos[BLUETILE_BINDING_COUNT];
     VkWriteDescriptorSet writes[BLUETILE_BINDING_COUNT];
     for (std::uint32_t b = 0; b < BLUETILE_BINDING_COUNT; ++b) {
@@ -244,7 +252,7 @@ struct RasterDevice::Impl {
       writes[b].dstSet = set;
       writes[b].dstBinding = b;
       writes[b].descriptorCount = 1;
-      if (b == BLUETILE_BINDING_ID_IMAGE) continue;
+      if (b == BLUETILE_BINDING_ID_IMAGE || b == BLUETILE_BINDING_POSITION_TEXELS || b == BLUETILE_BINDING_GRID_TEXELS) continue;
       infos[b] = {buffers[b], 0, VK_WHOLE_SIZE};
       writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
       writes[b].pBufferInfo = &infos[b];
@@ -252,6 +260,26 @@ struct RasterDevice::Impl {
     VkDescriptorImageInfo image_info{VK_NULL_HANDLE, id_image.view, VK_IMAGE_LAYOUT_GENERAL};
     writes[BLUETILE_BINDING_ID_IMAGE].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     writes[BLUETILE_BINDING_ID_IMAGE].pImageInfo = &image_info;
+    // Texel views over as much of each buffer as the device's texel limit allows (a pass beyond
+    // it splits with split_f64.comp: texels_cover).
+    VkDevice d = gpu->device();
+    for (VkBufferView* v : {&position_texels, &grid_texels})
+      if (*v) vkDestroyBufferView(d, *v, nullptr);
+    auto view = [&](const gpu::Buffer& b, VkFormat format, std::size_t texel_bytes) {
+      VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+      info.buffer = b.buffer;
+      info.format = format;
+      info.range = std::min<std::size_t>(b.size / texel_bytes, gpu->properties().limits.maxTexelBufferElements) * texel_bytes;
+      VkBufferView v;
+      BLUETILE_VK_CHECK(vkCreateBufferView(d, &info, nullptr, &v));
+      return v;
+    };
+    position_texels = view(positions.device, VK_FORMAT_R32G32B32A32_UINT, 16);
+    grid_texels = view(grid.device, VK_FORMAT_R32_UINT, 4);
+    writes[BLUETILE_BINDING_POSITION_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    writes[BLUETILE_BINDING_POSITION_TEXELS].pTexelBufferView = &position_texels;
+    writes[BLUETILE_BINDING_GRID_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    writes[BLUETILE_BINDING_GRID_TEXELS].pTexelBufferView = &grid_texels;
     vkUpdateDescriptorSets(gpu->device(), BLUETILE_BINDING_COUNT, writes, 0, nullptr);
     descriptors_dirty = false;
   }
@@ -389,9 +417,10 @@ struct RasterDevice::Impl {
     reserve(instances, instance_total * sizeof(gpu::ConeInstance), storage);
     reserve(scenes, group.size() * sizeof(gpu::SceneInfo), storage);
     reserve(sites, site_total * sizeof(gpu::SiteInfo), storage);
-    reserve(positions, site_total * 16, storage);
+    const VkBufferUsageFlags texels = storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    reserve(positions, site_total * 16, texels);
     reserve(masks, mask_words * 4, storage);
-    reserve(grid, grid_words * 4, storage);
+    reserve(grid, grid_words * 4, texels);
     reserve(sums, site_total * sizeof(gpu::SiteSums), storage);
     reserve(counters, (BLUETILE_COUNTER_UNCOVERED + group.size()) * 4, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     reserve(overflow, pixel_total * sizeof(gpu::uvec2), storage);

@@ -21,6 +21,7 @@ struct RasterDeviceSettings {
   bool fan = false;         // tessellated cones instead of exact-depth quads
   ConeDraw cone_draw = ConeDraw::points;
   bool force_float32 = false;  // the float32 split even where the device has shaderFloat64
+  SplitKernel split_kernel = SplitKernel::group;
 };
 
 // Time of the last pass, seconds.

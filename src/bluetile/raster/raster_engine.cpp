@@ -95,7 +95,7 @@ struct RasterEngine::Impl {
   bool on_device = true;
 
   explicit Impl(const RasterOptions& o)
-      : options(o), device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.cone_draw, o.force_float32}) {
+      : options(o), device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.cone_draw, o.force_float32, o.split_kernel}) {
     on_device = o.pixel_work == PixelWork::device || (o.pixel_work == PixelWork::automatic && !device.is_cpu());
     // Asked for by name, the device path is the exact one or none: never moved to the host, and
     // never the float32 split unless that is asked for too.

@@ -26,6 +26,14 @@ enum class ConeDraw {
               // device's largest point fall back to triangles)
 };
 
+// Which float64 split kernel the device runs (speed only: both give the same bits); for
+// measurements. Measured on lavapipe: docs/BENCHMARKS.md, "The split by subgroups".
+enum class SplitKernel {
+  group,  // split_group_f64.comp: one pixel per subgroup, one piece per lane (where the device
+          // has the subgroup operations; split_f64.comp elsewhere)
+  pixel,  // split_f64.comp: one pixel per invocation
+};
+
 struct RasterScene {
   const Scene* scene = nullptr;
   std::uint64_t serial = 0;  // unique per prepared scene (copies share it): keys per-scene caches
