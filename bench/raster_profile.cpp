@@ -166,8 +166,8 @@ int main(int argc, char** argv) {
                      variant.draw.c_str());
         return 1;
       }
-      if (variant.split == "pixel") options.split_kernel = SplitKernel::pixel;
-      else if (variant.split != "group" && !variant.split.empty()) {
+      if (variant.split == "group") options.split_kernel = SplitKernel::group;
+      else if (variant.split != "pixel" && !variant.split.empty()) {
         std::fprintf(stderr, "bluetile_raster_profile: --split-kernels: unknown '%s' (group, pixel)\n", variant.split.c_str());
         return 1;
       }

@@ -239,7 +239,7 @@ void main() {
     candidate_offset(kept) = candidate_offset(c);
     ++kept;
   }
-  if (kept > BLUETILE_MAX_PIECES) {  // as split_group_f64.comp, so both leave the same pixels
+  if (kept > int(scene.max_pieces)) {  // the bound the host reference applies too
     push_overflow(entry);
     return;
   }

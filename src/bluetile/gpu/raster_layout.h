@@ -25,9 +25,9 @@
 // Sites that may own part of one boundary pixel (after pruning); more go to the host (rare:
 // dense clusters at a coarse resolution).
 #define BLUETILE_MAX_CANDIDATES 16
-// Candidates left after pruning that may share one boundary pixel on the device: each piece
-// has at most 4 + (this - 1) vertices, the register slots split_group_f64.comp keeps; more go
-// to the host (a pixel near a vertex where six or more cells meet).
+// Candidates left after pruning that may share one boundary pixel in split_group_f64.comp:
+// each piece has at most 4 + (this - 1) vertices, the register slots it keeps; more go to the
+// host (SceneInfo::max_pieces, which split_body.glsl honours too).
 #define BLUETILE_MAX_PIECES 5
 // Grid buckets a split may visit per axis; a wider window (a huge cell in a dense scene) goes
 // to the host.
@@ -99,7 +99,7 @@ struct SceneInfo {
   uint mask_offset;   // first word of the scene's site masks (two bits per pixel, rows of words)
   ivec2 grid_size;    // site grid columns, rows
   uint grid_offset;   // first word of the scene's grid in the grid buffer: bucket starts, then sites
-  uint pad0;
+  uint max_pieces;    // candidates after pruning a pixel may keep; more go to the host
   vec2 bucket_size;   // site grid bucket sides, domain units
   float reach_limit;  // farthest a piece may lie from its site for the fixed-point bounds (domain)
   float pad1;

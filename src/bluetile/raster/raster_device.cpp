@@ -54,6 +54,8 @@ struct RasterDevice::Impl {
   VkDescriptorSet set = VK_NULL_HANDLE;
   VkRenderPass render_pass = VK_NULL_HANDLE;
   VkPipeline cone_pipeline = VK_NULL_HANDLE, classify_pipeline = VK_NULL_HANDLE, split_pipeline = VK_NULL_HANDLE;
+  VkPipeline beyond_texels_pipeline = VK_NULL_HANDLE;  // split_for
+  bool group_split = false;  // split_pipeline is split_group_f64.comp
   // ConeDraw::points: the point pipeline (cone_pipeline is then the triangles it falls back to).
   VkPipeline point_pipeline = VK_NULL_HANDLE;
   // ConeDraw::indexed: 0 1 2 2 1 3 per cone, offset by 4 per cone, for this many cones.
@@ -79,6 +81,7 @@ struct RasterDevice::Impl {
   explicit Impl(const RasterDeviceSettings& s) : settings(s) {
     gpu = std::make_unique<gpu::Context>(s.device);
     float64 = gpu->float64() && !s.force_float32;
+    group_split = float64 && s.split_kernel == SplitKernel::group && gpu->group_split();
     try {
       create_pipelines();
     } catch (...) {
@@ -105,7 +108,7 @@ struct RasterDevice::Impl {
     gpu->destroy(id_image);
     gpu->destroy(depth_image);
     if (commands) vkFreeCommandBuffers(d, gpu->command_pool(), 1, &commands);
-    for (VkPipeline p : {cone_pipeline, point_pipeline, classify_pipeline, split_pipeline})
+    for (VkPipeline p : {cone_pipeline, point_pipeline, classify_pipeline, split_pipeline, beyond_texels_pipeline})
       if (p) vkDestroyPipeline(d, p, nullptr);
     if (render_pass) vkDestroyRenderPass(d, render_pass, nullptr);
     if (timestamps) vkDestroyQueryPool(d, timestamps, nullptr);
@@ -180,10 +183,16 @@ struct RasterDevice::Impl {
   void create_compute_pipelines() {
     if (classify_pipeline) return;
     classify_pipeline = gpu::create_compute_pipeline(*gpu, layout, "classify.comp");
-    const char* split = !float64 ? "split_f32.comp"
-                        : settings.split_kernel == SplitKernel::group && gpu->group_split() ? "split_group_f64.comp"
-                                                                                             : "split_f64.comp";
-    split_pipeline = gpu::create_compute_pipeline(*gpu, layout, split);
+    split_pipeline = gpu::create_compute_pipeline(*gpu, layout, group_split ? "split_group_f64.comp" : float64 ? "split_f64.comp" : "split_f32.comp");
+  }
+
+  // The split of a pass whose sites or grid words reach beyond the texel views
+  // (maxTexelBufferElements: 2^27 on lavapipe, 2^16 on some GPUs) is split_f64.comp.
+  VkPipeline split_for(std::size_t site_total, std::size_t grid_words) {
+    const std::size_t texels = gpu->properties().limits.maxTexelBufferElements;
+    if (!group_split || (site_total <= texels && grid_words <= texels)) return split_pipeline;
+    if (!beyond_texels_pipeline) beyond_texels_pipeline = gpu::create_compute_pipeline(*gpu, layout, "split_f64.comp");
+    return beyond_texels_pipeline;
   }
 
   // ---- resources -------------------------------------------------------------------------------
@@ -320,6 +329,7 @@ struct RasterDevice::Impl {
     info.bucket_size64[0] = double_bits(site_grid.cell_size().x);
     info.bucket_size64[1] = double_bits(site_grid.cell_size().y);
     info.reach_limit64 = double_bits(job.reach_limit);
+    info.max_pieces = static_cast<std::uint32_t>(job.max_pieces);
     info.scale64[0] = double_bits(job.scale_area);
     info.scale64[1] = double_bits(job.scale_first);
     info.scale64[2] = double_bits(job.scale_second);
@@ -548,7 +558,7 @@ struct RasterDevice::Impl {
       vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &compute_to_compute, 0,
                            nullptr, 0, nullptr);
-      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, split_pipeline);
+      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, split_for(site_total, grid_words));
       vkCmdDispatchIndirect(cb, counters.device.buffer, 4 * BLUETILE_COUNTER_DISPATCH);
     }
     stamp(3);
@@ -623,6 +633,7 @@ RasterDevice::~RasterDevice() = default;
 
 std::string RasterDevice::device_name() const { return impl_->gpu->info().name; }
 bool RasterDevice::float64_split() const { return impl_->float64; }
+int RasterDevice::max_pieces() const { return impl_->group_split ? BLUETILE_MAX_PIECES : BLUETILE_MAX_CANDIDATES; }
 std::uint32_t RasterDevice::max_side() const { return impl_->gpu->properties().limits.maxImageDimension2D; }
 std::uint32_t RasterDevice::max_scenes_per_pass() const {
   return std::min<std::uint32_t>(impl_->gpu->properties().limits.maxComputeWorkGroupCount[2], 65535);

@@ -110,6 +110,7 @@ struct RasterEngine::Impl {
     s.resolution = options.resolution;
     s.radius_factor = options.radius_factor;
     s.max_side = device.max_side();
+    s.max_pieces = device.max_pieces();
     return s;
   }
 

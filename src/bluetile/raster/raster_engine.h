@@ -55,7 +55,8 @@ struct RasterOptions {
   // Split boundary pixels in single precision even where the device has shaderFloat64 (the
   // path of devices without it; for tests and measurements).
   bool force_float32 = false;
-  SplitKernel split_kernel = SplitKernel::group;
+  // Which float64 split kernel the device runs (SplitKernel); for measurements.
+  SplitKernel split_kernel = SplitKernel::pixel;
   PixelWork pixel_work = PixelWork::automatic;
   // Vulkan device: empty (CPU/lavapipe first), an index or a name substring.
   std::string device;

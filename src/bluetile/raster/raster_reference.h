@@ -212,7 +212,7 @@ bool split_boundary_pixel(const RasterScene& scene, double nearest, std::uint32_
     candidates.resize(kept);
   }
   if (device_bounds) {
-    if (candidates.size() > BLUETILE_MAX_PIECES) return false;
+    if (candidates.size() > static_cast<std::size_t>(scene.max_pieces)) return false;
     for (const Candidate& c : candidates)
       if (std::sqrt(c.offset.x * c.offset.x + c.offset.y * c.offset.y) + diagonal > scene.reach_limit) return false;
   }
