@@ -183,7 +183,8 @@ struct RasterDevice::Impl {
   void create_compute_pipelines() {
     if (classify_pipeline) return;
     classify_pipeline = gpu::create_compute_pipeline(*gpu, layout, "classify.comp");
-    split_pipeline = gpu::create_compute_pipeline(*gpu, layout, group_split ? "split_group_f64.comp" : float64 ? "split_f64.comp" : "split_f32.comp");
+    const char* split = group_split ? "split_group_f64.comp" : float64 ? "split_f64.comp" : "split_f32.comp";
+    split_pipeline = gpu::create_compute_pipeline(*gpu, layout, split);
   }
 
   // The split of a pass whose sites or grid words reach beyond the texel views
@@ -270,7 +271,7 @@ struct RasterDevice::Impl {
     writes[BLUETILE_BINDING_ID_IMAGE].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
     writes[BLUETILE_BINDING_ID_IMAGE].pImageInfo = &image_info;
     // Texel views over as much of each buffer as the device's texel limit allows (a pass beyond
-    // it splits with split_f64.comp: texels_cover).
+    // it splits with split_f64.comp: split_for).
     VkDevice d = gpu->device();
     for (VkBufferView* v : {&position_texels, &grid_texels})
       if (*v) vkDestroyBufferView(d, *v, nullptr);
