@@ -7,7 +7,8 @@
 //            with --untiled, the same plane metrics of untiled Lloyd sets of the same N.
 //   time:    the time to build a set with each engine, interleaved repeats side by side.
 //   levels:  a hierarchical set: the prefix sweep (fractions of the top count and every level
-//            boundary) on the plane, per seed and worst over the seeds, rank orders side by side.
+//            boundary) on the plane, per seed and worst over the seeds, rank orders side by side;
+//            with --plot, the worst rho and LF against the prefix as a figure (SVG or PNG).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -24,7 +25,9 @@
 #include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/io/plot.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/tiling/seam_check.h"
@@ -62,6 +65,7 @@ struct Options {
   bool diagnose = false;
   int untiled_iterations = 80;
   int threads = 0;
+  std::string plot;  // levels mode: the sweep figure, .svg or .png
 };
 
 WangStrategy strategy_of(const std::string& name) {
@@ -265,16 +269,66 @@ void timing(const Options& o) {
   }
 }
 
+// Worst over the seeds of one prefix of the sweep.
+struct SweepWorst {
+  double rho = HUGE_VAL, lf = 0.0, lattice = 0.0, c_lf = 0.0;
+};
+using SweepKey = std::tuple<std::string, std::string, std::size_t, std::string, std::size_t>;  // set, strategy, n0, order, prefix
+
+// The sweep's worst rho and LF against the prefix (log axis), one line per set and order, with
+// Kopf et al. 2006's recursive Wang tiles as the band between two grey lines and the issue's
+// targets dashed (docs/RESULTS.md, "Every prefix").
+void plot_sweep(const Options& o, const std::map<SweepKey, SweepWorst>& worst) {
+  Plot plot;
+  plot.title = "Prefix sweep, worst of " + std::to_string(o.seeds) + " seeds, M = " + std::to_string(o.periods[0]);
+  plot.x_label = "points per tile k (the first k ranks of every tile)";
+  plot.log_x = true;
+  PlotPanel rho{.y_label = "rho", .y_min = 0.0, .y_max = 1.0}, lf{.y_label = "LF", .y_min = 0.0};
+  std::map<std::tuple<std::string, std::string, std::size_t, std::string>, std::size_t> line;  // key -> series index
+  for (const auto& [key, w] : worst) {
+    const auto& [kind, strategy, n, order, prefix] = key;
+    auto [at, fresh] = line.try_emplace({kind, strategy, n, order}, rho.series.size());
+    if (fresh) {
+      const Colour c = series_colour(at->second);
+      const std::string label = kind + " " + std::to_string(n) + " " + strategy + " " + order;
+      rho.series.push_back({label, {}, {}, c, 2.0});
+      lf.series.push_back({label, {}, {}, c, 2.0});
+    }
+    rho.series[at->second].x.push_back(static_cast<double>(prefix));
+    rho.series[at->second].y.push_back(w.rho);
+    lf.series[at->second].x.push_back(static_cast<double>(prefix));
+    lf.series[at->second].y.push_back(w.lf);
+  }
+  double lo = HUGE_VAL, hi = 0.0;
+  for (const PlotSeries& s : rho.series)
+    for (double x : s.x) lo = std::min(lo, x), hi = std::max(hi, x);
+  auto level = [&](PlotPanel& panel, const std::string& label, double y, Colour c, bool dashed) {
+    PlotSeries s{label, {lo, hi}, {y, y}, c, 1.5};
+    s.dashed = dashed;
+    panel.series.push_back(s);
+  };
+  const Colour kopf = colours::grey, target = colours::black;
+  level(rho, "Kopf 2006 (0.22-0.50)", 0.22, kopf, false);
+  level(rho, "", 0.50, kopf, false);
+  level(rho, "target: every prefix 0.60, boundaries 0.70", 0.60, target, true);
+  level(rho, "", 0.70, target, true);
+  level(lf, "", 0.11, kopf, false);
+  level(lf, "", 0.20, kopf, false);
+  level(lf, "", 0.03, target, true);
+  level(lf, "", 0.015, target, true);
+  plot.panels = {rho, lf};
+  const int width = 900, height = 760;
+  if (file_extension(o.plot) == ".png") write_image(o.plot, render_plot(plot, width, height));
+  else render_plot_svg(plot, width, height).write(o.plot);
+}
+
 // The prefix sweep of hierarchical sets (prefix_sweep: fixed fractions of the top count and every
 // level boundary), per seed, and the worst over the seeds of each prefix, one rank order beside
 // the other. Every order ranks the same positions of level 0; later levels are relaxed around
 // points stored in rank order, so they differ in rounding.
 void levels(const Options& o) {
   ExactEngine engine;
-  struct Worst {
-    double rho = HUGE_VAL, lf = 0.0, lattice = 0.0, c_lf = 0.0;
-  };
-  std::map<std::tuple<std::string, std::string, std::size_t, std::string, std::size_t>, Worst> worst;
+  std::map<SweepKey, SweepWorst> worst;
   std::printf("| set | n0 | order | seed | prefix per tile | level boundary | rho | LF | lattice peak | seamX | C_LF | C_mid |\n"
               "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const std::string& kind : o.kinds) {
@@ -304,7 +358,7 @@ void levels(const Options& o) {
                           level >= 0 ? std::to_string(level).c_str() : "", m.rho, m.low_frequency, m.lattice_peak,
                           level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "", m.coherence_low, m.coherence_mid);
               std::fflush(stdout);
-              Worst& row = worst[{kind, strategy, n, order, prefix}];
+              SweepWorst& row = worst[{kind, strategy, n, order, prefix}];
               row.rho = std::min(row.rho, m.rho);
               row.lf = std::max(row.lf, m.low_frequency);
               row.lattice = std::max(row.lattice, m.lattice_peak);
@@ -322,6 +376,7 @@ void levels(const Options& o) {
     std::printf("| %s | %s | %zu | %s | %zu | %.3f | %.4f | %.1f | %.3f |\n", kind.c_str(), strategy.c_str(), n,
                 order.c_str(), prefix, w.rho, w.lf, w.lattice, w.c_lf);
   }
+  if (!o.plot.empty()) plot_sweep(o, worst);
 }
 
 }  // namespace
@@ -358,6 +413,7 @@ int main(int argc, char** argv) {
   app.add_flag("--diagnose", o.diagnose, "quality mode: split C_mid into tile crystallinity and coherence");
   app.add_flag("--untiled", o.untiled, "quality mode: also untiled Lloyd at the same N");
   app.add_option("--untiled-iterations", o.untiled_iterations, "Iterations of the untiled reference");
+  app.add_option("--plot", o.plot, "levels mode: the sweep's worst rho and LF against k, as SVG (or .png)");
   app.add_option("--threads", o.threads, "Threads (default: all cores)");
   CLI11_PARSE(app, argc, argv);
   try {

@@ -111,6 +111,69 @@ TEST(Plot, DrawsSeriesInsideTheFrame) {
   EXPECT_EQ(blue, 0);   // clipped away entirely
 }
 
+TEST(Plot, LogTicks) {
+  EXPECT_EQ(log_ticks(8.0, 128.0), (std::vector<double>{8.0, 16.0, 32.0, 64.0, 128.0}));
+  EXPECT_EQ(log_ticks(6.0, 100.0), (std::vector<double>{8.0, 16.0, 32.0, 64.0}));
+  EXPECT_EQ(log_ticks(1.0, 1e5), (std::vector<double>{1.0, 10.0, 100.0, 1000.0, 1e4, 1e5}));  // 16.6 octaves
+  EXPECT_THROW(log_ticks(0.0, 10.0), Error);
+  EXPECT_THROW(log_ticks(4.0, 4.0), Error);
+}
+
+// Mean column of the red pixels: where a vertical red line was drawn.
+double red_column(const Canvas& c) {
+  double sum = 0.0;
+  int count = 0;
+  for (int y = 0; y < c.height(); ++y)
+    for (int x = 0; x < c.width(); ++x) {
+      Colour p = c.pixel(x, y);
+      if (p.r > 0.9f && p.g < 0.2f && p.b < 0.2f) sum += x, ++count;
+    }
+  return count > 0 ? sum / count : -1.0;
+}
+
+// On a log axis over [1, 16], x = 4 is half-way, where a linear axis puts 8.5; a dashed series
+// leaves gaps (fewer pixels than the same line solid) but is drawn.
+TEST(Plot, LogAxisAndDashedSeries) {
+  auto vertical = [](bool log_x, double x) {
+    Plot plot;
+    plot.log_x = log_x;
+    plot.x_min = 1.0, plot.x_max = 16.0;
+    PlotPanel panel;
+    panel.y_min = 0.0, panel.y_max = 1.0;
+    panel.series.push_back({"", {x, x}, {0.0, 1.0}, Colour{1.0f, 0.0f, 0.0f}, 2.0});
+    plot.panels.push_back(panel);
+    return render_plot(plot, 400, 300);
+  };
+  const double log_at = red_column(vertical(true, 4.0)), linear_at = red_column(vertical(false, 8.5));
+  ASSERT_GT(log_at, 0.0);
+  EXPECT_NEAR(log_at, linear_at, 0.5);
+  EXPECT_GT(std::abs(red_column(vertical(true, 8.5)) - linear_at), 40.0);
+
+  auto horizontal = [](bool dashed) {
+    Plot plot;
+    PlotPanel panel;
+    panel.y_min = 0.0, panel.y_max = 1.0;
+    PlotSeries s{"", {0.0, 10.0}, {0.5, 0.5}, Colour{1.0f, 0.0f, 0.0f}, 2.0};
+    s.dashed = dashed;
+    panel.series.push_back(s);
+    plot.panels.push_back(panel);
+    Canvas c = render_plot(plot, 400, 300);
+    int red = 0;
+    for (int y = 0; y < c.height(); ++y)
+      for (int x = 0; x < c.width(); ++x)
+        if (Colour p = c.pixel(x, y); p.r > 0.9f && p.g < 0.2f && p.b < 0.2f) ++red;
+    return red;
+  };
+  const int solid = horizontal(false), dashed = horizontal(true);
+  EXPECT_GT(dashed, solid / 4);
+  EXPECT_LT(dashed, solid * 3 / 4);
+  Plot bad;
+  bad.log_x = true;
+  bad.x_min = 0.0, bad.x_max = 1.0;
+  bad.panels.emplace_back();
+  EXPECT_THROW(render_plot(bad, 100, 100), Error);
+}
+
 TEST(Figures, SpectrumToneMapAndOrientation) {
   Periodogram p;
   p.size = 4;

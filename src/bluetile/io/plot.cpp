@@ -159,6 +159,16 @@ std::vector<double> nice_ticks(double lo, double hi, int target) {
   return ticks;
 }
 
+std::vector<double> log_ticks(double lo, double hi) {
+  if (!(lo > 0.0) || !(hi > lo)) throw Error("log axis range must be above 0 and not empty");
+  const double base = std::log2(hi / lo) <= 12.0 ? 2.0 : 10.0;
+  std::vector<double> ticks;
+  const double slack = 1e-9;  // an end that is a power within rounding counts
+  for (double e = std::ceil(std::log(lo) / std::log(base) - slack); std::pow(base, e) <= hi * (1.0 + slack); ++e)
+    ticks.push_back(std::pow(base, e));
+  return ticks;
+}
+
 void paint_plot(const Plot& plot, Painter& painter, double width, double height) {
   if (plot.panels.empty()) throw Error("a plot needs at least one panel");
   const double th = painter.text_height();
@@ -179,11 +189,21 @@ void paint_plot(const Plot& plot, Painter& painter, double width, double height)
         for (double v : s.x) lo = std::min(lo, v), hi = std::max(hi, v);
     if (!std::isfinite(x_lo)) x_lo = std::isfinite(lo) ? lo : 0.0;
     if (!std::isfinite(x_hi)) x_hi = std::isfinite(hi) ? hi : 1.0;
-    if (!(x_hi > x_lo)) x_hi = x_lo + 1.0;
+    if (!(x_hi > x_lo)) x_hi = plot.log_x ? 2.0 * x_lo : x_lo + 1.0;
   }
-  const std::vector<double> x_ticks = nice_ticks(x_lo, x_hi, 8);
+  if (plot.log_x && !(x_lo > 0.0)) throw Error("a log x axis needs x above 0");
+  const std::vector<double> x_ticks = plot.log_x ? log_ticks(x_lo, x_hi) : nice_ticks(x_lo, x_hi, 8);
   const double x_step = x_ticks.size() > 1 ? x_ticks[1] - x_ticks[0] : x_hi - x_lo;
-  auto to_px = [&](double x) { return left + (x - x_lo) / (x_hi - x_lo) * (right - left); };
+  auto to_px = [&](double x) {
+    const double f = plot.log_x ? std::log(x / x_lo) / std::log(x_hi / x_lo) : (x - x_lo) / (x_hi - x_lo);
+    return left + f * (right - left);
+  };
+  auto x_tick_label = [&](double t) {
+    if (!plot.log_x) return tick_label(t, x_step);
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%g", t);
+    return std::string(buffer);
+  };
 
   if (!plot.title.empty())
     painter.text(0.5 * (left + right), 1.25 * th, plot.title, colours::black, Align::centre, Align::start);
@@ -211,7 +231,13 @@ void paint_plot(const Plot& plot, Painter& painter, double width, double height)
       // Runs of segments that stay connected after clipping to the frame, one polyline each.
       std::vector<Point> run;
       auto flush = [&] {
-        if (run.size() >= 2) painter.polyline(run, s.colour, s.width);
+        if (run.size() >= 2) {
+          if (s.dashed)
+            for (std::size_t i = 1; i < run.size(); ++i)
+              painter.dashed_line(run[i - 1], run[i], s.colour, s.width, 3.0 * s.width, 2.0 * s.width);
+          else
+            painter.polyline(run, s.colour, s.width);
+        }
         run.clear();
       };
       for (std::size_t i = 0; i + 1 < s.x.size() && i + 1 < s.y.size(); ++i) {
@@ -247,7 +273,7 @@ void paint_plot(const Plot& plot, Painter& painter, double width, double height)
     for (int k = 0; k < 4; ++k) painter.line(corners[k], corners[(k + 1) % 4], colours::black, frame);
     for (double t : x_ticks) {
       painter.line({to_px(t), y_bottom}, {to_px(t), y_bottom - tick}, colours::black, frame);
-      painter.text(to_px(t), y_bottom + 0.375 * th, tick_label(t, x_step), colours::black, Align::centre, Align::start);
+      painter.text(to_px(t), y_bottom + 0.375 * th, x_tick_label(t), colours::black, Align::centre, Align::start);
     }
     for (double t : y_ticks) {
       painter.line({left, to_py(t)}, {left + tick, to_py(t)}, colours::black, frame);
@@ -269,7 +295,10 @@ void paint_plot(const Plot& plot, Painter& painter, double width, double height)
         for (int k = 0; k < 4; ++k) painter.line(box[k], box[(k + 1) % 4], colours::grey, grid);
         for (std::size_t e = 0; e < entries.size(); ++e) {
           double cy = by + 0.25 * th + (static_cast<double>(e) + 0.5) * row;
-          painter.line({bx + 0.5 * th, cy}, {bx + 0.5 * th + sample, cy}, entries[e]->colour, entries[e]->width + 0.5);
+          const Point a{bx + 0.5 * th, cy}, b{bx + 0.5 * th + sample, cy};
+          const double w = entries[e]->width + 0.5;
+          if (entries[e]->dashed) painter.dashed_line(a, b, entries[e]->colour, w, 3.0 * w, 2.0 * w);
+          else painter.line(a, b, entries[e]->colour, w);
           painter.text(bx + 1.125 * th + sample, cy, entries[e]->label, colours::black, Align::start, Align::centre);
         }
       }

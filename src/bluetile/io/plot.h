@@ -84,6 +84,7 @@ struct PlotSeries {
   std::vector<double> x, y;   // NaN or infinite y breaks the line
   Colour colour = colours::black;
   double width = 2.0;
+  bool dashed = false;        // a reference level or target rather than data
 };
 
 struct PlotPanel {
@@ -100,11 +101,13 @@ struct Plot {
   std::string x_label;
   double x_min = std::numeric_limits<double>::quiet_NaN();
   double x_max = std::numeric_limits<double>::quiet_NaN();
+  // A logarithmic x axis (x > 0; ticks at powers of 2 over at most 12 octaves, else of 10).
+  bool log_x = false;
   std::vector<PlotPanel> panels;
 };
 
 // Draws the plot into the rectangle [0, width] x [0, height] of the painter. Throws Error
-// for a plot without panels.
+// for a plot without panels, and for a log_x plot whose x range is not above 0.
 void paint_plot(const Plot& plot, Painter& painter, double width, double height);
 
 // The plot as a white canvas of the given size.
@@ -116,5 +119,9 @@ SvgDocument render_plot_svg(const Plot& plot, int width, int height);
 // Round tick values (1, 2 or 5 times a power of ten apart) covering [lo, hi], about `target`
 // of them. lo < hi.
 std::vector<double> nice_ticks(double lo, double hi, int target);
+
+// Ticks of a logarithmic axis over [lo, hi], 0 < lo < hi: the powers of 2 inside it when it spans
+// at most 12 octaves, else the powers of 10 (both ends included when they are such powers).
+std::vector<double> log_ticks(double lo, double hi);
 
 }  // namespace bluetile
