@@ -45,6 +45,25 @@ TEST(Polygon, MomentsOfRectanglesAndTriangles) {
   EXPECT_EQ(polygon_moments({}).area(), 0.0);
 }
 
+// Far more vertices than the buffers start with (64): each growth moves the buffers in the
+// middle of a clip, which must then read the sides it computed, not freed memory (the sanitizer
+// build catches a stale pointer; the area catches the wrong cuts it would make).
+TEST(Polygon, ClipsPastTheInitialCapacity) {
+  constexpr int kSides = 300;
+  const double pi = std::acos(-1.0);
+  ConvexPolygon p;
+  p.reset_rectangle({-2, -2}, {2, 2});
+  // Bisectors with points at distance 2 are the tangents of the unit circle: a regular polygon
+  // around it, of area n tan(pi / n) and n vertices.
+  for (int k = 0; k < kSides; ++k) {
+    const double a = 2.0 * pi * k / kSides;
+    p.clip_by_bisector({2.0 * std::cos(a), 2.0 * std::sin(a)}, static_cast<std::uint32_t>(k));
+  }
+  EXPECT_EQ(p.size(), static_cast<std::size_t>(kSides));
+  EXPECT_NEAR(p.moments().area(), kSides * std::tan(pi / kSides), 1e-12);
+  EXPECT_NEAR(p.max_radius_squared(), 1.0 / std::pow(std::cos(pi / kSides), 2), 1e-12);
+}
+
 TEST(Polygon, ClipByBisector) {
   ConvexPolygon p;
   p.reset_rectangle({-1, -1}, {1, 1}, 7);

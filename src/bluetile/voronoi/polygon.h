@@ -94,8 +94,11 @@ class ConvexPolygon {
     }
     if (!any_outside) return;
     // A convex polygon cut by a line gains at most one vertex.
-    if (scratch_.size() < n + 1) grow(2 * (n + 1));
-    in = vertices_.data();
+    if (scratch_.size() < n + 1) {
+      grow(2 * (n + 1));  // moves every buffer: the pointers into them are taken again
+      in = vertices_.data();
+      side = side_.data();
+    }
     PolygonVertex* out = scratch_.data();
     std::size_t m = 0;
     double radius_squared = 0.0;
