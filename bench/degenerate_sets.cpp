@@ -1,10 +1,15 @@
-// The exact engine on sites far from uniform: one Lloyd step's cells for sites
-// on a line, on a diagonal line, nearly on a line and in a small cluster, next to uniform sites
-// of the same N, as milliseconds per iteration and as a ratio to uniform. Repeats interleave the
-// sets so that a machine shared with others drifts alike for all (docs/BENCHMARKS.md).
+// A centroid engine on sites far from uniform: one Lloyd step's cells for sites on a line (in
+// random and in index order), on a tilted line, on a diagonal line, on four parallel lines, nearly
+// on a line and in a small cluster, next to uniform sites of the same N, as milliseconds per
+// iteration (wall and CPU) and as a ratio to uniform. Repeats interleave the sets so that a
+// machine shared with others drifts alike for all (docs/BENCHMARKS.md).
 //   bluetile_degenerate_bench [--sizes 1000,2000,8000,32000] [--repeats 3] [--threads T]
+//                             [--engine exact|raster] [--kinds uniform,line,...]
+#include <sys/resource.h>
+
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <cstdio>
 #include <functional>
 #include <string>
@@ -15,64 +20,110 @@
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/exact_engine.h"
+#if BLUETILE_BENCH_RASTER
+#include "bluetile/raster/raster_engine.h"
+#endif
 
 using namespace bluetile;
 
 namespace {
 
 struct Kind {
-  std::string name;
-  std::function<Point(Rng&)> draw;
+  std::string key, name;
+  std::function<Point(Rng&, std::size_t i, std::size_t n)> draw;
 };
+
+// The spacing of point i of n along a line, in index order.
+double along(std::size_t i, std::size_t n) { return (static_cast<double>(i) + 0.5) / static_cast<double>(n); }
 
 const std::vector<Kind> kKinds = {
-    {"uniform", [](Rng& rng) { return rng.point(Domain{}); }},
-    {"line y = 0.5", [](Rng& rng) { return Point{rng.uniform(), 0.5}; }},
-    {"diagonal line", [](Rng& rng) { const double t = rng.uniform(); return Point{t, wrap_coordinate(t + 0.25, 1.0)}; }},
-    {"line, 1e-9 jitter", [](Rng& rng) { return Point{rng.uniform(), 0.5 + 1e-9 * (rng.uniform() - 0.5)}; }},
-    {"cluster 0.002 wide", [](Rng& rng) { return wrap_point({0.999 + 0.002 * rng.uniform(), 0.999 + 0.002 * rng.uniform()}, Domain{}); }},
+    {"uniform", "uniform", [](Rng& rng, std::size_t, std::size_t) { return rng.point(Domain{}); }},
+    {"line", "line y = 0.5", [](Rng& rng, std::size_t, std::size_t) { return Point{rng.uniform(), 0.5}; }},
+    {"ordered", "line y = 0.5, in order", [](Rng&, std::size_t i, std::size_t n) { return Point{along(i, n), 0.5}; }},
+    {"tilted", "tilted line, in order",
+     [](Rng&, std::size_t i, std::size_t n) { return Point{0.1 + 0.8 * along(i, n), 0.2 + 0.6 * along(i, n)}; }},
+    {"diagonal", "diagonal line", [](Rng& rng, std::size_t, std::size_t) { const double t = rng.uniform(); return Point{t, wrap_coordinate(t + 0.25, 1.0)}; }},
+    {"parallel", "4 parallel lines, in order",
+     [](Rng&, std::size_t i, std::size_t n) { return Point{along(i % (n / 4), n / 4), 0.125 + 0.25 * static_cast<double>(i / (n / 4) % 4)}; }},
+    {"jitter", "line, 1e-9 jitter", [](Rng& rng, std::size_t, std::size_t) { return Point{rng.uniform(), 0.5 + 1e-9 * (rng.uniform() - 0.5)}; }},
+    {"cluster", "cluster 0.002 wide", [](Rng& rng, std::size_t, std::size_t) { return wrap_point({0.999 + 0.002 * rng.uniform(), 0.999 + 0.002 * rng.uniform()}, Domain{}); }},
 };
 
-double milliseconds_per_iteration(const Scene& scene, ExactEngine& engine) {
+double cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return static_cast<double>(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * static_cast<double>(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+struct Time {
+  double wall_ms = 0.0, cpu_ms = 0.0;
+};
+
+Time time_iteration(const Scene& scene, CentroidEngine& engine) {
+  const double cpu = cpu_seconds();
   const auto start = std::chrono::steady_clock::now();
   SceneCells cells = engine.compute(scene);
   const auto stop = std::chrono::steady_clock::now();
   if (cells.cells.size() != scene.sites.size()) std::abort();
-  return std::chrono::duration<double, std::milli>(stop - start).count();
+  return {std::chrono::duration<double, std::milli>(stop - start).count(), 1e3 * (cpu_seconds() - cpu)};
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"bluetile_degenerate_bench: the exact engine on sites on a line or in a cluster"};
+  CLI::App app{"bluetile_degenerate_bench: a centroid engine on sites on a line or in a cluster"};
   std::vector<std::size_t> sizes = {1000, 2000, 8000, 32000};
   int repeats = 3, threads = 1;
+  std::string engine_name = "exact";
+  std::vector<std::string> kinds;
   app.add_option("--sizes", sizes, "numbers of sites")->delimiter(',');
   app.add_option("--repeats", repeats, "interleaved repeats (the median is reported)");
   app.add_option("--threads", threads, "CPU threads (default 1: per-site cost)");
+  app.add_option("--engine", engine_name, "exact or raster (default settings: area coverage, resolution from N)");
+  app.add_option("--kinds", kinds, "sets to run (default all): uniform, line, ordered, tilted, diagonal, parallel, jitter, cluster")
+      ->delimiter(',');
   CLI11_PARSE(app, argc, argv);
   set_thread_count(static_cast<std::size_t>(threads));
-  ExactEngine engine;
-  std::printf("| N | sites | ms per iteration | us per site | / uniform |\n|---|---|---|---|---|\n");
+  std::unique_ptr<CentroidEngine> engine;
+  if (engine_name == "exact") {
+    engine = std::make_unique<ExactEngine>();
+#if BLUETILE_BENCH_RASTER
+  } else if (engine_name == "raster") {
+    engine = std::make_unique<RasterEngine>();
+#endif
+  } else {
+    std::fprintf(stderr, "bluetile_degenerate_bench: --engine: unknown or not built '%s'\n", engine_name.c_str());
+    return 1;
+  }
+  std::vector<const Kind*> chosen;
+  for (const Kind& kind : kKinds)
+    if (kinds.empty() || kind.key == "uniform" || std::find(kinds.begin(), kinds.end(), kind.key) != kinds.end()) chosen.push_back(&kind);
+  std::printf("| N | sites | engine | ms per iteration | CPU ms | us per site | / uniform |\n|---|---|---|---|---|---|---|\n");
   for (std::size_t n : sizes) {
     std::vector<Scene> scenes;
-    for (const Kind& kind : kKinds) {
+    for (const Kind* kind : chosen) {
       Rng rng(n);
       std::vector<Point> sites(n);
-      for (Point& p : sites) p = kind.draw(rng);
+      for (std::size_t i = 0; i < n; ++i) sites[i] = kind->draw(rng, i, n);
       scenes.push_back(make_scene(std::move(sites)));
     }
-    std::vector<std::vector<double>> times(kKinds.size());
+    time_iteration(scenes[0], *engine);  // warm-up: the raster engine's shaders and buffers
+    std::vector<std::vector<double>> wall(chosen.size()), cpu(chosen.size());
     for (int r = 0; r < repeats; ++r)
-      for (std::size_t k = 0; k < kKinds.size(); ++k) times[k].push_back(milliseconds_per_iteration(scenes[k], engine));
-    std::vector<double> median(kKinds.size());
-    for (std::size_t k = 0; k < kKinds.size(); ++k) {
-      std::sort(times[k].begin(), times[k].end());
-      median[k] = times[k][times[k].size() / 2];
-    }
-    for (std::size_t k = 0; k < kKinds.size(); ++k)
-      std::printf("| %zu | %s | %.2f | %.2f | %.2f |\n", n, kKinds[k].name.c_str(), median[k],
-                  1000.0 * median[k] / static_cast<double>(n), median[k] / median[0]);
+      for (std::size_t k = 0; k < chosen.size(); ++k) {
+        const Time t = time_iteration(scenes[k], *engine);
+        wall[k].push_back(t.wall_ms);
+        cpu[k].push_back(t.cpu_ms);
+      }
+    for (std::size_t k = 0; k < chosen.size(); ++k)
+      std::printf("| %zu | %s | %s | %.2f | %.2f | %.2f | %.2f |\n", n, chosen[k]->name.c_str(), engine_name.c_str(), median(wall[k]),
+                  median(cpu[k]), 1000.0 * median(wall[k]) / static_cast<double>(n), median(wall[k]) / median(wall[0]));
+    std::fflush(stdout);
   }
   return 0;
 }

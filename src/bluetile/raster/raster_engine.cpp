@@ -62,6 +62,17 @@ double nearest_site_distance(const RasterScene& scene, Point p) {
   double best = HUGE_VAL;
   const Point cell = grid.cell_size();
   for (double reach = std::max(cell.x, cell.y);; reach *= 2.0) {
+    if (reach > 8.0 * std::max(cell.x, cell.y)) {
+      // Far from every site (sites on a line): the rings would visit O(N) sites; the tree finds
+      // the few within a hair of the nearest, and the same distance is their least.
+      const RasterSearch& search = raster_search(scene);
+      const SiteTree::Disk near{p, std::sqrt(search.tree.nearest_squared(p)) * (1.0 + 1e-9) + 1e-9 * std::max(domain.size.x, domain.size.y)};
+      std::vector<SiteTree::Copy> copies;
+      search.tree.copies_in_disks(std::span<const SiteTree::Disk>(&near, 1), copies);
+      for (const SiteTree::Copy& c : copies)
+        if (!scene.coincident[c.index]) best = std::min(best, raster_distance(scene, p, scene.sites[c.index]));
+      return best;
+    }
     grid.for_each_near(p, reach, [&](std::uint32_t t) {
       if (!scene.coincident[t]) best = std::min(best, raster_distance(scene, p, scene.sites[t]));
     });
@@ -321,6 +332,7 @@ struct RasterEngine::Impl {
       }
       for (std::size_t k = 0; k < group.size(); ++k) {
         RasterScene& job = *group[k];
+        stats.split_sites_examined += job.search_cache_->sites_examined.exchange(0);
         if (accepted[k]) {
           job.done = true;
           stats.host_split_pixels += host_pixels[k].size();

@@ -77,6 +77,7 @@ struct RasterStats {
   std::uint64_t boundary_pixels = 0;   // pixels split on the device (area coverage)
   std::uint64_t host_split_pixels = 0;  // boundary pixels the device left to the host
   std::uint64_t fallback_cells = 0;    // cells measured by the exact engine (point coverage, no sample)
+  std::uint64_t split_sites_examined = 0;  // sites the host split's candidate searches examined
   std::uint64_t remembered_radii = 0;  // sites whose cone radius came from the radius memory
   double drawn_radius_sum = 0.0;       // sum of the cone radii of every site drawn (domain units)
   double upload_seconds = 0.0;  // filling the device's input buffers

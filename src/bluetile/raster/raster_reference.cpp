@@ -394,4 +394,119 @@ void host_split(const RasterScene& scene, double nearest, std::uint32_t pixel, s
   });
 }
 
+RasterSearch::RasterSearch(const RasterScene& scene) : tree(scene.sites, scene.scene->domain, scene.periodic) {
+  const SiteGrid& grid = scene.grid();
+  const auto starts = grid.bucket_starts();
+  const auto indices = grid.site_indices();
+  bucket.assign(scene.size(), 0);
+  slot.assign(scene.size(), 0);
+  for (std::size_t b = 0; b + 1 < starts.size(); ++b)
+    for (std::uint32_t k = starts[b]; k < starts[b + 1]; ++k) {
+      bucket[indices[k]] = static_cast<std::uint32_t>(b);
+      slot[indices[k]] = k;
+    }
+}
+
+const RasterSearch& raster_search(const RasterScene& scene) {
+  RasterSearchCache& cache = *scene.search_cache_;
+  std::call_once(cache.once, [&] { cache.search = std::make_unique<RasterSearch>(scene); });
+  return *cache.search;
+}
+
+namespace raster_detail {
+
+void tree_candidates(const RasterScene& scene, int i, int j, double reach, long lo_x, long hi_x, long lo_y, long hi_y,
+                     std::vector<Candidate>& out) {
+  const RasterSearch& search = raster_search(scene);
+  const SiteGrid& grid = scene.grid();
+  const long columns = grid.columns(), rows = grid.rows();
+  const Point h{scene.hx, scene.hy};
+  const Point domain = scene.scene->domain.size;
+  const Point lattice{static_cast<double>(i) * h.x, static_cast<double>(j) * h.y};
+  const Point half_pixel = 0.5 * h;
+  const double diagonal = std::sqrt(h.x * h.x + h.y * h.y) * (1.0 + 1.0 / 65536.0);
+  const Point centre{(static_cast<double>(i) + 0.5) * h.x, (static_cast<double>(j) + 0.5) * h.y};
+  // Roundings of the tree's distances against the split's, and of box tests: far below this.
+  const double margin = 1e-9 * std::max(domain.x, domain.y);
+  struct Keyed {
+    Candidate c;
+    long by, bx;
+    std::uint32_t slot;
+  };
+  auto before = [](const Keyed& a, const Keyed& b) {
+    if (a.by != b.by) return a.by < b.by;
+    if (a.bx != b.bx) return a.bx < b.bx;
+    return a.slot < b.slot;
+  };
+  thread_local std::vector<SiteTree::Copy> copies;
+  thread_local std::vector<Keyed> found;
+  // The copies in `disks` that the grid window would give as first-stage candidates, with the
+  // window's arithmetic and in its order.
+  auto gather = [&](std::span<const SiteTree::Disk> disks) {
+    copies.clear();
+    found.clear();
+    search.tree.copies_in_disks(disks, copies);
+    scene.search_cache_->sites_examined.fetch_add(copies.size(), std::memory_order_relaxed);
+    for (const SiteTree::Copy& k : copies) {
+      if (scene.coincident[k.index]) continue;
+      const long by = static_cast<long>(search.bucket[k.index]) / columns + k.ky * rows;
+      const long bx = static_cast<long>(search.bucket[k.index]) % columns + k.kx * columns;
+      if (by < lo_y || by > hi_y || bx < lo_x || bx > hi_x) continue;
+      const Point site = scene.sites[k.index];
+      const Point from = Point{site.x - lattice.x, site.y - lattice.y} - half_pixel;
+      const Point o{from.x + static_cast<double>(k.kx) * domain.x, from.y + static_cast<double>(k.ky) * domain.y};
+      const double d2 = o.x * o.x + o.y * o.y;
+      if (d2 > reach * reach) continue;
+      found.push_back({{k.index, k.kx, k.ky, o, d2}, by, bx, search.slot[k.index]});
+    }
+    std::sort(found.begin(), found.end(), before);
+  };
+  // The nearest copy (the first of equals in window order): within a hair of the tree's nearest.
+  const SiteTree::Disk near{centre, std::sqrt(search.tree.nearest_squared(centre)) * (1.0 + 1e-9) + margin};
+  gather(std::span<const SiteTree::Disk>(&near, 1));
+  if (found.empty()) {
+    const SiteTree::Disk all{centre, reach + margin};
+    gather(std::span<const SiteTree::Disk>(&all, 1));
+  }
+  if (found.empty()) return;
+  std::size_t nearest_index = 0;
+  for (std::size_t c = 1; c < found.size(); ++c)
+    if (found[c].c.distance_squared < found[nearest_index].c.distance_squared) nearest_index = c;
+  const Keyed s0 = found[nearest_index];
+  const double reach2 = std::sqrt(s0.c.distance_squared) + diagonal;
+  const Point site0 = scene.sites[s0.c.site];
+  const Point from0{site0.x - lattice.x, site0.y - lattice.y};
+  const Point corner0{-(from0.x + static_cast<double>(s0.c.image_x) * domain.x), -(from0.y + static_cast<double>(s0.c.image_y) * domain.y)};
+  // A site cuts the pixel only if it is nearer than s0 at some corner: it lies in the disk about
+  // that corner through s0 (split_boundary_pixel's test, which decides below).
+  const Point s0_copy{site0.x + static_cast<double>(s0.c.image_x) * domain.x, site0.y + static_cast<double>(s0.c.image_y) * domain.y};
+  SiteTree::Disk disks[4];
+  for (int corner = 0; corner < 4; ++corner) {
+    const Point p{corner0.x + static_cast<double>(corner & 1) * h.x, corner0.y + static_cast<double>(corner >> 1) * h.y};
+    disks[corner] = {s0_copy + p, std::sqrt(p.x * p.x + p.y * p.y) * (1.0 + 1e-9) + margin};
+  }
+  gather(disks);
+  out.clear();
+  for (const Keyed& k : found) {
+    const Candidate& t = k.c;
+    if (t.distance_squared > reach2 * reach2) continue;
+    const bool is_s0 = t.site == s0.c.site && t.image_x == s0.c.image_x && t.image_y == s0.c.image_y;
+    if (!is_s0) {
+      const Point between = scene.sites[t.site] - site0;
+      const Point d{between.x + static_cast<double>(t.image_x - s0.c.image_x) * domain.x,
+                    between.y + static_cast<double>(t.image_y - s0.c.image_y) * domain.y};
+      const double offset = 0.5 * (d.x * d.x + d.y * d.y);
+      bool nearer_somewhere = false;
+      for (int corner = 0; corner < 4; ++corner) {
+        const Point p{corner0.x + static_cast<double>(corner & 1) * h.x, corner0.y + static_cast<double>(corner >> 1) * h.y};
+        nearer_somewhere = nearer_somewhere || p.x * d.x + p.y * d.y - offset > 0.0;
+      }
+      if (!nearer_somewhere) continue;
+    }
+    out.push_back(t);
+  }
+}
+
+}  // namespace raster_detail
+
 }  // namespace bluetile

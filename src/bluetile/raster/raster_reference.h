@@ -7,7 +7,10 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -15,6 +18,7 @@
 #include "bluetile/voronoi/polygon.h"
 #include "bluetile/raster/raster_scene.h"
 #include "bluetile/voronoi/site_grid.h"
+#include "bluetile/voronoi/site_tree.h"
 
 namespace bluetile {
 
@@ -90,6 +94,37 @@ bool reference_split(const RasterScene& scene, std::span<const std::uint32_t> id
 // The host's double piece sums for `pixel`, whatever its candidates (pixels the device left).
 void host_split(const RasterScene& scene, double nearest, std::uint32_t pixel, std::span<PieceSums> pieces);
 
+// A scene's k-d tree, for boundary pixels whose grid window is wide (the nearest site far away,
+// as for sites on a line: the window then holds O(N) sites, and the tree finds the few that
+// matter in O(log N)), with each site's place in the window's traversal order.
+struct RasterSearch {
+  RasterSearch(const RasterScene& scene);
+  SiteTree tree;
+  std::vector<std::uint32_t> bucket;  // per site: its grid bucket (row * columns + column)
+  std::vector<std::uint32_t> slot;    // per site: its place in the grid's site list
+};
+struct RasterSearchCache {
+  std::once_flag once;
+  std::unique_ptr<RasterSearch> search;
+  // Sites the split's candidate searches examined (windows' sites, the tree's copies), for
+  // RasterStats::split_sites_examined; threads add to it, a sum, so the same for any order.
+  std::atomic<std::uint64_t> sites_examined{0};
+};
+// The scene's tree, built on the first call (thread-safe).
+const RasterSearch& raster_search(const RasterScene& scene);
+
+// Windows of more buckets than this search the tree (host splits only; the device's window is
+// at most BLUETILE_MAX_WINDOW^2 buckets, so every pixel it takes keeps the grid's path).
+inline constexpr long kTreeWindowBuckets = 144;
+
+namespace raster_detail {
+struct Candidate;
+// The candidates of pixel (i, j) that split_boundary_pixel keeps, found by the tree instead of
+// the grid window [lo, hi], in the window's order and with the same arithmetic, so the same.
+void tree_candidates(const RasterScene& scene, int i, int j, double reach, long lo_x, long hi_x, long lo_y, long hi_y,
+                     std::vector<Candidate>& out);
+}  // namespace raster_detail
+
 // ---- implementation of the template --------------------------------------------------------
 
 namespace raster_detail {
@@ -164,13 +199,18 @@ bool split_boundary_pixel(const RasterScene& scene, double nearest, std::uint32_
   if (device_bounds && (hi_x - lo_x >= BLUETILE_MAX_WINDOW || hi_y - lo_y >= BLUETILE_MAX_WINDOW)) return false;
   // The sites of the window, in the device's traversal order; neighbouring boundary pixels
   // mostly share a window, so the last one is kept per thread.
-  thread_local raster_detail::Window window;
-  if (window.serial != scene.serial || window.lo_x != lo_x || window.hi_x != hi_x || window.lo_y != lo_y || window.hi_y != hi_y) {
-    window.fill(scene, grid, lo_x, hi_x, lo_y, hi_y);
-  }
   thread_local std::vector<Candidate> candidates;  // a few per pixel
   candidates.clear();
+  const bool wide = !device_bounds && (hi_x - lo_x + 1) * (hi_y - lo_y + 1) > kTreeWindowBuckets;
+  if (wide) raster_detail::tree_candidates(scene, i, j, reach, lo_x, hi_x, lo_y, hi_y, candidates);
+  thread_local raster_detail::Window window;
+  if (!wide && (window.serial != scene.serial || window.lo_x != lo_x || window.hi_x != hi_x || window.lo_y != lo_y ||
+                window.hi_y != hi_y)) {
+    window.fill(scene, grid, lo_x, hi_x, lo_y, hi_y);
+  }
+  if (!wide) scene.search_cache_->sites_examined.fetch_add(window.sites.size(), std::memory_order_relaxed);
   for (const raster_detail::WindowSite& w : window.sites) {
+    if (wide) break;
     const Point from = site_from_sample(w.site) - half_pixel;
     const Point o{from.x + static_cast<double>(w.image_x) * domain.x, from.y + static_cast<double>(w.image_y) * domain.y};
     const double d2 = o.x * o.x + o.y * o.y;
@@ -187,7 +227,7 @@ bool split_boundary_pixel(const RasterScene& scene, double nearest, std::uint32_
   std::size_t nearest_index = 0;
   for (std::size_t c = 1; c < candidates.size(); ++c)
     if (candidates[c].distance_squared < candidates[nearest_index].distance_squared) nearest_index = c;
-  if (!candidates.empty()) {
+  if (!candidates.empty() && !wide) {
     const Candidate s0 = candidates[nearest_index];
     const Point from0 = site_from_sample(s0.site);
     const Point corner0{-(from0.x + static_cast<double>(s0.image_x) * domain.x), -(from0.y + static_cast<double>(s0.image_y) * domain.y)};

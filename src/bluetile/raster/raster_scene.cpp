@@ -12,6 +12,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/raster/raster_engine.h"
+#include "bluetile/raster/raster_reference.h"
 
 namespace bluetile {
 namespace {
@@ -139,6 +140,7 @@ RasterScene prepare_raster_scene(const Scene& scene, std::size_t index, const Ra
     if (job.sites[order[k]] == job.sites[order[k - 1]]) job.coincident[order[k]] = 1;
 
   job.grid_ = std::make_shared<const SiteGrid>(job.sites, scene.domain, kSitesPerBucket, false);
+  job.search_cache_ = std::make_shared<RasterSearchCache>();
 
   const double start = settings.radius_factor * std::sqrt(scene.domain.area() / static_cast<double>(std::max<std::size_t>(n, 1)));
   job.radius.assign(n, std::min(start, job.radius_cap));

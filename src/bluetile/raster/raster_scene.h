@@ -86,6 +86,8 @@ struct RasterScene {
   // The scene's site grid (coincident sites are skipped by its users).
   const SiteGrid& grid() const { return *grid_; }
   std::shared_ptr<const SiteGrid> grid_;  // set by prepare_raster_scene
+  // The k-d tree of the split's wide windows, built on first use (raster_reference.h).
+  std::shared_ptr<struct RasterSearchCache> search_cache_;  // set by prepare_raster_scene
   // Recomputes the fixed-point scales from the current radii.
   void update_scales();
 };

@@ -144,4 +144,74 @@ bool SiteTree::clip_cell(std::uint32_t site, Point origin, ConvexPolygon& cell, 
   return true;
 }
 
+void SiteTree::copies_in_disks(std::span<const Disk> disks, std::vector<Copy>& out) const {
+  if (nodes_.empty()) return;
+  const Point period = domain_.size;
+  std::vector<std::uint32_t> stack;
+  const std::int32_t reach = copy_reach();
+  for (std::int32_t ky = -reach; ky <= reach; ++ky)
+    for (std::int32_t kx = -reach; kx <= reach; ++kx) {
+      const Point shift{kx * period.x, ky * period.y};
+      auto reached = [&](const Node& node) {
+        for (const Disk& disk : disks)
+          if (distance_squared(disk.centre, node.centre + shift, node.axis, node.half_along, node.half_across) <=
+              disk.radius * disk.radius)
+            return true;
+        return false;
+      };
+      stack.assign(1, 0u);
+      while (!stack.empty()) {
+        const Node& node = nodes_[stack.back()];
+        stack.pop_back();
+        if (!reached(node)) continue;
+        if (node.left != 0) {
+          stack.push_back(node.left);
+          stack.push_back(node.right);
+          continue;
+        }
+        for (std::uint32_t s = node.begin; s < node.end; ++s) out.push_back({index_[s], kx, ky});
+      }
+    }
+}
+
+double SiteTree::nearest_squared(Point p) const {
+  double best = HUGE_VAL;
+  if (nodes_.empty()) return best;
+  const Point period = domain_.size;
+  // Depth first, the nearer child first, so that `best` shrinks early and prunes the rest.
+  std::vector<std::pair<double, std::uint32_t>> stack;
+  const std::int32_t reach = copy_reach();
+  for (std::int32_t ky = -reach; ky <= reach; ++ky)
+    for (std::int32_t kx = -reach; kx <= reach; ++kx) {
+      const Point q{p.x - kx * period.x, p.y - ky * period.y};  // p relative to the unshifted sites
+      auto bound = [&](std::uint32_t n) {
+        const Node& node = nodes_[n];
+        return distance_squared(q, node.centre, node.axis, node.half_along, node.half_across);
+      };
+      stack.assign(1, {bound(0), 0u});
+      while (!stack.empty()) {
+        const auto [b, n] = stack.back();
+        stack.pop_back();
+        if (b > best) continue;
+        const Node& node = nodes_[n];
+        if (node.left == 0) {
+          for (std::uint32_t s = node.begin; s < node.end; ++s) {
+            const Point d = points_[s] - q;
+            best = std::min(best, d.x * d.x + d.y * d.y);
+          }
+          continue;
+        }
+        const double bl = bound(node.left), br = bound(node.right);
+        if (bl <= br) {
+          stack.push_back({br, node.right});
+          stack.push_back({bl, node.left});
+        } else {
+          stack.push_back({bl, node.left});
+          stack.push_back({br, node.right});
+        }
+      }
+    }
+  return best;
+}
+
 }  // namespace bluetile

@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "bluetile/core/torus.h"
@@ -40,6 +41,25 @@ class SiteTree {
   // unspecified.
   bool clip_cell(std::uint32_t site, Point origin, ConvexPolygon& cell, Search& search) const;
 
+  // A site (its index) at a periodic copy kx, ky (whole periods; 0, 0 in a bounded domain).
+  struct Copy {
+    std::uint32_t index;
+    std::int32_t kx, ky;
+  };
+  struct Disk {
+    Point centre;
+    double radius;
+  };
+  // Appends to `out` every site copy that lies within some disk of `disks` (centres anywhere
+  // near the domain), and possibly a few more: boxes carry a margin, so roundings never leave
+  // one out; callers measure the distance themselves. Unordered. On a torus copies up to two
+  // periods away are visited (disks of radius up to a period).
+  void copies_in_disks(std::span<const Disk> disks, std::vector<Copy>& out) const;
+
+  // The least squared distance from p (near the domain) to a site copy, formed as
+  // |site - (p - shift)|^2 (other ways of forming it agree up to rounding). Infinity without sites.
+  double nearest_squared(Point p) const;
+
  private:
   struct Node {
     Point centre;              // oriented bounding box of the node's sites: centre,
@@ -55,6 +75,8 @@ class SiteTree {
     std::uint32_t index;
   };
   std::uint32_t build(std::vector<Item>& items, std::uint32_t begin, std::uint32_t end);
+  // The periodic copies of the whole set a search near the domain visits.
+  std::int32_t copy_reach() const { return periodic_ ? 2 : 0; }
 
   // Leaves hold at most this many sites: a clip costs about what a box test does.
   static constexpr std::uint32_t kLeafSize = 8;
