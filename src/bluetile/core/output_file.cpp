@@ -709,7 +709,9 @@ void install_interrupt_cleanup() {
     try {
       std::thread(watch_signals, set).detach();
     } catch (const std::system_error& e) {
-      throw Error(std::string("cannot start the interrupt watcher: ") + e.what());
+      // EAGAIN or ENOMEM: its stack did not fit the memory or thread limit.
+      throw Error("cannot start the interrupt watcher (" + e.code().message() +
+                  "): out of memory or threads (ulimit -v, ulimit -u)");
     }
   });
 }

@@ -226,16 +226,27 @@ void throw_vk_error(const char* call, const char* file, int line, VkResult resul
 std::size_t validation_error_count() { return validation_errors.load(); }
 
 std::vector<DeviceInfo> list_devices() {
-  VkInstance instance = create_instance(false);
   std::vector<DeviceInfo> infos;
   try {
-    auto devices = physical_devices(instance);
-    for (std::size_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
-  } catch (...) {
+    VkInstance instance = create_instance(false);
+    try {
+      auto devices = physical_devices(instance);
+      for (std::size_t i = 0; i < devices.size(); ++i) infos.push_back(describe(devices[i], i));
+    } catch (...) {
+      vkDestroyInstance(instance, nullptr);
+      throw;
+    }
     vkDestroyInstance(instance, nullptr);
-    throw;
+  } catch (const Error& e) {
+    // Listing loads the driver but makes no device, so it fits limits that Context refuses up
+    // front; under a tighter one the loader fails in ways that name no memory (no driver, a
+    // failed enumeration): say which limit is the likelier cause.
+    const std::optional<ProcessLimit> limit = address_space_limit();
+    if (!limit || limit->left() >= driver_address_space_needed()) throw;
+    throw Error("the Vulkan driver did not load under the limit (ulimit -v " + std::to_string(limit->limit >> 10) +
+                "), which leaves " + std::to_string(limit->left() >> 20) + " MiB of address space, less than it may need (about " +
+                std::to_string(driver_address_space_needed() >> 20) + " MiB): raise the limit (" + e.what() + ")");
   }
-  vkDestroyInstance(instance, nullptr);
   return infos;
 }
 
