@@ -103,7 +103,7 @@ RasterScene prepare_raster_scene(const Scene& scene, std::size_t index, const Ra
   job.ry = std::max(1, static_cast<int>(std::lround(job.rx * size.y / size.x)));
   if (static_cast<std::uint32_t>(std::max(job.rx, job.ry)) > settings.max_side)
     throw Error("resolution " + std::to_string(job.rx) + " x " + std::to_string(job.ry) + " exceeds the device's limit of " +
-                std::to_string(settings.max_side) + " pixels per side");
+                std::to_string(settings.max_side) + " pixels per side; use a smaller resolution");
   job.hx = size.x / job.rx;
   job.hy = size.y / job.ry;
   job.periodic = scene.periodic();
