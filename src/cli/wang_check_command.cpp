@@ -1,4 +1,5 @@
 // bluetile wang-check: the seam check of a tile set and the analysis of a plane it tiles.
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -70,12 +71,15 @@ void run_check(const CheckOptions& o) {
     throw Error("internal: no output " + name);
   };
   TileSet set = read_tile_set(o.input);
-  if (!o.output.empty()) {
-    // The spectrum image's periodogram is the largest allocation.
+  {
+    // The plane and its largest periodogram, outputs or not: the measurement's, and the spectrum
+    // image's larger one when there is an output folder.
     std::size_t n = 0;
     for (const Tile& tile : set.tiles) n += tile.points.size();
     n = n / set.tiles.size() * static_cast<std::size_t>(o.period) * static_cast<std::size_t>(o.period);
-    check_memory(static_cast<double>(periodogram_memory_bytes(n, default_periodogram_size(n))),
+    const int measured = tiling_periodogram_size(n, o.period);
+    const int size = o.output.empty() ? measured : std::max(measured, default_periodogram_size(n));
+    check_memory(static_cast<double>(sizeof(Point) * n + periodogram_memory_bytes(n, size)),
                  "the spectrum of the " + std::to_string(n) + "-point plane");
   }
   SeamCheck seams = check_seams(set);

@@ -225,5 +225,24 @@ TEST(Options, WangSetsTooLargeAreRefusedUpFront) {
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{});
 }
 
+TEST(Options, WangCheckPlanesTooLargeAreRefusedWithoutAnOutputFolder) {
+  // The plane's memory was checked only for the spectrum image (-o): without it, a 1024 x 1024
+  // tiling of 600 points a tile was measured until memory ran out.
+  TempDir dir;
+  const std::string tiles = dir.file("tiles.txt");
+  Outcome r = run({"wang", "-n", "600", "-k", "0", "--warm", "0", "--lattice-steps", "0", "--seam-steps", "0", "-o", tiles});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Invocation limited{{"wang-check", tiles, "--period", "1024"}};
+  if (!sanitized()) limited.address_space_bytes = 2L << 30;
+  r = run(limited);
+  EXPECT_EQ(r.exit_code, 1);
+  // 1024^2 x 600 points and their periodogram (F = 2 (ceil(1.6 sqrt(N)) + 2) = 80270: about 145 GiB,
+  // a little more per thread).
+  EXPECT_EQ(r.err.rfind("bluetile: the spectrum of the 629145600-point plane needs about 14", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(" GiB of memory, more than the "), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"tiles.txt"});
+}
+
 }  // namespace
 }  // namespace bluetile::robustness
