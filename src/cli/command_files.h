@@ -3,7 +3,8 @@
 // name no file. The robustness harness (tests/robustness/test_contract.cpp) drives every output
 // and input declared here through its matrix of special and damaged paths, and fails for any
 // option of the app (make_app, app.h) that this table does not classify: a new command or file
-// option is covered once it is declared here.
+// option is covered once it is declared here. Each command also declares requests past its size
+// limits, which the harness requires refused up front.
 #pragma once
 
 #include <span>
@@ -28,6 +29,15 @@ struct OutputOption {
   bool always = false;    // part of the quick run
 };
 
+// A request past one of the command's up-front size limits: refused at once, before any output is
+// staged, with the estimate (and the option to change where there is one).
+struct Oversized {
+  // After the command; "{points}", "{tiles}" and "{image}" stand for a sound input of that kind,
+  // "{<name>}" for the path of the output of that name. The outputs marked `always` are added.
+  std::vector<std::string_view> arguments;
+  std::string_view message;  // a part of the refusal: the estimate's words
+};
+
 struct CommandFiles {
   std::string_view command;
   // Arguments of a run that succeeds in well under a second (exact engine, a few points), beside
@@ -37,6 +47,10 @@ struct CommandFiles {
   std::vector<OutputOption> outputs;
   // Free-text options that name no file (a name, a label, a device).
   std::vector<std::string_view> not_files;
+  // One request past each size limit; the harness fails a command without one unless it declares
+  // that nothing it is asked for has a size (devices).
+  std::vector<Oversized> oversized;
+  bool no_size_limit = false;
 };
 
 // Every subcommand of make_app(), in its order.

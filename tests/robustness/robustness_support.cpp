@@ -27,7 +27,8 @@ Child::Child(const Invocation& run) {
   const std::string out = capture_dir_ + "/out", err = capture_dir_ + "/err";
 
   // Everything the child needs is prepared before fork: it only calls async-signal-safe functions.
-  std::vector<std::string> args = {BLUETILE_BINARY};
+  std::vector<std::string> args = run.wrapper;
+  args.push_back(BLUETILE_BINARY);
   args.insert(args.end(), run.arguments.begin(), run.arguments.end());
   std::vector<char*> argv;
   for (std::string& a : args) argv.push_back(a.data());
@@ -122,6 +123,18 @@ bool sanitized() {
 #else
   return false;
 #endif
+}
+
+std::string find_program(const std::string& name) {
+  const char* path = std::getenv("PATH");
+  std::string folders = path ? path : "/usr/bin:/bin";
+  for (std::size_t start = 0; start <= folders.size();) {
+    const std::size_t end = std::min(folders.find(':', start), folders.size());
+    const std::string candidate = folders.substr(start, end - start) + "/" + name;
+    if (end > start && access(candidate.c_str(), X_OK) == 0) return candidate;
+    start = end + 1;
+  }
+  return "";
 }
 
 }  // namespace bluetile::robustness

@@ -19,6 +19,9 @@ struct Invocation {
   // Run as the unprivileged user "nobody" (65534) when the test runs as root, so that
   // permissions apply; the folders it works in must then be open to it.
   bool unprivileged = false;
+  // A program (absolute path, then its arguments) that the tool's command line is given to, as
+  // `unshare ... sh -c SCRIPT sh` takes it: the tool then runs inside what the program sets up.
+  std::vector<std::string> wrapper;
 };
 
 struct Outcome {
@@ -51,5 +54,8 @@ std::vector<std::string> entries(const std::string& folder);
 // Whether this binary and the tool were built with the address sanitizer (which reserves
 // terabytes of address space, so ulimit -v cannot be used).
 bool sanitized();
+
+// The absolute path of `name` on PATH, or "" when there is none.
+std::string find_program(const std::string& name);
 
 }  // namespace bluetile::robustness

@@ -5,7 +5,14 @@
 // garbage, missing and as a folder. A refusal is exit status 1 (105 where the option parser
 // refuses), one `bluetile:` line naming the path, and the folder exactly as before (no staging
 // file left); a FIFO output receives the bytes and a link is followed. Devices need mknod (root)
-// and the read-only folder an unprivileged user: skipped with a message otherwise.
+// and the read-only folder an unprivileged user: skipped with a message otherwise. Beyond those:
+// - every output into a full tmpfs (in a user and mount namespace of its own, so no root needed):
+//   refused with "No space left on device", nothing left in the tmpfs;
+// - every command, writing every output, under ulimit -v 15 to 600 MiB: success, or a refusal that
+//   says memory is short, never a signal, the folder as before;
+// - every command's requests past its size limits (declared beside its files): refused within
+//   seconds with the estimate, nothing written; a command must declare one, or no_size_limit.
+// A new command declared in command_files.cpp gets every cell without a new test.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -90,10 +97,12 @@ struct Case {
   std::unique_ptr<TempDir> dir;
   Invocation call;
   bool refused = true;
+  bool or_memory_refusal = false;        // not refused: or else refused for want of memory
   std::string named;                     // a refusal's message must contain this path
   Names before;                          // refused: the folder must be left as it was
   std::function<void(const Outcome&)> check;  // more checks (run after the common ones)
   std::string fifo;                      // an output FIFO to drain while the run goes
+  std::chrono::seconds within{0};        // when set, the run must end within this (a hang detector)
 };
 
 // The command's quick run in `dir`: inputs copied there, outputs there; `input_value` and
@@ -128,6 +137,20 @@ std::unique_ptr<TempDir> folder_for(const CommandFiles& c) {
   chmod(dir->path().c_str(), 0755);  // readable by the unprivileged runs
   for (const auto& in : c.inputs) fs::copy_file(fixtures().of(in.kind), input_file(in, *dir));
   return dir;
+}
+
+// The quick run with every output the command has, each in `dir`.
+std::vector<std::string> writing_everything(const CommandFiles& c, const TempDir& dir) {
+  std::vector<std::string> args = arguments(c, dir, "", "", "", "");
+  for (const auto& out : c.outputs)
+    if (!out.always) args.insert(args.end(), {std::string(out.option), dir.file(std::string(out.name))});
+  return args;
+}
+
+std::vector<std::string> output_paths(const CommandFiles& c, const TempDir& dir) {
+  std::vector<std::string> paths;
+  for (const auto& out : c.outputs) paths.push_back(dir.file(std::string(out.name)));
+  return paths;
 }
 
 bool no_staging_left(const Names& names) {
@@ -329,11 +352,13 @@ Outcome wait_or_kill(Child& child) {
   return outcome;
 }
 
-void run_cases(std::vector<Case>& cases) {
-  for (std::size_t start = 0; start < cases.size(); start += kParallelRuns) {
-    const std::size_t end = std::min(cases.size(), start + kParallelRuns);
+// Runs `at_once` cases at a time (1 where each run's wall time is checked).
+void run_cases(std::vector<Case>& cases, std::size_t at_once = kParallelRuns) {
+  for (std::size_t start = 0; start < cases.size(); start += at_once) {
+    const std::size_t end = std::min(cases.size(), start + at_once);
     std::vector<std::unique_ptr<FifoDrain>> drains;
     std::vector<std::unique_ptr<Child>> children;
+    const auto started = std::chrono::steady_clock::now();
     for (std::size_t i = start; i < end; ++i) {
       drains.push_back(cases[i].fifo.empty() ? nullptr : std::make_unique<FifoDrain>(cases[i].fifo));
       children.push_back(std::make_unique<Child>(cases[i].call));
@@ -341,8 +366,17 @@ void run_cases(std::vector<Case>& cases) {
     for (std::size_t i = start; i < end; ++i) {
       Case& k = cases[i];
       const Outcome r = wait_or_kill(*children[i - start]);
+      const auto took = std::chrono::steady_clock::now() - started;
+      if (k.within.count() > 0) {
+        EXPECT_LT(took, k.within) << k.what << ": still running after " << k.within.count() << " s";
+      }
       const std::size_t drained = drains[i - start] ? drains[i - start]->finish() : 0;
-      if (k.refused) {
+      const bool memory_refusal = k.or_memory_refusal && r.exit_code != 0;
+      if (memory_refusal) {
+        EXPECT_TRUE(r.err.find("memory") != std::string::npos || r.err.find("address space") != std::string::npos)
+            << k.what << ": the refusal does not say memory is short: " << r.err;
+      }
+      if (k.refused || memory_refusal) {
         // 1: found by the command; 105: by the option parser (an ExistingFile check, say).
         EXPECT_TRUE(r.exit_code == 1 || r.exit_code == 105) << k.what << ": status " << r.exit_code << ": " << r.err;
         EXPECT_EQ(r.err.rfind("bluetile: ", 0), 0u) << k.what << ": " << r.err;
@@ -432,12 +466,9 @@ TEST(Contract, EveryCommandInterruptedLeavesNothing) {
       Case k;
       k.what = std::string(c.command) + ": SIGINT after " + std::to_string(delay_ms) + " ms";
       k.dir = folder_for(c);
-      k.call.arguments = arguments(c, *k.dir, "", "", "", "");
-      for (const auto& out : c.outputs)
-        if (!out.always) k.call.arguments.insert(k.call.arguments.end(), {std::string(out.option), k.dir->file(std::string(out.name))});
+      k.call.arguments = writing_everything(c, *k.dir);
       k.before = entries(k.dir->path());
-      std::vector<std::string> outputs;
-      for (const auto& out : c.outputs) outputs.push_back(k.dir->file(std::string(out.name)));
+      const std::vector<std::string> outputs = output_paths(c, *k.dir);
       k.check = [outputs, what = k.what](const Outcome& r) {
         if (r.signal != SIGINT) return;
         std::size_t present = 0;
@@ -464,6 +495,140 @@ TEST(Contract, EveryCommandInterruptedLeavesNothing) {
     }
   }
   std::printf("contract: %d runs interrupted, %d finished first\n", interrupted, finished);
+}
+
+// A full filesystem, as a real one behaves (the temporary file is made, its writes fail, it must
+// be removed and never renamed over the output): a 64 KiB tmpfs, filled to the last page before the
+// run, mounted in a user and mount namespace of the run's own (no root needed). The script mounts
+// it at its first argument, runs the tool, then lists what is left in it after a marker on stdout.
+constexpr const char* kFullTmpfsScript =
+    "m=$1; shift; mount -t tmpfs -o size=64k tmpfs \"$m\" || exit 120; cat /dev/zero > \"$m/filler\" 2>/dev/null; "
+    "\"$@\"; rc=$?; echo '--- left in the tmpfs'; (cd \"$m\" && find . -mindepth 1 | sort); exit $rc";
+constexpr const char* kTmpfsMarker = "--- left in the tmpfs\n";
+
+// What the script listed in the tmpfs after the run, or "(no listing)".
+std::string tmpfs_listing(const Outcome& r) {
+  const std::size_t at = r.out.rfind(kTmpfsMarker);
+  return at == std::string::npos ? "(no listing)" : r.out.substr(at + std::string(kTmpfsMarker).size());
+}
+
+Invocation in_full_tmpfs(const std::string& unshare, const std::string& mount_point, std::vector<std::string> arguments) {
+  Invocation call{std::move(arguments)};
+  call.wrapper = {unshare, "--user", "--map-root-user", "--mount", "sh", "-c", kFullTmpfsScript, "sh", mount_point};
+  return call;
+}
+
+TEST(Contract, EveryOutputOfEveryCommandIntoAFullTmpfs) {
+  const std::string unshare = find_program("unshare");
+  if (unshare.empty()) GTEST_SKIP() << "no unshare on PATH: the full tmpfs needs a user and mount namespace";
+  {
+    TempDir probe;
+    fs::create_directory(probe.file("full"));
+    const Outcome r = run(in_full_tmpfs(unshare, probe.file("full"), {"--help"}));
+    if (r.exit_code != 0 || tmpfs_listing(r) != "./filler\n")
+      GTEST_SKIP() << "no tmpfs in a user namespace here (unshare --user --map-root-user --mount; mount -t tmpfs): status "
+                   << r.exit_code << ": " << r.err;
+  }
+  std::vector<Case> cases;
+  for (const CommandFiles& c : cli::command_files()) {
+    for (const auto& out : c.outputs) {
+      Case k;
+      k.what = std::string(c.command) + " " + std::string(out.option) + ": full tmpfs";
+      k.dir = folder_for(c);
+      const std::string mount_point = k.dir->file("full"), path = mount_point + "/" + std::string(out.name);
+      fs::create_directory(mount_point);
+      k.call = in_full_tmpfs(unshare, mount_point, arguments(c, *k.dir, "", "", std::string(out.option), path));
+      k.named = path;
+      k.before = entries(k.dir->path());
+      k.check = [what = k.what](const Outcome& r) {
+        EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << what << ": " << r.err;
+        EXPECT_EQ(tmpfs_listing(r), "./filler\n") << what << ": left in the tmpfs";
+      };
+      cases.push_back(std::move(k));
+    }
+  }
+  EXPECT_GT(cases.size(), 15u);
+  run_cases(cases);
+}
+
+// Every command, writing every output, under address-space limits (ulimit -v) where the image
+// plugin, the Vulkan driver and the threads load or fail to: it succeeds, or refuses with one line
+// that says memory is short, the folder as before; never a signal, never a bare internal error.
+TEST(Contract, EveryCommandUnderAddressSpaceLimits) {
+  if (sanitized()) GTEST_SKIP() << "the address sanitizer reserves terabytes of address space: ulimit -v cannot apply";
+  int succeeded = 0, refused = 0;
+  std::vector<Case> cases;
+  for (const long mib : {15L, 25L, 150L, 300L, 450L, 600L}) {
+    for (const CommandFiles& c : cli::command_files()) {
+      Case k;
+      k.what = std::string(c.command) + ": ulimit -v " + std::to_string(mib << 10);
+      k.dir = folder_for(c);
+      k.call.arguments = writing_everything(c, *k.dir);
+      k.call.address_space_bytes = mib << 20;
+      k.refused = false;
+      k.or_memory_refusal = true;
+      k.before = entries(k.dir->path());
+      k.check = [&succeeded, &refused, outputs = output_paths(c, *k.dir), what = k.what](const Outcome& r) {
+        if (r.exit_code != 0) {
+          ++refused;
+          return;
+        }
+        ++succeeded;
+        for (const std::string& path : outputs) EXPECT_TRUE(fs::exists(path)) << what << ": " << path;
+      };
+      cases.push_back(std::move(k));
+    }
+  }
+  run_cases(cases);
+  std::printf("contract: under ulimit -v, %d runs succeeded, %d refused for memory\n", succeeded, refused);
+  EXPECT_GT(refused, 10);  // the limits are low enough to matter
+}
+
+// Every command's requests past its size limits (command_files.h): refused at once (the loose
+// bound only catches a run that goes on), with the estimate, nothing written. ulimit -v 2 GiB
+// stands in for a small machine; ulimit -f keeps a run that does start from filling the disk.
+TEST(Contract, EveryCommandRefusesRequestsPastItsSizeLimits) {
+  if (sanitized()) GTEST_SKIP() << "ulimit -v stands in for a small machine, and the sanitizer needs terabytes of it";
+  std::vector<Case> cases;
+  for (const CommandFiles& c : cli::command_files()) {
+    EXPECT_TRUE(c.no_size_limit || !c.oversized.empty())
+        << c.command << " declares no request past its size limits in cli/command_files.cpp (nor no_size_limit)";
+    EXPECT_FALSE(c.no_size_limit && !c.oversized.empty()) << c.command;
+    for (const cli::Oversized& o : c.oversized) {
+      Case k;
+      k.dir = folder_for(c);
+      std::vector<std::string> args = {std::string(c.command)};
+      for (std::string_view a : o.arguments) {
+        args.emplace_back(a);
+        if (a.size() < 2 || a.front() != '{' || a.back() != '}') continue;
+        const std::string_view name = a.substr(1, a.size() - 2);
+        std::string value;
+        for (const auto& in : c.inputs) {
+          const char* kind = in.kind == InputKind::points ? "points" : in.kind == InputKind::tiles ? "tiles" : "image";
+          if (name == kind && value.empty()) value = input_file(in, *k.dir);  // the first input of the kind
+        }
+        for (const auto& out : c.outputs)
+          if (name == out.name) value = k.dir->file(std::string(out.name));
+        EXPECT_FALSE(value.empty()) << c.command << ": " << a << " is no input or output it declares";
+        args.back() = value;
+      }
+      for (const std::string& a : args) k.what.append(a).append(" ");
+      k.what += "(past a size limit)";
+      for (const auto& out : c.outputs)
+        if (out.always) args.insert(args.end(), {std::string(out.option), k.dir->file(std::string(out.name))});
+      k.call.arguments = std::move(args);
+      k.call.address_space_bytes = 2L << 30;
+      k.call.file_size_bytes = 1L << 20;
+      k.within = std::chrono::seconds(10);
+      k.before = entries(k.dir->path());
+      k.check = [message = std::string(o.message), what = k.what](const Outcome& r) {
+        EXPECT_NE(r.err.find(message), std::string::npos) << what << ": the refusal lacks \"" << message << "\": " << r.err;
+        EXPECT_EQ(r.out, "") << what;
+      };
+      cases.push_back(std::move(k));
+    }
+  }
+  run_cases(cases, 1);
 }
 
 }  // namespace
