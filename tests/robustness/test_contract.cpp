@@ -6,8 +6,9 @@
 // refuses), one `bluetile:` line naming the path, and the folder exactly as before (no staging
 // file left); a FIFO output receives the bytes and a link is followed. Devices need mknod (root)
 // and the read-only folder an unprivileged user: skipped with a message otherwise. Beyond those:
-// - every output into a full tmpfs (in a user and mount namespace of its own, so no root needed):
-//   refused with "No space left on device", nothing left in the tmpfs;
+// - every output into a tmpfs one page smaller than it (in a user and mount namespace of its own,
+//   so no root needed), so that it fills mid-write: refused with "No space left on device",
+//   nothing left in the tmpfs;
 // - every command, writing every output, under ulimit -v 15 to 600 MiB: success, or a refusal that
 //   says memory is short, never a signal, the folder as before;
 // - every command's requests past its size limits (declared beside its files): refused within
@@ -497,13 +498,16 @@ TEST(Contract, EveryCommandInterruptedLeavesNothing) {
   std::printf("contract: %d runs interrupted, %d finished first\n", interrupted, finished);
 }
 
-// A full filesystem, as a real one behaves (the temporary file is made, its writes fail, it must
-// be removed and never renamed over the output): a 64 KiB tmpfs, filled to the last page before the
-// run, mounted in a user and mount namespace of the run's own (no root needed). The script mounts
-// it at its first argument, runs the tool, then lists what is left in it after a marker on stdout.
+// A filesystem that fills during the write, as a real one behaves (the temporary file is made,
+// part of it written, then it must be removed and never renamed over the output): a tmpfs, in a
+// user and mount namespace of the run's own (no root needed), one page smaller than the output
+// needs: a page taken by a filler, the rest one page short of the output's size on a sound run.
+// The script mounts it at $1 with size $2, runs the tool, then lists what is left in it after a
+// marker on stdout.
 constexpr const char* kFullTmpfsScript =
-    "m=$1; shift; mount -t tmpfs -o size=64k tmpfs \"$m\" || exit 120; cat /dev/zero > \"$m/filler\" 2>/dev/null; "
-    "\"$@\"; rc=$?; echo '--- left in the tmpfs'; (cd \"$m\" && find . -mindepth 1 | sort); exit $rc";
+    "m=$1; size=$2; shift 2; mount -t tmpfs -o size=$size tmpfs \"$m\" || exit 120; "
+    "head -c $(getconf PAGESIZE) /dev/zero > \"$m/filler\" || exit 121; \"$@\"; rc=$?; "
+    "echo '--- left in the tmpfs'; (cd \"$m\" && find . -mindepth 1 | sort); exit $rc";
 constexpr const char* kTmpfsMarker = "--- left in the tmpfs\n";
 
 // What the script listed in the tmpfs after the run, or "(no listing)".
@@ -512,35 +516,63 @@ std::string tmpfs_listing(const Outcome& r) {
   return at == std::string::npos ? "(no listing)" : r.out.substr(at + std::string(kTmpfsMarker).size());
 }
 
-Invocation in_full_tmpfs(const std::string& unshare, const std::string& mount_point, std::vector<std::string> arguments) {
+Invocation in_tmpfs(const std::string& unshare, const std::string& mount_point, std::uintmax_t bytes,
+                    std::vector<std::string> arguments) {
   Invocation call{std::move(arguments)};
-  call.wrapper = {unshare, "--user", "--map-root-user", "--mount", "sh", "-c", kFullTmpfsScript, "sh", mount_point};
+  call.wrapper = {unshare, "--user", "--map-root-user", "--mount", "sh", "-c", kFullTmpfsScript, "sh", mount_point,
+                  std::to_string(bytes)};
   return call;
+}
+
+// The pages a tmpfs gives a file's (or a folder's files') data.
+std::uintmax_t pages_of(const fs::path& path) {
+  const auto page = static_cast<std::uintmax_t>(sysconf(_SC_PAGESIZE));
+  if (!fs::is_directory(path)) return (fs::file_size(path) + page - 1) / page;
+  std::uintmax_t pages = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(path))
+    if (entry.is_regular_file()) pages += (entry.file_size() + page - 1) / page;
+  return pages;
 }
 
 TEST(Contract, EveryOutputOfEveryCommandIntoAFullTmpfs) {
   const std::string unshare = find_program("unshare");
   if (unshare.empty()) GTEST_SKIP() << "no unshare on PATH: the full tmpfs needs a user and mount namespace";
+  const auto page = static_cast<std::uintmax_t>(sysconf(_SC_PAGESIZE));
   {
     TempDir probe;
     fs::create_directory(probe.file("full"));
-    const Outcome r = run(in_full_tmpfs(unshare, probe.file("full"), {"--help"}));
+    const Outcome r = run(in_tmpfs(unshare, probe.file("full"), page, {"--help"}));
     if (r.exit_code != 0 || tmpfs_listing(r) != "./filler\n")
       GTEST_SKIP() << "no tmpfs in a user namespace here (unshare --user --map-root-user --mount; mount -t tmpfs): status "
                    << r.exit_code << ": " << r.err;
   }
+  // Sound runs, all at once, for the sizes of the outputs (the same bytes whatever else a run writes).
+  const std::span<const CommandFiles> commands = cli::command_files();
+  std::vector<std::unique_ptr<TempDir>> sound;
+  std::vector<std::unique_ptr<Child>> children;
+  for (const CommandFiles& c : commands) {
+    sound.push_back(folder_for(c));
+    children.push_back(std::make_unique<Child>(Invocation{writing_everything(c, *sound.back())}));
+  }
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    const Outcome made = wait_or_kill(*children[i]);
+    ASSERT_EQ(made.exit_code, 0) << commands[i].command << ": " << made.err;
+  }
   std::vector<Case> cases;
-  for (const CommandFiles& c : cli::command_files()) {
+  for (std::size_t i = 0; i < commands.size(); ++i) {
+    const CommandFiles& c = commands[i];
     for (const auto& out : c.outputs) {
       Case k;
       k.what = std::string(c.command) + " " + std::string(out.option) + ": full tmpfs";
       k.dir = folder_for(c);
       const std::string mount_point = k.dir->file("full"), path = mount_point + "/" + std::string(out.name);
       fs::create_directory(mount_point);
-      k.call = in_full_tmpfs(unshare, mount_point, arguments(c, *k.dir, "", "", std::string(out.option), path));
+      const std::uintmax_t pages = pages_of(sound[i]->file(std::string(out.name)));
+      k.call = in_tmpfs(unshare, mount_point, std::max<std::uintmax_t>(pages, 1) * page,
+                        arguments(c, *k.dir, "", "", std::string(out.option), path));
       k.named = path;
       k.before = entries(k.dir->path());
-      k.check = [what = k.what](const Outcome& r) {
+      k.check = [what = k.what + " (" + std::to_string(pages) + " pages)"](const Outcome& r) {
         EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << what << ": " << r.err;
         EXPECT_EQ(tmpfs_listing(r), "./filler\n") << what << ": left in the tmpfs";
       };
