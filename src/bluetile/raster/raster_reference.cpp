@@ -491,18 +491,7 @@ void tree_candidates(const RasterScene& scene, int i, int j, double reach, long 
     const Candidate& t = k.c;
     if (t.distance_squared > reach2 * reach2) continue;
     const bool is_s0 = t.site == s0.c.site && t.image_x == s0.c.image_x && t.image_y == s0.c.image_y;
-    if (!is_s0) {
-      const Point between = scene.sites[t.site] - site0;
-      const Point d{between.x + static_cast<double>(t.image_x - s0.c.image_x) * domain.x,
-                    between.y + static_cast<double>(t.image_y - s0.c.image_y) * domain.y};
-      const double offset = 0.5 * (d.x * d.x + d.y * d.y);
-      bool nearer_somewhere = false;
-      for (int corner = 0; corner < 4; ++corner) {
-        const Point p{corner0.x + static_cast<double>(corner & 1) * h.x, corner0.y + static_cast<double>(corner >> 1) * h.y};
-        nearer_somewhere = nearer_somewhere || p.x * d.x + p.y * d.y - offset > 0.0;
-      }
-      if (!nearer_somewhere) continue;
-    }
+    if (!is_s0 && !nearer_at_some_corner(scene, t, s0.c, corner0, h)) continue;
     out.push_back(t);
   }
 }

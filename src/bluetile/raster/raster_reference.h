@@ -136,6 +136,23 @@ struct Candidate {
   double distance_squared;
 };
 
+// Is copy t nearer than copy s0 at some corner of the pixel? `corner0`: the pixel's lower-left
+// corner relative to s0, `h` its size. The distance difference is affine over the pixel, so a
+// site nearer nowhere at the corners is the nearest nowhere in it.
+inline bool nearer_at_some_corner(const RasterScene& scene, const Candidate& t, const Candidate& s0, Point corner0, Point h) {
+  const Point domain = scene.scene->domain.size;
+  const Point between = scene.sites[t.site] - scene.sites[s0.site];
+  const Point d{between.x + static_cast<double>(t.image_x - s0.image_x) * domain.x,
+                between.y + static_cast<double>(t.image_y - s0.image_y) * domain.y};
+  const double offset = 0.5 * (d.x * d.x + d.y * d.y);
+  bool nearer_somewhere = false;
+  for (int corner = 0; corner < 4; ++corner) {
+    const Point p{corner0.x + static_cast<double>(corner & 1) * h.x, corner0.y + static_cast<double>(corner >> 1) * h.y};
+    nearer_somewhere = nearer_somewhere || p.x * d.x + p.y * d.y - offset > 0.0;
+  }
+  return nearer_somewhere;
+}
+
 inline double wrap_axis(double d, double period) { return d < -0.5 * period ? d + period : (d >= 0.5 * period ? d - period : d); }
 
 inline long floor_division(long a, long n) { return a >= 0 ? (a < n ? 0 : a / n) : (a >= -n ? -1 : -((-a + n - 1) / n)); }
@@ -202,21 +219,23 @@ bool split_boundary_pixel(const RasterScene& scene, double nearest, std::uint32_
   thread_local std::vector<Candidate> candidates;  // a few per pixel
   candidates.clear();
   const bool wide = !device_bounds && (hi_x - lo_x + 1) * (hi_y - lo_y + 1) > kTreeWindowBuckets;
-  if (wide) raster_detail::tree_candidates(scene, i, j, reach, lo_x, hi_x, lo_y, hi_y, candidates);
   thread_local raster_detail::Window window;
-  if (!wide && (window.serial != scene.serial || window.lo_x != lo_x || window.hi_x != hi_x || window.lo_y != lo_y ||
-                window.hi_y != hi_y)) {
-    window.fill(scene, grid, lo_x, hi_x, lo_y, hi_y);
-  }
-  if (!wide) scene.search_cache_->sites_examined.fetch_add(window.sites.size(), std::memory_order_relaxed);
-  for (const raster_detail::WindowSite& w : window.sites) {
-    if (wide) break;
-    const Point from = site_from_sample(w.site) - half_pixel;
-    const Point o{from.x + static_cast<double>(w.image_x) * domain.x, from.y + static_cast<double>(w.image_y) * domain.y};
-    const double d2 = o.x * o.x + o.y * o.y;
-    if (d2 > reach * reach) continue;
-    if (device_bounds && candidates.size() == BLUETILE_MAX_CANDIDATES) return false;
-    candidates.push_back({w.site, w.image_x, w.image_y, o, d2});
+  if (wide) {
+    raster_detail::tree_candidates(scene, i, j, reach, lo_x, hi_x, lo_y, hi_y, candidates);
+  } else {
+    if (window.serial != scene.serial || window.lo_x != lo_x || window.hi_x != hi_x || window.lo_y != lo_y ||
+        window.hi_y != hi_y) {
+      window.fill(scene, grid, lo_x, hi_x, lo_y, hi_y);
+    }
+    scene.search_cache_->sites_examined.fetch_add(window.sites.size(), std::memory_order_relaxed);
+    for (const raster_detail::WindowSite& w : window.sites) {
+      const Point from = site_from_sample(w.site) - half_pixel;
+      const Point o{from.x + static_cast<double>(w.image_x) * domain.x, from.y + static_cast<double>(w.image_y) * domain.y};
+      const double d2 = o.x * o.x + o.y * o.y;
+      if (d2 > reach * reach) continue;
+      if (device_bounds && candidates.size() == BLUETILE_MAX_CANDIDATES) return false;
+      candidates.push_back({w.site, w.image_x, w.image_y, o, d2});
+    }
   }
   double nearest2 = 1e30;
   for (const Candidate& c : candidates) nearest2 = std::min(nearest2, c.distance_squared);
@@ -236,16 +255,7 @@ bool split_boundary_pixel(const RasterScene& scene, double nearest, std::uint32_
       const Candidate& t = candidates[c];
       if (t.distance_squared > reach * reach) continue;
       if (c != nearest_index) {
-        const Point between = scene.sites[t.site] - scene.sites[s0.site];
-        const Point d{between.x + static_cast<double>(t.image_x - s0.image_x) * domain.x,
-                      between.y + static_cast<double>(t.image_y - s0.image_y) * domain.y};
-        const double offset = 0.5 * (d.x * d.x + d.y * d.y);
-        bool nearer_somewhere = false;
-        for (int corner = 0; corner < 4; ++corner) {
-          const Point p{corner0.x + static_cast<double>(corner & 1) * h.x, corner0.y + static_cast<double>(corner >> 1) * h.y};
-          nearer_somewhere = nearer_somewhere || p.x * d.x + p.y * d.y - offset > 0.0;
-        }
-        if (!nearer_somewhere) continue;
+        if (!raster_detail::nearer_at_some_corner(scene, t, s0, corner0, h)) continue;
       }
       candidates[kept++] = t;
     }
