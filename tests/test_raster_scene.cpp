@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/exact_engine.h"
@@ -156,6 +157,66 @@ TEST(RasterHost, SitesTooCloseForFloatDepthsAreFlagged) {
   std::size_t flagged = 0;
   for (std::uint8_t f : job.split) flagged += f;
   EXPECT_EQ(flagged, 2u);
+}
+
+// The flags by their definition over every pair: s and t are flagged when t lies within the
+// threshold of s's radius, or s within that of t's (threshold: 2^-22 r^2 / (1e-5 pixel)).
+std::vector<std::uint8_t> flags_by_every_pair(const RasterScene& job) {
+  std::vector<std::uint8_t> flags(job.size(), 0);
+  const double h = std::min(job.hx, job.hy);
+  for (std::size_t s = 0; s < job.size(); ++s)
+    for (std::size_t t = 0; t < job.size(); ++t) {
+      if (s == t || job.coincident[s] || job.coincident[t]) continue;
+      const double reach = job.radius[s] * job.radius[s] / (4194304.0 * 1e-5 * h);
+      if (raster_distance(job, job.sites[s], job.sites[t]) <= reach) flags[s] = flags[t] = 1;
+    }
+  return flags;
+}
+
+TEST(RasterHost, CloseSiteFlagsOnLinesClustersAndMixedRadiiFollowTheirDefinition) {
+  // Sites on a line and in a cluster have thresholds that reach far (the search stops at a
+  // first partner there); sites with large cones among small ones flag sites they reach but
+  // that reach nothing themselves (searched from the flagged sites when those are fewer, else
+  // from the others).
+  struct Layout {
+    const char* name;
+    std::vector<Point> sites;
+    std::function<double(std::size_t)> radius;
+  };
+  std::vector<Point> line, cluster, mixed = uniform_points(600, 91), sparse = uniform_points(40, 92);
+  for (std::size_t i = 0; i < 600; ++i) line.push_back({(static_cast<double>(i) + 0.5) / 600.0, 0.5});
+  Rng rng(93);
+  for (std::size_t i = 0; i < 600; ++i) cluster.push_back({0.3 + 0.002 * rng.uniform(), 0.6 + 0.002 * rng.uniform()});
+  cluster.push_back(cluster[7]);  // coincident: never flagged, never a partner
+  line.push_back(line[7]);
+  // Small cones far from the cluster, flagged only from the cluster's side (found from theirs:
+  // they are fewer).
+  for (Point p : uniform_points(30, 94)) cluster.push_back(p);
+  const std::vector<Layout> layouts = {
+      {"line", line, [](std::size_t) { return 0.5; }},
+      {"cluster and far sites", cluster, [](std::size_t i) { return i <= 600 ? 0.6 : 0.01; }},
+      {"mixed radii", mixed, [](std::size_t i) { return i % 50 == 0 ? 0.3 : 0.01; }},
+      {"sparse, large cones", sparse, [](std::size_t i) { return i % 2 ? 0.2 : 0.02; }},
+  };
+  for (const Layout& layout : layouts)
+    for (Boundary boundary : {Boundary::periodic, Boundary::bounded}) {
+      Scene scene = make_scene(layout.sites);
+      scene.boundary = boundary;
+      RasterSettings settings;
+      settings.resolution = 64;
+      RasterScene job = prepare_raster_scene(scene, 0, settings);
+      for (std::size_t i = 0; i < job.size(); ++i) job.radius[i] = layout.radius(i);
+      flag_close_sites(job);
+      const std::vector<std::uint8_t> want = flags_by_every_pair(job);
+      std::size_t flagged = 0, differ = 0;
+      for (std::size_t i = 0; i < job.size(); ++i) {
+        flagged += want[i];
+        differ += job.split[i] != want[i];
+      }
+      EXPECT_EQ(differ, 0u) << layout.name << (boundary == Boundary::periodic ? ", periodic" : ", bounded");
+      EXPECT_GT(flagged, 0u) << layout.name;
+      EXPECT_LT(flagged, job.size()) << layout.name;  // the coincident, or sites that reach nothing
+    }
 }
 
 }  // namespace

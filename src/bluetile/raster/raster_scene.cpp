@@ -148,6 +148,45 @@ RasterScene prepare_raster_scene(const Scene& scene, std::size_t index, const Ra
   return job;
 }
 
+namespace {
+
+// Whether some site t (not s, not coincident) in the 3 x 3 buckets around s, then in every bucket
+// within `reach`, has near(t); stops at the first. Sites on a line or in a cluster find one in
+// their own bucket at once, where a scan of the whole window would cost O(N) per site.
+template <typename Near>
+bool any_site_near(const RasterScene& job, std::size_t s, double reach, Near near) {
+  const SiteGrid& grid = job.grid();
+  const std::span<const std::uint32_t> starts = grid.bucket_starts(), index = grid.site_indices();
+  auto [cx, cy] = grid.bucket_coordinates(job.sites[s]);
+  for (long dy = -1; dy <= 1; ++dy)
+    for (long dx = -1; dx <= 1; ++dx) {
+      const long bx = cx + dx - SiteGrid::wrap_count(cx + dx, grid.columns()) * grid.columns();
+      const long by = cy + dy - SiteGrid::wrap_count(cy + dy, grid.rows()) * grid.rows();
+      const std::size_t b = static_cast<std::size_t>(by * grid.columns() + bx);
+      for (std::uint32_t slot = starts[b]; slot < starts[b + 1]; ++slot) {
+        const std::uint32_t t = index[slot];
+        if (t != s && !job.coincident[t] && near(t)) return true;
+      }
+    }
+  const Point cell = grid.cell_size();
+  if (reach <= std::min(cell.x, cell.y)) return false;  // the 3 x 3 buckets held every candidate
+  bool found = false;
+  grid.for_each_near(job.sites[s], reach, [&](std::uint32_t t) {
+    if (!found && t != s && !job.coincident[t] && near(t)) found = true;
+  });
+  return found;
+}
+
+// Buckets a window of `reach` around a site visits.
+double window_buckets(const SiteGrid& grid, double reach) {
+  const Point cell = grid.cell_size();
+  const double wx = std::min(2.0 * std::ceil(reach / cell.x) + 1.0, static_cast<double>(grid.columns()));
+  const double wy = std::min(2.0 * std::ceil(reach / cell.y) + 1.0, static_cast<double>(grid.rows()));
+  return wx * wy;
+}
+
+}  // namespace
+
 void flag_close_sites(RasterScene& job) {
   // Depths are formed from integer sample offsets minus a float fraction, so they carry a
   // relative error of about 2^-22 (a few float roundings): delta = 2^-22 R at distance R (in
@@ -163,16 +202,50 @@ void flag_close_sites(RasterScene& job) {
   constexpr double kBandSamples = 1e-5;
   const double h = std::min(job.hx, job.hy);
   auto threshold = [&](double r) { return kRelativeDepthError * r * r / (kBandSamples * h); };  // domain units
-  // A pair is flagged by the threshold of its larger radius, so each site searches as far as its
-  // own radius asks (the pair is found from the side of the larger one).
+  // A pair s, t is flagged when t lies within the threshold of s's radius or s within that of
+  // t's: flagged(s) = some t within threshold(r_s) of s, or s within threshold(r_t) of some t.
+  // Listing the pairs costs O(N^2) on a line or in a cluster (the thresholds of long cells reach
+  // across the domain); each site stops at its first partner instead.
   const SiteGrid& grid = job.grid();
+  std::vector<double> reach(n, 0.0);
+  double widest_flagged = 0.0;
+  std::size_t unflagged = 0;
   for (std::size_t s = 0; s < n; ++s) {
     if (job.coincident[s]) continue;
-    const double reach = threshold(job.radius[s]);
-    grid.for_each_near(job.sites[s], reach, [&](std::uint32_t t) {
-      if (t == s || job.coincident[t]) return;
-      if (raster_distance(job, job.sites[s], job.sites[t]) <= reach) job.split[s] = job.split[t] = 1;
+    reach[s] = threshold(job.radius[s]);
+    const bool close = any_site_near(job, s, reach[s], [&](std::uint32_t t) {
+      return raster_distance(job, job.sites[s], job.sites[t]) <= reach[s];
     });
+    if (close) {
+      job.split[s] = 1;
+      widest_flagged = std::max(widest_flagged, reach[s]);
+    } else {
+      ++unflagged;
+    }
+  }
+  // The second half: s unflagged so far, within threshold(r_t) of a t. That t has s within its
+  // own threshold, so it is flagged already: search from the unflagged sites or from the
+  // flagged ones, whichever visits fewer buckets.
+  if (unflagged == 0 || widest_flagged == 0.0) return;
+  double from_flagged = 0.0;
+  for (std::size_t t = 0; t < n; ++t)
+    if (job.split[t]) from_flagged += window_buckets(grid, reach[t]);
+  const std::vector<std::uint8_t> first = job.split;
+  if (from_flagged <= static_cast<double>(unflagged) * window_buckets(grid, widest_flagged)) {
+    for (std::size_t t = 0; t < n; ++t) {
+      if (!first[t]) continue;
+      grid.for_each_near(job.sites[t], reach[t], [&](std::uint32_t s) {
+        if (s != t && !job.coincident[s] && !job.split[s] && raster_distance(job, job.sites[t], job.sites[s]) <= reach[t]) job.split[s] = 1;
+      });
+    }
+  } else {
+    for (std::size_t s = 0; s < n; ++s) {
+      if (job.coincident[s] || first[s]) continue;
+      const bool close = any_site_near(job, s, widest_flagged, [&](std::uint32_t t) {
+        return first[t] && raster_distance(job, job.sites[t], job.sites[s]) <= reach[t];
+      });
+      if (close) job.split[s] = 1;
+    }
   }
 }
 
