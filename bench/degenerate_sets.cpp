@@ -81,12 +81,15 @@ int main(int argc, char** argv) {
   int repeats = 3, threads = 1;
   std::string engine_name = "exact";
   std::vector<std::string> kinds;
+  double max_cone_overlap = -1.0;
   app.add_option("--sizes", sizes, "numbers of sites")->delimiter(',');
   app.add_option("--repeats", repeats, "interleaved repeats (the median is reported)");
   app.add_option("--threads", threads, "CPU threads (default 1: per-site cost)");
   app.add_option("--engine", engine_name, "exact or raster (default settings: area coverage, resolution from N)");
   app.add_option("--kinds", kinds, "sets to run (default all): uniform, line, ordered, tilted, diagonal, parallel, jitter, cluster")
       ->delimiter(',');
+  app.add_option("--max-cone-overlap", max_cone_overlap,
+                 "raster: RasterOptions::max_cone_overlap (0: the raster path on every scene; default: the engine's)");
   CLI11_PARSE(app, argc, argv);
   set_thread_count(static_cast<std::size_t>(threads));
   std::unique_ptr<CentroidEngine> engine;
@@ -94,7 +97,9 @@ int main(int argc, char** argv) {
     engine = std::make_unique<ExactEngine>();
 #if BLUETILE_BENCH_RASTER
   } else if (engine_name == "raster") {
-    engine = std::make_unique<RasterEngine>();
+    RasterOptions options;
+    if (max_cone_overlap >= 0.0) options.max_cone_overlap = max_cone_overlap;
+    engine = std::make_unique<RasterEngine>(options);
 #endif
   } else {
     std::fprintf(stderr, "bluetile_degenerate_bench: --engine: unknown or not built '%s'\n", engine_name.c_str());

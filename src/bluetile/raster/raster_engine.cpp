@@ -43,6 +43,7 @@
 #include "bluetile/raster/raster_coverage.h"
 #include "bluetile/raster/raster_device.h"
 #include "bluetile/raster/raster_reference.h"
+#include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/voronoi/scene.h"
 
 namespace bluetile {
@@ -80,6 +81,17 @@ double nearest_site_distance(const RasterScene& scene, Point p) {
   }
 }
 
+// How many times the scene's cones cover its domain on average: each cone's disk, at most the
+// domain, over the domain's area (RasterOptions::max_cone_overlap).
+double cone_overlap(const RasterScene& job) {
+  const Point size = job.scene->domain.size;
+  const double area = size.x * size.y, pi = 3.141592653589793;
+  double sum = 0.0;
+  for (std::size_t i = 0; i < job.size(); ++i)
+    if (!job.coincident[i]) sum += std::min(pi * job.radius[i] * job.radius[i], area);
+  return sum / area;
+}
+
 }  // namespace
 
 int default_resolution(std::size_t sites, Coverage coverage) {
@@ -104,6 +116,8 @@ struct RasterEngine::Impl {
   std::vector<PassData> pass_data;
 
   bool on_device = true;
+  // Measures the scenes whose cones would overlap past max_cone_overlap.
+  ExactEngine exact;
 
   explicit Impl(const RasterOptions& o)
       : options(o), device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.cone_draw, o.force_float32, o.split_kernel}) {
@@ -215,11 +229,22 @@ struct RasterEngine::Impl {
       if (jobs[k].density) jobs[k].pixel_density = pixel_density_for(*batch[k], jobs[k].rx, jobs[k].ry);
       if (jobs[k].density || !jobs[k].periodic) pixel_work_here = false;
     }
+    // Sliver cells (sites on lines) make the pixel method quadratic; the cones' overlap tells,
+    // from the radii remembered or grown by failed passes. Those scenes go to the exact engine.
+    const bool may_hand_over = options.max_cone_overlap > 0.0 && !options.keep_id_images && !options.keep_pass_data;
+    std::vector<std::uint8_t> to_exact(batch.size(), 0);
+    auto hand_over_if_slivers = [&](RasterScene& job) {
+      if (!may_hand_over || cone_overlap(job) <= options.max_cone_overlap) return;
+      to_exact[job.index] = 1;
+      job.done = true;
+    };
     for (std::size_t k = 0; k < batch.size(); ++k) {
       stats.remembered_radii += remembered[k];
       if (jobs[k].size() == 0) {
         jobs[k].done = true;
         out[k] = SceneCells{};
+      } else {
+        hand_over_if_slivers(jobs[k]);
       }
     }
     stats.host_seconds += seconds_since(host_start);
@@ -345,9 +370,44 @@ struct RasterEngine::Impl {
         if (job.redos > kMaxRedos + 1)
           throw Error("raster engine: samples stay uncovered even with cones covering the whole domain (device problem?)");
         if (job.redos >= kMaxRedos) std::fill(job.radius.begin(), job.radius.end(), job.radius_cap);
+        hand_over_if_slivers(job);
       }
       stats.host_seconds += seconds_since(host_start);
     }
+    measure_exactly(batch, jobs, to_exact, out);
+  }
+
+  // The scenes handed over to the exact engine, in one batch; their cell radii are remembered
+  // like a pass's, so the next call on the moved sites decides without a pass.
+  void measure_exactly(std::span<const Scene* const> batch, std::vector<RasterScene>& jobs, const std::vector<std::uint8_t>& to_exact,
+                       std::span<SceneCells> out) {
+    std::vector<std::size_t> which;
+    for (std::size_t k = 0; k < batch.size(); ++k)
+      if (to_exact[k]) which.push_back(k);
+    if (which.empty()) return;
+    const auto start = Clock::now();
+    std::vector<Scene> scenes;
+    scenes.reserve(which.size());
+    for (std::size_t k : which) scenes.push_back(*batch[k]);
+    std::vector<SceneCells> cells(which.size());
+    exact.compute(scenes, cells);
+    for (std::size_t w = 0; w < which.size(); ++w) {
+      RasterScene& job = jobs[which[w]];
+      out[job.index] = std::move(cells[w]);
+      ++stats.exact_scenes;
+      if (!options.adapt_radius) continue;
+      const Scene& scene = *job.scene;
+      std::vector<Point> next = job.sites;
+      std::vector<double> radius = job.radius;  // sites not wanted: the cones they had
+      for (std::size_t i = scene.wanted_begin; i < scene.wanted_end; ++i) {
+        const Cell& cell = out[job.index].cells[i - scene.wanted_begin];
+        next[i] = cell.centroid;
+        radius[i] = cell.radius;
+      }
+      remember(job, next, radius);
+    }
+    stats.exact_seconds += seconds_since(start);
+    stats.host_seconds += seconds_since(start);
   }
 
   // Adds the finish stages to the stats; `parallel_wall` > 0: the scenes ran in parallel for
@@ -378,7 +438,7 @@ struct RasterEngine::Impl {
       std::vector<Point> next = job.sites;
       const Scene& scene = *job.scene;
       for (std::size_t i = scene.wanted_begin; i < scene.wanted_end; ++i) next[i] = cells.cells[i - scene.wanted_begin].centroid;
-      remember(job, next);
+      remember(job, next, job.need);
     }
     if (options.keep_id_images || options.keep_pass_data) {
       if (ids.empty()) ids = device.ids(job);
@@ -432,10 +492,10 @@ struct RasterEngine::Impl {
     return table;
   }
 
-  void remember(const RasterScene& job, const std::vector<Point>& next) {
+  void remember(const RasterScene& job, const std::vector<Point>& next, const std::vector<double>& radius) {
     // Guarded: scenes of a group finish in parallel.
     std::lock_guard<std::mutex> lock(memory_mutex);
-    memory.remember(job, next, job.need);
+    memory.remember(job, next, radius);
   }
   std::mutex memory_mutex;
 };

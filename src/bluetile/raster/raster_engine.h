@@ -60,6 +60,14 @@ struct RasterOptions {
   PixelWork pixel_work = PixelWork::automatic;
   // Vulkan device: empty (CPU/lavapipe first), an index or a name substring.
   std::string device;
+  // Sites on lines (or a few parallel lines) have sliver cells that reach across the domain:
+  // every cone covers most of it and every pixel it crosses is split among O(N) strips, so a
+  // pass costs about N^2 (docs/RASTER.md, "Sliver cells"). A scene whose cones would overlap more
+  // than this many times on average (the sum of their areas, each at most the domain's, over the
+  // domain's area: about 2 for a relaxed set, 20 on a first pass, 0.8 N for sites on one line)
+  // is measured by the exact engine instead (RasterStats::exact_scenes): the same cells to
+  // rounding. 0: never (the raster path at any cost). Never while ID images or pass data are kept.
+  double max_cone_overlap = 64.0;
   // Keep a copy of every scene's ID buffer from the last compute (for id_image()).
   bool keep_id_images = false;
   // Keep every scene's last accepted pass (ID image, device sums, overflow) for pass_data().
@@ -77,6 +85,7 @@ struct RasterStats {
   std::uint64_t boundary_pixels = 0;   // pixels split on the device (area coverage)
   std::uint64_t host_split_pixels = 0;  // boundary pixels the device left to the host
   std::uint64_t fallback_cells = 0;    // cells measured by the exact engine (point coverage, no sample)
+  std::uint64_t exact_scenes = 0;      // scenes measured by the exact engine (max_cone_overlap)
   std::uint64_t split_sites_examined = 0;  // sites the host split's candidate searches examined
   std::uint64_t remembered_radii = 0;  // sites whose cone radius came from the radius memory
   double drawn_radius_sum = 0.0;       // sum of the cone radii of every site drawn (domain units)
@@ -95,6 +104,7 @@ struct RasterStats {
   double prepare_seconds = 0.0, host_readback_seconds = 0.0;
   double host_classify_seconds = 0.0, host_split_seconds = 0.0, host_reduce_seconds = 0.0;
   double cells_seconds = 0.0;
+  double exact_seconds = 0.0;  // part of host_seconds: scenes measured by the exact engine
 };
 
 // One scene's ID buffer: ids[j * width + i] is the index of the site that owns pixel (i, j)'s
