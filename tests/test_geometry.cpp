@@ -154,6 +154,52 @@ TEST(SiteGrid, BucketsHoldEverySiteOnceInIndexOrder) {
   });
 }
 
+// The search order by its definition: every offset within the radius whose bound lies below
+// the radius in bucket sides, in dy-major scan order, stably sorted by (bound, centre distance).
+std::vector<SiteGrid::SearchStep> search_order_by_definition(Point cell) {
+  const long r = SiteGrid::kSearchRadius;
+  const double limit = static_cast<double>(r) * std::min(cell.x, cell.y);
+  std::vector<SiteGrid::SearchStep> order;
+  for (long dy = -r; dy <= r; ++dy) {
+    for (long dx = -r; dx <= r; ++dx) {
+      const double gx = static_cast<double>(std::max(0L, std::labs(dx) - 1)) * cell.x;
+      const double gy = static_cast<double>(std::max(0L, std::labs(dy) - 1)) * cell.y;
+      if (gx * gx + gy * gy < limit * limit) order.push_back({dx, dy, gx * gx + gy * gy});
+    }
+  }
+  std::stable_sort(order.begin(), order.end(), [](const SiteGrid::SearchStep& a, const SiteGrid::SearchStep& b) {
+    if (a.lower_bound_squared != b.lower_bound_squared) return a.lower_bound_squared < b.lower_bound_squared;
+    return a.dx * a.dx + a.dy * a.dy < b.dx * b.dx + b.dy * b.dy;
+  });
+  return order;
+}
+
+TEST(SiteGrid, SearchOrderIsTheStableSortOfTheScan) {
+  // Square buckets (every (a, b) group ties with (b, a)), buckets of ratio 2 and 3 (more exact
+  // ties), and random shapes, small and large.
+  std::vector<Domain> domains = {{{1.0, 1.0}}, {{2.0, 1.0}}, {{3.0, 1.0}}, {{1.0, 3.0}}, {{0.37, 0.37}}, {{1e-3, 2e-3}}};
+  Rng rng(34);
+  for (int k = 0; k < 300; ++k) domains.push_back({{0.05 + 3.0 * rng.uniform(), 0.05 + 3.0 * rng.uniform()}});
+  std::size_t compared = 0;
+  for (const Domain& domain : domains) {
+    for (std::size_t n : {1u, 7u, 30u, 200u}) {
+      std::vector<Point> sites(n);
+      for (Point& p : sites) p = rng.point(domain);
+      const SiteGrid grid(sites, domain, 1.0);
+      const std::vector<SiteGrid::SearchStep> expected = search_order_by_definition(grid.cell_size());
+      const std::vector<SiteGrid::SearchStep>& order = grid.search_order();
+      ASSERT_EQ(order.size(), expected.size()) << domain.size.x << " x " << domain.size.y << ", " << n << " sites";
+      for (std::size_t i = 0; i < order.size(); ++i) {
+        ASSERT_EQ(order[i].dx, expected[i].dx) << "step " << i << ", cell " << grid.cell_size().x << " x " << grid.cell_size().y;
+        ASSERT_EQ(order[i].dy, expected[i].dy) << "step " << i << ", cell " << grid.cell_size().x << " x " << grid.cell_size().y;
+        ASSERT_EQ(order[i].lower_bound_squared, expected[i].lower_bound_squared) << "step " << i;
+      }
+      compared += order.size();
+    }
+  }
+  EXPECT_GT(compared, 100000u);
+}
+
 TEST(SiteGrid, NearVisitsASupersetOnce) {
   const Domain domain{{1.0, 1.0}};
   Rng rng(33);
