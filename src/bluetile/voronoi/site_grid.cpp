@@ -43,36 +43,56 @@ namespace {
 constexpr long kGap = SiteGrid::kSearchRadius;
 constexpr long kSide = 2 * SiteGrid::kSearchRadius + 1;
 
-struct GapGroup {
-  // Members in the order of a tie of bounds: the nearer bucket centre first, then the place in
-  // the dy-major scan of the square; at most 9 (a = b = 0).
-  std::uint8_t count = 0;
-  std::uint8_t member[9] = {};
+// An offset of the scan and its rank in a tie of bounds: the nearer bucket centre first, then
+// the place in the dy-major scan of the square (a total order).
+struct ScanOffset {
+  long dx = 0, dy = 0;
+  std::uint16_t tie_rank = 0;
 };
 
-long offset_dx(long place) { return place % kSide - SiteGrid::kSearchRadius; }
-long offset_dy(long place) { return place / kSide - SiteGrid::kSearchRadius; }
-long centre_distance_squared(long place) { return offset_dx(place) * offset_dx(place) + offset_dy(place) * offset_dy(place); }
+struct GapGroup {
+  std::uint8_t count = 0;
+  std::uint8_t member[9] = {};  // scan places in tie order; at most 9 (a = b = 0)
+};
 
-// Ties among equal bounds are broken by the centre distance, then by the scan place: a total order.
-bool tie_before(long p, long q) {
-  const long dp = centre_distance_squared(p), dq = centre_distance_squared(q);
-  return dp != dq ? dp < dq : p < q;
-}
+struct SearchTables {
+  std::array<ScanOffset, kSide * kSide> offsets;
+  std::array<GapGroup, kGap * kGap> groups;
+};
 
-const std::array<GapGroup, kGap * kGap>& gap_groups() {
-  static const std::array<GapGroup, kGap * kGap> groups = [] {
-    std::array<GapGroup, kGap * kGap> g{};
+const SearchTables& search_tables() {
+  static const SearchTables tables = [] {
+    SearchTables t;
     for (long place = 0; place < kSide * kSide; ++place) {
-      const long a = std::max(0L, std::labs(offset_dx(place)) - 1), b = std::max(0L, std::labs(offset_dy(place)) - 1);
-      GapGroup& group = g[static_cast<std::size_t>(b * kGap + a)];
+      ScanOffset& o = t.offsets[static_cast<std::size_t>(place)];
+      o.dx = place % kSide - SiteGrid::kSearchRadius;
+      o.dy = place / kSide - SiteGrid::kSearchRadius;
+      o.tie_rank = static_cast<std::uint16_t>((o.dx * o.dx + o.dy * o.dy) * kSide * kSide + place);
+      const long a = std::max(0L, std::labs(o.dx) - 1), b = std::max(0L, std::labs(o.dy) - 1);
+      GapGroup& group = t.groups[static_cast<std::size_t>(b * kGap + a)];
       group.member[group.count++] = static_cast<std::uint8_t>(place);
     }
-    for (GapGroup& group : g) std::sort(group.member, group.member + group.count, [](std::uint8_t p, std::uint8_t q) { return tie_before(p, q); });
-    return g;
+    for (GapGroup& group : t.groups) {
+      std::sort(group.member, group.member + group.count, [&](std::uint8_t p, std::uint8_t q) {
+        return t.offsets[p].tie_rank < t.offsets[q].tie_rank;
+      });
+    }
+    return t;
   }();
-  return groups;
+  return tables;
 }
+
+// The last order a thread built, as a function of its inputs: the groups in (bound, group)
+// order, which neighbours in it had equal bounds, and how many lay below the limit. A grid whose
+// bounds give the same three has the same offsets in the same order, only other bounds.
+struct OrderMemo {
+  bool valid = false;
+  std::array<std::uint8_t, kGap * kGap> groups{};
+  std::array<bool, kGap * kGap> tied_with_next{};
+  std::size_t kept = 0;  // groups below the limit
+  std::vector<std::uint8_t> places;      // the order's offsets, scan places
+  std::vector<std::uint8_t> place_group;  // the group of each
+};
 
 }  // namespace
 
@@ -80,46 +100,69 @@ void SiteGrid::build_search_order() {
   // Offsets beyond the radius have a bound of at least this; keeping only steps below it makes
   // the list complete up to it, whatever the bucket shape.
   const double limit = static_cast<double>(kSearchRadius) * std::min(cell_size_.x, cell_size_.y);
+  const double limit_squared = limit * limit;
   // Nearest first; among equal bounds the nearer bucket centre first, then the dy-major scan
-  // order. The bounds are those of the 36 gap groups, so the groups are sorted rather than the
-  // 169 offsets (a sort per grid of all offsets cost as much as the cells of a small scene);
-  // the order is the one a stable sort of the scan by (bound, centre distance) gives.
-  const std::array<GapGroup, kGap * kGap>& groups = gap_groups();
-  struct Bound {
-    double value;
-    std::uint8_t group;
-  };
-  std::array<Bound, kGap * kGap> bounds;
+  // order: the order a stable sort of the scan by (bound, centre distance) gives. The bounds are
+  // those of the 36 gap groups, so the groups are sorted rather than the 169 offsets (a sort of
+  // all offsets per grid cost as much as the cells of a small scene). Small scenes come in runs
+  // of like shapes (the crops of one Wang group), so most grids find their order in the memo of
+  // the grid before, checked in 36 comparisons.
+  const SearchTables& tables = search_tables();
+  std::array<double, kGap * kGap> bound;
   for (long b = 0; b < kGap; ++b) {
     for (long a = 0; a < kGap; ++a) {
       const double gx = static_cast<double>(a) * cell_size_.x, gy = static_cast<double>(b) * cell_size_.y;
-      bounds[static_cast<std::size_t>(b * kGap + a)] = {gx * gx + gy * gy, static_cast<std::uint8_t>(b * kGap + a)};
+      bound[static_cast<std::size_t>(b * kGap + a)] = gx * gx + gy * gy;
     }
   }
-  std::sort(bounds.begin(), bounds.end(), [](const Bound& p, const Bound& q) {
-    return p.value != q.value ? p.value < q.value : p.group < q.group;
-  });
-  search_order_.reserve(static_cast<std::size_t>(kSide * kSide));
-  auto emit = [&](long place, double bound) { search_order_.push_back({offset_dx(place), offset_dy(place), bound}); };
-  for (std::size_t first = 0; first < bounds.size();) {
-    const double bound = bounds[first].value;
-    if (!(bound < limit * limit)) break;  // sorted: every later group is beyond the limit too
-    std::size_t last = first + 1;
-    while (last < bounds.size() && bounds[last].value == bound) ++last;
-    if (last == first + 1) {
-      const GapGroup& group = groups[bounds[first].group];
-      for (std::uint8_t k = 0; k < group.count; ++k) emit(group.member[k], bound);
-    } else {  // groups with equal bounds (square buckets: (a, b) and (b, a)) interleave
-      std::array<std::uint8_t, kSide * kSide> tied;
-      std::size_t n = 0;
-      for (std::size_t k = first; k < last; ++k) {
-        const GapGroup& group = groups[bounds[k].group];
-        for (std::uint8_t m = 0; m < group.count; ++m) tied[n++] = group.member[m];
-      }
-      std::sort(tied.begin(), tied.begin() + static_cast<std::ptrdiff_t>(n), [](std::uint8_t p, std::uint8_t q) { return tie_before(p, q); });
-      for (std::size_t k = 0; k < n; ++k) emit(tied[k], bound);
+  thread_local OrderMemo memo;
+  auto memo_holds = [&] {
+    if (!memo.valid) return false;
+    for (std::size_t k = 0; k + 1 < memo.groups.size(); ++k) {
+      const double here = bound[memo.groups[k]], next = bound[memo.groups[k + 1]];
+      // Tied groups are in increasing group order in the memo (the sort's tie-break).
+      if (memo.tied_with_next[k] ? !(here == next) : !(here < next)) return false;
     }
-    first = last;
+    return (memo.kept == 0 || bound[memo.groups[memo.kept - 1]] < limit_squared) &&
+           (memo.kept == memo.groups.size() || !(bound[memo.groups[memo.kept]] < limit_squared));
+  };
+  if (!memo_holds()) {
+    std::array<std::uint8_t, kGap * kGap> order;
+    for (std::size_t g = 0; g < order.size(); ++g) order[g] = static_cast<std::uint8_t>(g);
+    std::sort(order.begin(), order.end(), [&](std::uint8_t p, std::uint8_t q) {
+      return bound[p] != bound[q] ? bound[p] < bound[q] : p < q;
+    });
+    memo.groups = order;
+    memo.kept = 0;
+    for (std::size_t k = 0; k < order.size(); ++k) {
+      memo.tied_with_next[k] = k + 1 < order.size() && bound[order[k]] == bound[order[k + 1]];
+      memo.kept += bound[order[k]] < limit_squared;  // sorted: these come first
+    }
+    memo.places.clear();
+    memo.place_group.clear();
+    for (std::size_t first = 0; first < memo.kept;) {
+      std::size_t last = first + 1;
+      while (memo.tied_with_next[last - 1]) ++last;
+      const std::size_t from = memo.places.size();
+      for (std::size_t k = first; k < last; ++k) {
+        const GapGroup& group = tables.groups[order[k]];
+        memo.places.insert(memo.places.end(), group.member, group.member + group.count);
+        memo.place_group.insert(memo.place_group.end(), group.count, order[k]);
+      }
+      // Groups with equal bounds (square buckets: (a, b) and (b, a)) interleave by tie rank;
+      // the group of every place in the run has the same bound.
+      if (last > first + 1) {
+        std::sort(memo.places.begin() + static_cast<std::ptrdiff_t>(from), memo.places.end(),
+                  [&](std::uint8_t p, std::uint8_t q) { return tables.offsets[p].tie_rank < tables.offsets[q].tie_rank; });
+      }
+      first = last;
+    }
+    memo.valid = true;
+  }
+  search_order_.resize(memo.places.size());
+  for (std::size_t k = 0; k < memo.places.size(); ++k) {
+    const ScanOffset& o = tables.offsets[memo.places[k]];
+    search_order_[k] = {o.dx, o.dy, bound[memo.place_group[k]]};
   }
 }
 
