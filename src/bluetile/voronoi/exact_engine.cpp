@@ -457,6 +457,14 @@ std::uint8_t edges_first(const ConvexPolygon& polygon, std::vector<Topology::Ent
   return static_cast<std::uint8_t>(edges);
 }
 
+struct SearchBuffers {
+  ConvexPolygon cell_polygon;
+  SearchScratch scratch;
+  std::vector<double> distances;
+  std::vector<Topology::Entry> edge_scratch;
+  bool in_use = false;
+};
+
 // Measures the wanted cells by the full search; with `lists`, also makes every cell's list.
 void search_scene(SceneRun& run, Topology* lists) {
   const Scene& scene = run.scene;
@@ -476,11 +484,16 @@ void search_scene(SceneRun& run, Topology* lists) {
   std::vector<ChunkLists> chunk_lists(lists ? chunks : 0);
 
   auto run_chunks = [&](std::size_t begin, std::size_t end) {
-    ConvexPolygon cell_polygon;
-    SearchScratch scratch;
-    scratch.candidates.reserve(64);
-    std::vector<double> distances;
-    std::vector<Topology::Entry> edge_scratch;
+    // Per-thread buffers: a batch of small scenes (the Wang loop's crops hold about 15 sites and
+    // 2 wanted cells) would otherwise allocate them once per scene, which cost more than the
+    // cells. Their contents do not carry over: every use starts by resetting them.
+    thread_local SearchBuffers buffers;
+    assert(!buffers.in_use);  // nothing in the loop below runs another search on this thread
+    buffers.in_use = true;
+    ConvexPolygon& cell_polygon = buffers.cell_polygon;
+    SearchScratch& scratch = buffers.scratch;
+    std::vector<double>& distances = buffers.distances;
+    std::vector<Topology::Entry>& edge_scratch = buffers.edge_scratch;
     for (std::size_t c = begin; c < end; ++c) {
       for (std::size_t b = c * kBuckets; b < std::min(grid.bucket_count(), (c + 1) * kBuckets); ++b) {
         for (std::uint32_t site : grid.sites_in_bucket(b)) {
@@ -510,6 +523,7 @@ void search_scene(SceneRun& run, Topology* lists) {
         }
       }
     }
+    buffers.in_use = false;
   };
   if (run.parallel_inside) {
     parallel_for(chunks, 1, run_chunks);
