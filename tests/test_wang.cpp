@@ -175,6 +175,73 @@ std::vector<std::vector<Point>> brute_force(const TileRules& rules, const WangPo
   return sum;
 }
 
+// A crop scene by its definition (wang_crop.h): the wanted points, the centre's other points in
+// the box, then each known position's points in the box, in position order, relative to the
+// corner of the domain, which is the box grown by the pad.
+std::vector<Point> crop_sites_by_definition(const CropGroup& group, const Tiles& tiles, const TilePoints& points) {
+  auto in_box = [&](Point p) { return p.x >= group.low.x && p.x <= group.high.x && p.y >= group.low.y && p.y <= group.high.y; };
+  const Point corner = group.low - Point{group.pad, group.pad};
+  const std::vector<Point>& centre = points[static_cast<std::size_t>(group.centre)];
+  std::vector<Point> sites;
+  for (std::uint32_t k : group.wanted) sites.push_back(centre[k] - corner);
+  for (std::uint32_t k = 0; k < centre.size(); ++k)
+    if (std::find(group.wanted.begin(), group.wanted.end(), k) == group.wanted.end() && in_box(centre[k]))
+      sites.push_back(centre[k] - corner);
+  for (int p = 0; p < kBlockPositions; ++p) {
+    if (p == kBlockCentre || !(group.mask & (PositionMask{1} << p))) continue;
+    for (Point q : points[static_cast<std::size_t>(tiles[static_cast<std::size_t>(p)])]) {
+      const Point b = q + Point{static_cast<double>(block_dx(p)), static_cast<double>(block_dy(p))};
+      if (in_box(b)) sites.push_back(b - corner);
+    }
+  }
+  return sites;
+}
+
+TEST(WangCrop, SceneMakerGivesEachConfigurationsSitesInOrder) {
+  const WangPoints points = started_points(TileSetKind::wang8, 24, 12);
+  const TileRules rules(TileSetKind::wang8);
+  BlockConfigurations configurations(rules);
+  Rng rng(40);
+  std::size_t scenes = 0, sites = 0;
+  for (int centre = 0; centre < rules.tile_count(); ++centre) {
+    const std::vector<Point>& tile = points.tiles[static_cast<std::size_t>(centre)];
+    for (double reach : {0.15, 0.3, 0.6}) {
+      // Points near a corner, near an edge and anywhere, so that masks of 1 to 8 neighbours occur.
+      std::vector<std::uint32_t> wanted;
+      for (std::uint32_t k = 0; k < tile.size(); ++k)
+        if (rng.uniform() < 0.3) wanted.push_back(k);
+      if (wanted.empty()) wanted.push_back(0);
+      PositionMask mask = kCentreOnly;
+      for (std::uint32_t k : wanted) mask |= visible_positions(tile[k], reach);
+      const std::vector<double> reaches(wanted.size(), reach);
+      const CropGroup group = make_crop_group(centre, mask, wanted, tile, reaches);
+      const std::vector<BlockConfiguration>& blocks = configurations.projections(centre, group.mask);
+      ASSERT_FALSE(blocks.empty());
+      // One maker for every configuration, taken forwards and backwards (its parts are cut on
+      // first use), and the one-scene function.
+      CropSceneMaker forwards(group, points.tiles), backwards(group, points.tiles);
+      for (std::size_t c = 0; c < blocks.size(); ++c) {
+        const std::vector<Point> expected = crop_sites_by_definition(group, blocks[c].tiles, points.tiles);
+        const Scene made = forwards.make(blocks[c]);
+        const Scene reverse = backwards.make(blocks[blocks.size() - 1 - c]);
+        const std::vector<Point> reverse_expected =
+            crop_sites_by_definition(group, blocks[blocks.size() - 1 - c].tiles, points.tiles);
+        EXPECT_EQ(made.sites, expected) << "tile " << centre << " configuration " << c;
+        EXPECT_EQ(reverse.sites, reverse_expected) << "tile " << centre << " configuration " << c;
+        EXPECT_EQ(make_crop_scene(group, blocks[c], points.tiles).sites, expected);
+        EXPECT_EQ(made.wanted_begin, 0u);
+        EXPECT_EQ(made.wanted_end, wanted.size());
+        const Point size = group.high - group.low + Point{2.0 * group.pad, 2.0 * group.pad};
+        EXPECT_EQ(made.domain.size, size);
+        ++scenes;
+        sites += made.sites.size();
+      }
+    }
+  }
+  EXPECT_GT(scenes, 100u);
+  EXPECT_GT(sites, 20 * scenes);
+}
+
 double max_difference(const std::vector<std::vector<Point>>& a, const std::vector<std::vector<Point>>& b) {
   double worst = 0.0;
   for (std::size_t t = 0; t < a.size(); ++t)

@@ -2,6 +2,7 @@
 #include "bluetile/relax/wang_crop.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 
@@ -66,16 +67,11 @@ CropGroup make_crop_group(int centre, PositionMask mask, std::vector<std::uint32
   return group;
 }
 
-Scene make_crop_scene(const CropGroup& group, const BlockConfiguration& block, const TilePoints& tiles) {
-  assert(block.tiles[kBlockCentre] == group.centre);
-  Scene scene;
-  const Point origin = group.low - Point{group.pad, group.pad};
-  scene.domain.size = group.high - group.low + Point{2.0 * group.pad, 2.0 * group.pad};
+CropSceneMaker::CropSceneMaker(const CropGroup& group, const TilePoints& tiles)
+    : group_(group), tiles_(tiles), origin_(group.low - Point{group.pad, group.pad}) {
   const std::vector<Point>& centre = tiles[static_cast<std::size_t>(group.centre)];
-  scene.sites.reserve(centre.size());
-  for (std::uint32_t k : group.wanted) scene.sites.push_back(centre[k] - origin);
-  scene.wanted_begin = 0;
-  scene.wanted_end = group.wanted.size();
+  centre_.reserve(centre.size());
+  for (std::uint32_t k : group.wanted) centre_.push_back(centre[k] - origin_);
   // The centre's other points, in index order (the wanted indices are sorted).
   assert(std::is_sorted(group.wanted.begin(), group.wanted.end()));
   std::size_t next_wanted = 0;
@@ -84,19 +80,49 @@ Scene make_crop_scene(const CropGroup& group, const BlockConfiguration& block, c
       ++next_wanted;
       continue;
     }
-    if (inside(centre[k], group.low, group.high)) scene.sites.push_back(centre[k] - origin);
+    if (inside(centre[k], group.low, group.high)) centre_.push_back(centre[k] - origin_);
   }
+  parts_.resize(static_cast<std::size_t>(kBlockPositions) * tiles.size());
+  made_.assign(parts_.size(), 0);
+}
+
+const std::vector<Point>& CropSceneMaker::part(int position, int tile) {
+  const std::size_t slot = static_cast<std::size_t>(position) * tiles_.size() + static_cast<std::size_t>(tile);
+  std::vector<Point>& points = parts_[slot];
+  if (made_[slot]) return points;
+  made_[slot] = 1;
+  const Point shift{static_cast<double>(block_dx(position)), static_cast<double>(block_dy(position))};
+  for (Point q : tiles_[static_cast<std::size_t>(tile)]) {
+    const Point b = q + shift;
+    if (inside(b, group_.low, group_.high)) points.push_back(b - origin_);
+  }
+  return points;
+}
+
+Scene CropSceneMaker::make(const BlockConfiguration& block) {
+  assert(block.tiles[kBlockCentre] == group_.centre);
+  std::array<const std::vector<Point>*, kBlockPositions> known{};
+  std::size_t count = centre_.size();
   for (int p = 0; p < kBlockPositions; ++p) {
-    if (p == kBlockCentre || !(group.mask & (PositionMask{1} << p))) continue;
+    if (p == kBlockCentre || !(group_.mask & (PositionMask{1} << p))) continue;
     const int tile = block.tiles[static_cast<std::size_t>(p)];
-    assert(tile >= 0);
-    const Point shift{static_cast<double>(block_dx(p)), static_cast<double>(block_dy(p))};
-    for (Point q : tiles[static_cast<std::size_t>(tile)]) {
-      Point b = q + shift;
-      if (inside(b, group.low, group.high)) scene.sites.push_back(b - origin);
-    }
+    assert(tile >= 0 && static_cast<std::size_t>(tile) < tiles_.size());
+    known[static_cast<std::size_t>(p)] = &part(p, tile);
+    count += known[static_cast<std::size_t>(p)]->size();
   }
+  Scene scene;
+  scene.domain.size = group_.high - group_.low + Point{2.0 * group_.pad, 2.0 * group_.pad};
+  scene.sites.reserve(count);
+  scene.sites.assign(centre_.begin(), centre_.end());
+  for (const std::vector<Point>* points : known)
+    if (points) scene.sites.insert(scene.sites.end(), points->begin(), points->end());
+  scene.wanted_begin = 0;
+  scene.wanted_end = group_.wanted.size();
   return scene;
+}
+
+Scene make_crop_scene(const CropGroup& group, const BlockConfiguration& block, const TilePoints& tiles) {
+  return CropSceneMaker(group, tiles).make(block);
 }
 
 }  // namespace bluetile

@@ -46,9 +46,29 @@ CropGroup make_crop_group(int centre, PositionMask mask, std::vector<std::uint32
 // ones (when it is the centre) among them.
 using TilePoints = std::vector<std::vector<Point>>;
 
-// The scene of `group` in the configuration `block` (its tiles at the group's known positions).
-// Sites: the wanted points in group order, then the centre's other points, then the known
-// positions' points, each in position order, all inside the crop box.
+// The scenes of one group, configuration by configuration. The scene of `block` (its tiles at
+// the group's known positions) holds the wanted points in group order, then the centre's other
+// points, then the known positions' points, each in position order, all inside the crop box.
+// Each part (the centre's points, the points one tile brings at one position) is cut to the box
+// once for all of the group's configurations: a group has about 16 of them, and its scenes
+// about 15 sites out of the block's hundreds. `group` and `tiles` must outlive the maker.
+class CropSceneMaker {
+ public:
+  CropSceneMaker(const CropGroup& group, const TilePoints& tiles);
+  Scene make(const BlockConfiguration& block);
+
+ private:
+  const std::vector<Point>& part(int position, int tile);
+
+  const CropGroup& group_;
+  const TilePoints& tiles_;
+  Point origin_{};
+  std::vector<Point> centre_;             // wanted, then the centre's other points in the box
+  std::vector<std::vector<Point>> parts_;  // [position * tiles + tile], relative to the origin
+  std::vector<std::uint8_t> made_;
+};
+
+// The scene of `group` in the configuration `block`, as CropSceneMaker makes it.
 Scene make_crop_scene(const CropGroup& group, const BlockConfiguration& block, const TilePoints& tiles);
 
 // Is the cell of the group's wanted point i, measured in one of its scenes, complete?

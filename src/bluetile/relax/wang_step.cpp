@@ -117,8 +117,9 @@ void measure_cropped(CentroidEngine& engine, BlockConfigurations& configurations
     parallel_for(groups.size(), 1, [&](std::size_t begin, std::size_t end) {
       for (std::size_t g = begin; g < end; ++g) {
         const GroupScenes& group = groups[g];
+        CropSceneMaker maker(group.group, points.tiles);
         for (std::size_t c = 0; c < group.configurations->size(); ++c)
-          scenes[group.first_scene + c] = make_crop_scene(group.group, (*group.configurations)[c], points.tiles);
+          scenes[group.first_scene + c] = maker.make((*group.configurations)[c]);
       }
     });
     std::vector<SceneCells> cells(scene_count);
