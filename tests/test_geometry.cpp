@@ -195,7 +195,7 @@ TEST(SiteGrid, SearchOrderIsTheStableSortOfTheScan) {
       for (Point& p : sites) p = rng.point(domain);
       const SiteGrid grid(sites, domain, 1.0);
       const std::vector<SiteGrid::SearchStep> expected = search_order_by_definition(grid.cell_size());
-      const std::vector<SiteGrid::SearchStep>& order = grid.search_order();
+      const SiteGrid::SearchOrder& order = grid.search_order();
       ASSERT_EQ(order.size(), expected.size()) << domain.size.x << " x " << domain.size.y << ", " << n << " sites";
       for (std::size_t i = 0; i < order.size(); ++i) {
         ASSERT_EQ(order[i].dx, expected[i].dx) << "step " << i << ", cell " << grid.cell_size().x << " x " << grid.cell_size().y;

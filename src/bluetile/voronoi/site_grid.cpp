@@ -48,6 +48,7 @@ constexpr long kSide = 2 * SiteGrid::kSearchRadius + 1;
 struct ScanOffset {
   long dx = 0, dy = 0;
   std::uint16_t tie_rank = 0;
+  std::uint8_t group = 0;  // its gap group, b * kGap + a
 };
 
 struct GapGroup {
@@ -69,7 +70,8 @@ const SearchTables& search_tables() {
       o.dy = place / kSide - SiteGrid::kSearchRadius;
       o.tie_rank = static_cast<std::uint16_t>((o.dx * o.dx + o.dy * o.dy) * kSide * kSide + place);
       const long a = std::max(0L, std::labs(o.dx) - 1), b = std::max(0L, std::labs(o.dy) - 1);
-      GapGroup& group = t.groups[static_cast<std::size_t>(b * kGap + a)];
+      o.group = static_cast<std::uint8_t>(b * kGap + a);
+      GapGroup& group = t.groups[o.group];
       group.member[group.count++] = static_cast<std::uint8_t>(place);
     }
     for (GapGroup& group : t.groups) {
@@ -86,12 +88,10 @@ const SearchTables& search_tables() {
 // order, which neighbours in it had equal bounds, and how many lay below the limit. A grid whose
 // bounds give the same three has the same offsets in the same order, only other bounds.
 struct OrderMemo {
-  bool valid = false;
   std::array<std::uint8_t, kGap * kGap> groups{};
   std::array<bool, kGap * kGap> tied_with_next{};
   std::size_t kept = 0;  // groups below the limit
-  std::vector<std::uint8_t> places;      // the order's offsets, scan places
-  std::vector<std::uint8_t> place_group;  // the group of each
+  std::shared_ptr<const SiteGrid::SearchLayout> layout;  // null: nothing built yet
 };
 
 }  // namespace
@@ -105,10 +105,11 @@ void SiteGrid::build_search_order() {
   // order: the order a stable sort of the scan by (bound, centre distance) gives. The bounds are
   // those of the 36 gap groups, so the groups are sorted rather than the 169 offsets (a sort of
   // all offsets per grid cost as much as the cells of a small scene). Small scenes come in runs
-  // of like shapes (the crops of one Wang group), so most grids find their order in the memo of
-  // the grid before, checked in 36 comparisons.
+  // of like shapes (the crops of one Wang group), so most grids share the layout of the grid
+  // before, checked in 36 comparisons.
+  static_assert(kGap * kGap == kGapGroups);
   const SearchTables& tables = search_tables();
-  std::array<double, kGap * kGap> bound;
+  std::array<double, kGapGroups>& bound = search_order_.bounds_;
   for (long b = 0; b < kGap; ++b) {
     for (long a = 0; a < kGap; ++a) {
       const double gx = static_cast<double>(a) * cell_size_.x, gy = static_cast<double>(b) * cell_size_.y;
@@ -117,7 +118,7 @@ void SiteGrid::build_search_order() {
   }
   thread_local OrderMemo memo;
   auto memo_holds = [&] {
-    if (!memo.valid) return false;
+    if (!memo.layout) return false;
     for (std::size_t k = 0; k + 1 < memo.groups.size(); ++k) {
       const double here = bound[memo.groups[k]], next = bound[memo.groups[k + 1]];
       // Tied groups are in increasing group order in the memo (the sort's tie-break).
@@ -127,7 +128,7 @@ void SiteGrid::build_search_order() {
            (memo.kept == memo.groups.size() || !(bound[memo.groups[memo.kept]] < limit_squared));
   };
   if (!memo_holds()) {
-    std::array<std::uint8_t, kGap * kGap> order;
+    std::array<std::uint8_t, kGapGroups> order;
     for (std::size_t g = 0; g < order.size(); ++g) order[g] = static_cast<std::uint8_t>(g);
     std::sort(order.begin(), order.end(), [&](std::uint8_t p, std::uint8_t q) {
       return bound[p] != bound[q] ? bound[p] < bound[q] : p < q;
@@ -138,32 +139,37 @@ void SiteGrid::build_search_order() {
       memo.tied_with_next[k] = k + 1 < order.size() && bound[order[k]] == bound[order[k + 1]];
       memo.kept += bound[order[k]] < limit_squared;  // sorted: these come first
     }
-    memo.places.clear();
-    memo.place_group.clear();
+    auto layout = std::make_shared<SearchLayout>();
+    std::vector<SearchLayout::Offset>& offsets = layout->offsets;
+    offsets.reserve(static_cast<std::size_t>(kSide * kSide));
+    auto offset = [&](std::uint8_t place, std::uint8_t group) {
+      const ScanOffset& o = tables.offsets[place];
+      return SearchLayout::Offset{static_cast<std::int8_t>(o.dx), static_cast<std::int8_t>(o.dy), group};
+    };
+    std::array<std::uint8_t, kSide * kSide> tied_places;
     for (std::size_t first = 0; first < memo.kept;) {
       std::size_t last = first + 1;
       while (memo.tied_with_next[last - 1]) ++last;
-      const std::size_t from = memo.places.size();
-      for (std::size_t k = first; k < last; ++k) {
-        const GapGroup& group = tables.groups[order[k]];
-        memo.places.insert(memo.places.end(), group.member, group.member + group.count);
-        memo.place_group.insert(memo.place_group.end(), group.count, order[k]);
-      }
-      // Groups with equal bounds (square buckets: (a, b) and (b, a)) interleave by tie rank;
-      // the group of every place in the run has the same bound.
-      if (last > first + 1) {
-        std::sort(memo.places.begin() + static_cast<std::ptrdiff_t>(from), memo.places.end(),
+      if (last == first + 1) {
+        const GapGroup& group = tables.groups[order[first]];
+        for (std::uint8_t m = 0; m < group.count; ++m) offsets.push_back(offset(group.member[m], order[first]));
+      } else {
+        // Groups with equal bounds (square buckets: (a, b) and (b, a)) interleave by tie rank;
+        // each offset keeps its own group, whose bound is the run's.
+        std::size_t n = 0;
+        for (std::size_t k = first; k < last; ++k) {
+          const GapGroup& group = tables.groups[order[k]];
+          for (std::uint8_t m = 0; m < group.count; ++m) tied_places[n++] = group.member[m];
+        }
+        std::sort(tied_places.begin(), tied_places.begin() + static_cast<std::ptrdiff_t>(n),
                   [&](std::uint8_t p, std::uint8_t q) { return tables.offsets[p].tie_rank < tables.offsets[q].tie_rank; });
+        for (std::size_t k = 0; k < n; ++k) offsets.push_back(offset(tied_places[k], tables.offsets[tied_places[k]].group));
       }
       first = last;
     }
-    memo.valid = true;
+    memo.layout = std::move(layout);
   }
-  search_order_.resize(memo.places.size());
-  for (std::size_t k = 0; k < memo.places.size(); ++k) {
-    const ScanOffset& o = tables.offsets[memo.places[k]];
-    search_order_[k] = {o.dx, o.dy, bound[memo.place_group[k]]};
-  }
+  search_order_.layout_ = memo.layout;
 }
 
 }  // namespace bluetile

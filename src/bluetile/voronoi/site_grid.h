@@ -5,9 +5,11 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <utility>
 #include <vector>
@@ -28,12 +30,52 @@ class SiteGrid {
     long dx, dy;
     double lower_bound_squared;
   };
-  // Every offset within kSearchRadius buckets whose lower bound is below kSearchRadius bucket
-  // sides, nearest first: a search from a site may stop at the first step whose bound reaches
-  // the distance it needs. Searches that need more fall back to rings (rare: big empty regions,
-  // tiny N).
-  const std::vector<SearchStep>& search_order() const { return search_order_; }
   static constexpr long kSearchRadius = 6;
+  // Offsets with the same gaps in whole buckets, max(0, |dx| - 1) and max(0, |dy| - 1), share a
+  // bound: kGapGroups groups.
+  static constexpr std::size_t kGapGroups = static_cast<std::size_t>(kSearchRadius * kSearchRadius);
+  // The offsets of a search order and the gap group of each; grids whose bounds sort alike share
+  // one (site_grid.cpp).
+  struct SearchLayout {
+    struct Offset {
+      std::int8_t dx, dy;
+      std::uint8_t group;
+    };
+    std::vector<Offset> offsets;
+  };
+  // A search order: the layout's offsets with this grid's bounds, read as SearchSteps.
+  class SearchOrder {
+   public:
+    class Iterator {
+     public:
+      Iterator(const SearchLayout::Offset* at, const double* bounds) : at_(at), bounds_(bounds) {}
+      SearchStep operator*() const { return {at_->dx, at_->dy, bounds_[at_->group]}; }
+      Iterator& operator++() {
+        ++at_;
+        return *this;
+      }
+      bool operator!=(const Iterator& other) const { return at_ != other.at_; }
+
+     private:
+      const SearchLayout::Offset* at_;
+      const double* bounds_;
+    };
+    std::size_t size() const { return layout_ ? layout_->offsets.size() : 0; }
+    bool empty() const { return size() == 0; }
+    SearchStep operator[](std::size_t k) const { return *Iterator(layout_->offsets.data() + k, bounds_.data()); }
+    Iterator begin() const { return {layout_ ? layout_->offsets.data() : nullptr, bounds_.data()}; }
+    Iterator end() const { return {layout_ ? layout_->offsets.data() + layout_->offsets.size() : nullptr, bounds_.data()}; }
+
+   private:
+    friend class SiteGrid;
+    std::shared_ptr<const SearchLayout> layout_;
+    std::array<double, kGapGroups> bounds_{};  // per gap group
+  };
+  // Every offset within kSearchRadius buckets whose lower bound is below kSearchRadius bucket
+  // sides, nearest first (ties: the nearer bucket centre, then dy-major scan order): a search
+  // from a site may stop at the first step whose bound reaches the distance it needs. Searches
+  // that need more fall back to rings (rare: big empty regions, tiny N).
+  const SearchOrder& search_order() const { return search_order_; }
 
   std::pair<long, long> bucket_coordinates(Point p) const {
     long cx = std::clamp<long>(static_cast<long>(p.x / cell_size_.x), 0, columns_ - 1);
@@ -111,7 +153,7 @@ class SiteGrid {
   std::vector<std::uint32_t> start_;   // bucket b holds storage slots [start_[b], start_[b+1])
   std::vector<Point> points_;          // site positions in storage order
   std::vector<std::uint32_t> index_;   // site indices in storage order
-  std::vector<SearchStep> search_order_;
+  SearchOrder search_order_;
 };
 
 }  // namespace bluetile
