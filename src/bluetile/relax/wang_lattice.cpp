@@ -85,6 +85,27 @@ std::vector<Complex> lattice_sums(const TilePoints& tiles, const std::vector<Fre
   return sums;
 }
 
+// exp(-2 pi i m.x) of every point of every tile (tile by tile, point by point) at every
+// frequency, into `phase` (point-major), and their sums per frequency as lattice_sums adds them:
+// a lattice step reads each phase twice (the sums, then the gradient of the moving points).
+void point_phases(const TilePoints& tiles, const std::vector<Frequency>& fs, Phases& phases, std::vector<Complex>& phase,
+                  std::vector<Complex>& sums) {
+  std::size_t count = 0;
+  for (const std::vector<Point>& tile : tiles) count += tile.size();
+  phase.resize(count * fs.size());
+  sums.assign(fs.size(), 0.0);
+  Complex* e = phase.data();
+  for (const std::vector<Point>& tile : tiles)
+    for (const Point& p : tile) {
+      phases.set(p);
+      for (std::size_t k = 0; k < fs.size(); ++k) {
+        e[k] = phases.at(fs[k]);
+        sums[k] += e[k];
+      }
+      e += fs.size();
+    }
+}
+
 }  // namespace
 
 LatticeCoherence lattice_coherence(const TilePoints& tiles) {
@@ -108,12 +129,12 @@ void decorrelate_lattice(WangPoints& points, const LatticeDecorrelationOptions& 
   const double norm = 1.0 / static_cast<double>(points.tiles.size() * n);
   const double largest_move = options.step * hexagonal_spacing(static_cast<double>(n));
   Phases phases(reach_of(fs));
-  std::vector<Complex> weight(fs.size());
+  std::vector<Complex> weight(fs.size()), phase, sums;
   std::vector<Point> gradient(points.tiles.size() * points.moving_count());
   for (int it = 0; it < options.iterations; ++it) {
     // d/dx_j of (C_m / t)^4 / 4 = (C_m / t)^3 / t * dC_m/dx_j, with
     // dC_m/dx_j = 2 norm Re(conj(S_m) (-2 pi i m) e_j(m)); both halves of the plane count.
-    const std::vector<Complex> sums = lattice_sums(points.tiles, fs);
+    point_phases(points.tiles, fs, phases, phase, sums);
     for (std::size_t k = 0; k < fs.size(); ++k) {
       const double c = std::norm(sums[k]) * norm / fs[k].target;
       weight[k] = std::conj(sums[k]) * (2.0 * 2.0 * norm * c * c * c / fs[k].target);
@@ -121,11 +142,12 @@ void decorrelate_lattice(WangPoints& points, const LatticeDecorrelationOptions& 
     double longest = 0.0;
     for (std::size_t t = 0; t < points.tiles.size(); ++t)
       for (std::size_t m = 0; m < points.moving_count(); ++m) {
-        phases.set(points.tiles[t][points.moving_begin + m]);
+        // Every tile holds n points: this point's phases start at (t n + its index) phases in.
+        const Complex* e = phase.data() + (t * n + points.moving_begin + m) * fs.size();
         Point g{0.0, 0.0};
         for (std::size_t k = 0; k < fs.size(); ++k) {
           // Re(w (-2 pi i) e) m = 2 pi Im(w e) m
-          const double s = 2.0 * std::numbers::pi * std::imag(weight[k] * phases.at(fs[k]));
+          const double s = 2.0 * std::numbers::pi * std::imag(weight[k] * e[k]);
           g.x += s * fs[k].mx;
           g.y += s * fs[k].my;
         }
