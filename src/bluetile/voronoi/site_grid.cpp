@@ -16,7 +16,12 @@ SiteGrid::SiteGrid(std::span<const Point> sites, const Domain& domain, double si
   rows_ = std::clamp<long>(std::lround(domain_.size.y / bucket_side), 1, 1 << 14);
   cell_size_ = {domain_.size.x / static_cast<double>(columns_), domain_.size.y / static_cast<double>(rows_)};
 
-  std::vector<std::uint32_t> bucket_of(n);
+  // Each site's bucket, on the stack for small grids (the Wang loop builds one per crop scene
+  // of about 15 sites, where an allocation costs as much as the grid).
+  constexpr std::size_t kOnStack = 256;
+  std::array<std::uint32_t, kOnStack> small_buckets;
+  std::vector<std::uint32_t> large_buckets(n > kOnStack ? n : 0);
+  std::uint32_t* bucket_of = n > kOnStack ? large_buckets.data() : small_buckets.data();
   start_.assign(static_cast<std::size_t>(columns_ * rows_) + 1, 0);
   for (std::size_t i = 0; i < n; ++i) {
     auto [cx, cy] = bucket_coordinates(sites[i]);
@@ -26,12 +31,15 @@ SiteGrid::SiteGrid(std::span<const Point> sites, const Domain& domain, double si
   for (std::size_t b = 1; b < start_.size(); ++b) start_[b] += start_[b - 1];
   points_.resize(n);
   index_.resize(n);
-  std::vector<std::uint32_t> fill(start_.begin(), start_.end() - 1);
+  // start_[b] serves as bucket b's fill position, which ends at bucket b + 1's start; shifted
+  // back by one bucket afterwards.
   for (std::size_t i = 0; i < n; ++i) {  // stable: within a bucket, sites keep index order
-    std::uint32_t slot = fill[bucket_of[i]]++;
+    std::uint32_t slot = start_[bucket_of[i]]++;
     points_[slot] = sites[i];
     index_[slot] = static_cast<std::uint32_t>(i);
   }
+  for (std::size_t b = start_.size() - 1; b > 0; --b) start_[b] = start_[b - 1];
+  start_[0] = 0;
   if (with_search_order) build_search_order();
 }
 
