@@ -57,6 +57,17 @@ void note_faster_engine(const CentroidEngine& engine, double site_iterations) {
                duration_words(raster_s / kExactSpeedUp).c_str());
 }
 
+void note_exact_hand_over(const CentroidEngine& engine) {
+  const auto* raster = dynamic_cast<const RasterEngine*>(&engine);
+  if (raster == nullptr || raster->stats().exact_scenes == 0) return;
+  const RasterStats& s = raster->stats();
+  std::fprintf(stderr,
+               "bluetile: note: the raster engine measured %llu of %llu scene computations with the exact engine: their sites "
+               "lie on lines or in clusters, whose sliver cells cost about N^2 to rasterize (docs/RASTER.md, \"Sliver "
+               "cells\")\n",
+               static_cast<unsigned long long>(s.exact_scenes), static_cast<unsigned long long>(s.exact_scenes + s.scene_passes - s.redone_scenes));
+}
+
 void write_id_image(const EngineOptions& options, CentroidEngine& engine, const Scene& scene, OutputFile& out) {
   RasterOptions r = raster_options(options);
   if (auto* raster = dynamic_cast<RasterEngine*>(&engine)) r = raster->options();

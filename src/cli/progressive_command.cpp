@@ -109,6 +109,7 @@ void run_progressive(const ProgressiveOptions& o) {
       sets[k] = add_levels(*engine, std::move(sets[k]), options);
     }
   }
+  note_exact_hand_over(*engine);
   std::string how = o.input.empty() ? "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed)
                                     : "on " + input_name(o.input) + ", seed " + std::to_string(o.seed);
   if (sets.size() > 1) how += " + set index";

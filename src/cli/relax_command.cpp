@@ -112,6 +112,7 @@ void run_relax(const RelaxOptions& o) {
   RelaxLog log("relax", o.iterations, o.verbose, log_file ? &log_file->open() : nullptr);
   LloydResult result = relax_lloyd(*engine, scenes, log.lloyd_options(o.iterations, o.tolerance));
   log.finish(result, o.tolerance, o.iterations);
+  note_exact_hand_over(*engine);
 
   const std::string what = inputs.size() == 1 ? std::to_string(n) + " points"
                                               : std::to_string(inputs.size()) + " sets of " + std::to_string(n) + " points";

@@ -119,6 +119,7 @@ void run_stipple(const StippleOptions& o) {
   RelaxLog log("stipple", o.iterations, o.verbose, log_file ? &log_file->open() : nullptr);
   LloydResult result = relax_lloyd(*engine, scene, log.lloyd_options(o.iterations, o.tolerance));
   log.finish(result, o.tolerance, o.iterations);
+  note_exact_hand_over(*engine);
 
   const double radius = o.dot_radius > 0.0 ? o.dot_radius : stipple_dot_radius(*map, domain, count);
   char size[64];
