@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <atomic>
 #include <charconv>
+#include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <cstdlib>
 #include <exception>
 #include <mutex>
@@ -21,6 +23,12 @@ namespace {
 // Beyond any machine we run on; a larger value is a typo.
 constexpr std::size_t kMaxThreads = 1024;
 
+// How many hardware threads the machine has, asked once (see thread_count below).
+std::size_t hardware_threads() {
+  static const std::size_t count = std::max(1u, std::thread::hardware_concurrency());
+  return count;
+}
+
 std::size_t default_thread_count() {
   if (const char* env = std::getenv("BLUETILE_THREADS")) {
     std::string_view text(env);
@@ -31,13 +39,40 @@ std::size_t default_thread_count() {
                   std::to_string(kMaxThreads));
     return n;
   }
-  return std::max(1u, std::thread::hardware_concurrency());
+  return hardware_threads();
 }
 
 std::atomic<std::size_t> configured_threads{0};
 thread_local bool inside_parallel_for = false;
 
-// One loop at a time; workers sleep between loops.
+// How long a thread that ran out of work polls before it sleeps on a condition variable: a
+// woken thread starts 50-60 us late on the 2-core VM of docs/BENCHMARKS.md ("Two threads at
+// 10^4 sites"), and a Lloyd iteration's serial part between two loops is about 0.3 ms at 10^4
+// sites, so polling this long keeps the next loop's start and this loop's end off the wake-up.
+constexpr std::chrono::microseconds kPollTime{500};
+
+void pause_briefly() {
+#if defined(__x86_64__) || defined(__i386__)
+  __builtin_ia32_pause();
+#else
+  std::this_thread::yield();
+#endif
+}
+
+// Polls `ready` until it returns true or kPollTime has passed; returns its last answer.
+template <typename Ready>
+bool poll(Ready ready) {
+  const auto deadline = std::chrono::steady_clock::now() + kPollTime;
+  for (;;) {
+    for (int k = 0; k < 64; ++k) {
+      if (ready()) return true;
+      pause_briefly();
+    }
+    if (std::chrono::steady_clock::now() >= deadline) return ready();
+  }
+}
+
+// One loop at a time. Threads that run out of work poll for a while (kPollTime), then sleep.
 class Pool {
  public:
   static Pool& instance() {
@@ -49,6 +84,7 @@ class Pool {
            const std::function<void(std::size_t)>& chunk_body) {
     std::lock_guard<std::mutex> one_loop(run_mutex_);
     grow(workers_wanted);
+    polling_.store(workers_.size() + 1 <= hardware_threads(), std::memory_order_relaxed);
     {
       std::lock_guard<std::mutex> lock(mutex_);
       body_ = &chunk_body;
@@ -57,12 +93,14 @@ class Pool {
       active_workers_ = std::min(workers_wanted, workers_.size());
       busy_ = active_workers_;
       error_ = nullptr;
-      ++generation_;
+      generation_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
     work();
-    std::unique_lock<std::mutex> lock(mutex_);
-    done_.wait(lock, [&] { return busy_ == 0; });
+    if (!polling() || !poll([&] { return busy_.load(std::memory_order_acquire) == 0; })) {
+      std::unique_lock<std::mutex> lock(mutex_);
+      done_.wait(lock, [&] { return busy_.load(std::memory_order_acquire) == 0; });
+    }
     body_ = nullptr;
     if (error_) std::rethrow_exception(error_);
   }
@@ -71,13 +109,17 @@ class Pool {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stopping_ = true;
-      ++generation_;
+      generation_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
     for (auto& t : workers_) t.join();
   }
 
  private:
+  // Polling only while every thread of the pool has a core of its own: with more threads than
+  // cores (BLUETILE_THREADS=7 on 2 cores) a polling thread would take the core of one that works.
+  bool polling() const { return polling_.load(std::memory_order_relaxed); }
+
   void grow(std::size_t count) {
     while (workers_.size() < count) {
       std::size_t id = workers_.size();
@@ -96,16 +138,21 @@ class Pool {
     inside_parallel_for = true;
     std::uint64_t seen = 0;
     for (;;) {
+      auto next_loop = [&] { return generation_.load(std::memory_order_acquire) != seen; };
+      if (polling()) poll(next_loop);
       {
         std::unique_lock<std::mutex> lock(mutex_);
-        wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+        wake_.wait(lock, [&] { return stopping_ || next_loop(); });
         if (stopping_) return;
-        seen = generation_;
+        seen = generation_.load(std::memory_order_relaxed);
         if (id >= active_workers_) continue;
       }
       work();
-      std::lock_guard<std::mutex> lock(mutex_);
-      if (--busy_ == 0) done_.notify_all();
+      if (busy_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+        // Under the lock: the caller, if it sleeps, checked busy_ under it before sleeping.
+        std::lock_guard<std::mutex> lock(mutex_);
+        done_.notify_all();
+      }
     }
   }
 
@@ -133,10 +180,12 @@ class Pool {
   std::vector<std::thread> workers_;
   const std::function<void(std::size_t)>* body_ = nullptr;
   std::size_t chunk_count_ = 0;
-  std::atomic<std::size_t> next_chunk_{0};
+  // Each polled word on a cache line of its own, apart from the counter every chunk takes.
+  alignas(64) std::atomic<std::size_t> next_chunk_{0};
+  alignas(64) std::atomic<std::size_t> busy_{0};
+  alignas(64) std::atomic<std::uint64_t> generation_{0};
+  std::atomic<bool> polling_{false};
   std::size_t active_workers_ = 0;
-  std::size_t busy_ = 0;
-  std::uint64_t generation_ = 0;
   bool stopping_ = false;
   std::exception_ptr error_;
 };
