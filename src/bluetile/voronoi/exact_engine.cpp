@@ -158,11 +158,10 @@ bool build_cell_by_rings(const Scene& scene, const SiteGrid& grid, std::uint32_t
   return true;
 }
 
-// Computes the cell of `site` into `cell_polygon`. Returns false when the site coincides with a
-// site of lower index (which owns the cell).
-bool build_cell(const Scene& scene, const CellSearch& search, std::uint32_t site, ConvexPolygon& cell_polygon,
-                SearchScratch& scratch) {
-  const Point origin = scene.sites[site];
+// Computes the cell of `site`, at `origin` (its position), into `cell_polygon`. Returns false
+// when the site coincides with a site of lower index (which owns the cell).
+bool build_cell(const Scene& scene, const CellSearch& search, std::uint32_t site, Point origin,
+                ConvexPolygon& cell_polygon, SearchScratch& scratch) {
   start_cell(scene, origin, cell_polygon);
   if (search.tree) return search.tree->clip_cell(site, origin, cell_polygon, scratch.tree);
   const SiteGrid& grid = search.grid;
@@ -256,10 +255,9 @@ Cell weigh_cell(const Scene& scene, Point origin, const Weighting& weighting, st
   return cell;
 }
 
-Cell measure_cell(const Scene& scene, std::uint32_t site, bool coincident, const ConvexPolygon& cell_polygon,
+Cell measure_cell(const Scene& scene, Point origin, bool coincident, const ConvexPolygon& cell_polygon,
                   const Weighting& weighting) {
   Cell cell;
-  const Point origin = scene.sites[site];
   if (coincident) {
     cell.centroid = origin;
     cell.status = CellStatus::coincident;
@@ -496,7 +494,12 @@ void search_scene(SceneRun& run, Topology* lists) {
     std::vector<Topology::Entry>& edge_scratch = buffers.edge_scratch;
     for (std::size_t c = begin; c < end; ++c) {
       for (std::size_t b = c * kBuckets; b < std::min(grid.bucket_count(), (c + 1) * kBuckets); ++b) {
-        for (std::uint32_t site : grid.sites_in_bucket(b)) {
+        const auto starts = grid.bucket_starts();
+        for (std::uint32_t slot = starts[b]; slot < starts[b + 1]; ++slot) {
+          const std::uint32_t site = grid.site_indices()[slot];
+          // The grid's copy of the position, in bucket order: read where the chunk's thread
+          // reads its neighbours, not at the site's index in the scene (another thread's lines).
+          const Point origin = grid.stored_point(slot);
           if (site < scene.wanted_begin || site >= scene.wanted_end) {
             if (lists) {  // a fixed site: in the order (its position is read there), no list
               chunk_lists[c].order.push_back(site);
@@ -506,8 +509,8 @@ void search_scene(SceneRun& run, Topology* lists) {
             }
             continue;
           }
-          bool complete = build_cell(scene, search, site, cell_polygon, scratch);
-          run.out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, cell_polygon, run.weighting);
+          bool complete = build_cell(scene, search, site, origin, cell_polygon, scratch);
+          run.out.cells[site - scene.wanted_begin] = measure_cell(scene, origin, !complete, cell_polygon, run.weighting);
           if (!lists) continue;
           ChunkLists& mine = chunk_lists[c];
           const std::size_t before = mine.entries.size();
@@ -651,7 +654,7 @@ std::size_t kept_scene(SceneRun& run, Topology& topology) {
       }
       run.out.cells[site - scene.wanted_begin] =
           direct ? measure_vertices(scene, site, std::span<const Point>(vertex, edges), radius_squared, run.weighting)
-                 : measure_cell(scene, site, false, cell_polygon, run.weighting);
+                 : measure_cell(scene, origin, false, cell_polygon, run.weighting);
     }
   };
   if (run.parallel_inside) {
@@ -671,8 +674,8 @@ std::size_t kept_scene(SceneRun& run, Topology& topology) {
     scratch.candidates.reserve(64);
     for (std::size_t k = begin; k < end; ++k) {
       const std::uint32_t site = searched[k];
-      bool complete = build_cell(scene, search, site, cell_polygon, scratch);
-      run.out.cells[site - scene.wanted_begin] = measure_cell(scene, site, !complete, cell_polygon, run.weighting);
+      bool complete = build_cell(scene, search, site, scene.sites[site], cell_polygon, scratch);
+      run.out.cells[site - scene.wanted_begin] = measure_cell(scene, scene.sites[site], !complete, cell_polygon, run.weighting);
     }
   };
   if (run.parallel_inside) {
@@ -848,7 +851,7 @@ std::vector<Point> exact_cell_polygon(const Scene& given, std::size_t site) {
   const CellSearch search(scene);
   ConvexPolygon cell_polygon;
   SearchScratch scratch;
-  if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) return {};
+  if (!build_cell(scene, search, static_cast<std::uint32_t>(site), scene.sites[site], cell_polygon, scratch)) return {};
   std::vector<Point> polygon;
   for (const PolygonVertex& v : cell_polygon.vertices()) polygon.push_back(v.p);
   return polygon;
@@ -863,7 +866,7 @@ std::vector<std::vector<Point>> exact_cell_polygons(const Scene& given) {
     ConvexPolygon cell_polygon;
     SearchScratch scratch;
     for (std::size_t site = begin; site < end; ++site) {
-      if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) continue;
+      if (!build_cell(scene, search, static_cast<std::uint32_t>(site), scene.sites[site], cell_polygon, scratch)) continue;
       for (const PolygonVertex& v : cell_polygon.vertices()) polygons[site].push_back(v.p);
     }
   });
@@ -878,7 +881,7 @@ std::vector<std::size_t> exact_cell_neighbours(const Scene& given, std::size_t s
   ConvexPolygon cell_polygon;
   SearchScratch scratch;
   std::vector<std::size_t> neighbours;
-  if (!build_cell(scene, search, static_cast<std::uint32_t>(site), cell_polygon, scratch)) return neighbours;
+  if (!build_cell(scene, search, static_cast<std::uint32_t>(site), scene.sites[site], cell_polygon, scratch)) return neighbours;
   const auto polygon = cell_polygon.vertices();
   for (std::size_t i = 0; i < polygon.size(); ++i) {
     const PolygonVertex& v = polygon[i];
