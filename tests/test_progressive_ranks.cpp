@@ -119,6 +119,35 @@ TEST(ProgressiveRanks, VoidsPrefixesBeatPlacementBetweenBoundaries) {
   EXPECT_EQ(voids[0].levels[1023], 4);
 }
 
+// Coarser levels: at ratio 4 a level relaxes three new points for each fixed one, enough to fill
+// every hole of the earlier level (a torus Delaunay triangulation of n sites has 2n triangles and
+// 3n edges), where ratio 2's n new points must choose half of the 2n holes, so its boundaries
+// keep four to seven times the low-frequency power (docs/RESULTS.md, "Coarser levels"). Seeds 1-3
+// on 64, 256, 1024 points against ratio 2's same boundaries: ratio 4 LF 0.0079-0.0143, rho
+// 0.680-0.738; ratio 2 LF 0.043-0.059, rho 0.594-0.635.
+TEST(ProgressiveRanks, RatioFourBoundariesHoldUnderAThirdOfRatioTwosLowFrequencyPower) {
+  HierarchyOptions options;
+  options.count = 64;
+  options.ratio = 4.0;
+  options.levels = 3;  // 64, 256, 1024
+  options.seed = 1;
+  const std::vector<PointSet> coarse =
+      add_levels([] { return std::make_unique<ExactEngine>(); }, std::vector<PointSet>(3), options);
+  const std::vector<PointSet> doubling = build_sets(ProgressiveOrder::voids, 3);
+  for (std::size_t k : {std::size_t{256}, std::size_t{1024}}) {
+    for (std::size_t s = 0; s < 3; ++s) {
+      ASSERT_EQ(coarse[s].points.size(), 1024u);
+      EXPECT_EQ(coarse[s].levels[k - 1], k == 256 ? 1 : 2);
+      const TilingMetrics a = measure_tiling(std::span<const Point>(coarse[s].points.data(), k), 0, 0);
+      const TilingMetrics b = measure_tiling(std::span<const Point>(doubling[s].points.data(), k), 0, 0);
+      EXPECT_LT(a.low_frequency, 0.35 * b.low_frequency) << "boundary " << k << ", seed " << s + 1;
+      EXPECT_LT(a.low_frequency, 0.02) << "boundary " << k << ", seed " << s + 1;
+      EXPECT_GT(a.rho, 0.65) << "boundary " << k << ", seed " << s + 1;
+      EXPECT_GT(a.rho, b.rho) << "boundary " << k << ", seed " << s + 1;
+    }
+  }
+}
+
 // One point per level: the placement order relaxes each alone around the fixed others, and the
 // first 32 of every set end on the same shifted lattice (every nearest-neighbour distance 1/8 or
 // sqrt(2)/8); the voids order relaxes the 64 together, irregularly, differently per seed.
