@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <string>
 #include <string_view>
@@ -89,14 +90,16 @@ class Pool {
       std::lock_guard<std::mutex> lock(mutex_);
       body_ = &chunk_body;
       chunk_count_ = chunks;
-      next_chunk_ = 0;
       active_workers_ = std::min(workers_wanted, workers_.size());
+      participants_ = active_workers_ + 1;
+      for (std::size_t p = 0; p < participants_; ++p)
+        segments_[p].next.store(segment_begin(p), std::memory_order_relaxed);
       busy_ = active_workers_;
       error_ = nullptr;
       generation_.fetch_add(1, std::memory_order_release);
     }
     wake_.notify_all();
-    work();
+    work(0);
     if (!polling() || !poll([&] { return busy_.load(std::memory_order_acquire) == 0; })) {
       std::unique_lock<std::mutex> lock(mutex_);
       done_.wait(lock, [&] { return busy_.load(std::memory_order_acquire) == 0; });
@@ -147,7 +150,7 @@ class Pool {
         seen = generation_.load(std::memory_order_relaxed);
         if (id >= active_workers_) continue;
       }
-      work();
+      work(id + 1);
       if (busy_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
         // Under the lock: the caller, if it sleeps, checked busy_ under it before sleeping.
         std::lock_guard<std::mutex> lock(mutex_);
@@ -156,18 +159,29 @@ class Pool {
     }
   }
 
-  void work() {
+  // The chunks of participant p's own segment (the caller is participant 0, pool worker id is id + 1).
+  std::size_t segment_begin(std::size_t p) const { return chunk_count_ * p / participants_; }
+  std::size_t segment_end(std::size_t p) const { return chunk_count_ * (p + 1) / participants_; }
+
+  // A participant runs its own segment first, then takes what is left of the others'. So the
+  // same thread takes the same chunks from one loop to the next unless the load shifts, and a
+  // loop over the same data (a Lloyd iteration's cells) keeps each part on one core's cache.
+  void work(std::size_t participant) {
     bool was_inside = inside_parallel_for;
     inside_parallel_for = true;
-    for (;;) {
-      std::size_t chunk = next_chunk_.fetch_add(1);
-      if (chunk >= chunk_count_) break;
-      try {
-        (*body_)(chunk);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        if (!error_) error_ = std::current_exception();
-        next_chunk_ = chunk_count_;  // stop handing out work
+    for (std::size_t k = 0; k < participants_; ++k) {
+      const std::size_t p = (participant + k) % participants_;
+      const std::size_t end = segment_end(p);
+      for (;;) {
+        std::size_t chunk = segments_[p].next.fetch_add(1);
+        if (chunk >= end) break;
+        try {
+          (*body_)(chunk);
+        } catch (...) {
+          std::lock_guard<std::mutex> lock(mutex_);
+          if (!error_) error_ = std::current_exception();
+          for (std::size_t q = 0; q < participants_; ++q) segments_[q].next = chunk_count_;  // stop handing out work
+        }
       }
     }
     inside_parallel_for = was_inside;
@@ -180,8 +194,12 @@ class Pool {
   std::vector<std::thread> workers_;
   const std::function<void(std::size_t)>* body_ = nullptr;
   std::size_t chunk_count_ = 0;
-  // Each polled word on a cache line of its own, apart from the counter every chunk takes.
-  alignas(64) std::atomic<std::size_t> next_chunk_{0};
+  // Each polled word on a cache line of its own, apart from the counters the chunks are taken from.
+  struct alignas(64) Segment {
+    std::atomic<std::size_t> next{0};
+  };
+  std::size_t participants_ = 1;
+  std::unique_ptr<Segment[]> segments_ = std::make_unique<Segment[]>(kMaxThreads + 1);
   alignas(64) std::atomic<std::size_t> busy_{0};
   alignas(64) std::atomic<std::uint64_t> generation_{0};
   std::atomic<bool> polling_{false};

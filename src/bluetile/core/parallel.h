@@ -1,5 +1,6 @@
-// A small persistent thread pool for data-parallel loops. Work is handed out in chunks from
-// an atomic counter, so which thread runs which chunk varies from run to run: callers must
+// A small persistent thread pool for data-parallel loops. Each thread takes chunks from its own
+// segment of the range first and then steals what is left of the others', so which thread runs
+// which chunk still varies from run to run: callers must
 // make every chunk's result independent of that (each writes only its own outputs), which is
 // how the engines stay bit-identical whatever the thread count.
 #pragma once
