@@ -17,9 +17,11 @@ namespace bluetile {
 std::size_t thread_count();
 void set_thread_count(std::size_t count);
 
-// Calls body(begin, end) over [0, count) in chunks of at most `grain` items, on up to
-// thread_count() threads including the caller. Returns when all chunks are done; rethrows the
-// first exception a chunk threw. Nested calls run serially on the calling thread.
+// Calls body(begin, end) over disjoint ranges that cover [0, count), on up to thread_count()
+// threads including the caller: chunks of `grain` items (the last one may be shorter) when more
+// than one thread takes part; one call body(0, count) on the calling thread when one does (one
+// thread, a single chunk, or a nested call). Returns when all chunks are done; rethrows the
+// first exception a chunk threw, and hands out no more chunks once one has thrown.
 void parallel_for(std::size_t count, std::size_t grain,
                   const std::function<void(std::size_t, std::size_t)>& body);
 

@@ -1,0 +1,135 @@
+// The thread pool (parallel.h): every item visited exactly once in chunks of the grain asked,
+// whatever the thread count and however the chunks fall on the threads (each thread's own
+// segment first, then stealing), the first exception rethrown and the rest of the work stopped,
+// nested loops run on the calling thread.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <mutex>
+#include <set>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "bluetile/core/parallel.h"
+
+namespace bluetile {
+namespace {
+
+// Restores the thread count a test changed.
+class ThreadCountGuard {
+ public:
+  ThreadCountGuard() : saved_(thread_count()) {}
+  ~ThreadCountGuard() { set_thread_count(saved_); }
+
+ private:
+  std::size_t saved_;
+};
+
+TEST(Parallel, EveryItemOnceInChunksOfTheGrainForAnyThreadCount) {
+  ThreadCountGuard guard;
+  // Counts below, at and above the participants, grains that do and do not divide the count.
+  for (std::size_t threads : {1u, 2u, 3u, 7u}) {
+    set_thread_count(threads);
+    for (std::size_t count : {1u, 2u, 5u, 7u, 8u, 64u, 1000u, 4097u}) {
+      for (std::size_t grain : {1u, 3u, 16u, 5000u}) {
+        std::vector<std::atomic<int>> visits(count);
+        std::atomic<std::size_t> bad_chunks{0};
+        const bool serial = threads == 1 || count <= grain;
+        parallel_for(count, grain, [&](std::size_t begin, std::size_t end) {
+          if (serial) {
+            // One call over the whole range.
+            if (begin != 0 || end != count) ++bad_chunks;
+          } else if (begin % grain != 0 || end <= begin || end - begin > grain || (end - begin < grain && end != count)) {
+            // A chunk starts on a multiple of the grain and is a whole grain unless it is the last.
+            ++bad_chunks;
+          }
+          for (std::size_t i = begin; i < end; ++i) ++visits[i];
+        });
+        EXPECT_EQ(bad_chunks.load(), 0u) << threads << " threads, count " << count << ", grain " << grain;
+        std::size_t wrong = 0;
+        for (auto& v : visits) wrong += v.load() != 1;
+        EXPECT_EQ(wrong, 0u) << threads << " threads, count " << count << ", grain " << grain;
+      }
+    }
+  }
+}
+
+TEST(Parallel, ManyLoopsInARowLoseNoChunk) {
+  // The segments are reset per loop: a worker that wakes late for one loop must neither miss the
+  // next nor run a chunk of the previous one again.
+  ThreadCountGuard guard;
+  set_thread_count(2);
+  std::vector<std::atomic<int>> visits(37);
+  for (int loop = 0; loop < 2000; ++loop)
+    parallel_for(visits.size(), 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) ++visits[i];
+    });
+  for (auto& v : visits) EXPECT_EQ(v.load(), 2000);
+}
+
+TEST(Parallel, UsesMoreThanOneThreadWhenAsked) {
+  ThreadCountGuard guard;
+  set_thread_count(2);
+  // Each chunk waits until two distinct threads have started one (bounded, so a pool that ran
+  // everything on the caller fails instead of hanging).
+  std::atomic<int> started{0};
+  std::set<std::thread::id> ids;
+  std::mutex ids_mutex;
+  parallel_for(2, 1, [&](std::size_t, std::size_t) {
+    {
+      std::lock_guard<std::mutex> lock(ids_mutex);
+      ids.insert(std::this_thread::get_id());
+    }
+    ++started;
+    for (int k = 0; k < 2000 && started.load() < 2; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  });
+  EXPECT_EQ(ids.size(), 2u);
+}
+
+TEST(Parallel, FirstExceptionIsRethrownAndTheRestOfTheWorkStops) {
+  ThreadCountGuard guard;
+  for (std::size_t threads : {1u, 2u, 7u}) {
+    set_thread_count(threads);
+    // Chunk 0 is the caller's first; every other chunk takes at least 50 us, so running them
+    // all would take 100 ms on one thread and stopping leaves most of them undone, even if a
+    // busy machine holds the caller back for a few milliseconds before it throws.
+    std::atomic<std::size_t> chunks_run{0};
+    EXPECT_THROW(parallel_for(2000, 1,
+                              [&](std::size_t begin, std::size_t) {
+                                ++chunks_run;
+                                if (begin == 0) throw std::runtime_error("chunk 0 failed");
+                                std::this_thread::sleep_for(std::chrono::microseconds(50));
+                              }),
+                 std::runtime_error)
+        << threads << " threads";
+    if (threads == 1) {
+      EXPECT_EQ(chunks_run.load(), 1u);  // the one call over the whole range
+    }
+    EXPECT_LT(chunks_run.load(), 1000u) << threads << " threads";
+    // The pool is usable after a failed loop.
+    std::atomic<std::size_t> sum{0};
+    parallel_for(1000, 7, [&](std::size_t begin, std::size_t end) { sum += end - begin; });
+    EXPECT_EQ(sum.load(), 1000u);
+  }
+}
+
+TEST(Parallel, NestedLoopsRunOnTheCallingThread) {
+  ThreadCountGuard guard;
+  set_thread_count(2);
+  std::atomic<std::size_t> nested_off_thread{0}, nested_items{0};
+  parallel_for(8, 1, [&](std::size_t, std::size_t) {
+    const auto outer = std::this_thread::get_id();
+    parallel_for(50, 1, [&](std::size_t begin, std::size_t end) {
+      if (std::this_thread::get_id() != outer) ++nested_off_thread;
+      nested_items += end - begin;
+    });
+  });
+  EXPECT_EQ(nested_off_thread.load(), 0u);
+  EXPECT_EQ(nested_items.load(), 8u * 50u);
+}
+
+}  // namespace
+}  // namespace bluetile
