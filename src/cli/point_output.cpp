@@ -25,9 +25,10 @@ TableView single_set(const TableView& table, std::size_t set) {
 
 }  // namespace
 
-void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what, bool required) {
-  CLI::Option* output =
-      command->add_option("-o,--output", options.output, what + " (every {} becomes the set index: one file per set)");
+void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what, bool required,
+                              bool several_sets) {
+  CLI::Option* output = command->add_option(
+      "-o,--output", options.output, several_sets ? what + " (every {} becomes the set index: one file per set)" : what);
   if (required) output->required();
   command->add_option("--format", options.format,
                       "text, npy (shape K x N x 2, or K x N x 3 with a level column), binary (.bpt, see README) or header (C/C++); "

@@ -27,9 +27,10 @@ struct PointOutputOptions {
 };
 
 // Adds -o/--output (required unless `required` is false), --format, --float32 and --name; `what`
-// says what is written.
+// says what is written. `several_sets`: the command can write more than one set, so the help
+// says what "{}" in the name does.
 void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what,
-                              bool required = true);
+                              bool required = true, bool several_sets = true);
 
 // `pattern` with every "{}" replaced by the set's index, zero-padded to the width of the last.
 std::string set_file_name(const std::string& pattern, std::size_t set, std::size_t sets);

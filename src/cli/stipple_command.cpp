@@ -160,7 +160,7 @@ void add_stipple_command(CLI::App& app) {
   add_point_output_options(cmd, o->points,
                            "Output points (optional when --svg or --png is given): the picture's longer side spans "
                            "[0, 1), y up (image row 0 is the top)",
-                           false);
+                           false, /*several_sets=*/false);
   cmd->add_option("--svg", o->svg, "Write the drawing as SVG (.svg; one black disc per dot)");
   cmd->add_option("--png", o->png, "Render the drawing as an image (.png .tif .tiff .jpg .jpeg .exr .bmp)");
   add_integer_option(cmd, "--png-width", o->png_width, 16, 32768, "Width of the --png render in pixels");
