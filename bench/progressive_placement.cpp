@@ -11,7 +11,8 @@
 //
 // `bluetile_progressive_bench prefixes N seeds [sigma...]`: the prefix sweep (docs/RESULTS.md) of untiled
 // progressive sets of N points (k at 1/16 ... 1 of N and every level boundary), rho and LF worst
-// (and mean) over seeds 1..seeds, for the placement and voids rank orders side by side, built as
+// (and mean) over seeds 1..seeds, for the placement, voids and fill rank orders side by side, then
+// the worst over every prefix from N/16 on in steps of 5 % ("dense"), built as
 // `bluetile progressive --count N/16 --ratio 2 --levels 5 --engine exact`, as `--count N/16 --ratio 4
 // --levels 3` and as `--count 1 --ratio 2 --levels log2(N)+1` (one point, then doubling). A fourth argument sets the
 // void order's kernel width in hexagonal spacings (default kVoidSigmaFactor).
@@ -101,11 +102,12 @@ int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
                                         {"N/16, ratio 4, 3 levels", n / 16, 4.0, 3},
                                         {"1, ratio 2", 1, 2.0, doublings + 1}};
   using Clock = std::chrono::steady_clock;
+  const ProgressiveOrder orders[] = {ProgressiveOrder::placement, ProgressiveOrder::voids, ProgressiveOrder::fill};
   for (const Construction& c : constructions) {
-    std::vector<std::vector<SweepRow>> results;
+    std::vector<std::vector<SweepRow>> results, dense_results;
     std::vector<double> seconds;
-    std::vector<std::size_t> sweep;
-    for (ProgressiveOrder order : {ProgressiveOrder::placement, ProgressiveOrder::voids}) {
+    std::vector<std::size_t> sweep, dense;
+    for (ProgressiveOrder order : orders) {
       HierarchyOptions options;
       options.count = c.count;
       options.ratio = c.ratio;
@@ -123,17 +125,28 @@ int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
       sweep = prefix_sweep(sets[0].points.size(), boundaries);
       sweep.erase(std::remove_if(sweep.begin(), sweep.end(), [](std::size_t k) { return k < 2; }), sweep.end());
       results.push_back(measure_sweep(sets, sweep));
+      dense.clear();
+      for (double k = static_cast<double>(sweep.back()) / 16.0; k < static_cast<double>(sweep.back()); k *= 1.05)
+        dense.push_back(static_cast<std::size_t>(std::lround(k)));
+      dense_results.push_back(measure_sweep(sets, dense));
     }
-    std::printf("\n%s (%zu points), worst / mean of seeds 1-%zu; built in %.2f s and %.2f s (%zu threads), sigma %.2f\n",
-                c.name, sweep.back(), seeds, seconds[0], seconds[1], thread_count(), sigma);
-    std::printf("| k | k / N | placement rho | placement LF | voids rho | voids LF |\n|---|---|---|---|---|---|\n");
+    std::printf("\n%s (%zu points), worst / mean of seeds 1-%zu; built in %.2f s, %.2f s and %.2f s (%zu threads), sigma %.2f\n",
+                c.name, sweep.back(), seeds, seconds[0], seconds[1], seconds[2], thread_count(), sigma);
+    std::printf("| k | k / N | placement rho | placement LF | voids rho | voids LF | fill rho | fill LF |\n"
+                "|---|---|---|---|---|---|---|---|\n");
     for (std::size_t i = 0; i < sweep.size(); ++i) {
-      const SweepRow& a = results[0][i];
-      const SweepRow& b = results[1][i];
-      std::printf("| %zu | %.4f | %.3f / %.3f | %.4f / %.4f | %.3f / %.3f | %.4f / %.4f |\n", sweep[i],
-                  static_cast<double>(sweep[i]) / static_cast<double>(sweep.back()), a.worst_rho, a.mean_rho, a.worst_lf,
-                  a.mean_lf, b.worst_rho, b.mean_rho, b.worst_lf, b.mean_lf);
+      std::printf("| %zu | %.4f |", sweep[i], static_cast<double>(sweep[i]) / static_cast<double>(sweep.back()));
+      for (const std::vector<SweepRow>& r : results)
+        std::printf(" %.3f / %.3f | %.4f / %.4f |", r[i].worst_rho, r[i].mean_rho, r[i].worst_lf, r[i].mean_lf);
+      std::printf("\n");
     }
+    std::printf("| dense (%zu prefixes, worst) | |", dense.size());
+    for (const std::vector<SweepRow>& r : dense_results) {
+      SweepRow w;
+      for (const SweepRow& row : r) w.worst_rho = std::min(w.worst_rho, row.worst_rho), w.worst_lf = std::max(w.worst_lf, row.worst_lf);
+      std::printf(" %.3f | %.4f |", w.worst_rho, w.worst_lf);
+    }
+    std::printf("\n");
   }
   return 0;
 }

@@ -338,7 +338,7 @@ void levels(const Options& o) {
           for (int s = 0; s < o.seeds; ++s) {
             const std::uint64_t seed = o.first_seed + static_cast<std::uint64_t>(s);
             WangOptions w = wang_options(o, kind, n, strategy, seed);
-            w.level.rank_order = order == "voids" ? RankOrder::voids : RankOrder::farthest;
+            w.level.rank_order = parse_wang_rank_order(order);
             TileSet set = relax_wang_tiles(engine, w);
             SeamCheck seams = check_seams(set);
             std::vector<std::size_t> boundaries;
@@ -406,8 +406,8 @@ int main(int argc, char** argv) {
   app.add_option("--levels", o.levels, "Levels");
   app.add_option("--ratio", o.ratio, "Level ratio");
   app.add_option("--prefixes", o.prefixes, "levels mode: also this many evenly spaced steps between level boundaries");
-  app.add_option("--rank-order", o.rank_orders, "levels mode: rank orders side by side (farthest, voids)")
-      ->check(CLI::IsMember({"farthest", "voids"}));
+  app.add_option("--rank-order", o.rank_orders, "levels mode: rank orders side by side (farthest, voids, fill)")
+      ->check(CLI::IsMember({"farthest", "voids", "fill"}));
   app.add_option("--repeats", o.repeats, "time mode: interleaved repeats");
   app.add_option("--engine", o.engines, "time mode: engines side by side")->check(CLI::IsMember({"exact", "raster"}));
   app.add_flag("--diagnose", o.diagnose, "quality mode: split C_mid into tile crystallinity and coherence");

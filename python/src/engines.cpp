@@ -311,7 +311,9 @@ new points start in the gaps (``placement="gaps"``, best candidate) or at random
 relaxed around the fixed earlier levels. ``rank_order="voids"`` (the default, as the tool's
 ``--rank-order``) relaxes the levels in stages of at least 64 points and orders each stage's points
 by voids, so that every prefix of the rows is well spread; ``"placement"`` keeps each level as
-placed and relaxed alone (the paper). Returns (points (M, 2), levels (M,) int32), rows in rank order.)");
+placed and relaxed alone (the paper); ``"fill"`` relaxes nothing and places every point after the
+base in the deepest void of the band-limited density of the points before it, so that every prefix
+is about as even as every other (a ranked sample table). Returns (points (M, 2), levels (M,) int32), rows in rank order.)");
 }
 
 }  // namespace pybluetile

@@ -105,7 +105,11 @@ def test_progressive_rank_order_matches_the_tool(tool, tmp_path):
                                     rank_order="voids")
     assert np.array_equal(points, reference[:, :2]) and np.array_equal(levels, reference[:, 2])
     assert list(levels) == list(range(64))
-    with pytest.raises(ValueError, match="rank order: expected 'placement' or 'voids', got 'farthest'"):
+    tool("progressive", "--count", 64, "--ratio", 2, "--levels", 3, "--seed", 3, "--rank-order", "fill", "--output", out)
+    reference = np.loadtxt(out, comments="#")
+    points, levels = bt.progressive(count=64, ratio=2, levels=3, seed=3, rank_order="fill")
+    assert np.array_equal(points, reference[:, :2]) and np.array_equal(levels, reference[:, 2])
+    with pytest.raises(ValueError, match="rank order: expected 'placement', 'voids' or 'fill', got 'farthest'"):
         bt.progressive(count=10, rank_order="farthest", engine="exact")
 
 
@@ -296,6 +300,11 @@ def test_wang_tiles_match_the_tool(tool, tmp_path):
     voids = bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, rank_order="voids", void_sigma=0.6, seed=3)
     assert tile_set_body(voids) == tile_set_body(out.read_text())
     assert tile_set_body(voids) != tile_set_body(bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, seed=3))
+    # The fill order: levels after the first filled, the same bits as the tool's.
+    tool("wang", "--set", "wang8", "--points", 8, "--iterations", 3, "--warm", 2, "--levels", 2, "--ratio", 2,
+         "--rank-order", "fill", "--engine", "exact", "--seed", 3, "--output", out)
+    fill = bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, rank_order="fill", seed=3)
+    assert tile_set_body(fill) == tile_set_body(out.read_text())
     with pytest.raises(ValueError, match="rank_order"):
         bt.wang_tiles("wang8", points=8, rank_order="random")
 

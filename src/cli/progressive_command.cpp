@@ -154,8 +154,10 @@ void add_progressive_command(CLI::App& app) {
   cmd->add_option("--rank-order", o->rank_order,
                   "Row order within the levels: voids (levels relaxed in stages of at least 64 points, each stage's "
                   "points ranked by voids: every prefix well spread, not only the level boundaries) or placement "
-                  "(each level relaxed alone, its points as placed: the paper's order)")
-      ->check(CLI::IsMember({"placement", "voids"}))
+                  "(each level relaxed alone, its points as placed: the paper's order) or fill (no relaxation: every "
+                  "point placed in the deepest void of the band-limited density of the points before it, so every "
+                  "prefix is about as even as every other; the engine options are then unused)")
+      ->check(CLI::IsMember({"placement", "voids", "fill"}))
       ->capture_default_str();
   add_integer_option(cmd, "--sets", o->sets, 1LL, 10000000LL,
                      "Build K independent hierarchies; set k is the one --seed S+k gives alone")

@@ -124,7 +124,8 @@ void run_wang(const WangCommandOptions& o) {
     command << " --seam-spacing " << r.seam_spacing;
     if (o.levels > 1) command << " --level-seam-spacing " << r.later_seam_spacing;
   }
-  if (o.rank_order != "farthest") command << " --rank-order " << o.rank_order << " --void-sigma " << o.void_sigma;
+  if (o.rank_order == "voids") command << " --rank-order voids --void-sigma " << o.void_sigma;
+  if (o.rank_order == "fill") command << " --rank-order fill";
   command << " --seed " << o.seed << " --engine " << engine->name();
   set.header = {"made by: " + command.str()};
   validate_tile_set(set);
@@ -176,8 +177,10 @@ void add_wang_command(CLI::App& app) {
   cmd->add_option("--rank-order", o->rank_order,
                   "Progressive order inside each level: farthest (greedy farthest point) or voids (tiled "
                   "void-and-cluster: lower low-frequency power and tile-lattice coherence between level boundaries, "
-                  "closer nearest pairs)")
-      ->check(CLI::IsMember({"farthest", "voids"}))
+                  "closer nearest pairs) or fill (levels after the first not relaxed but filled point by point, each "
+                  "in the deepest void of the band-limited density of the points before it through the tiling: every "
+                  "prefix about as even as every other)")
+      ->check(CLI::IsMember({"farthest", "voids", "fill"}))
       ->capture_default_str();
   add_real_option(cmd, "--void-sigma", o->void_sigma, {kMinVoidSigma, kMaxVoidSigma}, "voids: kernel width in hexagonal spacings of the prefix");
   add_seed_option(cmd, o->seed);

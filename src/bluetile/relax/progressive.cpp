@@ -161,12 +161,20 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
   return sizes;
 }
 
-const char* rank_order_name(ProgressiveOrder order) { return order == ProgressiveOrder::voids ? "voids" : "placement"; }
+const char* rank_order_name(ProgressiveOrder order) {
+  switch (order) {
+    case ProgressiveOrder::placement: return "placement";
+    case ProgressiveOrder::voids: return "voids";
+    case ProgressiveOrder::fill: return "fill";
+  }
+  return "placement";
+}
 
 ProgressiveOrder parse_rank_order(const std::string& name) {
   if (name == "placement") return ProgressiveOrder::placement;
   if (name == "voids") return ProgressiveOrder::voids;
-  throw Error("rank order: expected 'placement' or 'voids', got '" + name + "'");
+  if (name == "fill") return ProgressiveOrder::fill;
+  throw Error("rank order: expected 'placement', 'voids' or 'fill', got '" + name + "'");
 }
 
 std::vector<std::size_t> hierarchy_stages(std::size_t base_count, const std::vector<std::size_t>& level_sizes) {
@@ -221,11 +229,26 @@ PointSet add_stages(CentroidEngine& engine, PointSet set, const HierarchyOptions
   return set;
 }
 
+// The fill order: every new point placed by band-limited void filling, levels by rank.
+PointSet add_filled(PointSet set, const HierarchyOptions& options, const std::vector<std::size_t>& sizes) {
+  const int base_levels = count_levels(set);
+  std::size_t add = 0;
+  for (std::size_t size : sizes) add += size;
+  FillOptions fill = options.fill;
+  fill.seed = derive_seed(options.seed, static_cast<std::uint64_t>(base_levels));
+  const std::vector<Point> added = band_fill_torus(set.points, add, fill);
+  if (!set.has_levels()) set.levels.assign(set.points.size(), 0);
+  set.points.insert(set.points.end(), added.begin(), added.end());
+  for (std::size_t i = 0; i < sizes.size(); ++i) set.levels.insert(set.levels.end(), sizes[i], base_levels + static_cast<int>(i));
+  return set;
+}
+
 }  // namespace
 
 PointSet add_levels(CentroidEngine& engine, PointSet set, const HierarchyOptions& options) {
   const std::vector<std::size_t> sizes = hierarchy_level_sizes(set, options);
   if (options.rank_order == ProgressiveOrder::voids) return add_stages(engine, std::move(set), options, sizes);
+  if (options.rank_order == ProgressiveOrder::fill) return add_filled(std::move(set), options, sizes);
   const int base_levels = count_levels(set);
   LevelOptions level;
   level.iterations = options.iterations;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bluetile/core/point_file.h"
+#include "bluetile/relax/band_fill.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/void_order.h"
 
@@ -33,6 +34,11 @@ enum class ProgressiveOrder : std::uint8_t {
   // before them (a stage is one level or several), the points of each stage in void order
   // (void_order.h) after every earlier one: every prefix is well spread, not only the boundaries.
   voids,
+  // No relaxation: every point after the base placed by band-limited void filling (band_fill.h),
+  // its rank the order of placement, its level the level its rank falls in. Every prefix about as
+  // even as every other (LF about 0.045, rho 0.66 from 1/16 of the set on), where the other orders
+  // alternate between relaxed boundaries and much less even prefixes between them.
+  fill,
 };
 
 // The rank order's names, as the tool and the Python module spell them; parse_rank_order throws
@@ -78,12 +84,15 @@ struct HierarchyOptions {
   Placement placement = Placement::gaps;
   ProgressiveOrder rank_order = ProgressiveOrder::voids;  // LF between boundaries about half placement's (docs/RESULTS.md)
   double void_sigma = kVoidSigmaFactor;  // the voids order's kernel width (void_order.h)
+  FillOptions fill;  // the fill order's floor, window and grid (band_fill.h); its seed is set from `seed`
   // With the voids order, level is the first level of the stage being relaxed.
   std::function<void(int level, const LloydIteration&)> on_iteration;
 };
 
 // A hierarchy as `bluetile progressive` builds it: the base (kept bit for bit), then levels up
 // to options.levels, each added by add_level with seed derive_seed(options.seed, level). With
+// ProgressiveOrder::fill no level is relaxed: from scratch, every point (level 0's too) is filled,
+// and on a base, every new one (seed derive_seed(seed, base levels)). With
 // ProgressiveOrder::voids the levels are relaxed in stages (hierarchy_stages), each added by add_level
 // with the seed of its first level, and the new points of a stage are reordered by void_order and
 // given the levels of their ranks. A stage of one level is placed and relaxed as the placement

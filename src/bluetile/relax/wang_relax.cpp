@@ -12,6 +12,7 @@
 #include "bluetile/core/text.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/progressive.h"
+#include "bluetile/relax/wang_blocks.h"
 #include "bluetile/relax/wang_lattice.h"
 #include "bluetile/relax/wang_ranks.h"
 #include "bluetile/relax/wang_seams.h"
@@ -54,6 +55,43 @@ void warm_start(CentroidEngine& engine, WangPoints& points, int level, const Wan
   for (std::size_t t = 0; t < scenes.size(); ++t) points.tiles[t] = std::move(scenes[t].sites);
 }
 
+// Where each tile's points count near tile t for the fill order: its own, and at each of the 8
+// neighbour positions every tile that can sit there, weighted by the share of admissible 3x3
+// blocks around t that put it there.
+std::vector<std::vector<FillSource>> fill_sources(BlockConfigurations& configurations, std::size_t tile_count) {
+  std::vector<std::vector<FillSource>> sources(tile_count);
+  for (std::size_t t = 0; t < tile_count; ++t) {
+    sources[t].push_back({t, Point{0.0, 0.0}, 1.0});
+    for (int p = 0; p < kBlockPositions; ++p) {
+      if (p == kBlockCentre) continue;
+      const auto& seen = configurations.projections(static_cast<int>(t), kCentreOnly | static_cast<PositionMask>(1u << p));
+      double blocks = 0.0;
+      for (const BlockConfiguration& c : seen) blocks += c.weight;
+      const Point shift{static_cast<double>(block_dx(p)), static_cast<double>(block_dy(p))};
+      for (const BlockConfiguration& c : seen)
+        sources[t].push_back({static_cast<std::size_t>(c.tiles[static_cast<std::size_t>(p)]), shift, c.weight / blocks});
+    }
+  }
+  return sources;
+}
+
+// The fill order's level: new points placed by band-limited void filling, appended in rank order.
+void fill_wang_level(BlockConfigurations& configurations, TileSet& set, int level, const WangLevelOptions& options) {
+  std::vector<std::vector<Point>> tiles;
+  for (const Tile& tile : set.tiles) tiles.push_back(tile.points);
+  FillOptions fill = options.fill;
+  fill.seed = options.seed;
+  const std::vector<std::vector<Point>> added = band_fill(tiles, fill_sources(configurations, tiles.size()), options.add, fill);
+  for (std::size_t t = 0; t < set.tiles.size(); ++t) {
+    Tile& tile = set.tiles[t];
+    for (const Point& p : added[t]) {
+      tile.ranks.push_back(static_cast<std::uint32_t>(tile.points.size()));
+      tile.points.push_back(p);
+      tile.levels.push_back(level);
+    }
+  }
+}
+
 }  // namespace
 
 TileSet empty_tile_set(TileSetKind kind) {
@@ -81,6 +119,10 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
     if (tile.points.size() != existing) throw Error("every tile must hold the same number of points to add a level");
   BlockConfigurations configurations(rules);
   const int level = next_level(set);
+  if (options.rank_order == RankOrder::fill && existing > 0) {
+    fill_wang_level(configurations, set, level, options);
+    return;
+  }
 
   WangPoints points;
   points.moving_begin = existing;
@@ -148,6 +190,8 @@ void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions
     space_seams(rules, points, spacing);
   }
 
+  // Level 0 of the fill order is relaxed and ranked by farthest point: ranking a relaxed level's
+  // points by the fill's rule did no better than voids (docs/RESULTS.md, "Every prefix").
   const std::vector<std::vector<std::uint32_t>> order =
       options.rank_order == RankOrder::voids ? rank_level_by_voids(configurations, points.tiles, existing, options.void_sigma)
                                              : rank_level(configurations, points.tiles, existing);
@@ -202,10 +246,18 @@ WangStrategy parse_wang_strategy(const std::string& name) {
 }
 
 RankOrder parse_wang_rank_order(const std::string& name) {
-  return parse_named<RankOrder>("rank_order", name, {{"farthest", RankOrder::farthest}, {"voids", RankOrder::voids}});
+  return parse_named<RankOrder>("rank_order", name,
+                                {{"farthest", RankOrder::farthest}, {"voids", RankOrder::voids}, {"fill", RankOrder::fill}});
 }
 
-const char* wang_rank_order_name(RankOrder order) { return order == RankOrder::voids ? "voids" : "farthest"; }
+const char* wang_rank_order_name(RankOrder order) {
+  switch (order) {
+    case RankOrder::farthest: return "farthest";
+    case RankOrder::voids: return "voids";
+    case RankOrder::fill: return "fill";
+  }
+  return "farthest";
+}
 
 TileSet relax_wang_tiles(CentroidEngine& engine, const WangOptions& options) {
   validate(options);

@@ -18,6 +18,7 @@
 
 #include <string_view>
 
+#include "bluetile/relax/band_fill.h"
 #include "bluetile/tiling/tile_set.h"
 #include "bluetile/voronoi/engine.h"
 
@@ -27,7 +28,10 @@ enum class WangStrategy : std::uint8_t { exact, instances, rounds };
 
 std::string_view wang_strategy_name(WangStrategy strategy);
 
-enum class RankOrder : std::uint8_t { farthest, voids };
+// farthest and voids rank a relaxed level's points (wang_ranks.h); fill builds every level after
+// the first without relaxation, point by point in rank order (band_fill.h), level 0 relaxed and
+// ranked by farthest point as before.
+enum class RankOrder : std::uint8_t { farthest, voids, fill };
 
 struct WangIteration {
   int level = 0;
@@ -76,6 +80,7 @@ struct WangLevelOptions {
   // void_sigma hexagonal spacings of the prefix.
   RankOrder rank_order = RankOrder::farthest;
   double void_sigma = 0.5;
+  FillOptions fill;  // the fill order's floor, window and grid; its seed is set from `seed`
   std::function<void(const WangIteration&)> on_iteration;
 };
 

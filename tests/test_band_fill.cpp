@@ -1,0 +1,245 @@
+// Band-limited void filling (relax/band_fill.h): progressive sets whose every prefix is even,
+// untiled (progressive's fill order) and in Wang tiles (wang's fill order).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "bluetile/analysis/tiling_metrics.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/relax/band_fill.h"
+#include "bluetile/relax/progressive.h"
+#include "bluetile/relax/wang_relax.h"
+#include "bluetile/tiling/seam_check.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::run_bluetile;
+using test::TempDir;
+
+// Every prefix from `from` points on, in steps of 10 %, and the whole set.
+std::vector<std::size_t> dense_prefixes(std::size_t from, std::size_t total) {
+  std::vector<std::size_t> ks;
+  for (double k = static_cast<double>(from); k < static_cast<double>(total); k *= 1.1) ks.push_back(static_cast<std::size_t>(std::lround(k)));
+  ks.push_back(total);
+  return ks;
+}
+
+HierarchyOptions hierarchy(ProgressiveOrder order, std::uint64_t seed) {
+  HierarchyOptions o;
+  o.count = 64;
+  o.ratio = 2.0;
+  o.levels = 5;  // 64 ... 1024
+  o.seed = seed;
+  o.rank_order = order;
+  return o;
+}
+
+// 1024 points, seeds 1-2 (bluetile_progressive_bench prefixes 1024 2): every prefix from 64 on in
+// steps of 5 % at rho >= 0.660 and LF <= 0.059, where voids reach LF 0.129 and rho 0.529. The floor holds by construction: a point of rank r is at least 0.66
+// spacings of the prefix r + 1 from every earlier one, so no prefix has a closer pair.
+TEST(BandFill, UntiledEveryPrefixIsEvenAndKeepsTheFloor) {
+  ExactEngine engine;
+  double worst_fill_lf = 0.0, worst_voids_lf = 0.0;
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    const PointSet fill = add_levels(engine, PointSet{}, hierarchy(ProgressiveOrder::fill, seed));
+    ASSERT_EQ(fill.points.size(), 1024u);
+    for (std::size_t k : dense_prefixes(64, 1024)) {
+      const TilingMetrics m = measure_tiling(std::span<const Point>(fill.points.data(), k), 0, 0);
+      EXPECT_GE(m.rho, kFillFloor * (1 - 1e-6)) << "prefix " << k << ", seed " << seed;
+      EXPECT_LT(m.low_frequency, 0.07) << "prefix " << k << ", seed " << seed;
+      worst_fill_lf = std::max(worst_fill_lf, m.low_frequency);
+    }
+  }
+  // Today's default order, the baseline it must beat over the same prefixes (seed 1).
+  const PointSet voids = add_levels(engine, PointSet{}, hierarchy(ProgressiveOrder::voids, 1));
+  for (std::size_t k : dense_prefixes(64, 1024))
+    worst_voids_lf = std::max(worst_voids_lf, measure_tiling(std::span<const Point>(voids.points.data(), k), 0, 0).low_frequency);
+  EXPECT_LT(worst_fill_lf, 0.7 * worst_voids_lf) << "fill " << worst_fill_lf << ", voids " << worst_voids_lf;
+}
+
+TEST(BandFill, SameSeedSameBitsWhateverTheThreadCountAndSeedsDiffer) {
+  ExactEngine engine;
+  const std::size_t threads = thread_count();
+  set_thread_count(1);
+  const PointSet one = add_levels(engine, PointSet{}, hierarchy(ProgressiveOrder::fill, 3));
+  set_thread_count(7);
+  const PointSet seven = add_levels(engine, PointSet{}, hierarchy(ProgressiveOrder::fill, 3));
+  set_thread_count(threads);
+  ASSERT_EQ(one.points.size(), seven.points.size());
+  for (std::size_t i = 0; i < one.points.size(); ++i) {
+    EXPECT_EQ(one.points[i].x, seven.points[i].x) << i;
+    EXPECT_EQ(one.points[i].y, seven.points[i].y) << i;
+  }
+  const PointSet other = add_levels(engine, PointSet{}, hierarchy(ProgressiveOrder::fill, 4));
+  std::size_t same = 0;
+  for (std::size_t i = 0; i < one.points.size(); ++i) same += one.points[i] == other.points[i];
+  EXPECT_EQ(same, 0u);
+}
+
+TEST(BandFill, KeepsTheBaseAndRanksTheNewPointsAfterIt) {
+  ExactEngine engine;
+  HierarchyOptions base_options = hierarchy(ProgressiveOrder::placement, 5);
+  base_options.levels = 1;  // 64 relaxed points
+  const PointSet base = add_levels(engine, PointSet{}, base_options);
+  HierarchyOptions more;
+  more.add = 100;
+  more.levels = 3;
+  more.seed = 5;
+  more.rank_order = ProgressiveOrder::fill;
+  const PointSet filled = add_levels(engine, base, more);
+  ASSERT_EQ(filled.points.size(), 264u);
+  for (std::size_t i = 0; i < 64; ++i) {
+    EXPECT_EQ(filled.points[i], base.points[i]) << i;
+    EXPECT_EQ(filled.levels[i], 0) << i;
+  }
+  EXPECT_EQ(filled.levels[64], 1);
+  EXPECT_EQ(filled.levels[163], 1);
+  EXPECT_EQ(filled.levels[164], 2);
+  EXPECT_EQ(filled.levels[263], 2);
+  // The base is relaxed (its holes are about 0.58 of its spacing from its points), so the first
+  // new points take the farthest places instead of the floor; later prefixes keep it again.
+  const TilingMetrics top = measure_tiling(filled.points, 0, 0);
+  EXPECT_GE(top.rho, 0.5);
+  for (const Point& p : filled.points) {
+    EXPECT_GE(p.x, 0.0);
+    EXPECT_LT(p.x, 1.0);
+    EXPECT_GE(p.y, 0.0);
+    EXPECT_LT(p.y, 1.0);
+  }
+}
+
+TEST(BandFill, TinyCountsAndAnEmptyStart) {
+  FillOptions options;
+  options.seed = 1;
+  const std::vector<Point> one = band_fill_torus({}, 1, options);
+  ASSERT_EQ(one.size(), 1u);
+  options.seed = 2;
+  const std::vector<Point> other = band_fill_torus({}, 1, options);
+  EXPECT_NE(one[0], other[0]);  // nothing to avoid: the first place is drawn
+  const std::vector<Point> two = band_fill_torus({}, 2, options);
+  EXPECT_GE(torus_distance(two[0], two[1], Domain{}), kFillFloor * hexagonal_spacing(2.0));
+  EXPECT_TRUE(band_fill_torus(two, 0, options).empty());
+}
+
+TEST(BandFill, BadInputIsAnErrorNamingIt) {
+  const std::vector<std::vector<Point>> tiles{{{0.5, 0.5}}, {{0.25, 0.25}}};
+  std::vector<std::vector<FillSource>> sources{{{0, {0, 0}, 1.0}}, {{1, {0, 0}, 1.0}}};
+  auto message = [&](FillOptions o, std::vector<std::vector<Point>> t, std::vector<std::vector<FillSource>> s) {
+    try {
+      band_fill(t, s, 3, o);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  FillOptions o;
+  EXPECT_EQ(message(o, tiles, sources).size(), std::string("no error").size());
+  FillOptions bad = o;
+  bad.floor = 1.5;
+  EXPECT_NE(message(bad, tiles, sources).find("fill_floor: expected 0 to 1"), std::string::npos);
+  bad = o;
+  bad.window = 0.5;
+  EXPECT_NE(message(bad, tiles, sources).find("fill_window"), std::string::npos);
+  bad = o;
+  bad.cells_per_spacing = 1;
+  EXPECT_NE(message(bad, tiles, sources).find("fill_cells_per_spacing"), std::string::npos);
+  bad = o;
+  bad.regrid = 1.0;
+  EXPECT_NE(message(bad, tiles, sources).find("fill_regrid"), std::string::npos);
+  bad = o;
+  bad.floor = std::nan("");
+  EXPECT_NE(message(bad, tiles, sources).find("fill_floor"), std::string::npos);
+  EXPECT_NE(message(o, {{{0.5, 0.5}}, {}}, sources).find("same number of points"), std::string::npos);
+  EXPECT_NE(message(o, tiles, {{{0, {0, 0}, 1.0}}, {{0, {0, 0}, 1.0}}}).find("tile 1 does not count its own points"),
+            std::string::npos);
+  EXPECT_NE(message(o, tiles, {{{0, {0, 0}, 1.0}, {2, {1, 0}, 1.0}}, {{1, {0, 0}, 1.0}}}).find("names tile 2"), std::string::npos);
+  EXPECT_NE(message(o, tiles, {{{0, {0, 0}, 1.0}, {1, {2, 0}, 1.0}}, {{1, {0, 0}, 1.0}}}).find("shifted past"), std::string::npos);
+  EXPECT_NE(message(o, tiles, {sources[0]}).find("one source list per tile"), std::string::npos);
+}
+
+// The plane of a seeded 16 x 16 torus tiling cut to the first k ranks of every tile.
+TilingMetrics plane_prefix(const TileSet& set, std::uint64_t seed, std::uint32_t k) {
+  const TiledPlane plane = torus_tiling(set, 16, seed, k);
+  std::vector<std::vector<Point>> prefixes;
+  for (const Tile& tile : set.tiles) prefixes.emplace_back(tile.points.begin(), tile.points.begin() + k);
+  const Periodogram p = tiled_periodogram(prefixes, plane.cell_tiles, 16, tiling_periodogram_size(plane.points.size(), 16));
+  return measure_tiling(plane.points, p, 16, static_cast<int>(set.tiles.size()));
+}
+
+// wang8, 16 points of level 0 relaxed, then to 64 per tile: the fill order against farthest point
+// above level 0, worst of seeds 1-2 on a 16 x 16 plane. Measured: fill rho 0.660 at every prefix
+// above 16; the worst LF of the in-between prefixes 24 and 48 0.099 (farthest 0.190), of the
+// boundaries 32 and 64 0.078 (farthest 0.089).
+TEST(BandFill, TiledPrefixesAboveLevelZeroBeatFarthestPoint) {
+  ExactEngine engine;
+  WangOptions o;
+  o.points = 16;
+  o.levels = 3;
+  o.ratio = 2.0;
+  o.level.iterations = 25;
+  o.level.warm_iterations = 10;
+  double far_between = 0.0, fill_between = 0.0, far_boundary = 0.0, fill_boundary = 0.0, fill_rho = HUGE_VAL;
+  for (std::uint64_t seed = 1; seed <= 2; ++seed) {
+    o.seed = seed;
+    o.level.rank_order = RankOrder::farthest;
+    const TileSet farthest = relax_wang_tiles(engine, o);
+    o.level.rank_order = RankOrder::fill;
+    const TileSet fill = relax_wang_tiles(engine, o);
+    for (std::size_t t = 0; t < fill.tiles.size(); ++t) {
+      // Level 0 is the same relaxed, farthest-ranked points; levels follow ranks.
+      for (std::size_t i = 0; i < 16; ++i) EXPECT_EQ(fill.tiles[t].points[i], farthest.tiles[t].points[i]);
+      EXPECT_EQ(fill.tiles[t].levels[31], 1);
+      EXPECT_EQ(fill.tiles[t].levels[32], 2);
+      EXPECT_EQ(fill.tiles[t].ranks[40], 40u);
+    }
+    for (std::uint32_t k : {24u, 32u, 48u, 64u}) {
+      const TilingMetrics a = plane_prefix(farthest, seed, k), b = plane_prefix(fill, seed, k);
+      const bool boundary = k == 32 || k == 64;
+      (boundary ? far_boundary : far_between) = std::max(boundary ? far_boundary : far_between, a.low_frequency);
+      (boundary ? fill_boundary : fill_between) = std::max(boundary ? fill_boundary : fill_between, b.low_frequency);
+      fill_rho = std::min(fill_rho, b.rho);
+    }
+  }
+  SCOPED_TRACE("LF between: farthest " + std::to_string(far_between) + " fill " + std::to_string(fill_between) +
+               "; boundaries: farthest " + std::to_string(far_boundary) + " fill " + std::to_string(fill_boundary) +
+               "; fill rho " + std::to_string(fill_rho));
+  EXPECT_GE(fill_rho, 0.65);
+  EXPECT_LT(fill_between, 0.75 * far_between);
+  EXPECT_LT(fill_boundary, far_boundary * 1.05);
+}
+
+TEST(BandFill, CommandLineFillOrdersAreTheLibrarys) {
+  TempDir dir;
+  const std::string out = dir.path() + "/fill.txt";
+  ASSERT_EQ(run_bluetile({"progressive", "--count", "64", "--ratio", "2", "--levels", "3", "--rank-order", "fill", "--seed", "9",
+                          "-o", out})
+                .exit_code,
+            0);
+  const PointSet read = read_point_file(out);
+  ExactEngine engine;
+  HierarchyOptions o = hierarchy(ProgressiveOrder::fill, 9);
+  o.levels = 3;
+  const PointSet library = add_levels(engine, PointSet{}, o);
+  ASSERT_EQ(read.points.size(), library.points.size());
+  for (std::size_t i = 0; i < read.points.size(); ++i) {
+    EXPECT_EQ(read.points[i], library.points[i]) << i;
+    EXPECT_EQ(read.levels[i], library.levels[i]) << i;
+  }
+  EXPECT_NE(test::read_text(out).find("rank order fill"), std::string::npos);
+  const std::string tiles = dir.path() + "/fill.tiles";
+  ASSERT_EQ(run_bluetile({"wang", "--points", "8", "--levels", "2", "--iterations", "5", "--rank-order", "fill", "-o", tiles}).exit_code, 0);
+  EXPECT_NE(test::read_text(tiles).find("--rank-order fill"), std::string::npos);
+  const test::CommandResult bad = run_bluetile({"wang", "--points", "8", "--rank-order", "fil", "-o", tiles});
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_NE(bad.err.find("fill"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace bluetile
