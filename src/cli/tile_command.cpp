@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/density_options.h"
+#include "cli/file_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/output_names.h"
@@ -184,7 +185,7 @@ void write_points(OutputFile& file, const Plan& plan, const TiledFormat& format,
                  file.path().c_str(), times.points, times.bytes, times.generate, times.format, times.write);
 }
 
-void run_tile(const TileOptions& o) {
+void run_tile(const TileOptions& o, const CLI::App& command) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   TiledFormat format;
   format.columns = parse_tiled_columns(o.columns);
@@ -204,8 +205,7 @@ void run_tile(const TileOptions& o) {
   for (const std::string& path : o.outputs)
     if (output_kind(path) == OutputFormat::image) check_image_output(path);
   OutputSet outputs;
-  if (!o.tiles.empty()) outputs.add_input(o.tiles);
-  if (!o.density_map.empty()) outputs.add_input(o.density_map);
+  add_declared_inputs(outputs, command);
   std::vector<OutputFile*> files;
   for (const std::string& path : o.outputs)
     files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputFormat::points_text}));
@@ -251,8 +251,8 @@ void add_tile_command(CLI::App& app) {
   auto o = std::make_shared<TileOptions>();
   CLI::App* cmd = app.add_subcommand(
       "tile", "Points of any window of an aperiodic tiling of the plane, uniform or following a density map");
-  cmd->add_option("--tiles", o->tiles,
-                  "Tile-set file (bluetile wang --output); default: the set built into the tool");
+  add_input_option(cmd, "--tiles", o->tiles, InputKind::tiles,
+                   "Tile-set file (bluetile wang --output); default: the set built into the tool");
   cmd->add_option("--region", o->region, "The window X0 Y0 X1 Y1 in plane units ([X0, X1) x [Y0, Y1), y up)")
       ->expected(4)
       ->required()
@@ -263,8 +263,8 @@ void add_tile_command(CLI::App& app) {
   add_real_option(cmd, "--density", o->density, positive,
                   "Points per unit area of a uniform tiling (with --tile-size: thinned to it by rank)")
       ->default_str("");
-  cmd->add_option("--density-map", o->density_map,
-                  "Image whose values set the density (any format OpenImageIO reads), placed on the region by --fit");
+  add_input_option(cmd, "--density-map", o->density_map, InputKind::image,
+                   "Image whose values set the density (any format OpenImageIO reads), placed on the region by --fit");
   CLI::Option* fit = cmd->add_option("--fit", o->fit,
                   "How --density-map meets a region of another aspect: contain (the whole picture, centred, its "
                   "aspect kept; no points beside it), cover (the region filled, aspect kept, the overflow cut off "
@@ -280,9 +280,9 @@ void add_tile_command(CLI::App& app) {
                   "--max-density nor --tile-size is given)")
       ->default_str("");
   add_seed_option(cmd, o->seed, "Seed of the tiling");
-  cmd->add_option("-o,--output", o->outputs,
-                  "Output, by extension: .txt .dat .pts (or none, or - for stdout) a point file, .bin raw float64 "
-                  "columns, .svg or .pdf dots, .png .tif .tiff .jpg .jpeg .exr .bmp a render; repeat for several")
+  add_output_option(cmd, "-o,--output", o->outputs, {.formats = kTileFormats, .standard_output = true},
+                    "Output, by extension: .txt .dat .pts (or none, or - for stdout) a point file, .bin raw float64 "
+                    "columns, .svg or .pdf dots, .png .tif .tiff .jpg .jpeg .exr .bmp a render; repeat for several")
       ->required();
   cmd->add_option("--columns", o->columns, "Point-file columns, from x,y,i,j,tile,level,rank (i j: the cell)")
       ->capture_default_str();
@@ -296,9 +296,9 @@ void add_tile_command(CLI::App& app) {
   add_integer_option(cmd, "--image-size", o->image_size, 16, 16384, "Width of .png renders in pixels");
   add_threads_option(cmd, o->threads);
   cmd->add_flag("-v,--verbose", o->verbose, "Print counts and the time split (generate, format, write) on stderr");
-  cmd->callback([o, fit] {
+  cmd->callback([o, fit, cmd] {
     if (fit->count() > 0 && o->density_map.empty()) throw Error("--fit " + o->fit + " places a --density-map: give one");
-    run_tile(*o);
+    run_tile(*o, *cmd);
   });
 }
 

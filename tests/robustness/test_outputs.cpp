@@ -147,6 +147,22 @@ TEST(Outputs, StandardOutput) {
   const std::string expected = reference_output({});
   EXPECT_EQ(run(relax({"-o", "-"})).out, expected);
   EXPECT_EQ(run(relax({"-o", "/dev/stdout"})).out, expected);
+  {
+    // wang --check printed its seam check into the tile set on standard output.
+    TempDir dir;
+    const std::vector<std::string> wang = {"wang", "-n", "4", "-k", "1", "--warm", "0", "--check"};
+    std::vector<std::string> to_file = wang;
+    to_file.insert(to_file.end(), {"-o", dir.file("tiles.txt")});
+    const Outcome file = run(to_file);
+    ASSERT_EQ(file.exit_code, 0) << file.err;
+    EXPECT_NE(file.out.find("seam check"), std::string::npos) << file.out;
+    std::vector<std::string> to_stdout = wang;
+    to_stdout.insert(to_stdout.end(), {"-o", "-"});
+    const Outcome piped = run(to_stdout);
+    EXPECT_EQ(piped.exit_code, 0) << piped.err;
+    EXPECT_EQ(piped.out, read_text(dir.file("tiles.txt")));
+    EXPECT_EQ(piped.err, file.out);  // the check, on stderr instead
+  }
   Outcome r = run({"centroids", "-i", "-", "-o", "-", "--engine", "exact"});
   expect_failure(r, "stdin: no points");
   TempDir dir;

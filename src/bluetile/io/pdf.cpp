@@ -5,11 +5,14 @@
 #include <cstring>
 #include <mutex>
 #include <numbers>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <dlfcn.h>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/process_limits.h"
 
 #if BLUETILE_HAVE_CAIRO
 #include <cairo-pdf.h>
@@ -80,6 +83,10 @@ const Cairo& cairo() {
     void* handle = dlopen("libcairo.so.2", RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
       c.failure = std::string("PDF output needs cairo (libcairo2): ") + dlerror();
+      // cairo and the X libraries it pulls in are there but do not fit ("failed to map segment").
+      if (const std::optional<ProcessLimit> limit = address_space_limit())
+        c.failure += ": out of memory for it under the limit (ulimit -v " + std::to_string(limit->limit >> 10) +
+                     ", " + std::to_string(limit->left() >> 20) + " MiB left); raise the limit";
       return;
     }
 #define BLUETILE_CAIRO_LOOKUP(name)                                                   \
