@@ -1,7 +1,7 @@
 // bluetile tile: the points of any window of an aperiodic tiling of the plane by a tile set
 // (Hiller, Deussen, Keller 2001, section 3), at a uniform density or following a density map
-// (thinning by rank, tiling/density_thinning.h). Point files are streamed; drawings are an SVG
-// of dots and a PNG render.
+// (thinning by rank, tiling/density_thinning.h). Point files and SVG drawings are streamed; a PDF
+// of dots and a render are made whole, then written.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -32,12 +32,9 @@
 namespace bluetile::cli {
 namespace {
 
-// Peak memory per dot of an SVG drawing, which is built whole before it is written: the
-// document's items and its text. Measured (peak RSS of a 10^6-dot `tile -o x.svg`, 140 bytes)
-// and rounded up.
-constexpr double kSvgBytesPerDot = 160.0;
-// The same for a PDF drawing: the document, then cairo's page. Measured (peak RSS of `tile -o x.pdf`
-// at 3 and 6 x 10^5 dots: 980 bytes a dot between them) and rounded up.
+// Peak memory per dot of a PDF drawing, which is built whole before cairo draws it (an SVG is
+// streamed): the document, then cairo's page. Measured (peak RSS of `tile -o x.pdf` at 3 and 6 x
+// 10^5 dots: 980 bytes a dot between them) and rounded up.
 constexpr double kPdfBytesPerDot = 1100.0;
 
 struct TileOptions {
@@ -119,10 +116,8 @@ void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files, int
                 " tiles: use a larger --tile-size or a smaller region");
   for (const OutputFile* file : files) {
     const OutputFormat kind = output_kind(file->path());
-    if (kind == OutputFormat::svg || kind == OutputFormat::pdf)
-      check_memory(points * (kind == OutputFormat::svg ? kSvgBytesPerDot : kPdfBytesPerDot),
-                   file->path() + (kind == OutputFormat::svg ? ": an SVG" : ": a PDF") + " of about " +
-                       rounded(points) + " dots");
+    if (kind == OutputFormat::pdf)
+      check_memory(points * kPdfBytesPerDot, file->path() + ": a PDF of about " + rounded(points) + " dots");
     if (kind == OutputFormat::image)
       check_memory(static_cast<double>(width_pixels) * height_pixels * kCanvasBytesPerPixel,
                    file->path() + ": a render of " + std::to_string(width_pixels) + " x " + rounded(height_pixels) +
@@ -230,7 +225,7 @@ void run_tile(const TileOptions& o, const CLI::App& command) {
         break;
       }
       case OutputFormat::svg:
-        file->write(dots_svg(*plan.tiler, plan.window, plan.thinning.get(), dots));
+        file->write([&](OutputStream& out) { write_dots_svg(out, *plan.tiler, plan.window, plan.thinning.get(), dots); });
         break;
       case OutputFormat::pdf:
         write_pdf(dots_drawing(*plan.tiler, plan.window, plan.thinning.get(), dots), *file);
