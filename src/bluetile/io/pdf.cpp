@@ -58,16 +58,16 @@ std::string valid_utf8(std::string_view text) {
 }
 
 // The cairo functions used, looked up by name in libcairo.so.2.
-#define BLUETILE_CAIRO_FUNCTIONS(X)                                                                             \
-  X(cairo_pdf_surface_create_for_stream) X(cairo_create) X(cairo_destroy) X(cairo_status) X(cairo_status_to_string)       \
-  X(cairo_surface_destroy) X(cairo_surface_finish) X(cairo_surface_status) X(cairo_surface_flush)              \
-  X(cairo_surface_mark_dirty) X(cairo_save) X(cairo_restore) X(cairo_transform) X(cairo_scale)                 \
-  X(cairo_translate) X(cairo_rotate) X(cairo_rectangle) X(cairo_arc) X(cairo_new_path) X(cairo_new_sub_path)  \
-  X(cairo_move_to) X(cairo_line_to) X(cairo_close_path) X(cairo_set_source_rgba) X(cairo_fill_preserve)       \
-  X(cairo_stroke_preserve) X(cairo_set_line_width) X(cairo_set_dash) X(cairo_set_line_cap)                    \
-  X(cairo_set_line_join) X(cairo_select_font_face) X(cairo_set_font_size) X(cairo_text_extents)               \
-  X(cairo_show_text) X(cairo_image_surface_create) X(cairo_image_surface_get_data)                            \
-  X(cairo_image_surface_get_stride) X(cairo_set_source_surface) X(cairo_get_source) X(cairo_pattern_set_filter) \
+#define BLUETILE_CAIRO_FUNCTIONS(X)                                                                                \
+  X(cairo_pdf_surface_create_for_stream) X(cairo_create) X(cairo_destroy) X(cairo_status)                          \
+  X(cairo_status_to_string) X(cairo_surface_destroy) X(cairo_surface_finish) X(cairo_surface_status)               \
+  X(cairo_surface_flush) X(cairo_surface_mark_dirty) X(cairo_save) X(cairo_restore) X(cairo_transform)             \
+  X(cairo_scale) X(cairo_translate) X(cairo_rotate) X(cairo_rectangle) X(cairo_arc) X(cairo_new_path)              \
+  X(cairo_new_sub_path) X(cairo_move_to) X(cairo_line_to) X(cairo_close_path) X(cairo_set_source_rgba)             \
+  X(cairo_fill_preserve) X(cairo_stroke_preserve) X(cairo_set_line_width) X(cairo_set_dash)                        \
+  X(cairo_set_line_cap) X(cairo_set_line_join) X(cairo_select_font_face) X(cairo_set_font_size)                    \
+  X(cairo_text_extents) X(cairo_show_text) X(cairo_image_surface_create) X(cairo_image_surface_get_data)           \
+  X(cairo_image_surface_get_stride) X(cairo_set_source_surface) X(cairo_get_source) X(cairo_pattern_set_filter)    \
   X(cairo_paint) X(cairo_show_page)
 
 struct Cairo {
