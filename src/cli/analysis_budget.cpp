@@ -26,6 +26,8 @@ constexpr double kPerPointSeconds = 1.2e-5;     // the rest: neighbours, RDF to 
 // Peak resident bytes per point beyond the periodogram (points, Voronoi cells, grids, images):
 // analyze of 10^6 points peaks at 2.64 GB, 2.13 GB of it the periodogram.
 constexpr double kBytesPerPoint = 600.0;
+// A run estimated longer than this (and within --time-limit) says so before it starts.
+constexpr double kLongAnalysisSeconds = 60.0;
 
 }  // namespace
 
@@ -71,8 +73,14 @@ void check_analysis_budget(const std::vector<AnalysisJob>& jobs, bool psa_measur
   std::size_t largest = 0;
   for (const AnalysisJob& job : jobs) largest = std::max(largest, job.count);
   check_memory(e.bytes, "analyze of " + std::to_string(largest) + " points" + (jobs.size() > 1 || jobs[0].sets > 1 ? " (and more sets)" : ""));
-  if (e.seconds <= 60.0 * time_limit_minutes) return;
   const std::string threads = std::to_string(thread_count()) + (thread_count() == 1 ? " thread" : " threads");
+  if (e.seconds <= 60.0 * time_limit_minutes) {
+    // A run let go long says so as it starts: off a terminal no progress shows.
+    if (e.seconds >= kLongAnalysisSeconds)
+      std::fprintf(stderr, "bluetile: note: analyze of %zu points should take about %s on %s\n", largest,
+                   format_seconds(e.seconds).c_str(), threads.c_str());
+    return;
+  }
   std::string message = "analyze of " + std::to_string(largest) + " points would take about " + format_seconds(e.seconds) +
                         " on " + threads;
   char pairs[32];

@@ -30,7 +30,7 @@ AnalysisEstimate estimate_analysis(const std::vector<AnalysisJob>& jobs, bool ps
 
 // Throws Error when the estimate exceeds `time_limit_minutes` (naming --no-psa-measures or
 // --no-discrepancy when those O(N^2) measures take much of the time, and --time-limit) or the
-// available memory.
+// available memory; prints one `bluetile: note:` line with the estimate when it is over a minute.
 void check_analysis_budget(const std::vector<AnalysisJob>& jobs, bool psa_measures, double time_limit_minutes,
                            bool discrepancy = false);
 

@@ -22,6 +22,7 @@
 #include "bluetile/analysis/tiling_metrics.h"
 #include "cli/analysis_budget.h"
 #include "cli/commands.h"
+#include "cli/file_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/output_names.h"
@@ -578,12 +579,14 @@ void check_options(const AnalyzeOptions& o) {
     throw Error("--label needs one label per input (" + std::to_string(o.inputs.size()) + ")");
 }
 
+// What --summary writes.
+constexpr OutputFormat kSummaryFormats[] = {OutputFormat::pdf, OutputFormat::svg};
+
 // --summary's format: "pdf", "svg", or "" without --summary.
 std::string summary_format(const AnalyzeOptions& o) {
   std::string format;
   if (!o.summary.empty()) {
-    static constexpr OutputFormat summary_formats[] = {OutputFormat::pdf, OutputFormat::svg};
-    format = output_format("--summary", o.summary, summary_formats) == OutputFormat::pdf ? "pdf" : "svg";
+    format = output_format("--summary", o.summary, kSummaryFormats) == OutputFormat::pdf ? "pdf" : "svg";
     if (format == "pdf" && !pdf_unavailable_reason().empty())
       throw Error(o.summary + ": " + pdf_unavailable_reason());
   }
@@ -609,10 +612,9 @@ struct AnalyzeFiles {
 };
 
 // Every output is declared, and so checked, before any work; they appear together at the end.
-void declare_outputs(const AnalyzeOptions& o, AnalyzeFiles& files) {
+void declare_outputs(const AnalyzeOptions& o, const CLI::App& command, AnalyzeFiles& files) {
   OutputSet& outputs = files.outputs;
-  for (const std::string& path : o.inputs) outputs.add_input(path);
-  if (!o.from.empty()) outputs.add_input(o.from);
+  add_declared_inputs(outputs, command);
   check_output_parent(o.output);
   outputs.add_folder(o.output);
   const std::filesystem::path dir(o.output);
@@ -929,13 +931,13 @@ std::string report_text(const AnalyzeOptions& o, const std::vector<Series>& seri
   return report.str();
 }
 
-void run_analyze(const AnalyzeOptions& o) {
+void run_analyze(const AnalyzeOptions& o, const CLI::App& command) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   check_options(o);
   const FrequencyAxis axis = o.axis == "integer" ? FrequencyAxis::integer : FrequencyAxis::normalised;
   const std::string format = summary_format(o);
   AnalyzeFiles files;
-  declare_outputs(o, files);
+  declare_outputs(o, command, files);
   const AnalyzeInputs in = read_inputs(o);
   check_annuli(o, in.sets, in.prefixes.size());
   const std::vector<std::pair<OutputFile*, const PointSet*>> psa_files = declare_psa_points(o, in.sets, files.outputs);
@@ -981,7 +983,10 @@ void run_analyze(const AnalyzeOptions& o) {
   files.report->write(report);
   for (const auto& [file, set] : psa_files) file->write(psa_text(*set));
   files.outputs.publish();
-  std::cout << report << std::flush;
+  // Standard output holds the points of --psa-points - alone; the report goes to stderr then.
+  const bool stdout_taken =
+      std::any_of(psa_files.begin(), psa_files.end(), [](const auto& file) { return file.first->is_stdout(); });
+  (stdout_taken ? std::cerr : std::cout) << report << std::flush;
 }
 
 }  // namespace
@@ -992,11 +997,12 @@ void add_analyze_command(CLI::App& app) {
       "analyze",
       "Spectrum, radial power, anisotropy, RDF, nu_eff, Omega and nearest-neighbour statistics of point sets (psa's "
       "conventions)");
-  cmd->add_option("-i,--input", o->inputs,
-                  "Point file(s), by extension: .npy, .bpt, .csv (header x,y or x,y,level), psa's .rps, else text; a "
-                  "file may hold several sets (text: separated by '#' lines)")
+  add_input_option(cmd, "-i,--input", o->inputs, InputKind::points,
+                   "Point file(s), by extension: .npy, .bpt, .csv (header x,y or x,y,level), psa's .rps, else text; a "
+                   "file may hold several sets (text: separated by '#' lines)")
       ->required();
-  cmd->add_option("-o,--output", o->output, "Output folder (created if missing; its parent must exist)")->required();
+  add_output_folder_option(cmd, "-o,--output", o->output, "Output folder (created if missing; its parent must exist)")
+      ->required();
   add_integer_option(cmd, "--size", o->size, 0, 65536,
                      "Periodogram size F (even): frequencies -F/2..F/2-1; default (0) 2 floor(5 sqrt(N))");
   add_real_option(cmd, "--bin-width", o->bin_width, {0.0, 65536.0, true, false}, "Annulus width in integer frequencies");
@@ -1021,18 +1027,19 @@ void add_analyze_command(CLI::App& app) {
                   "one is stretched); points outside are an error (or wrapped with --wrap)")
       ->expected(4)
       ->allow_extra_args(false);
-  cmd->add_option("--psa-points", o->psa_points,
-                  "Also write the points analysed (after --domain) as psa's plain text (N, then 'x y' lines) to this "
-                  "file; {} in the name is the set index, one file per set");
+  add_output_option(cmd, "--psa-points", o->psa_points, {.extension = ".txt", .standard_output = true},
+                    "Also write the points analysed (after --domain) as psa's plain text (N, then 'x y' lines) to this "
+                    "file; {} in the name is the set index, one file per set");
   add_real_option(cmd, "--rdf-range", o->rdf_range, {0.0, 1e6}, "Largest RDF distance in hexagonal spacings (default 8, psa's)")
       ->default_str("8");
   add_integer_option(cmd, "--rdf-bins", o->rdf_bins, 1, 1000000, "RDF histogram bins (default N / 8 within 32..1000, psa's)")
       ->default_str("N / 8");
-  cmd->add_option("--summary", o->summary,
-                  "Also write a one-page summary (points, spectrum, radial power, anisotropy, RDF, measures) to this "
-                  ".pdf or .svg file");
+  add_output_option(cmd, "--summary", o->summary, {.formats = kSummaryFormats},
+                    "Also write a one-page summary (points, spectrum, radial power, anisotropy, RDF, measures) to this "
+                    ".pdf or .svg file");
   cmd->add_flag("--cells", o->cells, "Draw the periodic Voronoi cells in points.png");
-  cmd->add_option("--from", o->from, "Draw each point's move from its position in this file (same count and order)");
+  add_input_option(cmd, "--from", o->from, InputKind::points,
+                   "Draw each point's move from its position in this file (same count and order)");
   cmd->add_flag("--no-centroids", o->no_centroids, "Skip the mean distance of the sites to their exact cell centroids");
   cmd->add_flag("--no-psa-measures", o->no_psa_measures,
                 "Skip nu_eff and Omega by psa's definitions: their RDF takes every pair closer than 0.25, O(N^2) (about "
@@ -1045,7 +1052,7 @@ void add_analyze_command(CLI::App& app) {
   add_integer_option(cmd, "--image-size", o->image_size, 64, 8192,
                      "Side of points.png in pixels (two thirds of it per set side by side)");
   add_threads_option(cmd, o->threads);
-  cmd->callback([o] { run_analyze(*o); });
+  cmd->callback([o, cmd] { run_analyze(*o, *cmd); });
 }
 
 }  // namespace bluetile::cli

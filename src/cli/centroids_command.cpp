@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/engine_options.h"
+#include "cli/file_options.h"
 #include "cli/point_output.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
@@ -20,9 +21,9 @@ struct CentroidsOptions {
   EngineOptions engine;
 };
 
-void run_centroids(const CentroidsOptions& o) {
+void run_centroids(const CentroidsOptions& o, const CLI::App& command) {
   OutputSet outputs;
-  outputs.add_input(o.input);
+  add_declared_inputs(outputs, command);
   std::vector<PointSet> sets = read_point_table(o.input);
   if (sets.empty()) throw Error(input_name(o.input) + ": no points");
   PointOutput output(outputs, o.output, sets.size());
@@ -57,12 +58,12 @@ void run_centroids(const CentroidsOptions& o) {
 void add_centroids_command(CLI::App& app) {
   auto o = std::make_shared<CentroidsOptions>();
   CLI::App* cmd = app.add_subcommand("centroids", "Write the Voronoi cell centroid and area of every point (cx cy area)");
-  cmd->add_option("-i,--input", o->input,
-                  "Points: text (each '#'-separated set measured on its own), .npy or .bpt ('-': standard input)")
+  add_input_option(cmd, "-i,--input", o->input, InputKind::points,
+                   "Points: text (each '#'-separated set measured on its own), .npy or .bpt ('-': standard input)")
       ->required();
   add_point_output_options(cmd, o->output, "Output table of cx cy area");
   add_engine_options(cmd, o->engine);
-  cmd->callback([o] { run_centroids(*o); });
+  cmd->callback([o, cmd] { run_centroids(*o, *cmd); });
 }
 
 }  // namespace bluetile::cli

@@ -1,6 +1,7 @@
 #include "cli/point_output.h"
 
 #include "bluetile/core/error.h"
+#include "cli/file_options.h"
 #include "cli/output_names.h"
 
 namespace bluetile::cli {
@@ -27,8 +28,9 @@ TableView single_set(const TableView& table, std::size_t set) {
 
 void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what, bool required,
                               bool several_sets) {
-  CLI::Option* output = command->add_option(
-      "-o,--output", options.output, several_sets ? what + " (every {} becomes the set index: one file per set)" : what);
+  CLI::Option* output = add_output_option(
+      command, "-o,--output", options.output, {.formats = kPointTableFormats, .standard_output = true},
+      several_sets ? what + " (every {} becomes the set index: one file per set)" : what);
   if (required) output->required();
   command->add_option("--format", options.format,
                       "text, npy (shape K x N x 2, or K x N x 3 with a level column), binary (.bpt, see README) or header (C/C++); "

@@ -5,6 +5,7 @@
 
 #include "cli/commands.h"
 #include "cli/engine_options.h"
+#include "cli/file_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/point_output.h"
@@ -38,11 +39,11 @@ struct ProgressiveOptions {
 // Bytes per point of a level's relaxation (see kRelaxBytesPerSite) plus the levels column.
 constexpr double kBytesPerPoint = kRelaxBytesPerSite + 8.0;
 
-void run_progressive(const ProgressiveOptions& o) {
+void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
   if (!o.input.empty() && o.add == 0 && o.ratio == 0.0)
     throw Error("--input needs --add M or --ratio R: how many points to add");
   OutputSet outputs;
-  if (!o.input.empty()) outputs.add_input(o.input);
+  add_declared_inputs(outputs, command);
   // The bases: the input's sets (each gets its own levels), or K empty ones.
   std::vector<PointSet> sets(static_cast<std::size_t>(o.sets));
   if (!o.input.empty()) {
@@ -131,9 +132,9 @@ void add_progressive_command(CLI::App& app) {
   auto o = std::make_shared<ProgressiveOptions>();
   CLI::App* cmd = app.add_subcommand(
       "progressive", "Hierarchical point sets: add levels of points relaxed around the fixed earlier levels");
-  auto* input = cmd->add_option("-i,--input", o->input,
-                                "Base points, kept bit for bit: text (each '#'-separated set gets its own levels), .npy "
-                                "or .bpt ('-': standard input)");
+  auto* input = add_input_option(cmd, "-i,--input", o->input, InputKind::points,
+                                 "Base points, kept bit for bit: text (each '#'-separated set gets its own levels), .npy "
+                                 "or .bpt ('-': standard input)");
   auto* count = add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount,
                                    "Build from scratch: level 0 has N relaxed random points");
   input->excludes(count);
@@ -164,9 +165,9 @@ void add_progressive_command(CLI::App& app) {
       ->needs(count);
   add_point_output_options(cmd, o->output, "Output points (x y level; '-': standard output)");
   add_engine_options(cmd, o->engine);
-  cmd->callback([o] {
+  cmd->callback([o, cmd] {
     if (o->input.empty() && o->count == 0) throw CLI::RequiredError("--input or --count");
-    run_progressive(*o);
+    run_progressive(*o, *cmd);
   });
 }
 

@@ -6,6 +6,7 @@
 #include "cli/commands.h"
 #include "cli/density_options.h"
 #include "cli/engine_options.h"
+#include "cli/file_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/point_output.h"
@@ -48,19 +49,17 @@ std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_
   return density ? density_random_points(*density, count, seed, set) : uniform_random_points(count, seed, set);
 }
 
-void run_relax(const RelaxOptions& o) {
+void run_relax(const RelaxOptions& o, const CLI::App& command) {
   if (o.input.empty()) {
     check_memory(static_cast<double>(o.sets) * static_cast<double>(o.count) * kRelaxBytesPerSite,
                  "--count " + std::to_string(o.count) + " x --sets " + std::to_string(o.sets));
   }
   // The image plugin is loaded, and an image's format checked, before any output is staged.
   if (!o.density_map.empty() || !o.id_image.empty()) load_image_plugin();
-  static constexpr OutputFormat id_image_formats[] = {OutputFormat::image};
-  if (!o.id_image.empty()) output_format("--id-image", o.id_image, id_image_formats);
+  if (!o.id_image.empty()) output_format("--id-image", o.id_image, kImageFormats);
   if (!o.id_image.empty()) check_image_output(o.id_image);
   OutputSet outputs;
-  if (!o.input.empty()) outputs.add_input(o.input);
-  if (!o.density_map.empty()) outputs.add_input(o.density_map);
+  add_declared_inputs(outputs, command);
   // The input's sets (UTK's '#' lines, .npy, .bpt: each set is relaxed on its own), or the
   // random starts below.
   std::vector<PointSet> inputs;
@@ -135,9 +134,9 @@ void add_relax_command(CLI::App& app) {
   auto o = std::make_shared<RelaxOptions>();
   CLI::App* cmd = app.add_subcommand("relax", "Relax a random (--count) or given (--input) point set by Lloyd's method");
   auto* count = add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount, "Number of random points to start from");
-  auto* input = cmd->add_option("-i,--input", o->input,
-                                "Points to start from: text (each '#'-separated set relaxed on its own), .npy or .bpt "
-                                "('-': standard input)");
+  auto* input = add_input_option(cmd, "-i,--input", o->input, InputKind::points,
+                                 "Points to start from: text (each '#'-separated set relaxed on its own), .npy or .bpt "
+                                 "('-': standard input)");
   count->excludes(input);
   input->excludes(count);
   add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations");
@@ -149,12 +148,13 @@ void add_relax_command(CLI::App& app) {
                                   "file each, else one table (text: '#' lines between sets)");
   sets->needs(count);
   add_point_output_options(cmd, o->output, "Output points ('-': standard output)");
-  cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
-  cmd->add_option("--id-image", o->id_image, "Write the raster ID buffer of the result as an image (cells coloured, sites drawn)");
+  add_output_option(cmd, "--log", o->log, kCsvLog, "Write a CSV log of energy and displacement per iteration");
+  add_output_option(cmd, "--id-image", o->id_image, {.formats = kImageFormats},
+                    "Write the raster ID buffer of the result as an image (cells coloured, sites drawn)");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
-  cmd->add_option("--density-map", o->density_map,
-                  "Relax toward this image's density (bright means dense unless --invert), stretched over the unit "
-                  "square; random starts are drawn from it")
+  add_input_option(cmd, "--density-map", o->density_map, InputKind::image,
+                   "Relax toward this image's density (bright means dense unless --invert), stretched over the unit "
+                   "square; random starts are drawn from it")
       ->check(CLI::ExistingFile);
   cmd->add_flag("--bounded", o->bounded, "Cells end at the unit square's border instead of wrapping around");
   add_density_transfer_options(cmd, o->transfer);
@@ -166,7 +166,7 @@ void add_relax_command(CLI::App& app) {
     // path, measured 5x slower than the exact engine on stipples (docs/BENCHMARKS.md): exact is
     // the default there.
     if (cmd->count("--engine") == 0 && (!o->density_map.empty() || o->bounded)) o->engine.engine = "exact";
-    run_relax(*o);
+    run_relax(*o, *cmd);
   });
 }
 

@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "cli/density_options.h"
 #include "cli/engine_options.h"
+#include "cli/file_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/output_names.h"
@@ -80,22 +81,23 @@ void write_render(OutputFile& out, const std::vector<Point>& points, const std::
   write_image(out, canvas);
 }
 
-void run_stipple(const StippleOptions& o) {
+// What --svg writes (--png: kImageFormats).
+constexpr OutputFormat kSvgFormats[] = {OutputFormat::svg};
+
+void run_stipple(const StippleOptions& o, const CLI::App& command) {
   if (o.points.output.empty() && o.svg.empty() && o.png.empty())
     throw Error("stipple writes nothing without --output, --svg or --png: say at least one");
   // Refused at once, as relax does, rather than after the start is drawn.
   check_memory(static_cast<double>(o.count) * kRelaxBytesPerSite, "--count " + std::to_string(o.count));
   // Every output is declared, and so checked, before any work; they appear together at the end.
   // The image plugin is loaded, and the render's format checked, before any output is staged.
-  static constexpr OutputFormat svg_formats[] = {OutputFormat::svg};
-  static constexpr OutputFormat png_formats[] = {OutputFormat::image};
-  if (!o.svg.empty()) output_format("--svg", o.svg, svg_formats);
-  if (!o.png.empty()) output_format("--png", o.png, png_formats);
+  if (!o.svg.empty()) output_format("--svg", o.svg, kSvgFormats);
+  if (!o.png.empty()) output_format("--png", o.png, kImageFormats);
   load_image_plugin();
   if (!o.png.empty()) check_image_output(o.png);
   if (!o.drawing.size.empty()) parse_printed_length(o.drawing.size, "--size");
   OutputSet outputs;
-  outputs.add_input(o.image);
+  add_declared_inputs(outputs, command);
   std::unique_ptr<PointOutput> points_file =
       o.points.output.empty() ? nullptr : std::make_unique<PointOutput>(outputs, o.points, 1);
   OutputFile* svg_file = o.svg.empty() ? nullptr : &outputs.add(o.svg, {.allow_stdout = true});
@@ -149,7 +151,8 @@ void add_stipple_command(CLI::App& app) {
   o->engine.engine = "exact";  // the raster engine weights cells too, 5x slower here (docs/BENCHMARKS.md)
   CLI::App* cmd = app.add_subcommand(
       "stipple", "Stipple an image: dots whose density follows its darkness, relaxed by weighted Lloyd (Secord 2002)");
-  cmd->add_option("--image", o->image, "Image to stipple (PNG, TIFF, EXR, ...: anything OpenImageIO reads)")
+  add_input_option(cmd, "--image", o->image, InputKind::image,
+                   "Image to stipple (PNG, TIFF, EXR, ...: anything OpenImageIO reads)")
       ->required()
       ->check(CLI::ExistingFile);
   add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount, "Number of dots")->required();
@@ -161,20 +164,22 @@ void add_stipple_command(CLI::App& app) {
                            "Output points (optional when --svg or --png is given): the picture's longer side spans "
                            "[0, 1), y up (image row 0 is the top)",
                            false, /*several_sets=*/false);
-  cmd->add_option("--svg", o->svg, "Write the drawing as SVG (.svg; one black disc per dot)");
-  cmd->add_option("--png", o->png, "Render the drawing as an image (.png .tif .tiff .jpg .jpeg .exr .bmp)");
+  add_output_option(cmd, "--svg", o->svg, {.formats = kSvgFormats, .standard_output = true},
+                    "Write the drawing as SVG (.svg; one black disc per dot)");
+  add_output_option(cmd, "--png", o->png, {.formats = kImageFormats},
+                    "Render the drawing as an image (.png .tif .tiff .jpg .jpeg .exr .bmp)");
   add_integer_option(cmd, "--png-width", o->png_width, 16, 32768, "Width of the --png render in pixels");
   add_real_option(cmd, "--dot-radius", o->dot_radius, {0.0, kInfinity, true, false},
                   "Dot radius in domain units (default: dots just touch where the image is darkest)")
       ->default_str("");
-  cmd->add_option("--log", o->log, "Write a CSV log of energy and displacement per iteration");
+  add_output_option(cmd, "--log", o->log, kCsvLog, "Write a CSV log of energy and displacement per iteration");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
   o->transfer.invert = true;  // dark means dense by default, as ink on paper
   add_density_transfer_options(cmd, o->transfer);
   add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
   add_stipple_drawing_options(cmd, o->drawing);
-  cmd->callback([o] { run_stipple(*o); });
+  cmd->callback([o, cmd] { run_stipple(*o, *cmd); });
 }
 
 }  // namespace bluetile::cli

@@ -1,7 +1,7 @@
 // bluetile tile: the points of any window of an aperiodic tiling of the plane by a tile set
 // (Hiller, Deussen, Keller 2001, section 3), at a uniform density or following a density map
-// (thinning by rank, tiling/density_thinning.h). Point files are streamed; drawings are an SVG
-// of dots and a PNG render.
+// (thinning by rank, tiling/density_thinning.h). Point files and SVG drawings are streamed; a PDF
+// of dots and a render are made whole, then written.
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -9,6 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/density_options.h"
+#include "cli/file_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/output_names.h"
@@ -31,12 +32,9 @@
 namespace bluetile::cli {
 namespace {
 
-// Peak memory per dot of an SVG drawing, which is built whole before it is written: the
-// document's items and its text. Measured (peak RSS of a 10^6-dot `tile -o x.svg`, 140 bytes)
-// and rounded up.
-constexpr double kSvgBytesPerDot = 160.0;
-// The same for a PDF drawing: the document, then cairo's page. Measured (peak RSS of `tile -o x.pdf`
-// at 3 and 6 x 10^5 dots: 980 bytes a dot between them) and rounded up.
+// Peak memory per dot of a PDF drawing, which is built whole before cairo draws it (an SVG is
+// streamed): the document, then cairo's page. Measured (peak RSS of `tile -o x.pdf` at 3 and 6 x
+// 10^5 dots: 980 bytes a dot between them) and rounded up.
 constexpr double kPdfBytesPerDot = 1100.0;
 
 struct TileOptions {
@@ -118,10 +116,8 @@ void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files, int
                 " tiles: use a larger --tile-size or a smaller region");
   for (const OutputFile* file : files) {
     const OutputFormat kind = output_kind(file->path());
-    if (kind == OutputFormat::svg || kind == OutputFormat::pdf)
-      check_memory(points * (kind == OutputFormat::svg ? kSvgBytesPerDot : kPdfBytesPerDot),
-                   file->path() + (kind == OutputFormat::svg ? ": an SVG" : ": a PDF") + " of about " +
-                       rounded(points) + " dots");
+    if (kind == OutputFormat::pdf)
+      check_memory(points * kPdfBytesPerDot, file->path() + ": a PDF of about " + rounded(points) + " dots");
     if (kind == OutputFormat::image)
       check_memory(static_cast<double>(width_pixels) * height_pixels * kCanvasBytesPerPixel,
                    file->path() + ": a render of " + std::to_string(width_pixels) + " x " + rounded(height_pixels) +
@@ -184,7 +180,7 @@ void write_points(OutputFile& file, const Plan& plan, const TiledFormat& format,
                  file.path().c_str(), times.points, times.bytes, times.generate, times.format, times.write);
 }
 
-void run_tile(const TileOptions& o) {
+void run_tile(const TileOptions& o, const CLI::App& command) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   TiledFormat format;
   format.columns = parse_tiled_columns(o.columns);
@@ -204,8 +200,7 @@ void run_tile(const TileOptions& o) {
   for (const std::string& path : o.outputs)
     if (output_kind(path) == OutputFormat::image) check_image_output(path);
   OutputSet outputs;
-  if (!o.tiles.empty()) outputs.add_input(o.tiles);
-  if (!o.density_map.empty()) outputs.add_input(o.density_map);
+  add_declared_inputs(outputs, command);
   std::vector<OutputFile*> files;
   for (const std::string& path : o.outputs)
     files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputFormat::points_text}));
@@ -230,7 +225,7 @@ void run_tile(const TileOptions& o) {
         break;
       }
       case OutputFormat::svg:
-        file->write(dots_svg(*plan.tiler, plan.window, plan.thinning.get(), dots));
+        file->write([&](OutputStream& out) { write_dots_svg(out, *plan.tiler, plan.window, plan.thinning.get(), dots); });
         break;
       case OutputFormat::pdf:
         write_pdf(dots_drawing(*plan.tiler, plan.window, plan.thinning.get(), dots), *file);
@@ -251,8 +246,8 @@ void add_tile_command(CLI::App& app) {
   auto o = std::make_shared<TileOptions>();
   CLI::App* cmd = app.add_subcommand(
       "tile", "Points of any window of an aperiodic tiling of the plane, uniform or following a density map");
-  cmd->add_option("--tiles", o->tiles,
-                  "Tile-set file (bluetile wang --output); default: the set built into the tool");
+  add_input_option(cmd, "--tiles", o->tiles, InputKind::tiles,
+                   "Tile-set file (bluetile wang --output); default: the set built into the tool");
   cmd->add_option("--region", o->region, "The window X0 Y0 X1 Y1 in plane units ([X0, X1) x [Y0, Y1), y up)")
       ->expected(4)
       ->required()
@@ -263,8 +258,8 @@ void add_tile_command(CLI::App& app) {
   add_real_option(cmd, "--density", o->density, positive,
                   "Points per unit area of a uniform tiling (with --tile-size: thinned to it by rank)")
       ->default_str("");
-  cmd->add_option("--density-map", o->density_map,
-                  "Image whose values set the density (any format OpenImageIO reads), placed on the region by --fit");
+  add_input_option(cmd, "--density-map", o->density_map, InputKind::image,
+                   "Image whose values set the density (any format OpenImageIO reads), placed on the region by --fit");
   CLI::Option* fit = cmd->add_option("--fit", o->fit,
                   "How --density-map meets a region of another aspect: contain (the whole picture, centred, its "
                   "aspect kept; no points beside it), cover (the region filled, aspect kept, the overflow cut off "
@@ -280,9 +275,9 @@ void add_tile_command(CLI::App& app) {
                   "--max-density nor --tile-size is given)")
       ->default_str("");
   add_seed_option(cmd, o->seed, "Seed of the tiling");
-  cmd->add_option("-o,--output", o->outputs,
-                  "Output, by extension: .txt .dat .pts (or none, or - for stdout) a point file, .bin raw float64 "
-                  "columns, .svg or .pdf dots, .png .tif .tiff .jpg .jpeg .exr .bmp a render; repeat for several")
+  add_output_option(cmd, "-o,--output", o->outputs, {.formats = kTileFormats, .standard_output = true},
+                    "Output, by extension: .txt .dat .pts (or none, or - for stdout) a point file, .bin raw float64 "
+                    "columns, .svg or .pdf dots, .png .tif .tiff .jpg .jpeg .exr .bmp a render; repeat for several")
       ->required();
   cmd->add_option("--columns", o->columns, "Point-file columns, from x,y,i,j,tile,level,rank (i j: the cell)")
       ->capture_default_str();
@@ -296,9 +291,9 @@ void add_tile_command(CLI::App& app) {
   add_integer_option(cmd, "--image-size", o->image_size, 16, 16384, "Width of .png renders in pixels");
   add_threads_option(cmd, o->threads);
   cmd->add_flag("-v,--verbose", o->verbose, "Print counts and the time split (generate, format, write) on stderr");
-  cmd->callback([o, fit] {
+  cmd->callback([o, fit, cmd] {
     if (fit->count() > 0 && o->density_map.empty()) throw Error("--fit " + o->fit + " places a --density-map: give one");
-    run_tile(*o);
+    run_tile(*o, *cmd);
   });
 }
 

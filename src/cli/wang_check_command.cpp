@@ -23,6 +23,7 @@
 #include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "cli/commands.h"
+#include "cli/file_options.h"
 #include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/progress.h"
@@ -52,10 +53,10 @@ struct CheckOptions {
   int image_size = 800;
 };
 
-void run_check(const CheckOptions& o) {
+void run_check(const CheckOptions& o, const CLI::App& command) {
   // Every output is declared, and so checked, before any work; they appear together at the end.
   OutputSet outputs;
-  outputs.add_input(o.input);
+  add_declared_inputs(outputs, command);
   std::vector<OutputFile*> files;
   if (!o.output.empty()) {
     outputs.add_folder(o.output);
@@ -211,16 +212,16 @@ void add_wang_check_command(CLI::App& app) {
   auto c = std::make_shared<CheckOptions>();
   CLI::App* check = app.add_subcommand(
       "wang-check", "Seam check of a tile set (every admissible 2x2 block) and the analysis of a tiled plane");
-  check->add_option("tiles", c->input, "Tile-set file")->required()->check(CLI::ExistingFile);
+  add_input_option(check, "tiles", c->input, InputKind::tiles, "Tile-set file")->required()->check(CLI::ExistingFile);
   add_integer_option(check, "--period", c->period, 1, 1024, "The analysed plane is an M x M torus tiling");
   add_seed_option(check, c->seed, "Seed of the tiling");
-  check->add_option("-o,--output", c->output,
-                    "Folder for stats.json, plane.txt and the images (spectrum, radial power, points, the tile set)");
+  add_output_folder_option(check, "-o,--output", c->output,
+                           "Folder for stats.json, plane.txt and the images (spectrum, radial power, points, the tile set)");
   check->add_flag("--untiled", c->untiled, "Compare with untiled Lloyd at the same N (exact engine)");
   add_integer_option(check, "--untiled-iterations", c->untiled_iterations, 0, 100000,
                      "Iterations of the untiled reference");
   add_integer_option(check, "--image-size", c->image_size, 64, 8192, "Side of points.png in pixels");
-  check->callback([c] { run_check(*c); });
+  check->callback([c, check] { run_check(*c, *check); });
 }
 
 }  // namespace bluetile::cli

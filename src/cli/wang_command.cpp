@@ -15,6 +15,7 @@
 #include "bluetile/tiling/tile_set_file.h"
 #include "cli/commands.h"
 #include "cli/engine_options.h"
+#include "cli/file_options.h"
 #include "cli/numeric_options.h"
 #include "cli/output_names.h"
 #include "cli/progress.h"
@@ -71,9 +72,11 @@ void check_points_per_tile(const WangCommandOptions& o, int tiles) {
   throw Error(text);
 }
 
+// What --output writes.
+constexpr OutputFormat kTileSetFormats[] = {OutputFormat::tile_set};
+
 void run_wang(const WangCommandOptions& o) {
-  static constexpr OutputFormat tile_set_formats[] = {OutputFormat::tile_set};
-  output_format("--output", o.output, tile_set_formats);
+  output_format("--output", o.output, kTileSetFormats);
   OutputSet outputs;  // checked before the work, written at the end
   OutputFile& output = outputs.add(o.output, {.allow_stdout = true});
   WangOptions w;
@@ -131,7 +134,8 @@ void run_wang(const WangCommandOptions& o) {
   validate_tile_set(set);
   output.write(format_tile_set(set));
   outputs.publish();
-  if (o.check) std::printf("%s", seam_report(check_seams(set)).c_str());
+  // Standard output holds the tile set alone when it is the output; the check goes to stderr then.
+  if (o.check) std::fprintf(output.is_stdout() ? stderr : stdout, "%s", seam_report(check_seams(set)).c_str());
 }
 
 }  // namespace
@@ -184,7 +188,9 @@ void add_wang_command(CLI::App& app) {
       ->capture_default_str();
   add_real_option(cmd, "--void-sigma", o->void_sigma, {kMinVoidSigma, kMaxVoidSigma}, "voids: kernel width in hexagonal spacings of the prefix");
   add_seed_option(cmd, o->seed);
-  cmd->add_option("-o,--output", o->output, "Output tile-set file (.tiles or .txt; - for stdout)")->required();
+  add_output_option(cmd, "-o,--output", o->output, {.formats = kTileSetFormats, .standard_output = true},
+                    "Output tile-set file (.tiles or .txt; - for stdout)")
+      ->required();
   cmd->add_flag("--check", o->check, "Print the seam check of the result");
   cmd->add_flag("-v,--verbose", o->verbose, "Print displacement, energy and scene counts of every iteration on stderr");
   // The exact engine by default: a step is thousands of small cropped scenes, which it measures

@@ -55,6 +55,7 @@ Child::Child(const Invocation& run) {
     dup2(in, 0);
     dup2(o, 1);
     dup2(e, 2);
+    if (!run.working_directory.empty() && chdir(run.working_directory.c_str()) != 0) _exit(124);
     // The parent (a test thread) may block these for its own reasons; the child starts clean.
     sigset_t none;
     sigemptyset(&none);

@@ -22,6 +22,9 @@ struct Invocation {
   // A program (absolute path, then its arguments) that the tool's command line is given to, as
   // `unshare ... sh -c SCRIPT sh` takes it: the tool then runs inside what the program sets up.
   std::vector<std::string> wrapper;
+  // The folder the tool runs in ("": the test's own), so that a relative path it makes up (a
+  // folder named "-") lands where the test looks.
+  std::string working_directory;
 };
 
 struct Outcome {

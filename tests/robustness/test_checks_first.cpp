@@ -14,6 +14,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "bluetile/core/point_file.h"
+#include "bluetile/core/rng.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/io/pdf.h"
 #include "robustness_support.h"
@@ -141,6 +143,32 @@ TEST(ChecksFirst, AnnulusWidthsAreCheckedAgainstTheLimitAndTheMemory) {
         << r.err;
   }
   EXPECT_EQ(entries(dir.path()), Names{"p.txt"});
+}
+
+TEST(ChecksFirst, ALongAnalysisSaysSoAsItStarts) {
+  // analyze of 10^6 points ran for hours with no word off a terminal; past --time-limit it is now
+  // refused (test_analysis.cpp), and a run within it but long says how long as it starts (3 x
+  // 10^5 points: some minutes, psa's measures and the discrepancies being O(N^2); interrupted
+  // once that is said).
+  TempDir dir;
+  PointSet set;
+  Rng rng(5);
+  for (int i = 0; i < 300000; ++i) set.points.push_back(rng.point(Domain{}));
+  const std::string input = dir.write("large.txt", format_points(set));
+  Child child({{"analyze", "-i", input, "-o", dir.file("a"), "--threads", "2"}});
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  kill(child.pid(), SIGINT);
+  Outcome r = child.wait();
+  EXPECT_EQ(r.signal, SIGINT) << r.err;
+  EXPECT_EQ(r.err.rfind("bluetile: note: analyze of 300000 points should take about ", 0), 0u) << r.err;
+  EXPECT_NE(r.err.find(" min on 2 threads\n"), std::string::npos) << r.err;
+  // Short runs say nothing.
+  r = run({"analyze", "-i", point_file(dir, "small.txt", 12), "-o", dir.file("b"), "--no-centroids"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_EQ(entries(dir.path()), (Names{"b/", "b/points.png", "b/points.svg", "b/radial.csv", "b/radial.png",
+                                        "b/radial.svg", "b/rdf.csv", "b/rdf.png", "b/rdf.svg", "b/report.txt",
+                                        "b/spectrum.png", "b/spectrum.svg", "b/stats.json", "large.txt", "small.txt"}));
 }
 
 TEST(ChecksFirst, TooLittleMemoryForTheImagePluginOrThreadsIsSaid) {

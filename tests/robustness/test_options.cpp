@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "bluetile/io/image_file.h"
+#include "bluetile/io/pdf.h"
 #include "robustness_support.h"
 #include "test_support.h"
 
@@ -160,12 +161,14 @@ TEST(Options, TilingsTooLargeAreRefusedUpFront) {
     EXPECT_EQ(r.err, "bluetile: " + c.message + "\n");
     EXPECT_EQ(r.out, "");
   }
-  if (!sanitized()) {  // an SVG is built whole: 5 x 10^7 dots do not fit in 1 GiB
-    Invocation limited{{"tile", "--region", "0", "0", "10000", "5000", "--density", "1", "-o", dir.file("p.svg")}};
+  if (!sanitized() && pdf_unavailable_reason().empty()) {
+    // A PDF is built whole (an SVG is streamed): 5 x 10^7 dots do not fit in 1 GiB.
+    Invocation limited{{"tile", "--region", "0", "0", "10000", "5000", "--density", "1", "-o", dir.file("p.pdf")}};
     limited.address_space_bytes = 1L << 30;
+    limited.file_size_bytes = 1L << 20;
     Outcome r = run(limited);
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_EQ(r.err.rfind("bluetile: " + dir.file("p.svg") + ": an SVG of about 50000000 dots needs about 7.5 GiB of memory, "
+    EXPECT_EQ(r.err.rfind("bluetile: " + dir.file("p.pdf") + ": a PDF of about 50000000 dots needs about 51.2 GiB of memory, "
                           "more than the ", 0), 0u) << r.err;
   }
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"map.png"});

@@ -431,6 +431,8 @@ void OutputSet::add_input(const std::string& path) {
 }
 
 void OutputSet::add_folder(const std::string& path) {
+  // "-" is standard output to every other output; a folder of that name is "./-".
+  if (path == "-") throw Error("-: this output cannot be standard output");
   Resolved r = resolve(path);
   if (r.type == Resolved::Type::folder) {
     writable_folder(r.path, path);

@@ -30,11 +30,12 @@
 // replaced file is kept as a hard link until every rename has succeeded, so a failed rename puts
 // the earlier ones back; where the file system refuses hard links that rollback is not possible).
 // A set destroyed without publish() (an exception, an error) removes everything it staged.
-// add_folder() declares a folder of outputs (analyze): a missing folder is staged whole and
-// appears, with its files, in one rename at publish. In a folder that was already there, nothing
-// but the set's own files is touched; after publishing, one line on stderr ("bluetile: note:
-// DIR also holds N files this run did not write ...") names the visible regular files it holds
-// besides them, which may be outputs of an earlier run with other options.
+// add_folder() declares a folder of outputs (analyze; "-" is refused, as an output that cannot be
+// standard output is): a missing folder is staged whole and appears, with its files, in one rename
+// at publish. In a folder that was already there, nothing but the set's own files is touched;
+// after publishing, one line on stderr ("bluetile: note: DIR also holds N files this run did not
+// write ...") names the visible regular files it holds besides them, which may be outputs of an
+// earlier run with other options.
 //
 // Interrupts: install_interrupt_cleanup() (called by OutputSet, and first thing by the tool's
 // main) blocks SIGINT, SIGTERM and SIGHUP in the calling thread (threads started later inherit

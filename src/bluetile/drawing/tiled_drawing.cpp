@@ -50,7 +50,10 @@ Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thi
   return canvas;
 }
 
-SvgDocument dots_drawing(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style) {
+namespace {
+
+// The drawing without its dots: the page, and the group the dots go in, left open.
+SvgDocument dots_frame(const Window& window, const DotStyle& style) {
   const double display_width = 800.0;
   const double display_height = display_width * window.height() / window.width();
   SvgDocument svg(0.0, 0.0, window.width(), window.height(), display_width, display_height, "px");
@@ -63,6 +66,13 @@ SvgDocument dots_drawing(const Tiler& tiler, const Window& window, const Thinnin
   svg.begin_group(SvgStyle::filled(colours::black),
                   SvgTransform::fit_y_up(window.x0, window.y0, window.width(), window.height(), 0.0, 0.0,
                                          window.width(), window.height()));
+  return svg;
+}
+
+}  // namespace
+
+SvgDocument dots_drawing(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style) {
+  SvgDocument svg = dots_frame(window, style);
   for_each_dot(tiler, window, thinning, style, [&](Point p, double r) { svg.circle(p, r); });
   svg.end_group();
   return svg;
@@ -70,6 +80,13 @@ SvgDocument dots_drawing(const Tiler& tiler, const Window& window, const Thinnin
 
 std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style) {
   return dots_drawing(tiler, window, thinning, style).str();
+}
+
+void write_dots_svg(OutputStream& out, const Tiler& tiler, const Window& window, const Thinning* thinning,
+                    const DotStyle& style) {
+  dots_frame(window, style).write(out, [&](SvgVisitor& more) {
+    for_each_dot(tiler, window, thinning, style, [&](Point p, double r) { more.circle(p, r, {}); });
+  });
 }
 
 }  // namespace bluetile

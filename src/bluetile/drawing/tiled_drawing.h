@@ -32,5 +32,8 @@ Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thi
 // wide; dots_svg is its SVG text (io/pdf.h draws it as PDF).
 SvgDocument dots_drawing(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style);
 std::string dots_svg(const Tiler& tiler, const Window& window, const Thinning* thinning, const DotStyle& style);
+// dots_svg's bytes written to `out` as the dots are made, in memory that does not grow with them.
+void write_dots_svg(OutputStream& out, const Tiler& tiler, const Window& window, const Thinning* thinning,
+                    const DotStyle& style);
 
 }  // namespace bluetile

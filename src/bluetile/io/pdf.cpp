@@ -3,13 +3,17 @@
 
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <mutex>
 #include <numbers>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <dlfcn.h>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/process_limits.h"
 
 #if BLUETILE_HAVE_CAIRO
 #include <cairo-pdf.h>
@@ -54,16 +58,16 @@ std::string valid_utf8(std::string_view text) {
 }
 
 // The cairo functions used, looked up by name in libcairo.so.2.
-#define BLUETILE_CAIRO_FUNCTIONS(X)                                                                             \
-  X(cairo_pdf_surface_create) X(cairo_create) X(cairo_destroy) X(cairo_status) X(cairo_status_to_string)       \
-  X(cairo_surface_destroy) X(cairo_surface_finish) X(cairo_surface_status) X(cairo_surface_flush)              \
-  X(cairo_surface_mark_dirty) X(cairo_save) X(cairo_restore) X(cairo_transform) X(cairo_scale)                 \
-  X(cairo_translate) X(cairo_rotate) X(cairo_rectangle) X(cairo_arc) X(cairo_new_path) X(cairo_new_sub_path)  \
-  X(cairo_move_to) X(cairo_line_to) X(cairo_close_path) X(cairo_set_source_rgba) X(cairo_fill_preserve)       \
-  X(cairo_stroke_preserve) X(cairo_set_line_width) X(cairo_set_dash) X(cairo_set_line_cap)                    \
-  X(cairo_set_line_join) X(cairo_select_font_face) X(cairo_set_font_size) X(cairo_text_extents)               \
-  X(cairo_show_text) X(cairo_image_surface_create) X(cairo_image_surface_get_data)                            \
-  X(cairo_image_surface_get_stride) X(cairo_set_source_surface) X(cairo_get_source) X(cairo_pattern_set_filter) \
+#define BLUETILE_CAIRO_FUNCTIONS(X)                                                                                \
+  X(cairo_pdf_surface_create_for_stream) X(cairo_create) X(cairo_destroy) X(cairo_status)                          \
+  X(cairo_status_to_string) X(cairo_surface_destroy) X(cairo_surface_finish) X(cairo_surface_status)               \
+  X(cairo_surface_flush) X(cairo_surface_mark_dirty) X(cairo_save) X(cairo_restore) X(cairo_transform)             \
+  X(cairo_scale) X(cairo_translate) X(cairo_rotate) X(cairo_rectangle) X(cairo_arc) X(cairo_new_path)              \
+  X(cairo_new_sub_path) X(cairo_move_to) X(cairo_line_to) X(cairo_close_path) X(cairo_set_source_rgba)             \
+  X(cairo_fill_preserve) X(cairo_stroke_preserve) X(cairo_set_line_width) X(cairo_set_dash)                        \
+  X(cairo_set_line_cap) X(cairo_set_line_join) X(cairo_select_font_face) X(cairo_set_font_size)                    \
+  X(cairo_text_extents) X(cairo_show_text) X(cairo_image_surface_create) X(cairo_image_surface_get_data)           \
+  X(cairo_image_surface_get_stride) X(cairo_set_source_surface) X(cairo_get_source) X(cairo_pattern_set_filter)    \
   X(cairo_paint) X(cairo_show_page)
 
 struct Cairo {
@@ -80,6 +84,10 @@ const Cairo& cairo() {
     void* handle = dlopen("libcairo.so.2", RTLD_NOW | RTLD_LOCAL);
     if (!handle) {
       c.failure = std::string("PDF output needs cairo (libcairo2): ") + dlerror();
+      // cairo and the X libraries it pulls in are there but do not fit ("failed to map segment").
+      if (const std::optional<ProcessLimit> limit = address_space_limit())
+        c.failure += ": out of memory for it under the limit (ulimit -v " + std::to_string(limit->limit >> 10) +
+                     ", " + std::to_string(limit->left() >> 20) + " MiB left); raise the limit";
       return;
     }
 #define BLUETILE_CAIRO_LOOKUP(name)                                                   \
@@ -231,6 +239,25 @@ class PdfPainter final : public SvgVisitor {
   std::vector<Effective> styles_;
 };
 
+// cairo's write callback: the bytes into the output's checked stream. A failed write is kept (its
+// Error names the user's path) and reported to cairo, which then stops writing.
+struct PdfSink {
+  OutputStream* stream;
+  std::exception_ptr failed;
+};
+
+cairo_status_t write_to_sink(void* closure, const unsigned char* data, unsigned int length) {
+  auto* sink = static_cast<PdfSink*>(closure);
+  if (sink->failed) return CAIRO_STATUS_WRITE_ERROR;
+  try {
+    sink->stream->write(data, length);
+  } catch (...) {
+    sink->failed = std::current_exception();
+    return CAIRO_STATUS_WRITE_ERROR;
+  }
+  return CAIRO_STATUS_SUCCESS;
+}
+
 }  // namespace
 
 std::string pdf_unavailable_reason() { return cairo().failure; }
@@ -241,8 +268,11 @@ void write_pdf(const SvgDocument& document, OutputFile& out) {
   if (!c.failure.empty()) throw Error(path + ": " + c.failure);
   const double scale = points_per(document.unit());
   const double width_pt = document.display_width() * scale, height_pt = document.display_height() * scale;
-  out.write_through_path([&](const std::string& temporary) {
-    cairo_surface_t* surface = c.cairo_pdf_surface_create(temporary.c_str(), width_pt, height_pt);
+  // Straight into the output (a staged file, or a device, FIFO or standard output itself): no
+  // temporary copy of the document anywhere.
+  out.write([&](OutputStream& stream) {
+    PdfSink sink{&stream, nullptr};
+    cairo_surface_t* surface = c.cairo_pdf_surface_create_for_stream(write_to_sink, &sink, width_pt, height_pt);
     cairo_t* cr = c.cairo_create(surface);
     std::string failure;
     try {
@@ -261,6 +291,7 @@ void write_pdf(const SvgDocument& document, OutputFile& out) {
     if (failure.empty() && c.cairo_surface_status(surface) != CAIRO_STATUS_SUCCESS)
       failure = c.cairo_status_to_string(c.cairo_surface_status(surface));
     c.cairo_surface_destroy(surface);
+    if (sink.failed) std::rethrow_exception(sink.failed);
     if (!failure.empty()) throw Error(path + ": cannot write PDF: " + failure);
   });
 }

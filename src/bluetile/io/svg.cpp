@@ -90,7 +90,9 @@ void append_base64(std::string& out, const std::vector<std::uint8_t>& bytes) {
 // Serialises a document as SVG text.
 class SvgWriter final : public SvgVisitor {
  public:
-  SvgWriter(std::string& out, int decimals) : out_(out), decimals_(decimals) {}
+  // With `stream`, the text gathered in `out` goes there whenever it passes kSpillBytes.
+  SvgWriter(std::string& out, int decimals, OutputStream* stream = nullptr)
+      : out_(out), decimals_(decimals), stream_(stream) {}
 
   void begin_group(const SvgStyle& style, const SvgTransform& t) override {
     out_ += "<g";
@@ -106,8 +108,12 @@ class SvgWriter final : public SvgVisitor {
       out_ += ")\"";
     }
     out_ += ">\n";
+    spill();
   }
-  void end_group() override { out_ += "</g>\n"; }
+  void end_group() override {
+    out_ += "</g>\n";
+    spill();
+  }
   void rect(double x, double y, double width, double height, const SvgStyle& style) override {
     out_ += "<rect";
     attribute("x", x), attribute("y", y), attribute("width", width), attribute("height", height);
@@ -159,6 +165,7 @@ class SvgWriter final : public SvgVisitor {
     out_ += '>';
     append_escaped(out_, s);
     out_ += "</text>\n";
+    spill();
   }
   void image(double x, double y, double width, double height, const SvgImage& image) override {
     out_ += "<image";
@@ -168,6 +175,7 @@ class SvgWriter final : public SvgVisitor {
     out_ += " xlink:href=\"data:image/png;base64,";
     append_base64(out_, encode_png(image));
     out_ += "\"/>\n";
+    spill();
   }
 
  private:
@@ -210,10 +218,19 @@ class SvgWriter final : public SvgVisitor {
   void close(const SvgStyle& style) {
     attributes(style);
     out_ += "/>\n";
+    spill();
+  }
+  void spill() {
+    if (stream_ == nullptr || out_.size() < kSpillBytes) return;
+    stream_->write(out_);
+    out_.clear();
   }
 
+  // Text gathered before a write to the stream: large enough that writes are few.
+  static constexpr std::size_t kSpillBytes = 1 << 16;
   std::string& out_;
   int decimals_;
+  OutputStream* stream_;
 };
 
 bool known_unit(const std::string& unit) {
@@ -391,6 +408,11 @@ void SvgDocument::include(const SvgDocument& other, const SvgTransform& transfor
 }
 
 void SvgDocument::visit(SvgVisitor& visitor) const {
+  visit_items(visitor);
+  for (int g = 0; g < open_groups_; ++g) visitor.end_group();
+}
+
+void SvgDocument::visit_items(SvgVisitor& visitor) const {
   for (const Item& item : items_) {
     const double* v = numbers_.data() + item.first;
     switch (item.kind) {
@@ -413,12 +435,9 @@ void SvgDocument::visit(SvgVisitor& visitor) const {
       case Kind::image: visitor.image(v[0], v[1], v[2], v[3], images_[item.count]); break;
     }
   }
-  for (int g = 0; g < open_groups_; ++g) visitor.end_group();
 }
 
-std::string SvgDocument::str() const {
-  std::string out;
-  out.reserve(256 + items_.size() * 48);
+void SvgDocument::append_head(std::string& out) const {
   out += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   out += "<svg xmlns=\"http://www.w3.org/2000/svg\" xmlns:xlink=\"http://www.w3.org/1999/xlink\" version=\"1.1\"";
   auto size = [&](const char* name, double v) {
@@ -442,10 +461,27 @@ std::string SvgDocument::str() const {
     append_escaped(out, title_);
     out += "</title>\n";
   }
+}
+
+std::string SvgDocument::str() const {
+  std::string out;
+  out.reserve(256 + items_.size() * 48);
+  append_head(out);
   SvgWriter writer(out, decimals_);
   visit(writer);
   out += "</svg>\n";
   return out;
+}
+
+void SvgDocument::write(OutputStream& out, const std::function<void(SvgVisitor& more)>& more) const {
+  std::string text;
+  append_head(text);
+  SvgWriter writer(text, decimals_, &out);
+  visit_items(writer);
+  if (more) more(writer);
+  for (int g = 0; g < open_groups_; ++g) writer.end_group();
+  text += "</svg>\n";
+  out.write(text);
 }
 
 void SvgDocument::write(const std::string& path) const { write_output(path, str()); }

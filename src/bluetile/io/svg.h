@@ -18,12 +18,14 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "bluetile/core/output_file.h"
 #include "bluetile/core/torus.h"
 #include "bluetile/io/image.h"
 
@@ -173,6 +175,11 @@ class SvgDocument {
   std::string str() const;
   // Writes str() to `path` atomically; throws Error naming the path on failure.
   void write(const std::string& path) const;
+  // Writes str() to `out`, with the items `more` draws into the visitor it is given appended after
+  // the document's own, inside its open groups: the bytes str() gives when the same items are
+  // added to the document, written as they are drawn (a drawing too large to hold, 10^8 dots,
+  // in bounded memory). Throws Error naming the output on a failed write.
+  void write(OutputStream& out, const std::function<void(SvgVisitor& more)>& more = {}) const;
 
   // Number formatting used by str(), for tests and other writers: fixed point, at most
   // `decimals` digits after the point, trailing zeros trimmed, no "-0".
@@ -189,6 +196,8 @@ class SvgDocument {
   std::uint32_t intern(const SvgStyle& style);
   void add(Kind kind, const SvgStyle& style, std::initializer_list<double> numbers);
   void check_finite(std::initializer_list<double> values, const char* what) const;
+  void visit_items(SvgVisitor& visitor) const;  // without closing the open groups
+  void append_head(std::string& out) const;     // the XML declaration, <svg ...> and the title
 
   double view_[4];
   double display_[2];

@@ -1,0 +1,98 @@
+#include "command_runs.h"
+
+namespace bluetile::robustness {
+
+std::span<const CommandRuns> command_runs() {
+  // The harness runs the oversized requests under ulimit -v 2 GiB, standing in for a small
+  // machine: a limit of the memory available then refuses them on any machine. Its image input is
+  // 8 x 16 texels (taller than wide), its points 200, its tile set 4 points a tile. The
+  // quick runs write more than a page to most outputs, so that a pipe of one page blocks them.
+  static const std::vector<CommandRuns> table = {
+      {"relax",
+       {"-k", "100", "--engine", "exact"},
+       {"-i", "-o"},
+       {"-k", "100000000", "--engine", "exact"},
+       {"--name", "--device"},
+       {{{"-n", "100000000", "--sets", "10000000", "--engine", "exact"}, "needs about 142.1 PiB of memory"},
+        {{"-i", "{-i}", "--engine", "raster", "--resolution", "65536"}, "use a smaller resolution"}}},
+      {"centroids",
+       {"--engine", "exact"},
+       {"-i", "-o"},
+       {},  // one pass over 30 points: no option makes it long (the raster engine needs a device)
+       {"--name", "--device"},
+       {{{"-i", "{-i}", "--engine", "raster", "--resolution", "65536"}, "use a smaller resolution"}}},
+      {"analyze",
+       {"--no-psa-measures", "--no-discrepancy", "--no-centroids"},
+       {"-i", "-o"},
+       {"--no-psa-measures", "--no-discrepancy", "--no-centroids", "--size", "8192"},
+       {"--label", "--title", "--by-rank"},
+       {{{"-i", "{-i}", "--bin-width", "1e-9"}, "annuli (F / 2 = 70 over the width), more than the limit of 1e+09"},
+        {{"-i", "{-i}", "--bin-width", "1e-6"}, "--bin-width 1e-06 (70000000 annuli) needs about 26.1 GiB of memory"},
+        {{"-i", "{-i}", "--size", "65536"}, "analyze of 200 points needs about"},
+        {{"-i", "{-i}", "--time-limit", "1e-9"}, "more than --time-limit 1e-09 minutes"}}},
+      {"dart",
+       {"-n", "300"},
+       {"-o"},
+       {"-n", "10000000"},
+       {"--name"},
+       {{{"-n", "100000000", "--sets", "10000000"}, "needs about 56.8 PiB of memory"}}},
+      {"progressive",
+       {"--add", "10", "-k", "1", "--engine", "exact"},
+       {"-i", "-o"},
+       {"--add", "10", "-k", "100000000", "--engine", "exact"},
+       {"--name", "--device"},
+       {{{"-i", "{-i}", "--add", "100000000"}, "would bring the set to 100000200 points, more than the limit of 100000000"},
+        {{"-n", "100000000", "--levels", "40", "--ratio", "1000"}, "more than the limit of 100000000"},
+        {{"-n", "50000000", "--levels", "2"}, "100000000 points in 2 levels needs about 15.6 GiB of memory"}}},
+      {"devices", {}, {}, {}, {}, {}, true},
+      {"wang",
+       {"-n", "16", "-k", "1", "--warm", "0", "--lattice-steps", "0", "--lattice-steps-per-iteration", "0", "--strategy",
+        "rounds"},
+       {"-o"},
+       {"-n", "4", "-k", "100000000", "--warm", "0", "--lattice-steps", "0", "--lattice-steps-per-iteration", "0",
+        "--strategy", "rounds"},
+       {"--device"},
+       {{{"--points", "13", "--levels", "2", "--ratio", "1e7"},
+         "makes about 130000000 points per tile (1040000000 in the 8 tiles), more than the limit of 1000000 per tile: use "
+         "fewer levels or a smaller ratio"},
+        {{"--points", "13", "--levels", "32"}, "makes about 27917287424 points per tile"}}},
+      {"wang-check",
+       {},
+       {"tiles"},
+       {"--period", "512"},
+       {},
+       {{{"{tiles}", "--period", "1024", "-o", "{-o}"}, "the spectrum of the 4194304-point plane needs about"}}},
+      {"tile",
+       {"--region", "0", "0", "8", "8"},
+       {"--tiles", "-o"},
+       {"--region", "0", "0", "1000", "1000", "--density", "50"},
+       {"--columns"},
+       {{{"--tiles", "{--tiles}", "--region", "0", "0", "1000000", "1000000", "--density", "1"},
+         "holds about 1000000000000 points (1 per unit area), more than the limit of 100000000 points: use a smaller "
+         "region or a lower density"},
+        {{"--tiles", "{--tiles}", "--region", "0", "0", "1000", "1000", "--tile-size", "1e-3", "--density", "1"},
+         "tiles of size 0.001, more than the limit of 100000000 tiles: use a larger --tile-size or a smaller region"},
+        {{"--tiles", "{--tiles}", "--density-map", "{--density-map}", "--region", "0", "0", "1000", "1000",
+          "--max-density", "1e10"},
+         "more than the limit of 100000000 points"},
+        {{"--tiles", "{--tiles}", "--region", "0", "0", "1", "1000", "--image-size", "16384", "-o", "{render.png}"},
+         "would be 16384000 pixels tall, more than the limit of 32768"},
+        {{"--tiles", "{--tiles}", "--region", "0", "0", "16", "16", "--image-size", "16384", "-o", "{render.png}"},
+         "a render of 16384 x 16384 pixels needs about 3.8 GiB of memory"},
+        {{"--tiles", "{--tiles}", "--region", "0", "0", "1000", "1000", "--density", "50", "-o", "{dots.pdf}"},
+         "a PDF of about 50000000 dots needs about 51.2 GiB of memory"}}},
+      {"stipple",
+       {"-n", "300", "-k", "100"},
+       {"--image", "-o"},
+       {"-n", "20", "-k", "100000000"},
+       {"--device", "--name"},
+       {{{"--image", "{--image}", "-n", "100000000"}, "--count 100000000 needs about 14.9 GiB of memory"},
+        {{"--image", "{--image}", "-n", "20", "--png-width", "32768", "--png", "{--png}"},
+         "a render of the 8 x 16 image would be 65536 pixels tall, more than the limit of 32768"},
+        {{"--image", "{--image}", "-n", "20", "--png-width", "16384", "--png", "{--png}"},
+         "a render of 16384 x 32768 pixels needs about"}}},
+  };
+  return table;
+}
+
+}  // namespace bluetile::robustness
