@@ -414,6 +414,7 @@ TEST(WangRanks, EveryRankIsTheFarthestPointFromThoseBeforeIt) {
   level.add = 6;
   level.iterations = 3;
   level.warm_iterations = 2;
+  level.rank_order = RankOrder::farthest;
   add_wang_level(engine, set, level);
   level.add = 6;
   level.seed = 9;
@@ -510,6 +511,7 @@ TEST(WangRanks, VoidsSpreadALevelsFirstPointsOverTheTiles) {
     WangOptions o = small_options(TileSetKind::wang8, 16, seed);
     o.levels = 2;
     o.level.iterations = 15;
+    o.level.rank_order = RankOrder::farthest;
     TileSet farthest = relax_wang_tiles(engine, o);
     o.level.rank_order = RankOrder::voids;
     TileSet voids = relax_wang_tiles(engine, o);

@@ -169,10 +169,10 @@ void bind_tiling(nb::module_& m) {
         nb::sig("def wang_tiles(set: str = 'wang8', *, points: int = 52, iterations: int = 100, warm: int = 10, "
                 "levels: int = 1, ratio: float = 2.0, strategy: str = 'exact', period: int = 16, margin: float = 0.0, "
                 "lattice_steps: int = 5, lattice_steps_per_iteration: int = 3, lattice_step: float = 0.005, seam_steps: int = 20, seam_spacing: float = 0.8, level_seam_spacing: float = 0.65, "
-                "rank_order: str = 'farthest', void_sigma: float = 0.5, seed: int = 1, engine: str = 'exact') -> str"),
+                "rank_order: str = 'fill', void_sigma: float = 0.5, seed: int = 1, engine: str = 'exact') -> str"),
         "set"_a = "wang8", nb::kw_only(), "points"_a = 52, "iterations"_a = 100, "warm"_a = 10, "levels"_a = 1,
         "ratio"_a = 2.0, "strategy"_a = "exact", "period"_a = 16, "margin"_a = 0.0, "lattice_steps"_a = 5, "lattice_steps_per_iteration"_a = 3, "lattice_step"_a = 0.005, "seam_steps"_a = 20,
-        "seam_spacing"_a = 0.8, "level_seam_spacing"_a = 0.65, "rank_order"_a = "farthest", "void_sigma"_a = 0.5,
+        "seam_spacing"_a = 0.8, "level_seam_spacing"_a = 0.65, "rank_order"_a = "fill", "void_sigma"_a = 0.5,
         "seed"_a = 1, "engine"_a = "exact",
         R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same
 points bit for bit), returned as the text of its tile-set file: write it to a file for

@@ -39,7 +39,7 @@ struct WangCommandOptions {
   int period = 16;
   double margin = 0.0;
   WangRefinement refine;  // the lattice and seam spacing steps, the library's defaults
-  std::string rank_order = "farthest";
+  std::string rank_order = "fill";
   double void_sigma = WangLevelOptions{}.void_sigma;
   std::uint64_t seed = 1;
   std::string output;
@@ -127,8 +127,8 @@ void run_wang(const WangCommandOptions& o) {
     command << " --seam-spacing " << r.seam_spacing;
     if (o.levels > 1) command << " --level-seam-spacing " << r.later_seam_spacing;
   }
-  if (o.rank_order == "voids") command << " --rank-order voids --void-sigma " << o.void_sigma;
-  if (o.rank_order == "fill") command << " --rank-order fill";
+  command << " --rank-order " << o.rank_order;
+  if (o.rank_order == "voids") command << " --void-sigma " << o.void_sigma;
   command << " --seed " << o.seed << " --engine " << engine->name();
   set.header = {"made by: " + command.str()};
   validate_tile_set(set);

@@ -77,8 +77,10 @@ struct WangLevelOptions {
   double edge_margin = 0.0;
   WangRefinement refine;  // the lattice and seam spacing steps
   // The order of the level's points (wang_ranks.h): farthest point, or by voids with a kernel of
-  // void_sigma hexagonal spacings of the prefix.
-  RankOrder rank_order = RankOrder::farthest;
+  // void_sigma hexagonal spacings of the prefix; or fill, the default: levels after the first
+  // filled point by point (band_fill.h), every prefix above level 0 at rho 0.66 and about half the
+  // low-frequency power of farthest's between the boundaries (docs/RESULTS.md, "Every prefix").
+  RankOrder rank_order = RankOrder::fill;
   double void_sigma = 0.5;
   FillOptions fill;  // the fill order's floor, window and grid; its seed is set from `seed`
   std::function<void(const WangIteration&)> on_iteration;
