@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "bluetile/analysis/tiling_metrics.h"
@@ -213,6 +214,23 @@ TEST(BandFill, TiledPrefixesAboveLevelZeroBeatFarthestPoint) {
   EXPECT_GE(fill_rho, 0.65);
   EXPECT_LT(fill_between, 0.75 * far_between);
   EXPECT_LT(fill_boundary, far_boundary * 1.05);
+}
+
+// The fill scans each tile's grid once per point: 40000 points scan about 8.9e10 places, minutes
+// of work, which the command says as it starts (and is stopped here right after).
+TEST(BandFill, ALongFillSaysSoAsItStarts) {
+  const FillCost small = band_fill_cost(0, 4096, 1, FillOptions{});
+  EXPECT_EQ(small.places_scanned, 477.0 * 477.0 * 4096.0);  // 8 places per spacing of 4096 points: 477 a side
+  EXPECT_EQ(small.bytes, 477.0 * 477.0 * 28.0);
+  const FillCost tiled = band_fill_cost(16, 16, 8, FillOptions{});
+  EXPECT_EQ(tiled.places_scanned, 8.0 * 43.0 * 43.0 * 16.0);  // 32 per tile: 43 a side
+  EXPECT_EQ(band_fill_cost(16, 0, 8, FillOptions{}).places_scanned, 0.0);
+  TempDir dir;
+  const test::CommandResult r = test::run_command("timeout 3 '" + std::string(BLUETILE_BINARY) +
+                                                  "' progressive --count 40000 --levels 1 --rank-order fill -o '" +
+                                                  dir.file("big.txt") + "'");
+  EXPECT_NE(r.err.find("bluetile: note: the fill order scans about 8.9e+10 grid places"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("big.txt")));
 }
 
 TEST(BandFill, CommandLineFillOrdersAreTheLibrarys) {

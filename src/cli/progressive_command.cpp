@@ -11,6 +11,7 @@
 #include "cli/point_output.h"
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
@@ -80,8 +81,20 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     total += static_cast<double>(set.points.size());
     for (std::size_t add : sizes) total += static_cast<double>(add);
   }
-  check_memory(total * kBytesPerPoint, std::to_string(static_cast<long long>(total)) + " points in " +
-                                           std::to_string(target_levels) + " levels");
+  FillCost fill;
+  if (options.rank_order == ProgressiveOrder::fill) {
+    // The fill order's grid (one set at a time per thread) and its time, which grows as N^2.
+    const std::size_t largest = static_cast<std::size_t>(total / static_cast<double>(sets.size()));
+    fill = band_fill_cost(0, largest, 1, options.fill);
+    fill.places_scanned *= static_cast<double>(sets.size());
+    fill.bytes *= static_cast<double>(std::min<std::size_t>(sets.size(), thread_count()));
+  }
+  check_memory(total * kBytesPerPoint + fill.bytes, std::to_string(static_cast<long long>(total)) + " points in " +
+                                                        std::to_string(target_levels) + " levels");
+  const double fill_seconds = fill.places_scanned * kFillSecondsPerPlace;
+  if (fill_seconds >= 60.0)
+    std::fprintf(stderr, "bluetile: note: the fill order scans about %.2g grid places, about %s (it grows as the square of "
+                 "the points of a set)\n", fill.places_scanned, duration_words(fill_seconds).c_str());
 
   auto engine = make_engine(o.engine);
   note_faster_engine(*engine, total * o.iterations);
@@ -106,6 +119,11 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
               o.iterations);
         }
         progress->update(it.iteration);
+      };
+      options.fill.on_round = [&](std::size_t done, std::size_t rounds) {
+        if (!progress) progress = std::make_unique<Progress>((sets.size() > 1 ? "set " + std::to_string(k) + ", " : "") + "fill",
+                                                             static_cast<long long>(rounds));
+        progress->update(static_cast<long long>(done));
       };
       sets[k] = add_levels(*engine, std::move(sets[k]), options);
     }

@@ -9,6 +9,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
+#include "bluetile/relax/progressive.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/tiling/seam_check.h"
 #include "bluetile/tiling/tile_set.h"
@@ -16,6 +17,7 @@
 #include "cli/commands.h"
 #include "cli/engine_options.h"
 #include "cli/file_options.h"
+#include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/output_names.h"
 #include "cli/progress.h"
@@ -95,6 +97,25 @@ void run_wang(const WangCommandOptions& o) {
   w.level.void_sigma = o.void_sigma;
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
   check_points_per_tile(o, TileRules(w.kind).tile_count());
+  if (w.level.rank_order == RankOrder::fill && o.levels > 1) {
+    // The filled levels' grids (the last is the largest) and their time, which grows as the square
+    // of the points per tile.
+    const std::size_t tiles = static_cast<std::size_t>(TileRules(w.kind).tile_count());
+    std::size_t count = static_cast<std::size_t>(o.points);
+    FillCost fill;
+    for (int l = 1; l < o.levels; ++l) {
+      const std::size_t add = level_size(count, 0, o.ratio);
+      const FillCost level = band_fill_cost(count, add, tiles, w.level.fill);
+      fill.bytes = std::max(fill.bytes, level.bytes);
+      fill.places_scanned += level.places_scanned;
+      count += add;
+    }
+    check_memory(fill.bytes, "filling " + std::to_string(count) + " points per tile");
+    const double seconds = fill.places_scanned * kFillSecondsPerPlace;
+    if (seconds >= 60.0)
+      std::fprintf(stderr, "bluetile: note: the fill order scans about %.2g grid places, about %s (it grows as the square "
+                   "of the points per tile)\n", fill.places_scanned, duration_words(seconds).c_str());
+  }
 
   auto engine = make_engine(o.engine);
   Progress progress("wang", static_cast<long long>(o.levels) * (o.warm + o.iterations));
@@ -108,6 +129,14 @@ void run_wang(const WangCommandOptions& o) {
     }
     progress.update(done, "level " + std::to_string(it.level) + (it.warm ? " warm start" : "") + ", max displacement " +
                               fixed(it.max_displacement, 6));
+  };
+  // Filled levels come after level 0, one callback round per point of every tile.
+  int fill_level = 1;
+  w.level.fill.on_round = [&](std::size_t done, std::size_t total) {
+    const long long per_level = o.warm + o.iterations;
+    progress.update(fill_level * per_level + static_cast<long long>(done) * per_level / static_cast<long long>(total),
+                    "level " + std::to_string(fill_level) + ": fill");
+    if (done == total) ++fill_level;
   };
   TileSet set = relax_wang_tiles(*engine, w);
   progress.finish();

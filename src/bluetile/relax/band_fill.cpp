@@ -50,6 +50,11 @@ class BandKernel {
   std::vector<double> table_;
 };
 
+// Places a side of each tile's grid: cells_per_spacing per hexagonal spacing of the final count.
+double grid_side(std::size_t total, int cells_per_spacing) {
+  return std::ceil(cells_per_spacing / hexagonal_spacing(static_cast<double>(total)));
+}
+
 // One tile's grid of candidate places: cell (i, j), at index j * side + i, offers one place, at
 // ((i + 1/2, j + 1/2) + jitter) / side with a seeded jitter in [-1/2, 1/2)^2 fixed for the run, so
 // that the points fall on no lattice and the floor is checked where a point would go.
@@ -67,7 +72,7 @@ class Filler {
     const std::size_t count = tiles.size();
     existing_ = points_[0].size();
     total_ = existing_ + add;
-    side_ = static_cast<std::size_t>(std::ceil(options.cells_per_spacing / hexagonal_spacing(static_cast<double>(total_))));
+    side_ = static_cast<std::size_t>(grid_side(total_, options.cells_per_spacing));
     if (side_ > kMaxGrid)
       throw Error("band fill: " + std::to_string(total_) + " points per tile need a grid of " + std::to_string(side_) +
                   " cells a side, more than " + std::to_string(kMaxGrid));
@@ -228,6 +233,16 @@ std::vector<std::vector<Point>> band_fill(std::span<const std::vector<Point>> ti
   check_layout(tiles, sources);
   if (add == 0) return std::vector<std::vector<Point>>(tiles.size());
   return Filler(tiles, sources, add, options).run();
+}
+
+FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles, const FillOptions& options) {
+  FillCost cost;
+  if (add == 0) return cost;
+  const double side = grid_side(existing + add, options.cells_per_spacing);
+  const double places = side * side * static_cast<double>(tiles);
+  cost.bytes = places * static_cast<double>(sizeof(Point) + sizeof(double) + sizeof(float));
+  cost.places_scanned = places * static_cast<double>(add);
+  return cost;
 }
 
 std::vector<Point> band_fill_torus(std::span<const Point> existing, std::size_t add, const FillOptions& options) {

@@ -65,6 +65,16 @@ std::vector<std::vector<Point>> band_fill(std::span<const std::vector<Point>> ti
                                           std::span<const std::vector<FillSource>> sources, std::size_t add,
                                           const FillOptions& options);
 
+// What filling `add` points per tile onto `existing` costs, for checks before the work: the grids'
+// memory, and the grid places the rounds scan (one scan of a tile's grid per point: the time grows
+// as the square of the count; about 4 ns a place on this project's machines, docs/RESULTS.md).
+struct FillCost {
+  double bytes = 0.0;
+  double places_scanned = 0.0;
+};
+FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles, const FillOptions& options);
+inline constexpr double kFillSecondsPerPlace = 4e-9;
+
 // The untiled form on the unit torus: `existing` points first (kept), then `add` filled ones.
 std::vector<Point> band_fill_torus(std::span<const Point> existing, std::size_t add, const FillOptions& options);
 

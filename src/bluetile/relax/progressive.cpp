@@ -272,6 +272,7 @@ std::vector<PointSet> add_levels(const EngineMaker& new_engine, std::vector<Poin
   for (const PointSet& base : bases) hierarchy_level_sizes(base, options);
   HierarchyOptions each = options;
   each.on_iteration = nullptr;
+  each.fill.on_round = nullptr;
   std::mutex done_mutex;
   std::size_t done = 0;
   // A few chunks per thread balance the load; each chunk makes one engine.

@@ -109,7 +109,7 @@ using EngineMaker = std::function<std::unique_ptr<CentroidEngine>()>;
 // options.seed + k (wrapping past 2^64 - 1), bit for bit. The bases are built in parallel, each
 // by one thread with an engine of its own from `new_engine` (a base's scenes then stay in that
 // thread's cache: relaxing many small sets in one engine call per iteration was measured slower).
-// options.on_iteration is not called; on_base_done(done) is, after each base, one call at a time.
+// options.on_iteration and options.fill.on_round are not called; on_base_done(done) is, after each base, one call at a time.
 // Throws as add_levels does, before any work.
 std::vector<PointSet> add_levels(const EngineMaker& new_engine, std::vector<PointSet> bases,
                                  const HierarchyOptions& options,
