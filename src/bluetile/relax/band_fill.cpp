@@ -82,8 +82,12 @@ class Filler {
       TileGrid& grid = grids_[t];
       Rng jitter(derive_seed(options.seed, t));
       grid.place.resize(side_ * side_);
-      for (std::size_t c = 0; c < side_ * side_; ++c)
-        grid.place[c] = Point{static_cast<double>(c % side_) + jitter.uniform(), static_cast<double>(c / side_) + jitter.uniform()} * cell_;
+      // (i + u) / side rounds to 1 for u just below 1 in the last cell: kept inside the tile.
+      const double below_one = std::nextafter(1.0, 0.0);
+      for (std::size_t c = 0; c < side_ * side_; ++c) {
+        const Point p = Point{static_cast<double>(c % side_) + jitter.uniform(), static_cast<double>(c / side_) + jitter.uniform()} * cell_;
+        grid.place[c] = Point{std::min(p.x, below_one), std::min(p.y, below_one)};
+      }
       grid.potential.assign(side_ * side_, 0.0);
       grid.nearest2.assign(side_ * side_, std::numeric_limits<float>::infinity());
     }
