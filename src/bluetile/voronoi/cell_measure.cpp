@@ -30,14 +30,20 @@ Cell weigh_cell(const Scene& scene, Point origin, const Weighting& weighting, st
   return cell;
 }
 
+Cell measure_sums(const Scene& scene, Point origin, double area, Point centroid, double second_moment,
+                  double radius_squared, std::span<const Point> polygon, const Weighting& weighting) {
+  Cell cell;
+  cell.area = area;
+  cell.mass = area;
+  cell.radius = std::sqrt(radius_squared);
+  cell.second_moment = second_moment;
+  return weigh_cell(scene, origin, weighting, polygon, cell, centroid);
+}
+
 Cell measure_moments(const Scene& scene, Point origin, const PolygonMoments& moments, double radius_squared,
                      std::span<const Point> polygon, const Weighting& weighting) {
-  Cell cell;
-  cell.area = moments.area();
-  cell.mass = cell.area;
-  cell.radius = std::sqrt(radius_squared);
-  cell.second_moment = moments.second_moment();
-  return weigh_cell(scene, origin, weighting, polygon, cell, moments.centroid());
+  return measure_sums(scene, origin, moments.area(), moments.centroid(), moments.second_moment(), radius_squared, polygon,
+                      weighting);
 }
 
 Cell measure_cell(const Scene& scene, Point origin, bool coincident, const ConvexPolygon& cell_polygon,

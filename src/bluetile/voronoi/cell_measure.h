@@ -35,5 +35,9 @@ Cell measure_cell(const Scene& scene, Point origin, bool coincident, const Conve
 // clockwise; read only with a density table).
 Cell measure_moments(const Scene& scene, Point origin, const PolygonMoments& moments, double radius_squared,
                      std::span<const Point> polygon, const Weighting& weighting);
+// The same from the moments themselves: area, centroid relative to the site, second moment
+// about the site.
+Cell measure_sums(const Scene& scene, Point origin, double area, Point centroid, double second_moment,
+                  double radius_squared, std::span<const Point> polygon, const Weighting& weighting);
 
 }  // namespace bluetile

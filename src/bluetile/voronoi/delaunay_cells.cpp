@@ -21,47 +21,63 @@ inline Point offset(Point from, Point to, int px, int py, Point period) {
   return {axis_offset(from.x, to.x, px, period.x), axis_offset(from.y, to.y, py, period.y)};
 }
 
-inline double norm_squared(Point p) { return p.x * p.x + p.y * p.y; }
-inline double cross(Point p, Point q) { return p.x * q.y - p.y * q.x; }
-
-// The triangle's three offsets: a = corner 0 to corner 1, corner 0 to corner 2, corner 1 to 2.
+// A triangle's offsets between corners (corner 0 to 1, 0 to 2, 1 to 2) and their squared
+// lengths, in plain doubles (vector types cost a third of the sweep's instructions).
 struct Offsets {
-  Point ab, ac, bc;
+  double abx, aby, acx, acy, bcx, bcy;
+  double ab2, ac2, bc2;
 };
 
 inline Offsets offsets(const PeriodicDelaunay& triangulation, const Triangle& t) {
   const auto positions = triangulation.positions();
-  const Point period = triangulation.domain().size;
   const Point a = positions[t.vertex[0]], b = positions[t.vertex[1]], c = positions[t.vertex[2]];
-  if ((t.shift_x[1] | t.shift_x[2] | t.shift_y[1] | t.shift_y[2]) == 0) return {b - a, c - a, c - b};
-  // Corner 0 is at shift 0.
-  return {offset(a, b, t.shift_x[1], t.shift_y[1], period), offset(a, c, t.shift_x[2], t.shift_y[2], period),
-          offset(b, c, t.shift_x[2] - t.shift_x[1], t.shift_y[2] - t.shift_y[1], period)};
+  Offsets o;
+  if ((t.shift_x[1] | t.shift_x[2] | t.shift_y[1] | t.shift_y[2]) == 0) {
+    o.abx = b.x - a.x, o.aby = b.y - a.y, o.acx = c.x - a.x, o.acy = c.y - a.y, o.bcx = c.x - b.x, o.bcy = c.y - b.y;
+  } else {
+    // Corner 0 is at shift 0.
+    const Point period = triangulation.domain().size;
+    o.abx = axis_offset(a.x, b.x, t.shift_x[1], period.x);
+    o.aby = axis_offset(a.y, b.y, t.shift_y[1], period.y);
+    o.acx = axis_offset(a.x, c.x, t.shift_x[2], period.x);
+    o.acy = axis_offset(a.y, c.y, t.shift_y[2], period.y);
+    o.bcx = axis_offset(b.x, c.x, t.shift_x[2] - t.shift_x[1], period.x);
+    o.bcy = axis_offset(b.y, c.y, t.shift_y[2] - t.shift_y[1], period.y);
+  }
+  o.ab2 = o.abx * o.abx + o.aby * o.aby;
+  o.ac2 = o.acx * o.acx + o.acy * o.acy;
+  o.bc2 = o.bcx * o.bcx + o.bcy * o.bcy;
+  return o;
 }
 
-// The circumcentre relative to the corner opposite the longest edge (ties: the lower site index),
-// from the offsets to the next two corners; returns that corner.
-inline int circumcentre(const Offsets& o, const Triangle& t, std::span<const std::uint32_t> sites, Point& centre) {
-  const double opposite[3] = {norm_squared(o.bc), norm_squared(o.ac), norm_squared(o.ab)};
+// The circumcentre relative to each corner (out[k]): computed relative to the corner opposite
+// the longest edge (ties: the lower site index) from the offsets to the next two corners, then
+// moved to the other corners by their offsets to it (exactly negated where needed). Returns its
+// squared distance from that corner (the squared circumradius).
+inline double circumcentres(const Offsets& o, const Triangle& t, std::span<const std::uint32_t> sites, Point* out) {
+  const double opposite[3] = {o.bc2, o.ac2, o.ab2};
   int x = 0;
   for (int k = 1; k < 3; ++k)
     if (opposite[k] > opposite[x] || (opposite[k] == opposite[x] && sites[t.vertex[k]] < sites[t.vertex[x]])) x = k;
   // b and c: the offsets from corner x to the next two corners counter-clockwise.
-  const Point b = x == 0 ? o.ab : x == 1 ? o.bc : -o.ac;
-  const Point c = x == 0 ? o.ac : x == 1 ? -o.ab : -o.bc;
-  const double bb = norm_squared(b), cc = norm_squared(c);
-  const double d = 2.0 * cross(b, c);
-  centre = {(c.y * bb - b.y * cc) / d, (b.x * cc - c.x * bb) / d};
-  return x;
-}
-
-// The circumcentre relative to each corner: the canonical one plus the offset from the corner to
-// the canonical corner (one of the triangle's offsets, exactly negated where needed).
-inline void centres_by_corner(const Offsets& o, int x, Point centre, Point* out) {
-  // Offsets from corner k to corner x: from_corner[k][x].
-  const Point zero{0.0, 0.0};
-  const Point to_x[3][3] = {{zero, o.ab, o.ac}, {-o.ab, zero, o.bc}, {-o.ac, -o.bc, zero}};
-  for (int k = 0; k < 3; ++k) out[k] = k == x ? centre : centre + to_x[k][x];
+  double bx, by, bb, cx, cy, cc;
+  if (x == 0) {
+    bx = o.abx, by = o.aby, bb = o.ab2, cx = o.acx, cy = o.acy, cc = o.ac2;
+  } else if (x == 1) {
+    bx = o.bcx, by = o.bcy, bb = o.bc2, cx = -o.abx, cy = -o.aby, cc = o.ab2;
+  } else {
+    bx = -o.acx, by = -o.acy, bb = o.ac2, cx = -o.bcx, cy = -o.bcy, cc = o.bc2;
+  }
+  const double d = 2.0 * (bx * cy - by * cx);
+  const double px = (cy * bb - by * cc) / d, py = (bx * cc - cx * bb) / d;
+  if (x == 0) {
+    out[0] = {px, py}, out[1] = {px - o.abx, py - o.aby}, out[2] = {px - o.acx, py - o.acy};
+  } else if (x == 1) {
+    out[0] = {px + o.abx, py + o.aby}, out[1] = {px, py}, out[2] = {px - o.bcx, py - o.bcy};
+  } else {
+    out[0] = {px + o.acx, py + o.acy}, out[1] = {px + o.bcx, py + o.bcy}, out[2] = {px, py};
+  }
+  return px * px + py * py;
 }
 
 // Whether no corner uses a shifted copy (corner 0 is always at shift 0).
@@ -93,46 +109,43 @@ DelaunayCells::Sweep DelaunayCells::sweep(const PeriodicDelaunay& triangulation)
         const Triangle& t = triangles[ti];
         const auto tri = static_cast<std::uint32_t>(ti);
         const Offsets o = offsets(triangulation, t);
-        auto short_edge = [&](Point d) { return std::abs(d.x) < quarter.x && std::abs(d.y) < quarter.y; };
-        if (!short_edge(o.ab) || !short_edge(o.ac) || !short_edge(o.bc)) {
+        auto short_edge = [&](double dx, double dy) { return std::abs(dx) < quarter.x && std::abs(dy) < quarter.y; };
+        if (!short_edge(o.abx, o.aby) || !short_edge(o.acx, o.acy) || !short_edge(o.bcx, o.bcy)) {
           mine.invalid.push_back(tri);
           continue;
         }
         // Orientation: the filter of predicates.h on the correctly rounded offsets.
-        const double left = o.ab.x * o.ac.y, right = o.ab.y * o.ac.x;
+        const double left = o.abx * o.acy, right = o.aby * o.acx;
         const double turn = left - right;
         if (!(turn > detail::kOrientationBound * (std::abs(left) + std::abs(right))) &&
             orientation(triangulation.corner_point(t, 0), triangulation.corner_point(t, 1), triangulation.corner_point(t, 2)) <= 0) {
           mine.invalid.push_back(tri);
           continue;
         }
-        Point centre;
-        const int x = circumcentre(o, t, sites, centre);
-        centres_by_corner(o, x, centre, &centres_[3 * ti]);
+        const double radius_squared = circumcentres(o, t, sites, &centres_[3 * ti]);
         mine.area += 0.5 * turn;
-        if (!(norm_squared(centre) < limit)) mine.oversized.push_back(tri);
+        if (!(radius_squared < limit)) mine.oversized.push_back(tri);
         // The in-circle test of each edge this triangle owns: incircle(a, b, c, d) = -incircle(b,
         // c, d, a), the latter from the offsets to a (predicates.h's formula and bound).
-        const double ab2 = norm_squared(o.ab), ac2 = norm_squared(o.ac);
         for (int k = 0; k < 3; ++k) {
           const std::uint32_t l = t.neighbour[k];
           const std::uint32_t ui = PeriodicDelaunay::triangle_of(l);
           if (ui < tri) continue;
           const Triangle& u = triangles[ui];
           const int e = PeriodicDelaunay::edge_of(l);
-          Point ad = positions[u.vertex[e]] - positions[t.vertex[0]];
+          const Point a = positions[t.vertex[0]], d = positions[u.vertex[e]];
+          double adx = d.x - a.x, ady = d.y - a.y;
           if (!unshifted(t) || !unshifted(u)) {
             const int next = PeriodicDelaunay::next(k), previous = PeriodicDelaunay::previous(e);
-            const int sx = u.shift_x[e] + t.shift_x[next] - u.shift_x[previous];
-            const int sy = u.shift_y[e] + t.shift_y[next] - u.shift_y[previous];
-            ad = offset(positions[t.vertex[0]], positions[u.vertex[e]], sx, sy, period);
+            adx = axis_offset(a.x, d.x, u.shift_x[e] + t.shift_x[next] - u.shift_x[previous], period.x);
+            ady = axis_offset(a.y, d.y, u.shift_y[e] + t.shift_y[next] - u.shift_y[previous], period.y);
           }
-          const double ad2 = norm_squared(ad);
-          const double acad_l = o.ac.x * ad.y, acad_r = o.ac.y * ad.x;
-          const double adab_l = ad.x * o.ab.y, adab_r = ad.y * o.ab.x;
-          const double det = ab2 * (acad_l - acad_r) + ac2 * (adab_l - adab_r) + ad2 * turn;
-          const double permanent = ab2 * (std::abs(acad_l) + std::abs(acad_r)) + ac2 * (std::abs(adab_l) + std::abs(adab_r)) +
-                                   ad2 * (std::abs(left) + std::abs(right));
+          const double ad2 = adx * adx + ady * ady;
+          const double acad_l = o.acx * ady, acad_r = o.acy * adx;
+          const double adab_l = adx * o.aby, adab_r = ady * o.abx;
+          const double det = o.ab2 * (acad_l - acad_r) + o.ac2 * (adab_l - adab_r) + ad2 * turn;
+          const double permanent = o.ab2 * (std::abs(acad_l) + std::abs(acad_r)) +
+                                   o.ac2 * (std::abs(adab_l) + std::abs(adab_r)) + ad2 * (std::abs(left) + std::abs(right));
           const double bound = detail::kIncircleBound * permanent;
           if (det > bound) continue;  // d outside: the edge is Delaunay
           if (-det > bound) {
@@ -165,76 +178,72 @@ void DelaunayCells::recompute(const PeriodicDelaunay& triangulation, std::span<c
   const auto all = triangulation.triangles();
   const double limit = radius_limit_squared(triangulation);
   for (std::uint32_t ti : triangles) {
-    Point centre;
-    const Offsets o = offsets(triangulation, all[ti]);
-    const int x = circumcentre(o, all[ti], triangulation.sites(), centre);
-    centres_by_corner(o, x, centre, &centres_[3 * ti]);
-    if (!(norm_squared(centre) < limit)) oversized.push_back(ti);
+    const double radius_squared = circumcentres(offsets(triangulation, all[ti]), all[ti], triangulation.sites(), &centres_[3 * ti]);
+    if (!(radius_squared < limit)) oversized.push_back(ti);
   }
 }
 
 bool DelaunayCells::fits(const PeriodicDelaunay& triangulation, std::uint32_t triangle) const {
-  // Every corner's view of the centre is within rounding of the circumradius; corner 0's decides.
-  return norm_squared(centres_[3 * triangle]) < radius_limit_squared(triangulation);
+  // Every corner's view of the centre is within rounding of the circumradius; the canonical
+  // corner's decides.
+  const auto t = triangulation.triangles()[triangle];
+  Point centres[3];
+  return circumcentres(offsets(triangulation, t), t, triangulation.sites(), centres) < radius_limit_squared(triangulation);
 }
 
 bool DelaunayCells::measure(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
                             const Weighting& weighting, Cell& cell) const {
   const auto triangles = triangulation.triangles();
-  const auto sites = triangulation.sites();
   const bool ties = triangulation.tie_edges() > 0;
-  // The cell's vertices relative to the site (plain doubles: the compiler keeps them in
-  // registers and buffers, where vector types went through the stack), and the site across the
-  // edge after each.
-  // Delaunay vertices rarely have more than 12 neighbours; 32 or more go to the search.
-  constexpr std::size_t kLocal = 32;
-  double x[kLocal], y[kLocal];
-  std::size_t m = 0, first = 0;
-  std::uint32_t lowest = 0;
+  // The shoelace sums over the cell's edges (p, q), counter-clockwise from its canonical corner
+  // (the vertex's corner_of: after the edge to its neighbour of lowest site index): c = p x q
+  // (twice the area), (p + q) c (six times the first moment) and (|p|^2 + p.q + |q|^2) c (twelve
+  // times the second moment about the site: polygon.h's xx + yy in one sum). Plain doubles: the
+  // compiler keeps them in registers, where vector types went through the stack.
+  double cross = 0.0, sx = 0.0, sy = 0.0, second = 0.0, radius_squared = 0.0;
   const std::uint32_t start = triangulation.corner_of(vertex);
+  if (ties && triangulation.ties(PeriodicDelaunay::triangle_of(start))) return false;
+  const Point first = centres_[3 * PeriodicDelaunay::triangle_of(start) + static_cast<std::size_t>(PeriodicDelaunay::edge_of(start))];
+  double px = first.x, py = first.y, pr = px * px + py * py;
+  const double first_r = pr;
   std::uint32_t corner = start;
-  do {
-    const std::uint32_t ti = PeriodicDelaunay::triangle_of(corner);
-    const int j = PeriodicDelaunay::edge_of(corner);
-    if ((ties && triangulation.ties(ti)) || m == kLocal) return false;
-    const Triangle& t = triangles[ti];
-    const Point v = centres_[3 * ti + static_cast<std::size_t>(j)];
-    x[m] = v.x;
-    y[m] = v.y;
-    // The edge to the next triangle around is the one to the corner before this one.
-    const std::uint32_t next_site = sites[t.vertex[PeriodicDelaunay::previous(j)]];
-    if (m == 0 || next_site < lowest) {
-      first = m;
-      lowest = next_site;
-    }
-    ++m;
-    const std::uint32_t across = t.neighbour[PeriodicDelaunay::next(j)];
+  // With a density the vertices themselves are needed, in order.
+  std::vector<Point> polygon;
+  if (weighting.prefix) polygon.push_back(first);
+  for (;;) {
+    const Triangle& t = triangles[PeriodicDelaunay::triangle_of(corner)];
+    const std::uint32_t across = t.neighbour[PeriodicDelaunay::next(PeriodicDelaunay::edge_of(corner))];
     corner = PeriodicDelaunay::link(PeriodicDelaunay::triangle_of(across), PeriodicDelaunay::next(PeriodicDelaunay::edge_of(across)));
-  } while (corner != start);
-  // The sums from the edge after `first` around: edges first..m-1, then 0..first-1.
-  PolygonMoments moments;
-  double radius_squared = 0.0;
-  auto add = [&](std::size_t k, std::size_t next) {
-    moments.add_edge({x[k], y[k]}, {x[next], y[next]});
-    radius_squared = std::max(radius_squared, x[k] * x[k] + y[k] * y[k]);
-  };
-  for (std::size_t k = first; k + 1 < m; ++k) add(k, k + 1);
-  add(m - 1, 0);
-  for (std::size_t k = 0; k < first; ++k) add(k, k + 1);
+    double qx = first.x, qy = first.y, qr = first_r;
+    const bool closed = corner == start;
+    if (!closed) {
+      if (ties && triangulation.ties(PeriodicDelaunay::triangle_of(corner))) return false;
+      const Point q = centres_[3 * PeriodicDelaunay::triangle_of(corner) + static_cast<std::size_t>(PeriodicDelaunay::edge_of(corner))];
+      qx = q.x, qy = q.y, qr = qx * qx + qy * qy;
+      if (weighting.prefix) polygon.push_back(q);
+    }
+    const double c = px * qy - qx * py;
+    cross += c;
+    sx += (px + qx) * c;
+    sy += (py + qy) * c;
+    second += (pr + (px * qx + py * qy) + qr) * c;
+    radius_squared = std::max(radius_squared, pr);
+    if (closed) break;
+    px = qx, py = qy, pr = qr;
+  }
+  const double area = 0.5 * cross;
+  const Point centroid = cross > 0.0 ? Point{sx / (3.0 * cross), sy / (3.0 * cross)} : Point{0.0, 0.0};
   if (!weighting.prefix && weighting.constant == 1.0) {
-    // measure_moments without a density, inline.
-    cell.area = moments.area();
-    cell.mass = cell.area;
+    // measure_sums without a density, inline.
+    cell.area = area;
+    cell.mass = area;
     cell.radius = std::sqrt(radius_squared);
-    cell.second_moment = moments.second_moment();
+    cell.second_moment = second / 12.0;
     cell.status = CellStatus::ok;
-    cell.centroid = scene_point(scene, origin + moments.centroid());
+    cell.centroid = wrap_point(origin + centroid, scene.domain);
     return true;
   }
-  std::vector<Point> polygon;
-  if (weighting.prefix)
-    for (std::size_t k = first; k < first + m; ++k) polygon.push_back({x[k < m ? k : k - m], y[k < m ? k : k - m]});
-  cell = measure_moments(scene, origin, moments, radius_squared, polygon, weighting);
+  cell = measure_sums(scene, origin, area, centroid, second / 12.0, radius_squared, polygon, weighting);
   return true;
 }
 

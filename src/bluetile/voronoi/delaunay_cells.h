@@ -12,7 +12,8 @@
 //   corner's angle is the largest, which keeps the digits of nearly coincident sites (docs/
 //   DESIGN.md, section 4); a cell's vertex is that centre plus the offset from its site to the
 //   corner (kept per corner between the sweep and the cells);
-// - a cell's shoelace sums start at the edge shared with its neighbour of lowest site index.
+// - a cell's shoelace sums start after the edge shared with its neighbour of lowest site index
+//   (the vertex's canonical corner, periodic_delaunay.h).
 // A Delaunay triangulation is unique away from cocircular ties, so equal sites give equal
 // triangles and equal cells; cells on a tie (an edge whose in-circle test is exactly 0) are left
 // to the search.
@@ -54,8 +55,7 @@ class DelaunayCells {
   bool fits(const PeriodicDelaunay& triangulation, std::uint32_t triangle) const;
 
   // The cell of `vertex`, whose site is at `origin` in `scene`. Returns false, leaving `cell`
-  // alone, when the cell lies on a cocircular tie or has 32 neighbours or more (both left to the
-  // search).
+  // alone, when the cell lies on a cocircular tie (left to the search).
   bool measure(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
                const Weighting& weighting, Cell& cell) const;
 

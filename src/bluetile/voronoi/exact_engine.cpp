@@ -80,9 +80,26 @@ void compute_scene(SceneRun run) {
     search_cells(scene, CellSearch(scene), run.weighting, out.cells, run.parallel_inside);
     run.stats.searched_cells += scene.wanted_count();
   }
-  for (const Cell& c : out.cells) {
-    out.coincident_count += c.status == CellStatus::coincident;
-    out.zero_density_count += c.status == CellStatus::zero_density;
+  // The statuses counted in chunks (on all threads for a large scene), added in chunk order.
+  constexpr std::size_t kCountChunk = 16384;
+  const std::size_t chunks = (out.cells.size() + kCountChunk - 1) / kCountChunk;
+  std::vector<std::size_t> coincident(chunks, 0), zero_density(chunks, 0);
+  auto count = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      for (std::size_t i = c * kCountChunk; i < std::min(out.cells.size(), (c + 1) * kCountChunk); ++i) {
+        coincident[c] += out.cells[i].status == CellStatus::coincident;
+        zero_density[c] += out.cells[i].status == CellStatus::zero_density;
+      }
+    }
+  };
+  if (run.parallel_inside) {
+    parallel_for(chunks, 1, count);
+  } else {
+    count(0, chunks);
+  }
+  for (std::size_t c = 0; c < chunks; ++c) {
+    out.coincident_count += coincident[c];
+    out.zero_density_count += zero_density[c];
   }
 }
 

@@ -182,8 +182,10 @@ std::size_t KeptDelaunay::bytes() const {
 bool KeptDelaunay::move_vertices(const Scene& scene) {
   const std::size_t n = scene.sites.size();
   const Point size = scene.domain.size;
+  // The positions before the move become the previous ones (no copy), the scene's fill the others.
+  previous_.resize(n);
+  triangulation_.swap_positions(previous_);
   auto positions = triangulation_.positions();
-  previous_.assign(positions.begin(), positions.end());
   // New positions in vertex order, and the vertices that wrapped across the border since.
   using Wrap = PeriodicDelaunay::Wrap;
   const std::size_t chunks = (n + kVertexChunk - 1) / kVertexChunk;

@@ -200,9 +200,34 @@ bool PeriodicDelaunay::build(std::span<const std::uint32_t> star_start, std::spa
     const int k = t.vertex[0] == v ? 0 : t.vertex[1] == v ? 1 : 2;
     corners_[v] = link(triangle_at[star_start[v]], k);
   }
+  canonical_corners();
   ties_.assign(triangles_.size(), 0);
   tie_edges_ = 0;
   return true;
+}
+
+void PeriodicDelaunay::canonical_corner(std::uint32_t vertex) {
+  const std::uint32_t start = corners_[vertex];
+  std::uint32_t corner = start, best = start, lowest = 0;
+  bool found = false;
+  do {
+    const Triangle& t = triangles_[triangle_of(corner)];
+    const std::uint32_t site = sites_[t.vertex[previous(edge_of(corner))]];
+    if (!found || site < lowest) {
+      best = corner;
+      lowest = site;
+      found = true;
+    }
+    corner = next_around(corner);
+  } while (corner != start);
+  corners_[vertex] = best;
+}
+
+void PeriodicDelaunay::canonical_corners() {
+  parallel_for(vertex_count(), kVertexGrain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v)
+      if (corners_[v] != kNoCorner) canonical_corner(static_cast<std::uint32_t>(v));
+  });
 }
 
 void PeriodicDelaunay::wrap(std::uint32_t vertex, int kx, int ky) {
@@ -325,6 +350,7 @@ bool PeriodicDelaunay::flip(std::uint32_t ti, int k) {
   corners_[b.vertex] = link(ti, 1);
   corners_[d.vertex] = link(ti, 2);
   corners_[c.vertex] = link(ui, 2);
+  for (std::uint32_t v : {a.vertex, b.vertex, c.vertex, d.vertex}) canonical_corner(v);
   // The tie marks of the two triangles start afresh; the outer edges are tested again by the
   // caller, and set them on both sides.
   auto clear_side = [&](std::uint32_t l) {
@@ -627,6 +653,7 @@ bool PeriodicDelaunay::repair(std::span<const std::uint32_t> invalid, std::vecto
   }
   ties_.assign(triangles_.size(), 0);
   tie_edges_ = 0;
+  canonical_corners();
   repaired = order.size();
   return true;
 }

@@ -66,9 +66,14 @@ class PeriodicDelaunay {
   const Domain& domain() const { return domain_; }
   std::span<const Triangle> triangles() const { return triangles_; }
   std::span<Point> positions() { return positions_; }
+  // Exchanges the positions with `other` (of the same size, or the triangulation is unusable).
+  void swap_positions(std::vector<Point>& other) { positions_.swap(other); }
   std::span<const Point> positions() const { return positions_; }
   std::span<const std::uint32_t> sites() const { return sites_; }
-  // Some corner of the vertex, as link(triangle, corner).
+  // The vertex's canonical corner, as link(triangle, corner): the one whose triangle comes just
+  // before the edge to the vertex's neighbour of lowest site index, going counter-clockwise
+  // around the vertex (where its cell's sums start, delaunay_cells.h). Every change to the
+  // triangulation keeps it so.
   std::uint32_t corner_of(std::uint32_t vertex) const { return corners_[vertex]; }
   // Bit k: the edge opposite corner k is a cocircular tie (exact in-circle 0).
   std::uint8_t ties(std::uint32_t triangle) const { return ties_[triangle]; }
@@ -152,6 +157,8 @@ class PeriodicDelaunay {
   bool valid_at(const Triangle& t, std::span<const Point> positions, std::span<const std::int8_t> shift_x,
                 std::span<const std::int8_t> shift_y) const;
   bool remove_vertex(std::uint32_t vertex, std::vector<std::uint32_t>& rewritten);
+  void canonical_corner(std::uint32_t vertex);
+  void canonical_corners();  // every vertex's, on all threads
   bool insert_vertex(std::uint32_t vertex, std::uint32_t hint);
   std::uint32_t take_free_triangle();
 
