@@ -272,6 +272,9 @@ TEST(ExactTopology, CocircularTiesAreSearchedAndTheirNeighboursKept) {
   for (int call = 0; call < 2; ++call) {
     EXPECT_TRUE(identical(engine.compute(lattice), search.compute(lattice)));
     EXPECT_EQ(engine.last_topology_stats().tie_cells, 1600u);
+    // The clipping's neighbours of a tie do not fit together: the stars came from the exact
+    // predicates, once.
+    EXPECT_EQ(engine.last_topology_stats().exact_stars, call == 0 ? 1600u : 0u);
   }
   // Shifted by a step each call (sites wrap across the border): still a lattice.
   run_side_by_side(lattice, 4, [](Scene& scene, int) {
@@ -309,6 +312,7 @@ TEST(ExactTopology, NearlyCocircularSitesAnUlpOffTheLattice) {
   EXPECT_LE(d.area, 1e-12);
   EXPECT_LE(d.second_moment, 1e-12);
   EXPECT_GT(engine.last_topology_stats().kept_cells, 0u);
+  EXPECT_EQ(engine.last_topology_stats().exact_stars, sites.size());
   // A perturbed copy relaxed a few steps from here: flips only.
   run_side_by_side(scene, 3);
 }

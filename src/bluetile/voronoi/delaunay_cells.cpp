@@ -109,8 +109,12 @@ DelaunayCells::Sweep DelaunayCells::sweep(const PeriodicDelaunay& triangulation)
         const Triangle& t = triangles[ti];
         const auto tri = static_cast<std::uint32_t>(ti);
         const Offsets o = offsets(triangulation, t);
+        // A corner's copy more than a quarter period away breaks the predicates' precondition
+        // (the shifts of a copy cancel exactly only within half a period). Offsets between
+        // unshifted corners are plain differences, correctly rounded at any length; a long edge
+        // there is caught by the circumradius limit of the result.
         auto short_edge = [&](double dx, double dy) { return std::abs(dx) < quarter.x && std::abs(dy) < quarter.y; };
-        if (!short_edge(o.abx, o.aby) || !short_edge(o.acx, o.acy) || !short_edge(o.bcx, o.bcy)) {
+        if (!unshifted(t) && (!short_edge(o.abx, o.aby) || !short_edge(o.acx, o.acy) || !short_edge(o.bcx, o.bcy))) {
           mine.invalid.push_back(tri);
           continue;
         }
