@@ -134,7 +134,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> engines{"search", "kept", "cgal-band", "cgal-periodic"};
   int relax = 30, iterations = 20, random_iterations = 20, repeats = 3;
   std::size_t max_cgal = 1000000;
-  bool check = false;
+  bool check = false, spatial = false;
   std::string profile;
   app.add_option("--sizes", sizes, "Site counts")->delimiter(',');
   app.add_option("--starts", starts, "random (a relaxation from random sites) and/or relaxed")->delimiter(',');
@@ -146,6 +146,8 @@ int main(int argc, char** argv) {
   app.add_option("--repeats", repeats, "Interleaved repeats (median reported)")->capture_default_str();
   app.add_option("--max-cgal", max_cgal, "Largest N for the CGAL references")->capture_default_str();
   app.add_flag("--check", check, "After each run, the last sites against a fresh search (differences reported)");
+  app.add_flag("--spatial-order", spatial,
+               "Number the sites in the order of a grid's rows (neighbours near in memory) instead of at random");
   app.add_option("--profile", profile, "Run only this engine (search or kept), one thread, relaxed, for a profiler");
   CLI11_PARSE(app, argc, argv);
 #if !BLUETILE_HAVE_CGAL
@@ -154,7 +156,13 @@ int main(int argc, char** argv) {
 #endif
 
   for (std::size_t n : sizes) {
-    const std::vector<Point> random = uniform_random_points(n, 1, n);
+    std::vector<Point> random = uniform_random_points(n, 1, n);
+    if (spatial) {
+      // Row-major order of a grid of about one site per bucket.
+      const double side = std::ceil(std::sqrt(static_cast<double>(n)));
+      auto key = [side](Point p) { return std::floor(p.y * side) * side + std::floor(p.x * side); };
+      std::stable_sort(random.begin(), random.end(), [&](Point a, Point b) { return key(a) < key(b); });
+    }
     std::vector<Point> relaxed;
     if (std::find(starts.begin(), starts.end(), "relaxed") != starts.end() || !profile.empty()) {
       std::vector<Scene> scenes{make_scene(random)};
