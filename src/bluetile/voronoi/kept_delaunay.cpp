@@ -166,7 +166,8 @@ class ExactStar {
 bool KeptDelaunay::suits(const Scene& scene) {
   const Point size = scene.domain.size;
   auto side_suits = [](double side) { return side >= 0x1p-20 && side <= 0x1p20; };
-  return scene.periodic() && scene.sites.size() >= kMinSites && side_suits(size.x) && side_suits(size.y);
+  return scene.periodic() && scene.sites.size() >= kMinSites && scene.sites.size() <= kMaxSites && side_suits(size.x) &&
+         side_suits(size.y);
 }
 
 bool KeptDelaunay::matches(const Scene& scene) const {

@@ -34,9 +34,11 @@ class KeptDelaunay {
   // Scenes with fewer sites are searched: their triangulation would cost more than it saves, and
   // the Wang loop's crops (a few dozen sites, new ones every step) are all below it.
   static constexpr std::size_t kMinSites = 256;
+  // Triangles are named by 30 bits (PeriodicDelaunay::link): 2 N of them must fit.
+  static constexpr std::size_t kMaxSites = std::size_t{1} << 28;
 
-  // Whether the scene can be measured through a triangulation at all (periodic, at least
-  // kMinSites sites, a domain whose sides lie between 2^-20 and 2^20, inside the predicates'
+  // Whether the scene can be measured through a triangulation at all (periodic, kMinSites to
+  // kMaxSites sites, a domain whose sides lie between 2^-20 and 2^20, inside the predicates'
   // exact range).
   static bool suits(const Scene& scene);
 

@@ -14,20 +14,6 @@ namespace {
 constexpr std::size_t kVertexGrain = 2048;
 constexpr std::size_t kTriangleGrain = 4096;
 
-// The passes' findings, one list per chunk, joined in chunk order: the same lists whatever the
-// thread count.
-template <typename Item, typename Body>
-std::vector<Item> collect(std::size_t count, std::size_t grain, Body body) {
-  const std::size_t chunks = (count + grain - 1) / grain;
-  std::vector<std::vector<Item>> found(chunks);
-  parallel_for(chunks, 1, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) body(c * grain, std::min(count, (c + 1) * grain), found[c]);
-  });
-  std::vector<Item> all;
-  for (const auto& f : found) all.insert(all.end(), f.begin(), f.end());
-  return all;
-}
-
 }  // namespace
 
 void PeriodicDelaunay::reset(const Domain& domain, std::vector<Point> positions, std::vector<std::uint32_t> sites) {
@@ -243,20 +229,6 @@ void PeriodicDelaunay::wrap(std::uint32_t vertex, int kx, int ky) {
   } while (corner != start);
 }
 
-std::vector<std::uint32_t> PeriodicDelaunay::invalid_triangles() const {
-  return collect<std::uint32_t>(triangles_.size(), kTriangleGrain,
-                                [&](std::size_t begin, std::size_t end, std::vector<std::uint32_t>& found) {
-                                  for (std::size_t t = begin; t < end; ++t) {
-                                    const Triangle& tri = triangles_[t];
-                                    const PeriodicPoint a = corner_point(tri, 0), b = corner_point(tri, 1),
-                                                        c = corner_point(tri, 2);
-                                    const bool ok = short_edge(a, b) && short_edge(b, c) && short_edge(c, a) &&
-                                                    orientation(a, b, c) > 0;
-                                    if (!ok) found.push_back(static_cast<std::uint32_t>(t));
-                                  }
-                                });
-}
-
 void PeriodicDelaunay::frame_offset(const Triangle& t, int edge, const Triangle& across, int across_edge, int& dx,
                                     int& dy) const {
   // Corner next(edge) of t is corner previous(across_edge) of the other triangle (the shared edge
@@ -366,28 +338,6 @@ bool PeriodicDelaunay::flip(std::uint32_t ti, int k) {
   ties_[ti] = ties_[ui] = 0;
   ++flips_;
   return true;
-}
-
-bool PeriodicDelaunay::make_delaunay() {
-  // Every edge once, from the triangle with the lower number.
-  struct Found {
-    std::uint32_t edge;  // link(triangle, edge)
-    bool flip, tie;
-  };
-  const std::vector<Found> found = collect<Found>(
-      triangles_.size(), kTriangleGrain, [&](std::size_t begin, std::size_t end, std::vector<Found>& out) {
-        for (std::size_t ti = begin; ti < end; ++ti) {
-          const Triangle& t = triangles_[ti];
-          for (int k = 0; k < 3; ++k) {
-            if (triangle_of(t.neighbour[k]) < ti) continue;
-            const Test r = test_edge(static_cast<std::uint32_t>(ti), k);
-            if (r.perturbed > 0 || r.exact == 0) out.push_back({link(static_cast<std::uint32_t>(ti), k), r.perturbed > 0, r.exact == 0});
-          }
-        }
-      });
-  std::vector<std::uint32_t> suspects, tie_edges, changed;
-  for (const Found& f : found) (f.flip ? suspects : tie_edges).push_back(f.edge);
-  return make_delaunay(suspects, tie_edges, changed);
 }
 
 bool PeriodicDelaunay::make_delaunay(std::span<const std::uint32_t> suspects, std::span<const std::uint32_t> tie_edges,

@@ -8,12 +8,16 @@
 // Every decision is an exact predicate (predicates.h). Cocircular ties are broken by a symbolic
 // perturbation keyed on the site index, so the triangulation a set of sites reaches is unique
 // whatever the triangulation it started from, and so is everything read off it; the edges where
-// the unperturbed test is exactly 0 are marked (tie()), their cells belong to no single
+// the unperturbed test is exactly 0 are marked (ties()): their cells belong to no single
 // triangulation.
 //
-// Preconditions the callers keep (kept_delaunay.cpp): every edge shorter than a quarter period
-// along each axis (checked by valid_triangles and by every flip), so that the differences
-// between the points of a test stay below half a period (predicates.h).
+// Large moves that fold triangles over are repaired by removing the vertices concerned where the
+// triangulation was still valid and inserting them again (repair()); a point is located by a
+// stochastic walk (Devillers, Pion and Teillaud, "Walking in a triangulation", 2002).
+//
+// Precondition the callers keep (delaunay_cells.h's sweep checks it, every flip too): an edge
+// between copies in different periods is shorter than a quarter period along each axis, so that
+// the differences between the points of a test stay below half a period (predicates.h).
 #pragma once
 
 #include <cstddef>
@@ -57,7 +61,7 @@ class PeriodicDelaunay {
   // clockwise): stars[star_start[v], star_start[v + 1]) for vertex v. Returns false when the
   // stars do not fit together into a triangulation of the torus (they came from roundings near a
   // tie, a vertex sees the same site twice); the object is then empty. Whether the triangles are
-  // counter-clockwise with short edges is for invalid_triangles() or a sweep to tell. On all
+  // counter-clockwise with short edges is for a sweep to tell (DelaunayCells::sweep). On all
   // threads; the same result for any count.
   bool build(std::span<const std::uint32_t> star_start, std::span<const StarEntry> stars);
   bool empty() const { return triangles_.empty(); }
@@ -95,10 +99,6 @@ class PeriodicDelaunay {
   // where it was, so every corner that used a copy of it uses the copy kx, ky periods further.
   void wrap(std::uint32_t vertex, int kx, int ky);
 
-  // Every triangle that is not counter-clockwise (exactly) or has an edge of a quarter period or
-  // more, in index order. On all threads.
-  std::vector<std::uint32_t> invalid_triangles() const;
-
   // A vertex that wrapped across the border since the positions before (see wrap()).
   struct Wrap {
     std::uint32_t vertex;
@@ -121,13 +121,11 @@ class PeriodicDelaunay {
   // starting from the edges in `suspects` (links; the edges a test found failing), and marks the
   // edges in `tie_edges` as ties: together they must hold every edge that fails or ties now (every
   // other edge passes strictly). Adds the triangles it rewrote to `changed`. Precondition: every
-  // triangle valid (invalid_triangles() empty). Returns false when a flip would make an edge of a
+  // triangle valid (counter-clockwise, edges below a quarter period). Returns false when a flip would make an edge of a
   // quarter period or more or the flips do not end (roundings of an input the predicates cannot
   // hold): the triangulation is then unusable. Flips in a fixed order.
   bool make_delaunay(std::span<const std::uint32_t> suspects, std::span<const std::uint32_t> tie_edges,
                      std::vector<std::uint32_t>& changed);
-  // The same after testing every edge (on all threads): for a triangulation just built.
-  bool make_delaunay();
   std::size_t flips() const { return flips_; }
   // The perturbed and exact in-circle signs of edge `edge` of triangle `t`: positive when the
   // vertex across it lies inside t's circumcircle (the edge must flip).
