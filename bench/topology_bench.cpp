@@ -6,7 +6,7 @@
 // 2 untimed and --iterations timed). Prints a markdown table per N.
 // Usage: bluetile_topology_bench [--sizes 1000,10000,100000,1000000] [--starts random,relaxed]
 //        [--relax 30] [--iterations 20] [--random-iterations 20] [--threads 1,2] [--repeats 3]
-//        [--engines search,kept,cgal-band,cgal-periodic] [--max-cgal 1000000] [--check]
+//        [--engines search,kept,cgal-band,cgal-periodic] [--max-cgal 1000000] [--check] [--spatial-order]
 //        [--profile search|kept --sizes N]   (that engine only, one thread, relaxed: for a profiler)
 #include <algorithm>
 #include <chrono>
@@ -44,7 +44,7 @@ struct Run {
   double cpu_seconds_per_iteration = 0.0;
   // Over the timed calls of the kept engine: cells from the triangulation, rebuilds, flips, ties.
   double kept_share = 0.0;
-  std::size_t rebuilds = 0, flips = 0, ties = 0;
+  std::size_t rebuilds = 0, flips = 0, ties = 0, repaired = 0, exact_stars = 0;
   std::size_t bytes = 0;
   // Against the search on the same sites (--check): the largest differences over the calls.
   double max_centroid_difference = 0.0, max_area_difference = 0.0, max_moment_difference = 0.0;
@@ -84,6 +84,8 @@ Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int warm,
       run.rebuilds += stats.rebuilds;
       run.flips += stats.flips;
       run.ties += stats.tie_cells;
+      run.repaired += stats.repaired_vertices;
+      run.exact_stars += stats.exact_stars;
       run.bytes = std::max(run.bytes, stats.bytes);
     }
     move_to_centroids(scenes, cells);
@@ -189,7 +191,7 @@ int main(int argc, char** argv) {
         std::string name;
         std::size_t threads;
         std::vector<double> times, cpu;
-        Run last;
+        Run last, checked;  // the last repeat, and the first (the one --check compares)
       };
       std::vector<Row> rows;
       for (const std::string& e : engines) {
@@ -205,6 +207,7 @@ int main(int argc, char** argv) {
           set_thread_count(row.threads);
           auto engine = make_engine(row.name);
           row.last = lloyd_run(*engine, sites, warm, timed, check && r == 0 && row.name == "kept");
+          if (r == 0) row.checked = row.last;
           row.times.push_back(row.last.seconds_per_iteration);
           row.cpu.push_back(row.last.cpu_seconds_per_iteration);
         }
@@ -214,30 +217,34 @@ int main(int argc, char** argv) {
         if (row.name == "cgal-band") band = median(row.times), band_cpu = median(row.cpu);
         if (row.name == "search" && row.threads == 1) search1 = median(row.times), search1_cpu = median(row.cpu);
       }
+      char after[64];
+      std::snprintf(after, sizeof after, " after %d + 2", relax);
       std::printf("\nN = %zu, %s: %d timed iterations%s, %d repeats (median)\n\n", n, start.c_str(), timed,
-                  from_random ? " from uniform random sites" : " after 30 + 2", repeats);
-      std::printf("| engine | threads | wall ms/it | wall ns/site/it | cpu ns/site/it | wall / search 1t | cpu / search 1t | wall / cgal-band | cpu / cgal-band | kept cells | rebuilds | flips/site/it | kept state B/site |\n");
-      std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+                  from_random ? " from uniform random sites" : after, repeats);
+      std::printf("| engine | threads | wall ms/it | wall ns/site/it | cpu ns/site/it | wall / search 1t | cpu / search 1t | wall / cgal-band | cpu / cgal-band | kept cells | rebuilds | repaired | flips/site/it | kept state B/site |\n");
+      std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
       const double per = 1e9 / static_cast<double>(n);
       for (const Row& row : rows) {
         const double m = median(row.times), c = median(row.cpu);
         const bool kept = row.name == "kept";
-        char flips[32] = "-", bytes[32] = "-", share[32] = "-", rebuilds[32] = "-";
+        char flips[32] = "-", bytes[32] = "-", share[32] = "-", rebuilds[32] = "-", repaired[32] = "-";
         if (kept) {
           std::snprintf(flips, sizeof flips, "%.3f", static_cast<double>(row.last.flips) / (static_cast<double>(n) * timed));
           std::snprintf(bytes, sizeof bytes, "%.0f", static_cast<double>(row.last.bytes) / static_cast<double>(n));
           std::snprintf(share, sizeof share, "%.3f", row.last.kept_share);
           std::snprintf(rebuilds, sizeof rebuilds, "%zu of %d", row.last.rebuilds, timed);
+          std::snprintf(repaired, sizeof repaired, "%zu", row.last.repaired);
         }
-        std::printf("| %s | %zu | %.2f | %.0f | %.0f | %s | %s | %s | %s | %s | %s | %s | %s |\n", row.name.c_str(), row.threads,
-                    1e3 * m, per * m, per * c, ratio(m, search1).c_str(), ratio(c, search1_cpu).c_str(), ratio(m, band).c_str(),
-                    ratio(c, band_cpu).c_str(), share, rebuilds, flips, bytes);
+        std::printf("| %s | %zu | %.2f | %.0f | %.0f | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", row.name.c_str(),
+                    row.threads, 1e3 * m, per * m, per * c, ratio(m, search1).c_str(), ratio(c, search1_cpu).c_str(),
+                    ratio(m, band).c_str(), ratio(c, band_cpu).c_str(), share, rebuilds, repaired, flips, bytes);
       }
       if (check) {
         for (const Row& row : rows) {
           if (row.name != "kept") continue;
           std::printf("\nkept (%zu threads) against a fresh search on the last sites: max centroid difference %.3g, area %.3g, second moment %.3g\n",
-                      row.threads, row.last.max_centroid_difference, row.last.max_area_difference, row.last.max_moment_difference);
+                      row.threads, row.checked.max_centroid_difference, row.checked.max_area_difference,
+                      row.checked.max_moment_difference);
           break;
         }
       }
