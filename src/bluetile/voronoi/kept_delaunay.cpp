@@ -2,6 +2,7 @@
 #include "bluetile/voronoi/kept_delaunay.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <optional>
@@ -267,6 +268,12 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
     bool coincident = false, unfit = false, coordinates = true;
   };
   std::vector<ChunkStars> chunk_stars(chunks);
+  // A cell reaching a tenth of the shorter period has a circumcircle that large (its farthest
+  // vertex is one): the scene does not suit a triangulation, whatever the roundings (they are far
+  // below the margin). An edge of a quarter period or a cell reaching the site's own copy (unfit,
+  // below) imply such a cell too.
+  const double limit = 0.1 * std::min(size.x, size.y) * (1.0 + 1e-6);
+  std::atomic<bool> hopeless{false};
   auto run = [&](std::size_t begin, std::size_t end) {
     ConvexPolygon polygon;
     SearchScratch scratch;
@@ -281,6 +288,13 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
           cells[site - scene.wanted_begin] = measure_cell(scene, origin, !complete, polygon, weighting);
         mine.radius_squared.push_back(polygon.max_radius_squared());
         const std::size_t before = mine.entries.size();
+        // Once some cell is too large for a triangulation (below) the stars are not needed: the
+        // search's cells stand, and a scene that stays so costs no more than the search.
+        if (!(polygon.max_radius_squared() < limit * limit)) hopeless.store(true, std::memory_order_relaxed);
+        if (hopeless.load(std::memory_order_relaxed)) {
+          mine.sizes.push_back(0);
+          continue;
+        }
         if (!complete) {
           mine.coincident = true;
           mine.sizes.push_back(0);
@@ -328,9 +342,9 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
     for (std::uint32_t s : c.sizes) star_start.push_back(star_start.back() + s);
   }
   chunk_stars.clear();
-  if (coincident || !coordinates) return false;
+  if (coincident || !coordinates || unfit || hopeless.load()) return false;
   triangulation_.reset(scene.domain, std::move(positions), site_of_vertex_);
-  if (!unfit && triangulation_.build(star_start, stars) && settle(stats)) return true;
+  if (triangulation_.build(star_start, stars) && settle(stats)) return true;
 
   // The stars the clipping gave do not fit (roundings near cocircular sites): every star again
   // with the exact predicates.

@@ -30,18 +30,19 @@ inline void two_product(double a, double b, double& x, double& y) {
 }
 
 // An expansion: components[0, size) non-overlapping, increasing in magnitude, none zero
-// (the empty expansion is zero).
-struct Expansion {
-  // Two expansions of at most 21 components each (the 1100 bits between the largest and the
-  // smallest double) multiply into at most 2 * 21 * 21 before compressing.
-  static constexpr int kCapacity = 1024;
-  std::array<double, kCapacity> c;
+// (the empty expansion is zero). Capacity: two expansions of at most 21 components each (the 1100
+// bits between the largest and the smallest double) multiply into at most 2 * 21 * 21 before
+// compressing; the determinants of differences exact as doubles need at most 96.
+template <int Capacity>
+struct BasicExpansion {
+  static constexpr int kCapacity = Capacity;
+  std::array<double, Capacity> c;
   int size = 0;
 
-  Expansion() = default;
+  BasicExpansion() = default;
   // Copies only the components in use (the array is large, expansions short).
-  Expansion(const Expansion& other) : size(other.size) { std::copy_n(other.c.begin(), size, c.begin()); }
-  Expansion& operator=(const Expansion& other) {
+  BasicExpansion(const BasicExpansion& other) : size(other.size) { std::copy_n(other.c.begin(), size, c.begin()); }
+  BasicExpansion& operator=(const BasicExpansion& other) {
     size = other.size;
     std::copy_n(other.c.begin(), size, c.begin());
     return *this;
@@ -53,9 +54,12 @@ struct Expansion {
   }
   int sign() const { return size == 0 ? 0 : (c[static_cast<std::size_t>(size - 1)] > 0.0 ? 1 : -1); }
 };
+using Expansion = BasicExpansion<1024>;
+using SmallExpansion = BasicExpansion<128>;
 
 // h = e + b (Shewchuk's grow-expansion, zero components dropped).
-void grow(const Expansion& e, double b, Expansion& h) {
+template <typename E>
+void grow(const E& e, double b, E& h) {
   h.size = 0;
   double q = b;
   for (int i = 0; i < e.size; ++i) {
@@ -67,22 +71,54 @@ void grow(const Expansion& e, double b, Expansion& h) {
   h.push(q);
 }
 
-// h = e + f, one component of f at a time.
-void add(const Expansion& e, const Expansion& f, Expansion& h) {
-  Expansion a = e, b;
-  for (int j = 0; j < f.size; ++j) {
-    grow(a, f.c[static_cast<std::size_t>(j)], b);
-    std::swap(a, b);
+// h = e + f (Shewchuk's expansion-sum, his theorem 12): f's components are added one at a time,
+// each from its own place in the sum (the components below it are final there), then the zeros
+// dropped. h must not be e or f.
+template <typename E>
+void add(const E& e, const E& f, E& h) {
+  if (f.size == 0) {
+    h = e;
+    return;
   }
-  h = a;
+  if (e.size == 0) {
+    h = f;
+    return;
+  }
+  assert(e.size + f.size <= E::kCapacity);
+  int last = 0;
+  double q = f.c[0];
+  for (int i = 0; i < e.size; ++i) {
+    double sum, error;
+    two_sum(q, e.c[static_cast<std::size_t>(i)], sum, error);
+    h.c[static_cast<std::size_t>(i)] = error;
+    q = sum;
+  }
+  last = e.size;
+  h.c[static_cast<std::size_t>(last)] = q;
+  for (int j = 1; j < f.size; ++j) {
+    q = f.c[static_cast<std::size_t>(j)];
+    for (int i = j; i <= last; ++i) {
+      double sum, error;
+      two_sum(q, h.c[static_cast<std::size_t>(i)], sum, error);
+      h.c[static_cast<std::size_t>(i)] = error;
+      q = sum;
+    }
+    h.c[static_cast<std::size_t>(++last)] = q;
+  }
+  int kept = 0;
+  for (int i = 0; i <= last; ++i)
+    if (h.c[static_cast<std::size_t>(i)] != 0.0) h.c[static_cast<std::size_t>(kept++)] = h.c[static_cast<std::size_t>(i)];
+  h.size = kept;
 }
 
-void negate(Expansion& e) {
+template <typename E>
+void negate(E& e) {
   for (int i = 0; i < e.size; ++i) e.c[static_cast<std::size_t>(i)] = -e.c[static_cast<std::size_t>(i)];
 }
 
 // h = e * b (Shewchuk's scale-expansion, zero components dropped).
-void scale(const Expansion& e, double b, Expansion& h) {
+template <typename E>
+void scale(const E& e, double b, E& h) {
   h.size = 0;
   if (e.size == 0 || b == 0.0) return;
   double q, low;
@@ -101,9 +137,10 @@ void scale(const Expansion& e, double b, Expansion& h) {
 
 // The same value in as few components as the non-overlapping form allows (Shewchuk's compress):
 // a pass from the largest component down gathers carries, a pass back up separates them again.
-void compress(Expansion& e) {
+template <typename E>
+void compress(E& e) {
   if (e.size < 2) return;
-  std::array<double, Expansion::kCapacity> g;
+  std::array<double, E::kCapacity> g;
   int bottom = e.size - 1;
   double q = e.c[static_cast<std::size_t>(bottom)];
   for (int i = e.size - 2; i >= 0; --i) {
@@ -117,7 +154,7 @@ void compress(Expansion& e) {
     }
   }
   g[static_cast<std::size_t>(bottom)] = q;
-  Expansion h;
+  E h;
   double top = g[static_cast<std::size_t>(bottom)];
   for (int i = bottom + 1; i < e.size; ++i) {
     double sum, error;
@@ -130,15 +167,18 @@ void compress(Expansion& e) {
 }
 
 // h = e * f, compressed.
-void multiply(const Expansion& e, const Expansion& f, Expansion& h) {
-  Expansion sum, term, next;
+template <typename E>
+void multiply(const E& e, const E& f, E& h) {
+  // The partial sums alternate between two buffers: no copies.
+  E sums[2], term;
+  int current = 0;
   for (int j = 0; j < f.size; ++j) {
     scale(e, f.c[static_cast<std::size_t>(j)], term);
-    add(sum, term, next);
-    std::swap(sum, next);
+    add(sums[current], term, sums[1 - current]);
+    current = 1 - current;
   }
-  compress(sum);
-  h = sum;
+  compress(sums[current]);
+  h = sums[current];
 }
 
 // The exact difference of two copies' coordinates as an expansion (always exact, whether or
@@ -168,6 +208,53 @@ Expansion cross(const Expansion& ax, const Expansion& ay, const Expansion& bx, c
   return det;
 }
 
+// Whether the difference of two copies' coordinates is a double, and that double.
+bool difference_as_double(double a, double a_shift, double b, double b_shift, double& out) {
+  double hi, lo;
+  two_sum(a, -b, hi, lo);
+  if (a_shift == b_shift) {
+    out = hi;
+    return lo == 0.0;
+  }
+  double shifted, error;
+  two_sum(hi, a_shift - b_shift, shifted, error);  // a_shift - b_shift: whole periods, exact
+  out = shifted;
+  return lo == 0.0 && error == 0.0;
+}
+
+// The in-circle determinant when every difference is exact as a double (Shewchuk's stage B):
+// each term lift * cross as two scalings of the cross product's expansion per coordinate.
+int incircle_of_exact_differences(double adx, double ady, double bdx, double bdy, double cdx, double cdy) {
+  auto cross2 = [](double px, double py, double qx, double qy) {
+    SmallExpansion left, right, out;
+    double hi, lo;
+    two_product(px, qy, hi, lo);
+    left.push(lo);
+    left.push(hi);
+    two_product(py, qx, hi, lo);
+    right.push(-lo);
+    right.push(-hi);
+    add(left, right, out);
+    return out;
+  };
+  auto term = [](const SmallExpansion& cross, double x, double y) {
+    SmallExpansion xc, xxc, yc, yyc, sum;
+    scale(cross, x, xc);
+    scale(xc, x, xxc);
+    scale(cross, y, yc);
+    scale(yc, y, yyc);
+    add(xxc, yyc, sum);
+    return sum;
+  };
+  const SmallExpansion a = term(cross2(bdx, bdy, cdx, cdy), adx, ady);
+  const SmallExpansion b = term(cross2(cdx, cdy, adx, ady), bdx, bdy);
+  const SmallExpansion c = term(cross2(adx, ady, bdx, bdy), cdx, cdy);
+  SmallExpansion ab, det;
+  add(a, b, ab);
+  add(ab, c, det);
+  return det.sign();
+}
+
 }  // namespace
 
 ExactDifference exact_difference(double a, double a_shift, double b, double b_shift) {
@@ -191,6 +278,13 @@ int orientation_exact(const PeriodicPoint& a, const PeriodicPoint& b, const Peri
 }
 
 int incircle_exact(const PeriodicPoint& a, const PeriodicPoint& b, const PeriodicPoint& c, const PeriodicPoint& d) {
+  // Nearly cocircular sites on a lattice: differences often exact as doubles, and the determinant
+  // of doubles is much cheaper than the general one.
+  double adx_, ady_, bdx_, bdy_, cdx_, cdy_;
+  if (difference_as_double(a.p.x, a.shift.x, d.p.x, d.shift.x, adx_) && difference_as_double(a.p.y, a.shift.y, d.p.y, d.shift.y, ady_) &&
+      difference_as_double(b.p.x, b.shift.x, d.p.x, d.shift.x, bdx_) && difference_as_double(b.p.y, b.shift.y, d.p.y, d.shift.y, bdy_) &&
+      difference_as_double(c.p.x, c.shift.x, d.p.x, d.shift.x, cdx_) && difference_as_double(c.p.y, c.shift.y, d.p.y, d.shift.y, cdy_))
+    return incircle_of_exact_differences(adx_, ady_, bdx_, bdy_, cdx_, cdy_);
   const Expansion adx = difference(a.p.x, a.shift.x, d.p.x, d.shift.x);
   const Expansion ady = difference(a.p.y, a.shift.y, d.p.y, d.shift.y);
   const Expansion bdx = difference(b.p.x, b.shift.x, d.p.x, d.shift.x);
