@@ -123,7 +123,8 @@ DelaunayCells::Sweep DelaunayCells::sweep(const PeriodicDelaunay& triangulation)
         const double left = o.abx * o.acy, right = o.aby * o.acx;
         const double turn = left - right;
         if (!(turn > detail::kOrientationBound * (std::abs(left) + std::abs(right))) &&
-            orientation(triangulation.corner_point(t, 0), triangulation.corner_point(t, 1), triangulation.corner_point(t, 2)) <= 0) {
+            orientation(triangulation.corner_point(t, 0), triangulation.corner_point(t, 1),
+                        triangulation.corner_point(t, 2)) <= 0) {
           mine.invalid.push_back(tri);
           continue;
         }
@@ -183,7 +184,8 @@ void DelaunayCells::recompute(const PeriodicDelaunay& triangulation, std::span<c
   const auto all = triangulation.triangles();
   const double limit = radius_limit_squared(triangulation);
   for (std::uint32_t ti : triangles) {
-    const double radius_squared = circumcentres(offsets(triangulation, all[ti]), all[ti], triangulation.sites(), &centres_[3 * ti]);
+    const double radius_squared =
+        circumcentres(offsets(triangulation, all[ti]), all[ti], triangulation.sites(), &centres_[3 * ti]);
     if (!(radius_squared < limit)) oversized.push_back(ti);
   }
 }
@@ -198,7 +200,6 @@ bool DelaunayCells::fits(const PeriodicDelaunay& triangulation, std::uint32_t tr
 
 bool DelaunayCells::measure(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
                             const Weighting& weighting, Cell& cell) const {
-  const auto triangles = triangulation.triangles();
   const bool ties = triangulation.tie_edges() > 0;
   // The shoelace sums over the cell's edges (p, q), counter-clockwise from its canonical corner
   // (the vertex's corner_of: after the edge to its neighbour of lowest site index): c = p x q
@@ -206,9 +207,12 @@ bool DelaunayCells::measure(const PeriodicDelaunay& triangulation, std::uint32_t
   // times the second moment about the site: polygon.h's xx + yy in one sum). Plain doubles: the
   // compiler keeps them in registers, where vector types went through the stack.
   double cross = 0.0, sx = 0.0, sy = 0.0, second = 0.0, radius_squared = 0.0;
+  auto centre = [&](std::uint32_t corner) {
+    return centres_[3 * PeriodicDelaunay::triangle_of(corner) + static_cast<std::size_t>(PeriodicDelaunay::edge_of(corner))];
+  };
   const std::uint32_t start = triangulation.corner_of(vertex);
   if (ties && triangulation.ties(PeriodicDelaunay::triangle_of(start))) return false;
-  const Point first = centres_[3 * PeriodicDelaunay::triangle_of(start) + static_cast<std::size_t>(PeriodicDelaunay::edge_of(start))];
+  const Point first = centre(start);
   double px = first.x, py = first.y, pr = px * px + py * py;
   const double first_r = pr;
   std::uint32_t corner = start;
@@ -216,14 +220,12 @@ bool DelaunayCells::measure(const PeriodicDelaunay& triangulation, std::uint32_t
   std::vector<Point> polygon;
   if (weighting.prefix) polygon.push_back(first);
   for (;;) {
-    const Triangle& t = triangles[PeriodicDelaunay::triangle_of(corner)];
-    const std::uint32_t across = t.neighbour[PeriodicDelaunay::next(PeriodicDelaunay::edge_of(corner))];
-    corner = PeriodicDelaunay::link(PeriodicDelaunay::triangle_of(across), PeriodicDelaunay::next(PeriodicDelaunay::edge_of(across)));
+    corner = triangulation.next_around(corner);
     double qx = first.x, qy = first.y, qr = first_r;
     const bool closed = corner == start;
     if (!closed) {
       if (ties && triangulation.ties(PeriodicDelaunay::triangle_of(corner))) return false;
-      const Point q = centres_[3 * PeriodicDelaunay::triangle_of(corner) + static_cast<std::size_t>(PeriodicDelaunay::edge_of(corner))];
+      const Point q = centre(corner);
       qx = q.x, qy = q.y, qr = qx * qx + qy * qy;
       if (weighting.prefix) polygon.push_back(q);
     }

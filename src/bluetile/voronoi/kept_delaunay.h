@@ -2,12 +2,14 @@
 // kept between calls"): the periodic Delaunay triangulation of its sites (periodic_delaunay.h).
 //
 // A call on a scene of the same shape as the last one (site count, wanted range, domain) moves
-// the triangulation's vertices to the new sites, checks every triangle (orientation) and repairs
-// the edges that fail the in-circle test by flips; the cells are then read off the triangles
-// (delaunay_cells.h). The triangulation is built from the search (the cells' neighbours, in
-// order, are the vertices' stars) on the first call, and again when a move left triangles
-// folded over (large moves) or the flips could not finish. Stars that do not fit together (the
-// roundings of the clipping near a tie) are computed again with the exact predicates.
+// the triangulation's vertices to the new sites, sweeps every triangle (orientation,
+// circumcentre, in-circle tests) and flips the edges that fail; the cells are then read off the
+// triangles (delaunay_cells.h). Triangles a large move folded over are repaired (their vertices
+// removed where they were and inserted where they are, PeriodicDelaunay::repair). The
+// triangulation is built from the search (the cells' neighbours, in order, are the vertices'
+// stars) on the first call, and again when more than one vertex in 16 would be repaired or the
+// flips could not finish. Stars that do not fit together (the roundings of the clipping near a
+// tie) are computed again with the exact predicates.
 //
 // Which path measures a cell is a function of the sites alone: the triangulation a set of sites
 // reaches is unique (the perturbation breaks ties alike everywhere), its cells' arithmetic is

@@ -121,9 +121,9 @@ class PeriodicDelaunay {
   // starting from the edges in `suspects` (links; the edges a test found failing), and marks the
   // edges in `tie_edges` as ties: together they must hold every edge that fails or ties now (every
   // other edge passes strictly). Adds the triangles it rewrote to `changed`. Precondition: every
-  // triangle valid (counter-clockwise, edges below a quarter period). Returns false when a flip would make an edge of a
-  // quarter period or more or the flips do not end (roundings of an input the predicates cannot
-  // hold): the triangulation is then unusable. Flips in a fixed order.
+  // triangle valid (counter-clockwise, edges below a quarter period). Returns false when a flip
+  // would make an edge of a quarter period or more or the flips do not end (roundings of an input
+  // the predicates cannot hold): the triangulation is then unusable. Flips in a fixed order.
   bool make_delaunay(std::span<const std::uint32_t> suspects, std::span<const std::uint32_t> tie_edges,
                      std::vector<std::uint32_t>& changed);
   std::size_t flips() const { return flips_; }
