@@ -1,9 +1,13 @@
-// The exact engine with and without the topology kept between calls (exact_engine.h), on Lloyd
-// iterations continuing from relaxed sites, one engine after the other in one process, repeats
-// interleaved, with CGAL's band reference beside them when CGAL is built. Prints a markdown table.
-// Usage: bluetile_topology_bench [--sizes 10000,100000,1000000] [--relax 30] [--iterations 10]
-//        [--threads 1,2] [--repeats 3] [--no-cgal]
-//        [--profile search|kept --sizes N]   (only that engine, for perf)
+// The exact engine with and without its kept Delaunay triangulation (exact_engine.h,
+// kept_delaunay.h) on Lloyd iterations, with CGAL's band and periodic references beside them when
+// CGAL is built: one process, the same sites for every engine, repeats interleaved. Two workloads
+// per N: a relaxation from uniform random sites (--random-iterations steps, the first call
+// included) and iterations continuing from relaxed sites (--relax steps of the search first, then
+// 2 untimed and --iterations timed). Prints a markdown table per N.
+// Usage: bluetile_topology_bench [--sizes 1000,10000,100000,1000000] [--starts random,relaxed]
+//        [--relax 30] [--iterations 20] [--random-iterations 20] [--threads 1,2] [--repeats 3]
+//        [--engines search,kept,cgal-band,cgal-periodic] [--max-cgal 1000000] [--check] [--spatial-order]
+//        [--profile search|kept --sizes N]   (that engine only, one thread, relaxed: for a profiler)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -38,46 +42,63 @@ double cpu_now() {
 struct Run {
   double seconds_per_iteration = 0.0;
   double cpu_seconds_per_iteration = 0.0;
-  double kept_share = 0.0;  // of the timed cells, certified from the lists
+  // Over the timed calls of the kept engine: cells from the triangulation, rebuilds, flips, ties.
+  double kept_share = 0.0;
+  std::size_t rebuilds = 0, flips = 0, ties = 0, repaired = 0, exact_stars = 0;
   std::size_t bytes = 0;
-  double max_centroid_error = 0.0, max_area_error = 0.0;  // against the full search, last iteration
+  // Against the search on the same sites (--check): the largest differences over the calls.
+  double max_centroid_difference = 0.0, max_area_difference = 0.0, max_moment_difference = 0.0;
 };
 
-// Two untimed iterations (the first searches, the second searches and makes the lists), then
-// `iterations` timed ones, each one engine call and the move to the centroids.
-Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int iterations, bool compare) {
+void compare_with_search(const Scene& scene, const SceneCells& cells, Run& run) {
+  ExactEngine search(ExactEngineOptions{false});
+  const SceneCells fresh = search.compute(scene);
+  for (std::size_t i = 0; i < fresh.cells.size(); ++i) {
+    const Point d = torus_offset(fresh.cells[i].centroid, cells.cells[i].centroid, scene.domain);
+    run.max_centroid_difference = std::max(run.max_centroid_difference, std::hypot(d.x, d.y));
+    run.max_area_difference = std::max(run.max_area_difference, std::abs(fresh.cells[i].area - cells.cells[i].area));
+    run.max_moment_difference =
+        std::max(run.max_moment_difference, std::abs(fresh.cells[i].second_moment - cells.cells[i].second_moment));
+  }
+}
+
+// `warm` untimed iterations, then `iterations` timed ones (one engine call and the move each).
+Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int warm, int iterations, bool check) {
   std::vector<Scene> scenes{make_scene(start)};
   std::vector<SceneCells> cells(1);
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < warm; ++i) {
     engine.compute(scenes, cells);
     move_to_centroids(scenes, cells);
   }
   Run run;
   std::size_t kept = 0, all = 0;
   auto* exact = dynamic_cast<ExactEngine*>(&engine);
-  const double t0 = now(), c0 = cpu_now();
+  double seconds = 0.0, cpu = 0.0;
   for (int i = 0; i < iterations; ++i) {
+    const double t0 = now(), c0 = cpu_now();
     engine.compute(scenes, cells);
     if (exact) {
-      kept += exact->last_topology_stats().kept_cells;
+      const KeptTopologyStats& stats = exact->last_topology_stats();
+      kept += stats.kept_cells;
       all += start.size();
+      run.rebuilds += stats.rebuilds;
+      run.flips += stats.flips;
+      run.ties += stats.tie_cells;
+      run.repaired += stats.repaired_vertices;
+      run.exact_stars += stats.exact_stars;
+      run.bytes = std::max(run.bytes, stats.bytes);
     }
-    if (i + 1 < iterations) move_to_centroids(scenes, cells);
+    move_to_centroids(scenes, cells);
+    seconds += now() - t0;
+    cpu += cpu_now() - c0;
   }
-  run.seconds_per_iteration = (now() - t0) / iterations;
-  run.cpu_seconds_per_iteration = (cpu_now() - c0) / iterations;
-  if (exact) {
-    run.kept_share = all ? static_cast<double>(kept) / static_cast<double>(all) : 0.0;
-    run.bytes = exact->last_topology_stats().bytes;
-  }
-  if (compare) {
-    ExactEngine search(ExactEngineOptions{false});
-    const SceneCells fresh = search.compute(scenes[0]);
-    for (std::size_t i = 0; i < fresh.cells.size(); ++i) {
-      const Point d = torus_offset(fresh.cells[i].centroid, cells[0].cells[i].centroid, Domain{});
-      run.max_centroid_error = std::max(run.max_centroid_error, std::hypot(d.x, d.y));
-      run.max_area_error = std::max(run.max_area_error, std::abs(fresh.cells[i].area - cells[0].cells[i].area));
-    }
+  run.seconds_per_iteration = seconds / iterations;
+  run.cpu_seconds_per_iteration = cpu / iterations;
+  if (exact) run.kept_share = all ? static_cast<double>(kept) / static_cast<double>(all) : 0.0;
+  if (check) {
+    // The last sites, measured by this engine once more and by the search.
+    const SceneCells last = engine.compute(scenes[0]);
+    compare_with_search(scenes[0], last, run);
   }
   return run;
 }
@@ -87,98 +108,148 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+std::string ratio(double a, double b) {
+  char text[32];
+  if (b > 0.0 && a > 0.0) {
+    std::snprintf(text, sizeof text, "%.3f", a / b);
+  } else {
+    std::snprintf(text, sizeof text, "-");
+  }
+  return text;
+}
+
+std::unique_ptr<CentroidEngine> make_engine(const std::string& name) {
+#if BLUETILE_HAVE_CGAL
+  if (name == "cgal-band") return std::make_unique<bench::CgalBandEngine>();
+  if (name == "cgal-periodic") return std::make_unique<bench::CgalPeriodicEngine>();
+#endif
+  return std::make_unique<ExactEngine>(ExactEngineOptions{name == "kept"});
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"Exact engine: topology kept between Lloyd iterations against the full search"};
-  std::vector<std::size_t> sizes{10000, 100000, 1000000};
+  CLI::App app{"Exact engine: Delaunay triangulation kept between Lloyd iterations against the search and CGAL"};
+  std::vector<std::size_t> sizes{1000, 10000, 100000, 1000000};
+  std::vector<std::string> starts{"random", "relaxed"};
   std::vector<std::size_t> threads{1, 2};
-  int relax = 30, iterations = 10, repeats = 3;
-  bool no_cgal = false;
+  std::vector<std::string> engines{"search", "kept", "cgal-band", "cgal-periodic"};
+  int relax = 30, iterations = 20, random_iterations = 20, repeats = 3;
+  std::size_t max_cgal = 1000000;
+  bool check = false, spatial = false;
   std::string profile;
   app.add_option("--sizes", sizes, "Site counts")->delimiter(',');
-  app.add_option("--relax", relax, "Lloyd iterations from random sites before timing")->capture_default_str();
-  app.add_option("--iterations", iterations, "Timed iterations per run")->capture_default_str();
-  app.add_option("--threads", threads, "Thread counts")->delimiter(',');
+  app.add_option("--starts", starts, "random (a relaxation from random sites) and/or relaxed")->delimiter(',');
+  app.add_option("--relax", relax, "Search iterations from random sites that make the relaxed start")->capture_default_str();
+  app.add_option("--iterations", iterations, "Timed iterations from relaxed sites")->capture_default_str();
+  app.add_option("--random-iterations", random_iterations, "Timed iterations from random sites")->capture_default_str();
+  app.add_option("--threads", threads, "Thread counts of the exact engine (CGAL: one)")->delimiter(',');
+  app.add_option("--engines", engines, "Engines: search, kept, cgal-band, cgal-periodic")->delimiter(',');
   app.add_option("--repeats", repeats, "Interleaved repeats (median reported)")->capture_default_str();
-  app.add_flag("--no-cgal", no_cgal, "Skip the CGAL band reference");
-  app.add_option("--profile", profile, "Run only this engine (search or kept), one thread, for a profiler");
+  app.add_option("--max-cgal", max_cgal, "Largest N for the CGAL references")->capture_default_str();
+  app.add_flag("--check", check, "After each run, the last sites against a fresh search (differences reported)");
+  app.add_flag("--spatial-order", spatial,
+               "Number the sites in the order of a grid's rows (neighbours near in memory) instead of at random");
+  app.add_option("--profile", profile, "Run only this engine (search or kept), one thread, relaxed, for a profiler");
   CLI11_PARSE(app, argc, argv);
+#if !BLUETILE_HAVE_CGAL
+  std::printf("CGAL not built: the CGAL reference rows are skipped\n");
+  std::erase_if(engines, [](const std::string& e) { return e.rfind("cgal", 0) == 0; });
+#endif
 
   for (std::size_t n : sizes) {
-    // Relaxed sites: uniform random ones after `relax` exact iterations (full search, all threads).
-    std::vector<Scene> scenes{make_scene(uniform_random_points(n, 1, n))};
-    {
+    std::vector<Point> random = uniform_random_points(n, 1, n);
+    if (spatial) {
+      // Row-major order of a grid of about one site per bucket.
+      const double side = std::ceil(std::sqrt(static_cast<double>(n)));
+      auto key = [side](Point p) { return std::floor(p.y * side) * side + std::floor(p.x * side); };
+      std::stable_sort(random.begin(), random.end(), [&](Point a, Point b) { return key(a) < key(b); });
+    }
+    std::vector<Point> relaxed;
+    if (std::find(starts.begin(), starts.end(), "relaxed") != starts.end() || !profile.empty()) {
+      std::vector<Scene> scenes{make_scene(random)};
       ExactEngine engine(ExactEngineOptions{false});
       LloydOptions options;
       options.iterations = relax;
       relax_lloyd(engine, scenes, options);
+      relaxed = scenes[0].sites;
     }
-    const std::vector<Point> relaxed = scenes[0].sites;
-
     if (!profile.empty()) {
       set_thread_count(1);
       ExactEngine engine(ExactEngineOptions{profile == "kept"});
-      const Run r = lloyd_run(engine, relaxed, iterations, false);
-      std::printf("%s N=%zu: %.1f ns per site and iteration (cpu %.1f), kept %.3f\n", profile.c_str(), n,
-                  1e9 * r.seconds_per_iteration / static_cast<double>(n),
-                  1e9 * r.cpu_seconds_per_iteration / static_cast<double>(n), r.kept_share);
+      const Run r = lloyd_run(engine, relaxed, 2, iterations, false);
+      std::printf("%s N=%zu: %.1f ns per site and iteration (cpu %.1f)\n", profile.c_str(), n,
+                  1e9 * r.seconds_per_iteration / static_cast<double>(n), 1e9 * r.cpu_seconds_per_iteration / static_cast<double>(n));
       continue;
     }
-
-    struct Row {
-      std::string name;
-      std::size_t threads;
-      std::vector<double> times, cpu;
-      Run last;
-    };
-    std::vector<Row> rows;
-    Run compared;
-    for (std::size_t t : threads) {
-      rows.push_back({"search", t, {}, {}});
-      rows.push_back({"kept", t, {}, {}});
-    }
-#if BLUETILE_HAVE_CGAL
-    if (!no_cgal) rows.push_back({"cgal-band", 1, {}, {}});
-#endif
-    for (int r = 0; r < repeats; ++r) {
-      for (std::size_t k = 0; k < rows.size(); ++k) {
-        Row& row = rows[(k + static_cast<std::size_t>(r)) % rows.size()];
-        set_thread_count(row.threads);
-        std::unique_ptr<CentroidEngine> engine;
-#if BLUETILE_HAVE_CGAL
-        if (row.name == "cgal-band") engine = std::make_unique<bench::CgalBandEngine>();
-#endif
-        if (!engine) engine = std::make_unique<ExactEngine>(ExactEngineOptions{row.name == "kept"});
-        row.last = lloyd_run(*engine, relaxed, iterations, row.name == "kept" && r == 0);
-        if (r == 0 && row.name == "kept" && row.last.max_centroid_error >= compared.max_centroid_error) compared = row.last;
-        row.times.push_back(row.last.seconds_per_iteration);
-        row.cpu.push_back(row.last.cpu_seconds_per_iteration);
+    for (const std::string& start : starts) {
+      const bool from_random = start == "random";
+      const std::vector<Point>& sites = from_random ? random : relaxed;
+      const int timed = from_random ? random_iterations : iterations;
+      const int warm = from_random ? 0 : 2;
+      struct Row {
+        std::string name;
+        std::size_t threads;
+        std::vector<double> times, cpu;
+        Run last, checked;  // the last repeat, and the first (the one --check compares)
+      };
+      std::vector<Row> rows;
+      for (const std::string& e : engines) {
+        if (e.rfind("cgal", 0) == 0) {
+          if (n <= max_cgal) rows.push_back({e, 1, {}, {}, {}});
+          continue;
+        }
+        for (std::size_t t : threads) rows.push_back({e, t, {}, {}, {}});
       }
-    }
-    double cgal = 0.0, search1 = 0.0, cgal_cpu = 0.0, search1_cpu = 0.0;
-    for (const Row& row : rows) {
-      if (row.name == "cgal-band") cgal = median(row.times), cgal_cpu = median(row.cpu);
-      if (row.name == "search" && row.threads == 1) search1 = median(row.times), search1_cpu = median(row.cpu);
-    }
-    auto ratio = [](double a, double b) {
-      char text[32];
-      if (b > 0.0) std::snprintf(text, sizeof text, "%.3f", a / b); else std::snprintf(text, sizeof text, "-");
-      return std::string(text);
-    };
-    std::printf("\nN = %zu, %d timed iterations after %d + 2, %d repeats (median)\n\n", n, iterations, relax, repeats);
-    std::printf("| engine | threads | wall ms/it | wall ns/site/it | cpu ns/site/it | wall / search 1t | cpu / search 1t | wall / cgal-band | cpu / cgal-band | kept cells | kept state B/site |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-    for (const Row& row : rows) {
-      const double m = median(row.times), c = median(row.cpu);
+      for (int r = 0; r < repeats; ++r) {
+        for (std::size_t k = 0; k < rows.size(); ++k) {
+          Row& row = rows[(k + static_cast<std::size_t>(r)) % rows.size()];
+          set_thread_count(row.threads);
+          auto engine = make_engine(row.name);
+          row.last = lloyd_run(*engine, sites, warm, timed, check && r == 0 && row.name == "kept");
+          if (r == 0) row.checked = row.last;
+          row.times.push_back(row.last.seconds_per_iteration);
+          row.cpu.push_back(row.last.cpu_seconds_per_iteration);
+        }
+      }
+      double band = 0.0, search1 = 0.0, band_cpu = 0.0, search1_cpu = 0.0;
+      for (const Row& row : rows) {
+        if (row.name == "cgal-band") band = median(row.times), band_cpu = median(row.cpu);
+        if (row.name == "search" && row.threads == 1) search1 = median(row.times), search1_cpu = median(row.cpu);
+      }
+      char after[64];
+      std::snprintf(after, sizeof after, " after %d + 2", relax);
+      std::printf("\nN = %zu, %s: %d timed iterations%s, %d repeats (median)\n\n", n, start.c_str(), timed,
+                  from_random ? " from uniform random sites" : after, repeats);
+      std::printf("| engine | threads | wall ms/it | wall ns/site/it | cpu ns/site/it | wall / search 1t | cpu / search 1t | wall / cgal-band | cpu / cgal-band | kept cells | rebuilds | repaired | flips/site/it | kept state B/site |\n");
+      std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
       const double per = 1e9 / static_cast<double>(n);
-      std::printf("| %s | %zu | %.2f | %.0f | %.0f | %s | %s | %s | %s | %s | %s |\n", row.name.c_str(), row.threads, 1e3 * m,
-                  per * m, per * c, ratio(m, search1).c_str(), ratio(c, search1_cpu).c_str(), ratio(m, cgal).c_str(),
-                  ratio(c, cgal_cpu).c_str(), row.name == "kept" ? ratio(row.last.kept_share, 1.0).c_str() : "-",
-                  row.name == "kept" ? ratio(static_cast<double>(row.last.bytes), static_cast<double>(n)).c_str() : "-");
+      for (const Row& row : rows) {
+        const double m = median(row.times), c = median(row.cpu);
+        const bool kept = row.name == "kept";
+        char flips[32] = "-", bytes[32] = "-", share[32] = "-", rebuilds[32] = "-", repaired[32] = "-";
+        if (kept) {
+          std::snprintf(flips, sizeof flips, "%.3f", static_cast<double>(row.last.flips) / (static_cast<double>(n) * timed));
+          std::snprintf(bytes, sizeof bytes, "%.0f", static_cast<double>(row.last.bytes) / static_cast<double>(n));
+          std::snprintf(share, sizeof share, "%.3f", row.last.kept_share);
+          std::snprintf(rebuilds, sizeof rebuilds, "%zu of %d", row.last.rebuilds, timed);
+          std::snprintf(repaired, sizeof repaired, "%zu", row.last.repaired);
+        }
+        std::printf("| %s | %zu | %.2f | %.0f | %.0f | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", row.name.c_str(),
+                    row.threads, 1e3 * m, per * m, per * c, ratio(m, search1).c_str(), ratio(c, search1_cpu).c_str(),
+                    ratio(m, band).c_str(), ratio(c, band_cpu).c_str(), share, rebuilds, repaired, flips, bytes);
+      }
+      if (check) {
+        for (const Row& row : rows) {
+          if (row.name != "kept") continue;
+          std::printf("\nkept (%zu threads) against a fresh search on the last sites: max centroid difference %.3g, area %.3g, second moment %.3g\n",
+                      row.threads, row.checked.max_centroid_difference, row.checked.max_area_difference,
+                      row.checked.max_moment_difference);
+          break;
+        }
+      }
+      std::fflush(stdout);
     }
-    std::printf("\nkept against a fresh full search on the last iteration's sites: max centroid difference %.3g, max area difference %.3g\n", compared.max_centroid_error, compared.max_area_error);
-    std::fflush(stdout);
   }
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -106,6 +107,36 @@ TEST_P(EngineRefusals, BrokenScenesAreRefusedWithTheProjectsError) {
     bad.domain.size = size;
     EXPECT_NE(error_of(*engine, bad).find("is not a finite positive size"), std::string::npos) << size.x << " " << size.y;
   }
+}
+
+// Bit-for-bit equality of every field an engine returns.
+bool identical(const SceneCells& a, const SceneCells& b) {
+  if (a.cells.size() != b.cells.size()) return false;
+  for (std::size_t i = 0; i < a.cells.size(); ++i) {
+    const Cell &x = a.cells[i], &y = b.cells[i];
+    const double fx[6] = {x.centroid.x, x.centroid.y, x.area, x.mass, x.second_moment, x.radius};
+    const double fy[6] = {y.centroid.x, y.centroid.y, y.area, y.mass, y.second_moment, y.radius};
+    if (std::memcmp(fx, fy, sizeof fx) != 0 || x.status != y.status) return false;
+  }
+  return true;
+}
+
+TEST_P(EngineContract, ResultsDoNotDependOnTheCallsBefore) {
+  // An engine may keep state between calls (the exact engine keeps a Delaunay triangulation per
+  // place in the batch); a scene's result must still be the same bits whatever it measured
+  // before: a scene, another scene of the same shape, the first one moved a little, the first.
+  auto engine = GetParam().make();
+  std::vector<Point> sites = test::uniform_points(600, 21);
+  const Scene first = make_scene(sites);
+  const Scene other = make_scene(test::uniform_points(600, 22));
+  for (Point& p : sites) p = wrap_point(p + Point{0.003, -0.002}, Domain{});
+  const Scene moved = make_scene(sites);
+  const SceneCells a = engine->compute(first);
+  engine->compute(other);
+  const SceneCells b = engine->compute(moved);
+  const SceneCells c = engine->compute(first);
+  EXPECT_TRUE(identical(a, c));
+  EXPECT_TRUE(identical(b, GetParam().make()->compute(moved)));
 }
 
 TEST_P(EngineContract, EmptyWantedRangesGiveNoCells) {

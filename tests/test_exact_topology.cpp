@@ -1,6 +1,8 @@
-// The exact engine's topology kept between calls (exact_engine.h): Lloyd sequences computed by an
-// engine that keeps its lists and by one that searches every cell, side by side on the same sites,
-// against each other and against brute-force clipping; the fallback on purpose; thread counts.
+// The exact engine's Delaunay triangulation kept between calls (exact_engine.h, kept_delaunay.h):
+// Lloyd sequences measured by an engine that keeps its triangulation and by one that searches every
+// cell, side by side on the same sites, within 1e-12 of each other and of brute-force clipping, on
+// random, relaxed, lattice, nearly degenerate, collinear and clustered sites; the fallbacks on
+// purpose; the same bits whatever the calls before and the thread count.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +15,7 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/core/torus.h"
 #include "test_support.h"
 
 namespace bluetile {
@@ -77,10 +80,9 @@ bool identical(const SceneCells& a, const SceneCells& b) {
   return true;
 }
 
-// The largest differences between two results: centroid distance and area, and whether every
-// status agrees.
+// The largest differences between two results, and whether every status agrees.
 struct Difference {
-  double centroid = 0.0, area = 0.0, mass = 0.0;
+  double centroid = 0.0, area = 0.0, mass = 0.0, second_moment = 0.0;
   bool statuses = true;
 };
 
@@ -90,31 +92,46 @@ Difference compare(const Scene& scene, const SceneCells& a, const SceneCells& b)
     d.centroid = std::max(d.centroid, scene_distance(scene, a.cells[i].centroid, b.cells[i].centroid));
     d.area = std::max(d.area, std::abs(a.cells[i].area - b.cells[i].area));
     d.mass = std::max(d.mass, std::abs(a.cells[i].mass - b.cells[i].mass));
+    d.second_moment = std::max(d.second_moment, std::abs(a.cells[i].second_moment - b.cells[i].second_moment));
     d.statuses &= a.cells[i].status == b.cells[i].status;
   }
   return d;
 }
 
+ExactEngine searching() { return ExactEngine(ExactEngineOptions{false}); }
+
+struct SideBySide {
+  std::size_t kept = 0, rebuilds = 0, ties = 0, flips = 0, repaired = 0;
+};
+
 // `iterations` Lloyd steps: both engines measure the same sites, which then move to the
 // searching engine's centroids (`perturb` may change them further between calls). Checks every
-// call within 1e-12; returns how many cells the kept engine certified from its lists.
-std::size_t run_side_by_side(Scene scene, int iterations, const std::function<void(Scene&, int)>& perturb = {}) {
-  ExactEngine kept(ExactEngineOptions{true}), search(ExactEngineOptions{false});
-  std::size_t kept_cells = 0;
+// call within 1e-12, and the last one against brute force.
+SideBySide run_side_by_side(Scene scene, int iterations, const std::function<void(Scene&, int)>& perturb = {}) {
+  ExactEngine kept;
+  ExactEngine search = searching();
+  SideBySide totals;
   for (int it = 0; it < iterations; ++it) {
     const SceneCells a = kept.compute(scene);
     const SceneCells b = search.compute(scene);
-    kept_cells += kept.last_topology_stats().kept_cells;
+    const KeptTopologyStats stats = kept.last_topology_stats();
+    totals.kept += stats.kept_cells;
+    totals.rebuilds += stats.rebuilds;
+    totals.ties += stats.tie_cells;
+    totals.flips += stats.flips;
+    totals.repaired += stats.repaired_vertices;
+    EXPECT_EQ(stats.kept_cells + stats.searched_cells, scene.wanted_count());
     const Difference d = compare(scene, a, b);
     EXPECT_LE(d.centroid, 1e-12) << "iteration " << it;
     EXPECT_LE(d.area, 1e-12) << "iteration " << it;
     EXPECT_LE(d.mass, 1e-12) << "iteration " << it;
+    EXPECT_LE(d.second_moment, 1e-12) << "iteration " << it;
     EXPECT_TRUE(d.statuses) << "iteration " << it;
     EXPECT_EQ(a.coincident_count, b.coincident_count);
     if (it + 1 == iterations) {
-      // Brute force on every 9th wanted cell of the last call (unweighted scenes).
+      // Brute force on every 29th wanted cell of the last call (unweighted scenes).
       if (!scene.density) {
-        for (std::size_t w = 0; w < scene.wanted_count(); w += 9) {
+        for (std::size_t w = 0; w < scene.wanted_count(); w += 29) {
           if (a.cells[w].status != CellStatus::ok) continue;
           const Reference r = brute_force(scene, scene.wanted_begin + w);
           EXPECT_NEAR(a.cells[w].area, r.area, 1e-12) << "site " << w;
@@ -129,141 +146,260 @@ std::size_t run_side_by_side(Scene scene, int iterations, const std::function<vo
     scene = scenes[0];
     if (perturb) perturb(scene, it);
   }
-  return kept_cells;
+  return totals;
 }
 
 std::vector<Point> relaxed_points(std::size_t n, std::uint64_t seed, Domain domain = {}, Boundary boundary = Boundary::periodic) {
   Scene scene = make_scene(uniform_points(n, seed), domain);
   for (Point& p : scene.sites) p *= domain.size;
   scene.boundary = boundary;
-  ExactEngine engine(ExactEngineOptions{false});
+  ExactEngine engine = searching();
   LloydOptions options;
   options.iterations = 25;
   relax_lloyd(engine, scene, options);
   return scene.sites;
 }
 
-TEST(ExactTopology, RandomSitesAgreeWithTheSearchAndBruteForce) {
-  // From random sites the sites move far at first: lists come once they move little.
-  const std::size_t kept = run_side_by_side(make_scene(uniform_points(2000, 5)), 24);
-  EXPECT_GT(kept, 0u);
+TEST(ExactTopology, RandomStartAgreesWithTheSearchAndBruteForce) {
+  // From random sites the first steps move far: the triangulation is repaired by many flips or
+  // rebuilt; every call agrees with the search.
+  const SideBySide r = run_side_by_side(make_scene(uniform_points(2000, 5)), 16);
+  EXPECT_EQ(r.kept, 16u * 2000u);
+  EXPECT_GE(r.rebuilds, 1u);
+  EXPECT_LT(r.rebuilds, 16u);
+  EXPECT_GT(r.flips, 0u);
 }
 
-TEST(ExactTopology, RelaxedSitesAreKept) {
-  const std::size_t kept = run_side_by_side(make_scene(relaxed_points(2000, 6)), 8);
-  // Calls 1 and 2 search (the second makes the lists); of the other 6 x 2000 cells nearly all kept.
-  EXPECT_GT(kept, 6u * 2000u * 9u / 10u);
+TEST(ExactTopology, RelaxedSitesAreRepairedByFlips) {
+  const SideBySide r = run_side_by_side(make_scene(relaxed_points(2000, 6)), 8);
+  EXPECT_EQ(r.kept, 8u * 2000u);
+  EXPECT_EQ(r.rebuilds, 1u);  // the first call only
+  EXPECT_EQ(r.ties, 0u);
 }
 
-TEST(ExactTopology, BoundedRectangleAndWantedRange) {
-  const Domain domain{{2.0, 1.0}};
-  Scene scene = make_scene(relaxed_points(2400, 7, domain, Boundary::bounded), domain);
-  scene.boundary = Boundary::bounded;
-  scene.wanted_begin = 100;
-  scene.wanted_end = 2100;
-  EXPECT_GT(run_side_by_side(scene, 7), 0u);
-  Scene periodic = make_scene(relaxed_points(1500, 8, domain), domain);
-  periodic.wanted_begin = 200;
-  EXPECT_GT(run_side_by_side(periodic, 7), 0u);
-}
-
-TEST(ExactTopology, WeightedCells) {
-  auto density = std::make_shared<DensityGrid>(64, 48);
-  for (int j = 0; j < 48; ++j)
-    for (int i = 0; i < 64; ++i) density->at(i, j) = 0.1f + static_cast<float>(i * j % 17) / 16.0f;
-  for (Boundary boundary : {Boundary::bounded, Boundary::periodic}) {
-    // Relaxed under the density first, so that the sites then move little.
-    Scene scene = make_scene(uniform_points(2000, 9));
-    scene.boundary = boundary;
-    scene.density = density;
-    ExactEngine engine(ExactEngineOptions{false});
-    LloydOptions options;
-    options.iterations = 40;
-    relax_lloyd(engine, scene, options);
-    EXPECT_GT(run_side_by_side(scene, 7), 0u);
+TEST(ExactTopology, SameSitesGiveTheSameBitsWhateverTheCallsBefore) {
+  // An engine that followed a relaxation (its triangulation flipped call after call, rebuilt when
+  // the first steps folded it over), one that saw other scenes in between, and a fresh one: the
+  // same sites give the same bits.
+  Scene scene = make_scene(uniform_points(2500, 7));
+  ExactEngine following;
+  ExactEngine interrupted;
+  Scene other = make_scene(uniform_points(2500, 8));
+  for (int it = 0; it < 16; ++it) {
+    const SceneCells a = following.compute(scene);
+    if (it % 5 == 2) interrupted.compute(other);
+    const SceneCells b = interrupted.compute(scene);
+    ExactEngine fresh;
+    const SceneCells c = fresh.compute(scene);
+    EXPECT_TRUE(identical(a, c)) << "call " << it;
+    EXPECT_TRUE(identical(b, c)) << "call " << it;
+    std::vector<Scene> scenes{scene};
+    move_to_centroids(scenes, std::span<const SceneCells>(&a, 1));
+    scene = scenes[0];
   }
-}
-
-TEST(ExactTopology, SquareLatticeTiesAndItsShift) {
-  // Cocircular ties everywhere: every cell vertex is shared by four sites. A Lloyd fixed point;
-  // then the whole lattice shifted by a small step each call (sites wrap across the border).
-  std::vector<Point> sites;
-  for (int j = 0; j < 40; ++j)
-    for (int i = 0; i < 40; ++i) sites.push_back({(i + 0.5) / 40.0, (j + 0.5) / 40.0});
-  EXPECT_GT(run_side_by_side(make_scene(sites), 6), 0u);
-  run_side_by_side(make_scene(sites), 8, [](Scene& scene, int) {
-    for (Point& p : scene.sites) p = wrap_point(p + Point{0.004, -0.003}, scene.domain);
-  });
-}
-
-TEST(ExactTopology, NearDegenerateCoincidentAndCollinear) {
-  // Pairs 1e-9 apart and exact duplicates inside a relaxed set; each call moves them a little.
-  std::vector<Point> sites = relaxed_points(1500, 10);
-  for (std::size_t k = 0; k < 20; ++k) sites.push_back(sites[k * 37] + Point{1e-9, static_cast<double>(k % 3) * 1e-9});
-  for (std::size_t k = 0; k < 6; ++k) sites.push_back(sites[k * 101 + 3]);
-  run_side_by_side(make_scene(sites), 7, [](Scene& scene, int it) {
-    for (std::size_t k = 0; k < 20; ++k) scene.sites[1500 + k] = scene.sites[k * 37] + Point{1e-9 * (it + 1), 1e-9};
-    for (std::size_t k = 0; k < 6; ++k) scene.sites[1520 + k] = scene.sites[k * 101 + 3];
-  });
-  // Collinear sites (three lines, far from uniform: the tree searches them).
-  std::vector<Point> lines;
-  for (int k = 0; k < 1200; ++k) lines.push_back({(k + 0.25) / 1200.0, 0.2 + 0.3 * (k % 3)});
-  run_side_by_side(make_scene(lines), 4);
-}
-
-TEST(ExactTopology, FallbackWhenASiteJumps) {
-  // One site teleported across the torus after the lists are made: the cells around where it
-  // left and where it lands fail their certificate and are searched; the rest stay kept.
-  Scene scene = make_scene(relaxed_points(3000, 11));
-  ExactEngine kept(ExactEngineOptions{true}), search(ExactEngineOptions{false});
-  for (int it = 0; it < 3; ++it) kept.compute(scene);
-  EXPECT_EQ(kept.last_topology_stats().kept_cells, 3000u);
-  scene.sites[17] = wrap_point(scene.sites[17] + Point{0.5, 0.5}, scene.domain);
-  const SceneCells a = kept.compute(scene);
-  const KeptTopologyStats stats = kept.last_topology_stats();
-  EXPECT_GT(stats.failed_cells, 0u);
-  EXPECT_LT(stats.failed_cells, 3000u / 64u);
-  EXPECT_GT(stats.kept_cells, 2900u);
-  const SceneCells b = search.compute(scene);
-  const Difference d = compare(scene, a, b);
-  EXPECT_LE(d.centroid, 1e-12);
-  EXPECT_LE(d.area, 1e-12);
-  // Every site moved far: all fail, the lists are dropped, and the next call searches.
-  for (Point& p : scene.sites) p = wrap_point(p + Point{0.3 / std::sqrt(3000.0), 0.0}, scene.domain);
-  for (std::size_t i = 0; i < scene.sites.size(); i += 2) scene.sites[i] = wrap_point(scene.sites[i] + Point{0.0, 0.2 / std::sqrt(3000.0)}, scene.domain);
-  const SceneCells c = kept.compute(scene);
-  EXPECT_GT(kept.last_topology_stats().failed_cells, 3000u / 64u);
-  const Difference e = compare(scene, c, search.compute(scene));
-  EXPECT_LE(e.centroid, 1e-12);
-  kept.compute(scene);
-  EXPECT_EQ(kept.last_topology_stats().kept_cells, 0u);
-  EXPECT_EQ(kept.last_topology_stats().searched_cells, 3000u);
+  EXPECT_EQ(following.last_topology_stats().rebuilds, 0u);
+  EXPECT_EQ(following.last_topology_stats().kept_cells, 2500u);
 }
 
 TEST(ExactTopology, BitIdenticalWhateverTheThreadCount) {
-  // A relaxation long enough to make, use, drop and remake lists, on 1, 2 and 7 threads.
   const std::size_t before = thread_count();
   std::vector<std::vector<SceneCells>> runs;
   for (std::size_t threads : {1u, 2u, 7u}) {
     set_thread_count(threads);
     Scene scene = make_scene(uniform_points(12000, 12));
-    ExactEngine engine(ExactEngineOptions{true});
+    ExactEngine engine;
     std::vector<SceneCells> calls;
-    std::size_t kept = 0;
-    for (int it = 0; it < 16; ++it) {
+    for (int it = 0; it < 12; ++it) {
       calls.push_back(engine.compute(scene));
-      kept += engine.last_topology_stats().kept_cells;
+      EXPECT_EQ(engine.last_topology_stats().kept_cells, 12000u);
       std::vector<Scene> scenes{scene};
       move_to_centroids(scenes, std::span<const SceneCells>(&calls.back(), 1));
       scene = scenes[0];
     }
-    EXPECT_GT(kept, 0u);
     runs.push_back(std::move(calls));
   }
   set_thread_count(before);
   for (std::size_t it = 0; it < runs[0].size(); ++it) {
     EXPECT_TRUE(identical(runs[0][it], runs[1][it])) << "call " << it;
     EXPECT_TRUE(identical(runs[0][it], runs[2][it])) << "call " << it;
+  }
+}
+
+TEST(ExactTopology, RectangularDomainWantedRangeAndWeightedCells) {
+  const Domain domain{{2.0, 1.0}};
+  Scene periodic = make_scene(relaxed_points(1500, 8, domain), domain);
+  periodic.wanted_begin = 200;  // sites before it fixed, as in a progressive level
+  EXPECT_EQ(run_side_by_side(periodic, 6).kept, 6u * 1300u);
+  auto density = std::make_shared<DensityGrid>(64, 48);
+  for (int j = 0; j < 48; ++j)
+    for (int i = 0; i < 64; ++i) density->at(i, j) = 0.1f + static_cast<float>(i * j % 17) / 16.0f;
+  Scene weighted = make_scene(uniform_points(2000, 9));
+  weighted.density = density;
+  ExactEngine engine = searching();
+  LloydOptions options;
+  options.iterations = 30;
+  relax_lloyd(engine, weighted, options);
+  EXPECT_EQ(run_side_by_side(weighted, 6).kept, 6u * 2000u);
+}
+
+TEST(ExactTopology, BoundedAndSmallScenesAreSearched) {
+  const Domain domain{{2.0, 1.0}};
+  Scene bounded = make_scene(relaxed_points(2400, 7, domain, Boundary::bounded), domain);
+  bounded.boundary = Boundary::bounded;
+  bounded.wanted_begin = 100;
+  bounded.wanted_end = 2100;
+  EXPECT_EQ(run_side_by_side(bounded, 3).kept, 0u);
+  EXPECT_EQ(run_side_by_side(make_scene(uniform_points(200, 3)), 3).kept, 0u);
+  // Searched cells are the search's own bits.
+  Scene small = make_scene(uniform_points(200, 4));
+  ExactEngine search = searching();
+  EXPECT_TRUE(identical(ExactEngine().compute(small), search.compute(small)));
+}
+
+std::vector<Point> square_lattice(int k, Point offset) {
+  std::vector<Point> sites;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) sites.push_back({(i + offset.x) / k, (j + offset.y) / k});
+  return sites;
+}
+
+TEST(ExactTopology, CocircularTiesAreSearchedAndTheirNeighboursKept) {
+  // A square lattice: four sites on every empty circle; every cell is on a tie and searched (the
+  // search's own bits), whatever the calls before.
+  const Scene lattice = make_scene(square_lattice(40, {0.5, 0.5}));
+  ExactEngine engine;
+  ExactEngine search = searching();
+  for (int call = 0; call < 2; ++call) {
+    EXPECT_TRUE(identical(engine.compute(lattice), search.compute(lattice)));
+    EXPECT_EQ(engine.last_topology_stats().tie_cells, 1600u);
+    // The clipping's neighbours of a tie do not fit together: the stars came from the exact
+    // predicates, once.
+    EXPECT_EQ(engine.last_topology_stats().exact_stars, call == 0 ? 1600u : 0u);
+  }
+  // Shifted by a step each call (sites wrap across the border): still a lattice.
+  run_side_by_side(lattice, 4, [](Scene& scene, int) {
+    for (Point& p : scene.sites) p = wrap_point(p + Point{0.004, -0.003}, scene.domain);
+  });
+  // One lattice row moved by a tenth of a spacing: the ties there are gone, the rest stay.
+  Scene sheared = lattice;
+  for (int i = 0; i < 40; ++i) sheared.sites[20 * 40 + i].x += 0.1 / 40.0;
+  const SceneCells a = engine.compute(sheared);
+  const KeptTopologyStats stats = engine.last_topology_stats();
+  EXPECT_GT(stats.kept_cells, 0u);
+  EXPECT_GT(stats.tie_cells, 0u);
+  const Difference d = compare(sheared, a, search.compute(sheared));
+  EXPECT_LE(d.centroid, 1e-12);
+  EXPECT_LE(d.area, 1e-12);
+  ExactEngine fresh;
+  EXPECT_TRUE(identical(a, fresh.compute(sheared)));
+}
+
+TEST(ExactTopology, NearlyCocircularSitesAnUlpOffTheLattice) {
+  // Every site moved by at most an ulp or two: cocircular within rounding, not exactly. The
+  // clipping's neighbours do not fit together; the stars come from the exact predicates.
+  std::vector<Point> sites = square_lattice(32, {0.5, 0.5});
+  Rng rng(21);
+  for (Point& p : sites) {
+    for (int k = static_cast<int>(rng.uniform() * 5.0) - 2; k != 0; k += k > 0 ? -1 : 1) p.x = std::nextafter(p.x, k > 0 ? 1.0 : 0.0);
+    for (int k = static_cast<int>(rng.uniform() * 5.0) - 2; k != 0; k += k > 0 ? -1 : 1) p.y = std::nextafter(p.y, k > 0 ? 1.0 : 0.0);
+  }
+  const Scene scene = make_scene(sites);
+  ExactEngine engine;
+  const SceneCells a = engine.compute(scene);
+  ExactEngine search = searching();
+  const Difference d = compare(scene, a, search.compute(scene));
+  EXPECT_LE(d.centroid, 1e-12);
+  EXPECT_LE(d.area, 1e-12);
+  EXPECT_LE(d.second_moment, 1e-12);
+  EXPECT_GT(engine.last_topology_stats().kept_cells, 0u);
+  EXPECT_EQ(engine.last_topology_stats().exact_stars, sites.size());
+  // A perturbed copy relaxed a few steps from here: flips only.
+  run_side_by_side(scene, 3);
+}
+
+TEST(ExactTopology, NearDegenerateCoincidentCollinearAndClustered) {
+  // Pairs 1e-9 apart inside a relaxed set; each call moves them a little.
+  std::vector<Point> sites = relaxed_points(1500, 10);
+  for (std::size_t k = 0; k < 20; ++k) sites.push_back(sites[k * 37] + Point{1e-9, static_cast<double>(k % 3) * 1e-9});
+  const SideBySide pairs = run_side_by_side(make_scene(sites), 6, [](Scene& scene, int it) {
+    for (std::size_t k = 0; k < 20; ++k) scene.sites[1500 + k] = scene.sites[k * 37] + Point{1e-9 * (it + 1), 1e-9};
+  });
+  EXPECT_EQ(pairs.kept, 6u * 1520u);
+  // Exact duplicates: the whole scene is searched (lowest index owns the cell); a Lloyd step
+  // moves the owners off their twins, and the next call triangulates again.
+  for (std::size_t k = 0; k < 6; ++k) sites.push_back(sites[k * 101 + 3]);
+  ExactEngine engine;
+  ExactEngine search = searching();
+  const SceneCells twins = engine.compute(make_scene(sites));
+  EXPECT_EQ(engine.last_topology_stats().kept_cells, 0u);
+  EXPECT_EQ(twins.coincident_count, 6u);
+  EXPECT_TRUE(identical(twins, search.compute(make_scene(sites))));
+  EXPECT_EQ(run_side_by_side(make_scene(sites), 3).kept, 2u * 1526u);
+  // Collinear sites (three lines): empty circles of a third of the torus, searched.
+  std::vector<Point> lines;
+  for (int k = 0; k < 1200; ++k) lines.push_back({(k + 0.25) / 1200.0, 0.2 + 0.3 * (k % 3)});
+  EXPECT_EQ(run_side_by_side(make_scene(lines), 3).kept, 0u);
+  // A cluster straddling the corner: cells far larger than a tenth of the torus, searched; the
+  // same cluster spread over a third of the torus has small cells, triangulated across the border.
+  Rng rng(11);
+  std::vector<Point> cluster, spread;
+  for (int i = 0; i < 600; ++i) {
+    const Point p{(rng.uniform() - 0.5) * 0.02, (rng.uniform() - 0.5) * 0.02};
+    cluster.push_back(wrap_point(p, Domain{}));
+  }
+  for (int i = 0; i < 2000; ++i) spread.push_back(wrap_point({rng.uniform() * 0.999 - 0.4995, rng.uniform()}, Domain{}));
+  EXPECT_EQ(run_side_by_side(make_scene(cluster), 3).kept, 0u);
+  EXPECT_EQ(run_side_by_side(make_scene(spread), 3).kept, 3u * 2000u);
+}
+
+TEST(ExactTopology, FoldedTrianglesAreRepairedAndManyAreRebuilt) {
+  Scene scene = make_scene(relaxed_points(3000, 11));
+  ExactEngine engine;
+  ExactEngine search = searching();
+  for (int it = 0; it < 3; ++it) engine.compute(scene);
+  EXPECT_EQ(engine.last_topology_stats().rebuilds, 0u);
+  // One site teleported across the torus and one pushed over its neighbour: the triangles
+  // around them fold over; their vertices are removed and inserted again.
+  scene.sites[17] = wrap_point(scene.sites[17] + Point{0.5, 0.5}, scene.domain);
+  scene.sites[400] = wrap_point(scene.sites[400] + Point{1.5 / std::sqrt(3000.0), 0.0}, scene.domain);
+  const SceneCells a = engine.compute(scene);
+  KeptTopologyStats stats = engine.last_topology_stats();
+  EXPECT_EQ(stats.rebuilds, 0u);
+  EXPECT_GE(stats.repaired_vertices, 2u);
+  EXPECT_LT(stats.repaired_vertices, 3000u / 16u);
+  EXPECT_EQ(stats.kept_cells, 3000u);
+  const Difference d = compare(scene, a, search.compute(scene));
+  EXPECT_LE(d.centroid, 1e-12);
+  EXPECT_LE(d.area, 1e-12);
+  EXPECT_LE(d.second_moment, 1e-12);
+  ExactEngine fresh;
+  EXPECT_TRUE(identical(a, fresh.compute(scene)));
+  // Another set of sites of the same count: most triangles fold, the triangulation is rebuilt.
+  Scene other = make_scene(uniform_points(3000, 12));
+  const SceneCells b = engine.compute(other);
+  stats = engine.last_topology_stats();
+  EXPECT_EQ(stats.rebuilds, 1u);
+  EXPECT_EQ(stats.repaired_vertices, 0u);
+  ExactEngine fresh_other;
+  EXPECT_TRUE(identical(b, fresh_other.compute(other)));
+}
+
+TEST(ExactTopology, LargerRelaxationsAgreeWithTheSearch) {
+  // 10^4 sites from random, every third call compared (the bench's --check runs 10^5 and 10^6).
+  Scene scene = make_scene(uniform_points(10000, 13));
+  ExactEngine kept;
+  ExactEngine search = searching();
+  for (int it = 0; it < 12; ++it) {
+    const SceneCells a = kept.compute(scene);
+    if (it % 3 == 0) {
+      const Difference d = compare(scene, a, search.compute(scene));
+      EXPECT_LE(d.centroid, 1e-12) << it;
+      EXPECT_LE(d.area, 1e-12) << it;
+      EXPECT_LE(d.second_moment, 1e-12) << it;
+    }
+    std::vector<Scene> scenes{scene};
+    move_to_centroids(scenes, std::span<const SceneCells>(&a, 1));
+    scene = scenes[0];
   }
 }
 

@@ -57,6 +57,8 @@ outputs() {
   run - relax -i dart_sets.txt -k 3 --engine exact -o relax_from_sets.txt
   run - relax -n 24 -k 3 -s 6 --sets 3 --engine exact -o relax_set{}.npy
   run - relax -n 24 -k 3 -s 6 --sets 2 --tolerance 1e-9 --engine exact -o relax_sets.txt
+  # The exact engine's kept Delaunay triangulation (periodic scenes of 256 sites and more).
+  run - relax -n 600 -k 6 -s 9 --engine exact -o relax_kept.txt --log relax_kept_log.csv
   run - relax -n 48 -k 4 -s 7 --density-map "$image" -o relax_density.txt
   run - relax -n 48 -k 4 -s 7 --density-map "$image" --invert --gamma 2 --transfer linear --weight-exponent 1 \
     --bounded -o relax_density_bounded.txt

@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
 #include "bluetile/core/text.h"
 
 namespace bluetile {
@@ -26,21 +28,51 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   LloydIteration log;
   std::size_t moving = 0;
   double displacement_sum = 0.0;
+  // A scene's sites in chunks of a fixed size (on all threads for a large scene), each chunk's
+  // sums added in chunk order: the same bits whatever the thread count. A few chunks already at
+  // 10^4 sites, where a Lloyd step takes about a millisecond.
+  constexpr std::size_t kChunk = 4096;
+  struct Sums {
+    double energy = 0.0, displacement = 0.0, largest = 0.0;
+  };
+  std::vector<Sums> sums;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     Scene& scene = scenes[k];
     moving += scene.wanted_count();
     log.coincident += cells[k].coincident_count;
     log.fallbacks += cells[k].fallback_count;
     log.zero_density += cells[k].zero_density_count;
-    for (std::size_t i = 0; i < scene.wanted_count(); ++i) {
-      const Cell& cell = cells[k].cells[i];
-      Point& site = scene.sites[scene.wanted_begin + i];
-      Point d = lloyd_displacement(scene, site, cell);
-      double moved = std::sqrt(d.x * d.x + d.y * d.y);
-      log.energy += cell.second_moment;
-      log.max_displacement = std::max(log.max_displacement, moved);
-      displacement_sum += moved;
-      site = cell.centroid;
+    const std::size_t count = scene.wanted_count(), chunks = (count + kChunk - 1) / kChunk;
+    sums.assign(chunks, Sums{});
+    auto move = [&](std::size_t begin, std::size_t end) {
+      for (std::size_t c = begin; c < end; ++c) {
+        Sums& mine = sums[c];
+        for (std::size_t i = c * kChunk; i < std::min(count, (c + 1) * kChunk); ++i) {
+          const Cell& cell = cells[k].cells[i];
+          Point& site = scene.sites[scene.wanted_begin + i];
+          Point d = lloyd_displacement(scene, site, cell);
+          double moved = std::sqrt(d.x * d.x + d.y * d.y);
+          mine.energy += cell.second_moment;
+          mine.largest = std::max(mine.largest, moved);
+          mine.displacement += moved;
+          site = cell.centroid;
+        }
+      }
+    };
+    if (chunks <= 1) {
+      // One chunk: the sums run on from the scenes before, as they always did.
+      sums.assign(1, Sums{log.energy, displacement_sum, log.max_displacement});
+      move(0, chunks);
+      log.energy = sums[0].energy;
+      displacement_sum = sums[0].displacement;
+      log.max_displacement = sums[0].largest;
+      continue;
+    }
+    parallel_for(chunks, 1, move);
+    for (const Sums& c : sums) {
+      log.energy += c.energy;
+      log.max_displacement = std::max(log.max_displacement, c.largest);
+      displacement_sum += c.displacement;
     }
   }
   log.mean_displacement = moving ? displacement_sum / static_cast<double>(moving) : 0.0;

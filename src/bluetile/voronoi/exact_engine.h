@@ -1,14 +1,19 @@
 // The exact CPU centroid engine: periodic Voronoi cells as exact polygons in double precision.
 //
-// Each wanted site's cell starts as the W x H rectangle centred on the site (on a torus no
-// point is farther than half a period from the nearest copy of the site along either axis)
-// and is clipped by the bisectors of the other sites and their periodic images, visited ring
-// by ring through a uniform grid, nearest first. In a bounded domain the cell starts as the
-// domain itself and only the sites, no images, clip it. With a density, the finished polygon's
-// weighted moments come from density_prefix.h (row prefix tables of the map, built once per map
-// and kept by the engine). The search stops once no unvisited site can
-// be closer than twice the cell's farthest vertex: such a site's bisector misses the cell.
-// All geometry is relative to the site, so precision does not depend on where the site is.
+// A cell can be measured two ways, which agree to rounding (about 1e-16; tests hold them within
+// 1e-12):
+// - the search (cell_search.h): the W x H rectangle centred on the site (on a torus no point is
+//   farther than half a period from the nearest copy of the site along either axis; in a bounded
+//   domain the domain itself), clipped by the bisectors of the other sites and their periodic
+//   images, visited ring by ring through a uniform grid, nearest first, until no unvisited site
+//   can be closer than twice the cell's farthest vertex;
+// - the Delaunay triangulation of the sites kept between calls (kept_delaunay.h): a Lloyd step
+//   moves sites so little that the triangulation of the step before, moved and repaired by a
+//   few edge flips with exact predicates, is the new one; a cell's vertices are the circumcentres
+//   of the triangles around its site.
+// With a density, the finished polygon's weighted moments come from density_prefix.h (row prefix
+// tables of the map, built once per map and kept by the engine). All geometry is relative to the
+// site, so precision does not depend on where the site is.
 #pragma once
 
 #include <memory>
@@ -20,32 +25,34 @@ namespace bluetile {
 
 class DensityPrefix;
 
-// Topology kept between calls (kept_topology.h): after a call that measured a scene of at least
-// kMinSites sites, each wanted cell keeps a list of the sites near it (within 2.6 times its
-// radius) and the positions they had. The next call on a scene with the same place in the batch,
-// site count, wanted range, domain and boundary clips each cell against its list only, and
-// certifies the result: the list is complete for the new cell when the cell's reach (twice its
-// radius) plus how far its site and the farthest-moved site of the scene moved since the list was
-// made stays inside the list's radius. Cells whose certificate fails (and coincident ones) are
-// computed by the full search, as are all cells of a call whose sites moved too far. Results
-// agree with the full search to rounding (the same bisectors clip the cell, in another order),
-// and are the same bits whatever the thread count.
-// Off by default: kept cells agree with searched ones to rounding (about 1e-16), not bit for bit,
-// so with it on a result depends on the calls the engine saw before (same bits for any thread
-// count still). ExactEngine() turns it on when the environment sets BLUETILE_EXACT_KEEP_TOPOLOGY=1.
+// Topology kept between calls (kept_delaunay.h): periodic scenes of at least 256 sites are
+// measured through a Delaunay triangulation kept per place in the batch, built from the search at
+// the first call and repaired by flips at the next calls on a scene of the same shape (site
+// count, wanted range, domain). A result is a function of the scene alone, never of the calls
+// before it nor of the thread count: the triangulation of a set of sites is unique (cocircular
+// ties broken by a symbolic perturbation), a cell's arithmetic is canonical, and a scene or cell
+// goes to the search only for properties of its sites (bounded domains, fewer sites, coincident
+// sites, an empty circle of a tenth of a period or more, cells on an exact cocircular tie). Off:
+// every cell is searched (the reference the tests compare with); ExactEngine() turns it off when
+// the environment sets BLUETILE_EXACT_KEEP_TOPOLOGY=0.
 struct ExactEngineOptions {
-  bool keep_topology = false;
+  bool keep_topology = true;
 };
 ExactEngineOptions default_exact_engine_options();
 
-// What the kept topology did in the last call (summed over the scenes of the batch).
+// What the kept triangulations did in the last call (summed over the scenes of the batch).
 struct KeptTopologyStats {
-  std::size_t kept_cells = 0;      // certified from the kept lists
-  std::size_t searched_cells = 0;  // measured by the full search (first calls, fallbacks)
-  std::size_t failed_cells = 0;    // of those, cells whose kept list failed its certificate
-  std::size_t list_entries = 0;    // entries of the lists now held
+  std::size_t kept_cells = 0;      // measured from a kept triangulation
+  std::size_t searched_cells = 0;  // measured by the search (scenes it does not suit, ties)
+  std::size_t tie_cells = 0;       // of those, cells on an exact cocircular tie
+  std::size_t flips = 0;           // edge flips that repaired kept triangulations
+  std::size_t rebuilds = 0;        // triangulations built from the search (first calls, large moves)
+  std::size_t exact_stars = 0;     // of their vertices, stars computed with exact predicates (ties)
+  std::size_t repaired_vertices = 0;  // vertices removed and inserted again after large moves
   std::size_t bytes = 0;           // memory the kept state holds now
 };
+
+class KeptDelaunay;
 
 class ExactEngine final : public CentroidEngine {
  public:
@@ -62,16 +69,15 @@ class ExactEngine final : public CentroidEngine {
   // to call from two threads at once on one engine (one engine per thread instead).
   struct DensityEntry;
 
-  // Forgets the kept topology (the next call searches every cell).
+  // Forgets the kept triangulations (the next call builds them again).
   void forget_topology();
   const KeptTopologyStats& last_topology_stats() const { return stats_; }
-  struct Topology;  // kept_topology.h
 
  private:
   const DensityEntry& density_entry(const std::shared_ptr<const DensityGrid>& density);
   std::vector<std::shared_ptr<const DensityEntry>> density_cache_;
   ExactEngineOptions options_;
-  std::vector<std::unique_ptr<Topology>> topology_;  // per scene of the batch
+  std::vector<std::unique_ptr<KeptDelaunay>> kept_;  // per scene of the batch
   KeptTopologyStats stats_;
 };
 

@@ -28,6 +28,13 @@ const Scene& validated_scene(const Scene& scene, Scene& storage) {
     throw Error("scene: " + std::to_string(scene.sites.size()) + " sites, more than the " +
                 std::to_string(kMaxSceneSites) + " an engine can index");
   check_density(scene);
+  // One branch-free pass first (engines check every call, and this vectorizes): NaN and
+  // infinities fail the comparisons too. The loop that names a bad site or wraps the ones outside
+  // runs only when one is not inside.
+  bool all_inside = true;
+  for (const Point& p : scene.sites)
+    all_inside &= (p.x >= 0.0) & (p.x < size.x) & (p.y >= 0.0) & (p.y < size.y);
+  if (all_inside) return scene;
   std::size_t first_outside = scene.sites.size();
   for (std::size_t i = 0; i < scene.sites.size(); ++i) {
     const Point p = scene.sites[i];
