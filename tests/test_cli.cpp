@@ -111,6 +111,9 @@ TEST(Cli, BadInputFilesFailCleanlyAndWriteNothing) {
       {"count.txt", "5\n0.1 0.2\n", "count.txt:1: count line says 5 points but 1 follow"},
       {"columns.txt", "0.1 0.2 0.3 0.4\n", "columns.txt:1: expected 'x y' or 'x y level'"},
       {"empty.txt", "# nothing\n", "empty.txt: no points"},
+      // A count line of 0 is a set with no points: refused, not relaxed into a header-only file.
+      {"zero.txt", "0\n", "zero.txt: 0 points; "},
+      {"second.txt", "0.1 0.2\n# set 1\n0\n", "second.txt (set 1 of 2): 0 points; "},
   };
   for (const auto& bad : cases) {
     for (std::string sub : {"relax", "centroids"}) {

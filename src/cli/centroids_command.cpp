@@ -24,8 +24,7 @@ struct CentroidsOptions {
 void run_centroids(const CentroidsOptions& o, const CLI::App& command) {
   OutputSet outputs;
   add_declared_inputs(outputs, command);
-  std::vector<PointSet> sets = read_point_table(o.input);
-  if (sets.empty()) throw Error(input_name(o.input) + ": no points");
+  std::vector<PointSet> sets = read_input_sets(o.input, "centroids");
   PointOutput output(outputs, o.output, sets.size());
 
   std::vector<Scene> scenes;

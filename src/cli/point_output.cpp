@@ -106,4 +106,15 @@ void PointOutput::write_one(OutputFile& file, const TableView& table, std::span<
   });
 }
 
+std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command) {
+  std::vector<PointSet> sets = read_point_table(path);
+  if (sets.empty()) throw Error(input_name(path) + ": no points");
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    if (!sets[k].points.empty()) continue;
+    const std::string which = sets.size() == 1 ? "" : " (set " + std::to_string(k) + " of " + std::to_string(sets.size()) + ")";
+    throw Error(input_name(path) + which + ": 0 points; " + command + " needs at least 1 point per set");
+  }
+  return sets;
+}
+
 }  // namespace bluetile::cli

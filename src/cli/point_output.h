@@ -32,6 +32,10 @@ struct PointOutputOptions {
 void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what,
                               bool required = true, bool several_sets = true);
 
+// The point sets of --input `path` (every format read_point_table reads), refused unless every
+// set holds at least one point: `command` is named in the message ("relax needs ...").
+std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command);
+
 // `pattern` with every "{}" replaced by the set's index, zero-padded to the width of the last.
 std::string set_file_name(const std::string& pattern, std::size_t set, std::size_t sets);
 

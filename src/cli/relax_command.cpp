@@ -64,8 +64,7 @@ void run_relax(const RelaxOptions& o, const CLI::App& command) {
   // random starts below.
   std::vector<PointSet> inputs;
   if (!o.input.empty()) {
-    inputs = read_point_table(o.input);
-    if (inputs.empty()) throw Error(input_name(o.input) + ": no points");
+    inputs = read_input_sets(o.input, "relax");
   }
   // Every output is declared, and so checked, before any work.
   PointOutput point_output(outputs, o.output, o.input.empty() ? static_cast<std::size_t>(o.sets) : inputs.size());
