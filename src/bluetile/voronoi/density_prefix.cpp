@@ -282,30 +282,26 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
   thread_local std::vector<RowSides> sides;
   // A box up to kScanColumns wide: F from its left column to each column of each row, once.
   const bool scan = columns <= kScanColumns;
-  const std::size_t stride = 3 * (static_cast<std::size_t>(columns) + 1);
+  // Rows in groups of four, two to a lane pair: for each column the pair's three sums, two rows
+  // each, stored as they are (one store per sum and pair, which is what bounds the scan).
+  const std::size_t group_stride = 12 * (static_cast<std::size_t>(columns) + 1);
   thread_local std::vector<double> scanned;
   if (scan) {
-    scanned.resize(stride * static_cast<std::size_t>(rows));
-    // Two rows a lane and two lane pairs a step: the sums' chains of adds are what bound a scan.
-    auto scan_rows = [&](long r, long count) {
+    scanned.resize(group_stride * static_cast<std::size_t>((rows + 3) / 4));
+    for (long r = 0; r < rows; r += 4) {
       const float* rho[4];
-      double* out[4];
-      for (long j = 0; j < 4; ++j) {
-        const long row = r + std::min(j, count - 1);  // a missing row repeats the last one
-        rho[j] = texels + row_start[static_cast<std::size_t>(row)];
-        out[j] = scanned.data() + stride * static_cast<std::size_t>(row);
-      }
+      for (long j = 0; j < 4; ++j)
+        rho[j] = texels + row_start[static_cast<std::size_t>(std::min(r + j, rows - 1))];  // a missing row repeats the last
+      double* out = scanned.data() + group_stride * static_cast<std::size_t>(r / 4);
       Lanes a0{0.0, 0.0}, a1{0.0, 0.0}, a2{0.0, 0.0}, b0{0.0, 0.0}, b1{0.0, 0.0}, b2{0.0, 0.0};
-      for (long c = 0; c <= columns; ++c) {
-        for (long j = 0; j < 2; ++j) {
-          const std::size_t k = 3 * static_cast<std::size_t>(c);
-          out[2 * j][k] = (j ? b0 : a0)[0];
-          out[2 * j][k + 1] = (j ? b1 : a1)[0];
-          out[2 * j][k + 2] = (j ? b2 : a2)[0];
-          out[2 * j + 1][k] = (j ? b0 : a0)[1];
-          out[2 * j + 1][k + 1] = (j ? b1 : a1)[1];
-          out[2 * j + 1][k + 2] = (j ? b2 : a2)[1];
-        }
+      for (long c = 0;; ++c) {
+        double* at = out + 12 * c;  // F_0, F_1, F_2 of rows r, r + 1; then of rows r + 2, r + 3
+        std::memcpy(at, &a0, sizeof a0);
+        std::memcpy(at + 2, &a1, sizeof a1);
+        std::memcpy(at + 4, &a2, sizeof a2);
+        std::memcpy(at + 6, &b0, sizeof b0);
+        std::memcpy(at + 8, &b1, sizeof b1);
+        std::memcpy(at + 10, &b2, sizeof b2);
         if (c == columns) break;
         const long g = column_index[static_cast<std::size_t>(c)];
         const double i = static_cast<double>(c), w1 = i + 0.5, w2 = i * i + i + 1.0 / 3.0;
@@ -317,8 +313,7 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
         b1 += tb * w1;
         b2 += tb * w2;
       }
-    };
-    for (long r = 0; r < rows; r += 4) scan_rows(r, std::min(4L, rows - r));
+    }
   } else {
     sides.assign(static_cast<std::size_t>(rows), RowSides{kNoColumn, kNoColumn, 0.0, 0.0, 0.0});
   }
@@ -363,8 +358,9 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
     const long c2 = std::clamp(static_cast<long>(u2), 0L, columns - 1);
     Span f;  // F from the row's reference column to c1
     if (scan) {
-      const double* at = scanned.data() + stride * static_cast<std::size_t>(r) + 3 * static_cast<std::size_t>(c1);
-      f = {at[0], at[1], at[2]};
+      const std::size_t k = static_cast<std::size_t>(r);
+      const double* at = scanned.data() + group_stride * (k / 4) + 12 * static_cast<std::size_t>(c1) + 6 * (k / 2 % 2) + k % 2;
+      f = {at[0], at[2], at[4]};
     } else {
       side_columns(r, c1, up, sign, v1, v2, rho, row, f);
     }
