@@ -109,6 +109,26 @@ TEST(DensityPrefix, HardCases) {
                "right and top border");
 }
 
+TEST(DensityPrefix, BoxesEitherSideOfTheScanWidth) {
+  // Up to 64 texels wide a cell's rows are summed once per cell; wider, each row's sides take
+  // their own reference column: both against the reference, at widths around the switch, with
+  // slanted edges (several pieces per row and side at the vertices) and across a periodic edge.
+  auto grid = random_density(200, 50, 11, 0.1);
+  const DensityPrefix prefix(*grid);
+  const Point size{1.0, 0.25};
+  const double tx = size.x / 200, ty = size.y / 50;
+  for (double columns : {62.7, 63.5, 64.0, 64.6, 65.3, 90.2}) {
+    const double w = columns * tx;
+    const std::vector<Point> hexagon = {{-0.5 * w, -3.3 * ty}, {0.1 * w, -7.1 * ty}, {0.5 * w, -1.2 * ty},
+                                        {0.45 * w, 4.4 * ty},  {-0.2 * w, 6.9 * ty}, {-0.48 * w, 2.0 * ty}};
+    for (Point origin : {Point{0.5, 0.11}, Point{0.03, 0.2}}) {
+      const std::string what = "hexagon " + std::to_string(columns) + " texels wide at x " + std::to_string(origin.x);
+      expect_agree(hexagon, origin, *grid, prefix, size, true, 1e-12, what + ", periodic");
+      if (origin.x > 0.5 * w) expect_agree(hexagon, origin, *grid, prefix, size, false, 1e-12, what + ", bounded");
+    }
+  }
+}
+
 TEST(DensityPrefix, HandComputedSquare) {
   // The square [0.25, 0.75]^2 over a 4 x 4 grid: the four middle texels exactly.
   DensityGrid grid(4, 4, 100.0f);  // the outer texels must not leak in

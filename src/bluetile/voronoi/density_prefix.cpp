@@ -26,16 +26,29 @@
 //   g = v^2: dv mean(v^2) F_0(u1)   + m (v2^2 N_1 - v2 m N_2 + m^2 N_3 / 3).
 // A vertical piece (du = 0) adds the first column only. The N_j are sums over the few texels the
 // piece spans (in a texel of width w whose right side is s = t0 from u2 and left side s = t1,
-// rho w (t1^j + ... + t0^j) / (j + 1), with no cancellation). F_a(u1) comes from the table: for
-// each row, the moments of rho t^a (a <= 2) from the start of each block of kBlock columns to
-// each column; the blocks between column 0 of the frame and u1 are shifted to the frame
-// (t -> t + d: q1 + d q0, q2 + 2 d q1 + d^2 q0) and summed. A cell costs a constant per row piece
-// plus the blocks its rows span, instead of every texel of its box.
+// rho w (t1^j + ... + t0^j) / (j + 1), with no cancellation); a piece inside one texel or across
+// one column line (about nine in ten) has them written out for its two texels and is integrated
+// with the others of the cell in one loop without branches, two pieces a step.
+//
+// F_a(u1) = F_a(c1) + rho (the partial texel), with F_a(c1) a sum of whole texels. A box of up to
+// kScanColumns columns (every cell but those of a few dozen sites on a large map) has F_a from its
+// left column to each of its columns summed once, row by row, four rows at a time: a piece reads
+// its F in one place. A wider box does not: in each row the pieces that run up (the right side of
+// a convex cell) take the first such piece's column as their reference, the ones running down
+// likewise, so that a piece sums only the texels between its end and its side's reference; then,
+// once per row, the whole texels between the two references (from the table: for each row the
+// moments of rho t^a of each block of kBlock columns, shifted to the frame, t -> t + d:
+// q1 + d q0, q2 + 2 d q1 + d^2 q0) times the up pieces' integral of v^b dv move those pieces to
+// the down pieces' reference. Either way F is summed from the frame's columns, never from a
+// grid row's start (a prefix over a whole row of 1024 texels lost about 1e-3 relative on a
+// cell's second moment by cancellation).
 #include "bluetile/voronoi/density_prefix.h"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 
 namespace bluetile {
 namespace {
@@ -45,9 +58,132 @@ struct Sums {
   double s0 = 0.0, su = 0.0, sv = 0.0, suu = 0.0, svv = 0.0;
 };
 
-// Up to this many texels F is summed texel by texel: exact for cells a few texels wide, where
-// the table's block shifts would cost relative precision.
-constexpr long kDirectTexels = 6;
+// Integrals of rho, rho t, rho t^2 (texel units).
+struct Moments3 {
+  double m0, m1, m2;
+};
+
+// A piece across more than one column line: N_j texel by texel. `f` holds F from the row's
+// reference column to c1; `column_index` maps frame columns to grid columns. Out of line: about one piece
+// in eight at 10^4 sites, and inlined it would crowd the common path's registers.
+[[gnu::noinline]] void wide_piece(const float* rho, const long* column_index, double u1, double v1, double u2,
+                                  double v2, double sign, long c1, long c2, Moments3 f, Sums& sums) {
+  const double rw1 = rho[column_index[c1]] * (u1 - static_cast<double>(c1));
+  const double c = static_cast<double>(c1);
+  f.m0 += rw1;
+  f.m1 += rw1 * (u1 + c) * 0.5;
+  f.m2 += rw1 * (u1 * u1 + u1 * c + c * c) * (1.0 / 3.0);
+  // N_j times (j + 1), texel by texel from the right end leftwards.
+  double n1 = 0.0, n2 = 0.0, n3 = 0.0;
+  double t0 = 0.0;  // s at the texel's right side
+  for (long k = c2; k >= c1; --k) {
+    const double left = k == c1 ? u1 : static_cast<double>(k);
+    const double t1 = u2 - left;  // s at its left side
+    const double w = k == c2 ? u2 - left : (k == c1 ? static_cast<double>(k + 1) - u1 : 1.0);
+    const double rw = rho[column_index[k]] * w;
+    const double t01 = t0 * t1, t00 = t0 * t0, t11 = t1 * t1;
+    n1 += rw * (t0 + t1);
+    n2 += rw * (t00 + t01 + t11);
+    n3 += rw * (t0 + t1) * (t00 + t11);
+    t0 = t1;
+  }
+  n1 *= 0.5;
+  n2 *= 1.0 / 3.0;
+  n3 *= 0.25;
+  const double dv = v2 - v1;
+  const double m = dv / (u2 - u1);
+  sums.s0 += sign * (dv * f.m0 + m * n1);
+  sums.su += sign * (dv * f.m1 + m * (u2 * n1 - n2));
+  sums.suu += sign * (dv * f.m2 + m * (u2 * (u2 * n1 - 2.0 * n2) + n3));
+  sums.sv += sign * (dv * 0.5 * (v1 + v2) * f.m0 + m * (v2 * n1 - 0.5 * m * n2));
+  sums.svv += sign * (dv * (v1 * v1 + v1 * v2 + v2 * v2) * (1.0 / 3.0) * f.m0 +
+                      m * (v2 * (v2 * n1 - m * n2) + m * m * n3 * (1.0 / 3.0)));
+}
+
+using Lanes = double __attribute__((vector_size(16)));
+
+// Boxes up to this many texels wide are scanned whole (the cells of 10^4 sites over 1024^2
+// texels span about 13): a scan costs the box's texels once, a row's sides cost a span per row.
+constexpr long kScanColumns = 64;
+
+// Below this du a piece counts as vertical: its m N_j terms (about rho dv du) vanish against
+// any cell's moments, and m = dv / du would overflow in m^2.
+constexpr double kVerticalDu = 1e-100;
+
+// Pieces inside one texel or across one column line, as columns of numbers: u1 <= u2, the
+// piece's sign, its first column k, the densities of its texels (the same one twice for a piece
+// inside one texel) and F from the row's reference column to k.
+class PieceBatch {
+ public:
+  void clear() { size_ = 0; }
+  void push(double u1, double v1, double u2, double v2, double sign, double k, double rho1, double rho2, double f0,
+            double f1, double f2) {
+    if (size_ == capacity_) grow();
+    double* at = data_.data() + size_;
+    const double values[kFields] = {u1, v1, u2, v2, sign, k, rho1, rho2, f0, f1, f2};
+    for (std::size_t i = 0; i < kFields; ++i) at[i * capacity_] = values[i];
+    ++size_;
+  }
+
+  // Adds the pieces' integrals of H dv (the derivation at the top of this file): the texel the
+  // piece starts in covers s from ta = du down to tb, the next one from tb to 0 (tb = 0 for a
+  // piece inside one texel). Two pieces a step in two lanes.
+  void integrate(Sums& sums) {
+    if (size_ % 2) push(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // adds nothing
+    Lanes a0{0.0, 0.0}, a1{0.0, 0.0}, a2{0.0, 0.0}, a3{0.0, 0.0}, a4{0.0, 0.0};
+    const Lanes third{1.0 / 3.0, 1.0 / 3.0};
+    for (std::size_t i = 0; i < size_; i += 2) {
+      const Lanes u1 = load(0, i), v1 = load(1, i), u2 = load(2, i), v2 = load(3, i), sign = load(4, i);
+      const Lanes k = load(5, i), rho1 = load(6, i), rho2 = load(7, i);
+      const Lanes du = u2 - u1, dv = v2 - v1;
+      const Lanes line = select(u2 < k + 1.0, u2, k + 1.0);  // the column line crossed, or u2
+      const Lanes ta = du, tb = u2 - line;                   // s at the left end and at the line
+      const Lanes p1 = rho1 * (line - u1), p2 = rho2 * tb;
+      const Lanes n1 = 0.5 * (p1 * (ta + tb) + p2 * tb);
+      const Lanes n2 = third * (p1 * (ta * ta + ta * tb + tb * tb) + p2 * (tb * tb));
+      const Lanes n3 = 0.25 * (p1 * (ta + tb) * (ta * ta + tb * tb) + p2 * (tb * tb * tb));
+      const Lanes rw = rho1 * (u1 - k);
+      const Lanes f0 = load(8, i) + rw, f1 = load(9, i) + rw * (u1 + k) * 0.5;
+      const Lanes f2 = load(10, i) + rw * (u1 * u1 + u1 * k + k * k) * third;
+      const auto slanted = du > kVerticalDu;
+      const Lanes m = select(slanted, dv, Lanes{0.0, 0.0}) / select(slanted, du, Lanes{1.0, 1.0});
+      a0 += sign * (dv * f0 + m * n1);
+      a1 += sign * (dv * f1 + m * (u2 * n1 - n2));
+      a2 += sign * (dv * f2 + m * (u2 * (u2 * n1 - 2.0 * n2) + n3));
+      a3 += sign * (dv * 0.5 * (v1 + v2) * f0 + m * (v2 * n1 - 0.5 * m * n2));
+      a4 += sign * (dv * (v1 * v1 + v1 * v2 + v2 * v2) * third * f0 + m * (v2 * (v2 * n1 - m * n2) + m * m * n3 * third));
+    }
+    sums.s0 += a0[0] + a0[1];
+    sums.su += a1[0] + a1[1];
+    sums.suu += a2[0] + a2[1];
+    sums.sv += a3[0] + a3[1];
+    sums.svv += a4[0] + a4[1];
+  }
+
+ private:
+  static constexpr std::size_t kFields = 11;
+  Lanes load(std::size_t field, std::size_t i) const {
+    Lanes v;
+    std::memcpy(&v, data_.data() + field * capacity_ + i, sizeof v);
+    return v;
+  }
+  template <class Mask>
+  static Lanes select(Mask mask, Lanes yes, Lanes no) {
+    using Bits = std::int64_t __attribute__((vector_size(16)));
+    const Bits bits = reinterpret_cast<Bits>(mask);
+    return reinterpret_cast<Lanes>((reinterpret_cast<Bits>(yes) & bits) | (reinterpret_cast<Bits>(no) & ~bits));
+  }
+  void grow() {
+    const std::size_t capacity = std::max<std::size_t>(64, 2 * capacity_);
+    std::vector<double> data(kFields * capacity);
+    for (std::size_t i = 0; i < kFields; ++i)
+      std::copy_n(data_.data() + i * capacity_, size_, data.data() + i * capacity);
+    data_ = std::move(data);
+    capacity_ = capacity;
+  }
+  std::vector<double> data_;
+  std::size_t size_ = 0, capacity_ = 0;
+};
 
 }  // namespace
 
@@ -102,25 +238,12 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
     row_block[static_cast<std::size_t>(r)] = grid_row * blocks_per_row_;
   }
   for (long c = 0; c < columns; ++c) column_index[static_cast<std::size_t>(c)] = grid_index(c0 + c, width);
-  const long g0 = column_index[0];
   const float* texels = density.texels.data();
   const Entry* table = table_.data();
-  // Each row piece reads a row of its own, so the rows' loads are issued up front: one after
-  // another they would each wait out a cache miss (the box's rows lie a grid row apart).
-  {
-    const long last = std::min(width, g0 + columns);
-    for (long r = 0; r < rows; ++r) {
-      const float* rho = texels + row_start[static_cast<std::size_t>(r)];
-      const Entry* row = table + row_block[static_cast<std::size_t>(r)];
-      for (long g = g0; g < last; g += 16) __builtin_prefetch(rho + g);
-      __builtin_prefetch(rho + last - 1);
-      for (long b = g0 / kBlock; b <= (last - 1) / kBlock; b += 2) __builtin_prefetch(row + b);
-    }
-  }
-
-  // F_0, F_1, F_2 at column line c of the frame (the texels [0, c) of a row). Accumulated in
-  // locals: through a pointer they could alias the table, and every add would go through memory.
-  struct Prefix {
+  // F_0, F_1, F_2 over the whole texels [from, to) of a row, frame columns (from <= to), for a
+  // box too wide to scan. Blocks whose texels lie in order in the grid come from the table, the
+  // rest texel by texel. Accumulated in locals: through a pointer they could alias the table.
+  struct Span {
     double f0 = 0.0, f1 = 0.0, f2 = 0.0;
     void add(long k, double r) {
       const double i = static_cast<double>(k);
@@ -129,52 +252,101 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
       f2 += r * (i * i + i + 1.0 / 3.0);
     }
   };
-  auto prefix = [&](const float* rho, const Entry* row, long c) {
-    Prefix f;
-    if (c <= kDirectTexels) {
-      for (long k = 0; k < c; ++k) f.add(k, rho[column_index[static_cast<std::size_t>(k)]]);
-      return f;
-    }
-    long x = 0, g = c0;
-    if (periodic) {
-      g = g0;
-    } else {
-      // A bounded box reaches past the grid only by rounding: those columns are clamped texels.
-      for (; x < c && g < 0; ++x, ++g) f.add(x, rho[0]);
-    }
-    while (x < c) {
-      if (g >= width) {
-        if (!periodic) {
-          for (; x < c; ++x) f.add(x, rho[width - 1]);
-          break;
-        }
-        g -= width;
-      }
-      // Texels [g, g + len) of one block at frame columns [x, x + len): from the block's
-      // moments when they are most of it, else texel by texel.
-      const long block = g - g % kBlock;
-      const long block_end = std::min(block + kBlock, width);
-      const long len = std::min(block_end - g, c - x);
-      if (2 * len <= block_end - block) {
-        for (long i = 0; i < len; ++i) f.add(x + i, rho[g + i]);
-      } else {
-        const Entry e = row[block / kBlock];
-        const double d = static_cast<double>(x - (g - block));  // the block's start in the frame
+  auto span = [&](const float* rho, const Entry* row, long from, long to) {
+    Span f;
+    for (long x = from; x < to;) {
+      const long g = column_index[static_cast<std::size_t>(x)];
+      if (to - x >= kBlock && g % kBlock == 0 && g + kBlock <= width &&
+          column_index[static_cast<std::size_t>(x + kBlock - 1)] == g + kBlock - 1) {
+        const Entry e = row[g / kBlock];
+        const double d = static_cast<double>(x);  // the block's start in the frame
         f.f2 += e.q2 + d * (2.0 * e.q1 + d * e.q0);
         f.f1 += e.q1 + d * e.q0;
         f.f0 += e.q0;
-        for (long i = block; i < g; ++i) f.add(x - (g - i), -rho[i]);
-        for (long i = g + len; i < block_end; ++i) f.add(x + (i - g), -rho[i]);
+        x += kBlock;
+      } else {
+        f.add(x, rho[g]);
+        ++x;
       }
-      x += len;
-      g += len;
     }
     return f;
   };
 
+  // A box too wide to scan: each row's two sides and their reference columns (the top of this
+  // file), so that a cell costs a constant per piece plus one span per row.
+  struct RowSides {
+    long down, up;       // the sides' reference columns; kNoColumn until a piece sets one
+    double w0, w1, w2;   // the up pieces' integrals of v^0, v^1, v^2 dv
+  };
+  constexpr long kNoColumn = -1;
+  thread_local std::vector<RowSides> sides;
+  // A box up to kScanColumns wide: F from its left column to each column of each row, once.
+  const bool scan = columns <= kScanColumns;
+  // Rows in groups of four, two to a lane pair: for each column the pair's three sums, two rows
+  // each, stored as they are (one store per sum and pair, which is what bounds the scan).
+  const std::size_t group_stride = 12 * (static_cast<std::size_t>(columns) + 1);
+  thread_local std::vector<double> scanned;
+  if (scan) {
+    scanned.resize(group_stride * static_cast<std::size_t>((rows + 3) / 4));
+    for (long r = 0; r < rows; r += 4) {
+      const float* rho[4];
+      for (long j = 0; j < 4; ++j)
+        rho[j] = texels + row_start[static_cast<std::size_t>(std::min(r + j, rows - 1))];  // a missing row repeats the last
+      double* out = scanned.data() + group_stride * static_cast<std::size_t>(r / 4);
+      Lanes a0{0.0, 0.0}, a1{0.0, 0.0}, a2{0.0, 0.0}, b0{0.0, 0.0}, b1{0.0, 0.0}, b2{0.0, 0.0};
+      for (long c = 0;; ++c) {
+        double* at = out + 12 * c;  // F_0, F_1, F_2 of rows r, r + 1; then of rows r + 2, r + 3
+        std::memcpy(at, &a0, sizeof a0);
+        std::memcpy(at + 2, &a1, sizeof a1);
+        std::memcpy(at + 4, &a2, sizeof a2);
+        std::memcpy(at + 6, &b0, sizeof b0);
+        std::memcpy(at + 8, &b1, sizeof b1);
+        std::memcpy(at + 10, &b2, sizeof b2);
+        if (c == columns) break;
+        const long g = column_index[static_cast<std::size_t>(c)];
+        const double i = static_cast<double>(c), w1 = i + 0.5, w2 = i * i + i + 1.0 / 3.0;
+        const Lanes ta{rho[0][g], rho[1][g]}, tb{rho[2][g], rho[3][g]};
+        a0 += ta;
+        a1 += ta * w1;
+        a2 += ta * w2;
+        b0 += tb;
+        b1 += tb * w1;
+        b2 += tb * w2;
+      }
+    }
+  } else {
+    sides.assign(static_cast<std::size_t>(rows), RowSides{kNoColumn, kNoColumn, 0.0, 0.0, 0.0});
+  }
+
+  // The side's reference column for a box too wide to scan (see RowSides), and F from it to c1.
+  auto side_columns = [&](long r, long c1, bool up, double sign, double v1, double v2, const float* rho,
+                          const Entry* row, Span& f) {
+    RowSides& side = sides[static_cast<std::size_t>(r)];
+    if (up) {
+      // dv and the means of v and v^2 over the piece, as oriented in the polygon.
+      const double w = (v2 - v1) * sign;
+      side.w0 += w;
+      side.w1 += w * 0.5 * (v1 + v2);
+      side.w2 += w * (v1 * v1 + v1 * v2 + v2 * v2) * (1.0 / 3.0);
+    }
+    long& base = up ? side.up : side.down;
+    if (base == kNoColumn) base = c1;
+    if (c1 > base) {
+      f = span(rho, row, base, c1);
+    } else if (c1 < base) {
+      f = span(rho, row, c1, base);
+      f = {-f.f0, -f.f1, -f.f2};
+    }
+  };
+
   Sums sums;
-  // The piece (pu, pv) -> (qu, qv) of an edge, inside frame row r.
-  auto piece = [&](double pu, double pv, double qu, double qv, long r) {
+  // Pieces inside one or two texels (about nine in ten) are kept in `batch` and integrated
+  // together below; wider ones here.
+  thread_local PieceBatch batch;
+  batch.clear();
+  // The piece (pu, pv) -> (qu, qv) of an edge, inside frame row r. Inlined: it runs for every
+  // piece, and GCC kept it out of line.
+  auto piece = [&](double pu, double pv, double qu, double qv, long r, bool up) __attribute__((always_inline)) {
     if (pv == qv) return;  // dv = 0
     const bool rightwards = pu <= qu;
     const double u1 = rightwards ? pu : qu, v1 = rightwards ? pv : qv;
@@ -184,58 +356,20 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
     const Entry* row = table + row_block[static_cast<std::size_t>(r)];
     const long c1 = std::clamp(static_cast<long>(u1), 0L, columns - 1);
     const long c2 = std::clamp(static_cast<long>(u2), 0L, columns - 1);
-    Prefix f;
-    if (c1 > 0) f = prefix(rho, row, c1);
-    {
-      const double rw = rho[column_index[static_cast<std::size_t>(c1)]] * (u1 - static_cast<double>(c1));
-      const double c = static_cast<double>(c1);
-      f.f0 += rw;
-      f.f1 += rw * (u1 + c) * 0.5;
-      f.f2 += rw * (u1 * u1 + u1 * c + c * c) * (1.0 / 3.0);
-    }
-    const double dv = v2 - v1;
-    double s0 = dv * f.f0, su = dv * f.f1, suu = dv * f.f2;
-    double sv = dv * 0.5 * (v1 + v2) * f.f0;
-    double svv = dv * (v1 * v1 + v1 * v2 + v2 * v2) * (1.0 / 3.0) * f.f0;
-    if (c1 == c2) {
-      // Inside one texel: N_j = rho du^(j + 1) / (j + 1), so with q = rho dv du the terms
-      // m N_j lose their division (and vanish for a vertical piece).
-      const double du = u2 - u1, q = rho[column_index[static_cast<std::size_t>(c1)]] * dv * du;
-      s0 += 0.5 * q;
-      su += q * (0.5 * u2 - du * (1.0 / 3.0));
-      suu += q * (u2 * (0.5 * u2 - du * (2.0 / 3.0)) + 0.25 * du * du);
-      sv += q * (0.5 * v2 - dv * (1.0 / 6.0));
-      svv += q * (v2 * (0.5 * v2 - dv * (1.0 / 3.0)) + dv * dv * (1.0 / 12.0));
+    Span f;  // F from the row's reference column to c1
+    if (scan) {
+      const std::size_t k = static_cast<std::size_t>(r);
+      const double* at = scanned.data() + group_stride * (k / 4) + 12 * static_cast<std::size_t>(c1) + 6 * (k / 2 % 2) + k % 2;
+      f = {at[0], at[2], at[4]};
     } else {
-      // N_j times (j + 1), texel by texel from the right end leftwards.
-      double n1 = 0.0, n2 = 0.0, n3 = 0.0;
-      double t0 = 0.0;  // s at the texel's right side
-      for (long k = c2; k >= c1; --k) {
-        const double left = k == c1 ? u1 : static_cast<double>(k);
-        const double t1 = u2 - left;  // s at its left side
-        const double w = k == c2 ? (k == c1 ? u2 - u1 : u2 - left) : (k == c1 ? static_cast<double>(k + 1) - u1 : 1.0);
-        const double rw = rho[column_index[static_cast<std::size_t>(k)]] * w;
-        const double t01 = t0 * t1, t00 = t0 * t0, t11 = t1 * t1;
-        n1 += rw * (t0 + t1);
-        n2 += rw * (t00 + t01 + t11);
-        n3 += rw * (t0 + t1) * (t00 + t11);
-        t0 = t1;
-      }
-      n1 *= 0.5;
-      n2 *= 1.0 / 3.0;
-      n3 *= 0.25;
-      const double m = dv / (u2 - u1);
-      s0 += m * n1;
-      su += m * (u2 * n1 - n2);
-      suu += m * (u2 * (u2 * n1 - 2.0 * n2) + n3);
-      sv += m * (v2 * n1 - 0.5 * m * n2);
-      svv += m * (v2 * (v2 * n1 - m * n2) + m * m * n3 * (1.0 / 3.0));
+      side_columns(r, c1, up, sign, v1, v2, rho, row, f);
     }
-    sums.s0 += sign * s0;
-    sums.su += sign * su;
-    sums.sv += sign * sv;
-    sums.suu += sign * suu;
-    sums.svv += sign * svv;
+    if (c2 - c1 <= 1) {
+      batch.push(u1, v1, u2, v2, sign, static_cast<double>(c1), rho[column_index[static_cast<std::size_t>(c1)]],
+                 rho[column_index[static_cast<std::size_t>(c2)]], f.f0, f.f1, f.f2);
+      return;
+    }
+    wide_piece(rho, column_index.data(), u1, v1, u2, v2, sign, c1, c2, {f.f0, f.f1, f.f2}, sums);
   };
 
   for (std::size_t e = 0; e < n; ++e) {
@@ -244,17 +378,39 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
     long r = std::clamp(static_cast<long>(a.y), 0L, rows - 1);
     const long r_end = std::clamp(static_cast<long>(b.y), 0L, rows - 1);
     const double du_dv = (b.x - a.x) / (b.y - a.y);
+    const bool up = b.y > a.y;
     const long step = r_end > r ? 1 : -1;
     double pu = a.x, pv = a.y;
     // A piece ending exactly on a row line has length 0 in the next row.
     for (; r != r_end; r += step) {
       const double line = static_cast<double>(step > 0 ? r + 1 : r);
       const double u = a.x + (line - a.y) * du_dv;
-      piece(pu, pv, u, line, r);
+      piece(pu, pv, u, line, r, up);
       pu = u;
       pv = line;
     }
-    piece(pu, pv, b.x, b.y, r);
+    piece(pu, pv, b.x, b.y, r, up);
+  }
+  batch.integrate(sums);
+  // Wide boxes: the up pieces' H from their column, moved to the down pieces' column (the whole
+  // texels between the two, once per row).
+  for (long r = 0; !scan && r < rows; ++r) {
+    const RowSides& side = sides[static_cast<std::size_t>(r)];
+    if (side.up == kNoColumn || side.down == kNoColumn || side.up == side.down) continue;
+    const float* rho = texels + row_start[static_cast<std::size_t>(r)];
+    const Entry* row = table + row_block[static_cast<std::size_t>(r)];
+    Span d;
+    if (side.up > side.down) {
+      d = span(rho, row, side.down, side.up);
+    } else {
+      d = span(rho, row, side.up, side.down);
+      d = {-d.f0, -d.f1, -d.f2};
+    }
+    sums.s0 += side.w0 * d.f0;
+    sums.su += side.w0 * d.f1;
+    sums.suu += side.w0 * d.f2;
+    sums.sv += side.w1 * d.f0;
+    sums.svv += side.w2 * d.f0;
   }
   // Back to domain units, moments about the box's corner, then about `origin` (x - site).
   const double area = texel.x * texel.y;

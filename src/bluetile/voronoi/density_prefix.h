@@ -2,7 +2,8 @@
 // centroid of a Voronoi cell, Secord 2002 "Weighted Voronoi Stippling"), built once per density
 // map and kept across Lloyd iterations. Same integrals as density_moments (density_moments.h),
 // which stays the reference: the polygon is cut at texel row lines only, and what lies between
-// an edge piece and the polygon's left side comes from the table instead of texel by texel.
+// an edge piece and the polygon's left side is summed once per cell row (a cell up to 64 texels
+// wide) or comes from the table (a wider one) instead of texel by texel for every piece.
 #pragma once
 
 #include <span>
@@ -28,8 +29,8 @@ class DensityPrefix {
   // Texels per block: the moments of a row are kept per block, about the block's first column,
   // and summed from there to the cell, so that nothing grows far beyond the moments it is
   // subtracted from (a prefix over a whole row of 1024 texels lost about 1e-3 relative on a
-  // cell's second moment by cancellation); 8 keeps the table at 3 bytes per texel (it stays in
-  // cache) and the texels summed one by one at the ends of a span at 4 or fewer per end.
+  // cell's second moment by cancellation); 8 keeps the table at 3 bytes per texel. Read only for
+  // cells wider than 64 texels (few sites on a large map); narrower ones sum their texels.
   static constexpr int kBlock = 8;
 
   // Moments of a block's texels about its first column, in texel units: integrals of rho,
