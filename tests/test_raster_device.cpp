@@ -12,6 +12,7 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/raster/raster_engine.h"
+#include "bluetile/raster/raster_device.h"
 #include "bluetile/raster/raster_reference.h"
 #include "test_raster_support.h"
 #include "test_support.h"
@@ -28,6 +29,11 @@ std::vector<Scene> device_scenes() {
   scenes.push_back(make_scene(uniform_points(300, 51)));
   scenes.push_back(test::relaxed_scene(300, 52, 10));
   for (const test::HardCase& c : test::hard_cases()) scenes.push_back(make_scene(c.sites));
+  // Coincident sites: the later one is set aside, the earlier one keeps the cell.
+  std::vector<Point> coincident = uniform_points(80, 60);
+  coincident.push_back(coincident[3]);
+  coincident.push_back(coincident[40]);
+  scenes.push_back(make_scene(std::move(coincident)));
   // A rectangle with fixed sites (the shape of the Wang loop's cropped scenes: context sites
   // shape the cells, only the wanted ones are measured), and a cluster dense enough that some
   // pixels go to the host.
@@ -136,6 +142,17 @@ TEST(RasterDevice, GroupSplitGivesTheHostPathsBits) {
     EXPECT_LT(e.max_area, 1e-12);
     EXPECT_NEAR(e.total_area, 1.0, 1e-12);
   }
+}
+
+// Asked for by name, the device path is refused on a device without shaderFloat64 (lavapipe has
+// it, so the engine's check is exercised here through the function it calls), never moved to the
+// host; with the float32 split asked for too, it runs.
+TEST(RasterDevice, DevicePathWithoutFloat64IsRefusedNamingWhatIsMissing) {
+  EXPECT_EQ(device_pixel_work_refusal("llvmpipe (LLVM 15.0.6, 256 bits)", true, false), "");
+  EXPECT_EQ(device_pixel_work_refusal("a GPU without doubles", false, true), "");
+  EXPECT_EQ(device_pixel_work_refusal("a GPU without doubles", false, false),
+            "raster engine: pixel work 'device' needs shaderFloat64 for the exact split, which 'a GPU without doubles' lacks; "
+            "use pixel work 'host' or 'auto'");
 }
 
 TEST(RasterDevice, Float32SplitStaysWithinItsStatedBound) {

@@ -629,6 +629,12 @@ struct RasterDevice::Impl {
   }
 };
 
+std::string device_pixel_work_refusal(const std::string& name, bool has_float64, bool force_float32) {
+  if (has_float64 || force_float32) return "";
+  return "raster engine: pixel work 'device' needs shaderFloat64 for the exact split, which '" + name +
+         "' lacks; use pixel work 'host' or 'auto'";
+}
+
 RasterDevice::RasterDevice(const RasterDeviceSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}
 RasterDevice::~RasterDevice() = default;
 

@@ -24,6 +24,11 @@ struct RasterDeviceSettings {
   SplitKernel split_kernel = SplitKernel::pixel;  // RasterOptions::split_kernel
 };
 
+// Why the per-pixel work cannot run on device `name` when asked for by name (PixelWork::device),
+// empty when it can: the exact split needs shaderFloat64, unless the float32 split is asked for
+// too. The engine throws it as an Error rather than move the work to the host.
+std::string device_pixel_work_refusal(const std::string& name, bool has_float64, bool force_float32);
+
 // Time of the last pass, seconds.
 struct RasterPassTiming {
   double upload = 0.0;  // filling the input buffers on the host

@@ -124,9 +124,10 @@ struct RasterEngine::Impl {
     on_device = o.pixel_work == PixelWork::device || (o.pixel_work == PixelWork::automatic && !device.is_cpu());
     // Asked for by name, the device path is the exact one or none: never moved to the host, and
     // never the float32 split unless that is asked for too.
-    if (o.pixel_work == PixelWork::device && !device.float64_split() && !o.force_float32)
-      throw Error("raster engine: pixel work 'device' needs shaderFloat64 for the exact split, which '" +
-                  device.device_name() + "' lacks; use pixel work 'host' or 'auto'");
+    if (o.pixel_work == PixelWork::device) {
+      const std::string refusal = device_pixel_work_refusal(device.device_name(), device.float64_split(), o.force_float32);
+      if (!refusal.empty()) throw Error(refusal);
+    }
   }
 
   RasterSettings settings() const {
