@@ -8,7 +8,7 @@
 //                           [--stages]          (and a table of every stage, host and device
 //                                                pixel work side by side; implies --device-pixels)
 //                           [--cone-draws triangles,indexed,instanced,points]  (one engine each)
-//                           [--split-kernels group,pixel]  (device pixel work, one engine each)
+//                           [--split-kernels lane,pixel]  (device pixel work, one engine each)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -112,7 +112,7 @@ int main(int argc, char** argv) {
                  "triangles, indexed, instanced, points");
   std::string split_kernels_text;
   app.add_option("--split-kernels", split_kernels_text,
-                 "comma-separated float64 split kernels, each a raster engine of its own (device pixel work): group, pixel");
+                 "comma-separated float64 split kernels, each a raster engine of its own (device pixel work): lane, pixel");
   bool stages = false;
   app.add_flag("--stages", stages, "also print every stage's time per iteration, host and device pixel work side by side");
   app.add_option("--pixels-per-cell", pixels_per_cell, "resolution from this many pixels per cell (default: the engine's)");
@@ -166,9 +166,9 @@ int main(int argc, char** argv) {
                      variant.draw.c_str());
         return 1;
       }
-      if (variant.split == "group") options.split_kernel = SplitKernel::group;
-      else if (variant.split != "pixel" && !variant.split.empty()) {
-        std::fprintf(stderr, "bluetile_raster_profile: --split-kernels: unknown '%s' (group, pixel)\n", variant.split.c_str());
+      if (variant.split == "pixel") options.split_kernel = SplitKernel::pixel;
+      else if (variant.split != "lane" && !variant.split.empty()) {
+        std::fprintf(stderr, "bluetile_raster_profile: --split-kernels: unknown '%s' (lane, pixel)\n", variant.split.c_str());
         return 1;
       }
       options.coverage = job.coverage;

@@ -149,9 +149,16 @@ TEST_P(EngineContract, EmptyWantedRangesGiveNoCells) {
 
 const EngineCase kExact{"exact", [] { return std::make_unique<ExactEngine>(); }, 1e-12};
 const EngineCase kRaster{"raster", [] { return std::make_unique<RasterEngine>(RasterOptions{}); }, 1e-12};
+const EngineCase kRasterDevicePixels{"raster_device_pixels",
+                                     [] {
+                                       RasterOptions options;
+                                       options.pixel_work = PixelWork::device;
+                                       return std::make_unique<RasterEngine>(options);
+                                     },
+                                     1e-12};
 std::string engine_name(const ::testing::TestParamInfo<EngineCase>& engine) { return engine.param.name; }
 
-INSTANTIATE_TEST_SUITE_P(Engines, EngineContract, ::testing::Values(kExact, kRaster), engine_name);
+INSTANTIATE_TEST_SUITE_P(Engines, EngineContract, ::testing::Values(kExact, kRaster, kRasterDevicePixels), engine_name);
 // The raster engine joins once it calls validated_scene() (it refuses these scenes already, in
 // words of its own).
 INSTANTIATE_TEST_SUITE_P(Engines, EngineRefusals, ::testing::Values(kExact), engine_name);

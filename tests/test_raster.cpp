@@ -1,7 +1,9 @@
 // The raster engine against the exact engine: exactness of area coverage, point coverage's
 // error, hard cases, batches, the coverage check, the radius memory, determinism, the tool's
-// ID image and the address-space check. Every test here needs a Vulkan device; without one
-// they skip (lavapipe is installed on CI and developer machines, so there they run).
+// ID image and the address-space check. Every test that computes cells runs twice, with the
+// per-pixel work on the host and on the device (RasterPaths), and the device run also checks
+// that the host path gives its bits. Every test here needs a Vulkan device; without one they
+// skip (lavapipe is installed on CI and developer machines, so there they run).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -31,17 +33,18 @@ namespace {
 using test::compare_cells;
 using test::fixed_site_rectangle;
 using test::Errors;
-using test::shared_engine;
 using test::uniform_points;
 
-Errors raster_vs_exact(const Scene& scene, int resolution, Coverage coverage, ConeShape cone = ConeShape::quad) {
-  SceneCells exact = ExactEngine().compute(scene);
-  SceneCells raster = shared_engine(resolution, coverage, cone).compute(scene);
-  return compare_cells(raster, exact, scene);
-}
+class Raster : public test::RasterPaths {
+ protected:
+  Errors raster_vs_exact(const Scene& scene, int resolution, Coverage coverage, ConeShape cone = ConeShape::quad) {
+    SceneCells exact = ExactEngine().compute(scene);
+    return compare_cells(cells(scene, resolution, coverage, cone), exact, scene);
+  }
+};
+INSTANTIATE_TEST_SUITE_P(PixelWork, Raster, ::testing::ValuesIn(test::kPixelPaths), test::pixel_path_name);
 
-TEST(Raster, PointErrorShrinksWithResolution) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, PointErrorShrinksWithResolution) {
   Scene scene = make_scene(uniform_points(1000, 3));
   Errors low = raster_vs_exact(scene, 256, Coverage::point);
   Errors high = raster_vs_exact(scene, 1024, Coverage::point);
@@ -52,8 +55,7 @@ TEST(Raster, PointErrorShrinksWithResolution) {
   EXPECT_LT(high.max, 1.5e-3) << high.max;
 }
 
-TEST(Raster, AreaCoverageIsExactToRounding) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, AreaCoverageIsExactToRounding) {
   Scene uniform = make_scene(uniform_points(1000, 4));
   Scene relaxed = test::relaxed_scene(1000, 5, 20);
   for (int resolution : {32, 64, 128, 256}) {
@@ -70,8 +72,7 @@ TEST(Raster, AreaCoverageIsExactToRounding) {
   EXPECT_LT(area.mean * 1e6, point.mean) << area.mean << " vs " << point.mean;
 }
 
-TEST(Raster, TessellatedFanIsBiasedQuadIsNot) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, TessellatedFanIsBiasedQuadIsNot) {
   Scene scene = make_scene(uniform_points(1000, 6));
   Errors fan = raster_vs_exact(scene, 512, Coverage::point, ConeShape::fan);
   Errors quad = raster_vs_exact(scene, 512, Coverage::point, ConeShape::quad);
@@ -83,20 +84,19 @@ TEST(Raster, TessellatedFanIsBiasedQuadIsNot) {
   EXPECT_LT(fan_area.max, 1e-12);
 }
 
-TEST(Raster, HardCasesAgreeWithTheExactEngine) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, HardCasesAgreeWithTheExactEngine) {
   for (const test::HardCase& c : test::hard_cases()) {
     Scene scene = make_scene(c.sites);
     SceneCells exact = ExactEngine().compute(scene);
     for (int resolution : {64, 256}) {
-      SceneCells area = shared_engine(resolution, Coverage::area).compute(scene);
+      SceneCells area = cells(scene, resolution, Coverage::area);
       Errors e = compare_cells(area, exact, scene);
       EXPECT_LT(e.max, 1e-12) << c.name << " at " << resolution;
       EXPECT_LT(e.max_area, 1e-12) << c.name << " at " << resolution;
       EXPECT_LT(e.max_second, 1e-12) << c.name << " at " << resolution;
       EXPECT_NEAR(e.total_area, 1.0, 1e-12) << c.name << " at " << resolution;
       EXPECT_EQ(area.coincident_count, exact.coincident_count) << c.name;
-      SceneCells point = shared_engine(resolution, Coverage::point).compute(scene);
+      SceneCells point = cells(scene, resolution, Coverage::point);
       Errors p = compare_cells(point, exact, scene);
       // Point coverage cannot see features below a pixel: bound it only where there are none.
       const std::string name = c.name;
@@ -110,21 +110,19 @@ TEST(Raster, HardCasesAgreeWithTheExactEngine) {
   }
 }
 
-TEST(Raster, LatticesAreFixedPoints) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, LatticesAreFixedPoints) {
   std::vector<Point> square;
   for (int j = 0; j < 16; ++j)
     for (int i = 0; i < 16; ++i) square.push_back({(i + 0.5) / 16.0, (j + 0.5) / 16.0});
   Scene scene = make_scene(square);
-  SceneCells cells = shared_engine(128, Coverage::area).compute(scene);
+  SceneCells lattice = cells(scene, 128, Coverage::area);
   for (std::size_t i = 0; i < square.size(); ++i) {
-    EXPECT_LT(torus_distance(cells.cells[i].centroid, square[i], scene.domain), 1e-12) << i;
-    EXPECT_NEAR(cells.cells[i].area, 1.0 / 256.0, 1e-15);
+    EXPECT_LT(torus_distance(lattice.cells[i].centroid, square[i], scene.domain), 1e-12) << i;
+    EXPECT_NEAR(lattice.cells[i].area, 1.0 / 256.0, 1e-15);
   }
 }
 
-TEST(Raster, CoincidentAndPixellessCellsAreReported) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, CoincidentAndPixellessCellsAreReported) {
   std::vector<Point> sites = uniform_points(50, 12);
   sites.push_back(sites[7]);  // coincides with site 7: site 50 is reported, 7 keeps the cell
   // Site 51, between samples, ringed by six sites 1e-4 away: its cell holds no sample.
@@ -134,56 +132,56 @@ TEST(Raster, CoincidentAndPixellessCellsAreReported) {
   Scene scene = make_scene(sites);
   SceneCells exact = ExactEngine().compute(scene);
   for (Coverage coverage : {Coverage::area, Coverage::point}) {
-    SceneCells cells = shared_engine(64, coverage).compute(scene);
-    EXPECT_EQ(cells.coincident_count, 1u);
-    EXPECT_EQ(cells.cells[50].status, CellStatus::coincident);
-    EXPECT_EQ(cells.cells[50].centroid, sites[50]);
-    EXPECT_EQ(cells.cells[50].area, 0.0);
-    EXPECT_LT(torus_distance(cells.cells[51].centroid, exact.cells[51].centroid, scene.domain), 1e-12);
-    EXPECT_NEAR(cells.cells[51].area, exact.cells[51].area, 1e-15);
+    SceneCells got = cells(scene, 64, coverage);
+    EXPECT_EQ(got.coincident_count, 1u);
+    EXPECT_EQ(got.cells[50].status, CellStatus::coincident);
+    EXPECT_EQ(got.cells[50].centroid, sites[50]);
+    EXPECT_EQ(got.cells[50].area, 0.0);
+    EXPECT_LT(torus_distance(got.cells[51].centroid, exact.cells[51].centroid, scene.domain), 1e-12);
+    EXPECT_NEAR(got.cells[51].area, exact.cells[51].area, 1e-15);
     if (coverage == Coverage::area) {
       // Area coverage splits the pixels such a cell touches: no fallback needed.
-      EXPECT_EQ(cells.fallback_count, 0u);
-      EXPECT_EQ(cells.cells[51].status, CellStatus::ok);
-      EXPECT_LT(compare_cells(cells, exact, scene).max, 1e-12);
+      EXPECT_EQ(got.fallback_count, 0u);
+      EXPECT_EQ(got.cells[51].status, CellStatus::ok);
+      EXPECT_LT(compare_cells(got, exact, scene).max, 1e-12);
     } else {
-      EXPECT_GE(cells.fallback_count, 1u);
-      EXPECT_EQ(cells.cells[51].status, CellStatus::exact_fallback);
+      EXPECT_GE(got.fallback_count, 1u);
+      EXPECT_EQ(got.cells[51].status, CellStatus::exact_fallback);
     }
   }
 }
 
-TEST(Raster, RectangularDomainAndFixedSites) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, RectangularDomainAndFixedSites) {
   Rng rng(13);
   const Scene scene = fixed_site_rectangle(rng, 300, 100);
   SceneCells exact = ExactEngine().compute(scene);
-  SceneCells area = shared_engine(64, Coverage::area).compute(scene);
+  SceneCells area = cells(scene, 64, Coverage::area);
   ASSERT_EQ(area.cells.size(), 200u);
   Errors e = compare_cells(area, exact, scene);
   EXPECT_LT(e.max, 1e-12);
   EXPECT_LT(e.max_area, 1e-12);
 }
 
-TEST(Raster, BatchEqualsOneByOne) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, BatchEqualsOneByOne) {
   std::vector<Scene> scenes;
   for (std::uint64_t k = 0; k < 5; ++k) scenes.push_back(make_scene(uniform_points(20 + 40 * k, 100 + k)));
   for (Coverage coverage : {Coverage::area, Coverage::point}) {
-    RasterEngine& e = shared_engine(0, coverage);
+    RasterOptions o = options();
+    o.coverage = coverage;
+    o.adapt_radius = false;
+    test::PathEngine e(o, work());
     std::vector<SceneCells> batch(scenes.size());
     e.compute(scenes, batch);
     for (std::size_t k = 0; k < scenes.size(); ++k) EXPECT_TRUE(test::identical_cells(e.compute(scenes[k]), batch[k])) << "scene " << k;
   }
 }
 
-TEST(Raster, UncoveredPixelsAreDetectedAndRepaired) {
-  REQUIRE_VULKAN();
-  RasterOptions options;
-  options.resolution = 128;
-  options.radius_factor = 0.1;  // far too small: most samples are uncovered at first
-  options.adapt_radius = false;
-  RasterEngine small(options);
+TEST_P(Raster, UncoveredPixelsAreDetectedAndRepaired) {
+  RasterOptions o = options();
+  o.resolution = 128;
+  o.radius_factor = 0.1;  // far too small: most samples are uncovered at first
+  o.adapt_radius = false;
+  test::PathEngine small(o, work());
   Scene scene = make_scene(uniform_points(500, 14));
   SceneCells cells = small.compute(scene);
   EXPECT_GT(small.stats().redone_scenes, 0u);
@@ -191,11 +189,10 @@ TEST(Raster, UncoveredPixelsAreDetectedAndRepaired) {
   EXPECT_LT(compare_cells(cells, ExactEngine().compute(scene), scene).max, 1e-12);
 }
 
-TEST(Raster, AdaptiveRadiiFollowARelaxation) {
-  REQUIRE_VULKAN();
-  RasterOptions options;
-  options.resolution = 96;
-  RasterEngine raster(options);
+TEST_P(Raster, AdaptiveRadiiFollowARelaxation) {
+  RasterOptions o = options();
+  o.resolution = 96;
+  test::PathEngine raster(o, work());
   ExactEngine exact;
   Scene a = make_scene(uniform_points(400, 15)), b = a;
   LloydOptions lloyd;
@@ -208,13 +205,12 @@ TEST(Raster, AdaptiveRadiiFollowARelaxation) {
   EXPECT_GT(raster.stats().remembered_radii, 14u * 400u - 10u);
 }
 
-TEST(Raster, RebuiltScenesDrawConesNoLargerThanKeptOnes) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, RebuiltScenesDrawConesNoLargerThanKeptOnes) {
   // A loop that keeps its scenes, and one that builds fresh ones every iteration from the last
   // centroids, in another order (as a Wang-tile loop with a new tiling does).
-  RasterOptions options;
-  options.resolution = 128;
-  RasterEngine kept_engine(options), rebuilt_engine(options);
+  RasterOptions o = options();
+  o.resolution = 128;
+  test::PathEngine kept_engine(o, work()), rebuilt_engine(o, work());
   std::vector<Scene> kept;
   for (std::uint64_t k = 0; k < 4; ++k) kept.push_back(make_scene(uniform_points(400, 40 + k)));
   std::vector<Scene> rebuilt = kept;
@@ -238,17 +234,15 @@ TEST(Raster, RebuiltScenesDrawConesNoLargerThanKeptOnes) {
   EXPECT_EQ(b.remembered_radii, 5u * 1600u);  // every site after the first call
   EXPECT_LE(b.drawn_radius_sum, a.drawn_radius_sum * (1.0 + 1e-12));
   // And the memory shrinks the cones: later calls draw about the cell radius, not the start.
-  RasterEngine forgetful([&] {
-    RasterOptions o = options;
-    o.adapt_radius = false;
-    return o;
-  }());
+  RasterOptions no_memory = o;
+  no_memory.adapt_radius = false;
+  RasterEngine forgetful(no_memory);
   std::vector<SceneCells> scratch(4);
   for (int it = 0; it < 6; ++it) forgetful.compute(kept, scratch);
   EXPECT_LT(a.drawn_radius_sum, 0.8 * forgetful.stats().drawn_radius_sum);
 }
 
-TEST(Raster, ResolutionBeyondTheDeviceIsAClearError) {
+TEST(RasterLimits, ResolutionBeyondTheDeviceIsAClearError) {
   REQUIRE_VULKAN();
   RasterOptions options;
   options.resolution = 1 << 20;
@@ -273,12 +267,12 @@ std::string relax_output(const test::TempDir& dir, const std::string& name, cons
   return test::read_text(dir.file(name));
 }
 
-TEST(Raster, BitIdenticalAcrossRunsAndThreadCounts) {
-  REQUIRE_VULKAN();
+TEST_P(Raster, BitIdenticalAcrossRunsAndThreadCounts) {
   test::TempDir dir;
+  const std::string work = test::pixel_path_name({GetParam(), 0});
   for (const char* coverage : {"area", "point"}) {
-    std::vector<std::string> one = {"--coverage", coverage, "--resolution", "128", "--threads", "1"};
-    std::vector<std::string> two = {"--coverage", coverage, "--resolution", "128", "--threads", "2"};
+    std::vector<std::string> one = {"--coverage", coverage, "--resolution", "128", "--threads", "1", "--pixel-work", work};
+    std::vector<std::string> two = {"--coverage", coverage, "--resolution", "128", "--threads", "2", "--pixel-work", work};
     std::string a = relax_output(dir, "a.txt", "1", one);
     std::string b = relax_output(dir, "b.txt", "2", two);
     std::string c = relax_output(dir, "c.txt", "2", two);
@@ -289,7 +283,7 @@ TEST(Raster, BitIdenticalAcrossRunsAndThreadCounts) {
 }
 
 // --pixel-work moves the per-pixel work, never the result: device and host write the same file.
-TEST(Raster, PixelWorkOptionMovesTheWorkNotTheResult) {
+TEST(RasterTool, PixelWorkOptionMovesTheWorkNotTheResult) {
   REQUIRE_VULKAN();
   test::TempDir dir;
   for (const char* coverage : {"area", "point"}) {
@@ -322,7 +316,7 @@ TEST(Raster, PixelWorkOptionMovesTheWorkNotTheResult) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("bounded.txt")));
 }
 
-TEST(Raster, DevicesCommandAndIdImage) {
+TEST(RasterTool, DevicesCommandAndIdImage) {
   REQUIRE_VULKAN();
   test::CommandResult r = test::run_bluetile({"devices"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -374,7 +368,7 @@ TEST(Raster, DevicesCommandAndIdImage) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("q.txt")));
 }
 
-TEST(Raster, AddressSpaceLimitIsAClearErrorNotACrash) {
+TEST(RasterLimits, AddressSpaceLimitIsAClearErrorNotACrash) {
   REQUIRE_VULKAN();
 #if defined(__SANITIZE_ADDRESS__)
   GTEST_SKIP() << "the address sanitizer reserves terabytes of address space: ulimit -v cannot apply";

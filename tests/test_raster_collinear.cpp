@@ -12,6 +12,7 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/raster/raster_engine.h"
+#include "test_raster_support.h"
 
 namespace bluetile {
 namespace {
@@ -39,15 +40,20 @@ Scene line_scene(const Line& line, std::size_t n, Boundary boundary) {
   return scene;
 }
 
-TEST(RasterCollinear, CellsMatchTheExactEngine) {
+// Both pixel-work paths (the device's checked against the host's bits); bounded scenes run on the
+// host path only (the shaders know no border).
+class RasterCollinear : public test::RasterPaths {};
+INSTANTIATE_TEST_SUITE_P(PixelWork, RasterCollinear, ::testing::ValuesIn(test::kPixelPaths), test::pixel_path_name);
+
+TEST_P(RasterCollinear, CellsMatchTheExactEngine) {
   ExactEngine exact;
   RasterOptions options;
   options.resolution = 48;
-  options.pixel_work = PixelWork::host;
   options.max_cone_overlap = 0.0;  // the raster path, not the exact engine's hand-over
-  RasterEngine raster(options);
+  test::PathEngine raster(options, work());
   for (const Line& line : kLines)
     for (Boundary boundary : {Boundary::periodic, Boundary::bounded}) {
+      if (on_device() && boundary == Boundary::bounded) continue;
       const Scene scene = line_scene(line, 400, boundary);
       const SceneCells want = exact.compute(scene), got = raster.compute(scene);
       ASSERT_EQ(got.cells.size(), want.cells.size());
@@ -74,7 +80,7 @@ double examined_per_boundary_pixel(const Scene& scene) {
   return static_cast<double>(s.split_sites_examined) / static_cast<double>(s.boundary_pixels);
 }
 
-TEST(RasterCollinear, CandidateSearchStaysNearTheUniformCase) {
+TEST(RasterCollinearSearch, CandidateSearchStaysNearTheUniformCase) {
   constexpr std::size_t kSites = 2000;
   Rng rng(7);
   std::vector<Point> uniform(kSites);
@@ -99,7 +105,7 @@ void expect_same_bits(const SceneCells& got, const SceneCells& want, const std::
   EXPECT_EQ(differ, 0u) << what;
 }
 
-TEST(RasterCollinear, SliverScenesGoToTheExactEngineAndOthersStay) {
+TEST(RasterCollinearHandOver, SliverScenesGoToTheExactEngineAndOthersStay) {
   // Strip cells make every cone cover most of the domain: after the first pass (cones 2.5
   // spacings wide, most samples uncovered) the grown cones would overlap about 80 times, past
   // max_cone_overlap (64), and the exact engine measures the scene. Uniform sites pass at once.

@@ -78,6 +78,43 @@ RasterEngine& shared_engine(int resolution, Coverage coverage, ConeShape cone, P
   return *engines().back().second;
 }
 
+std::string pixel_path_name(const ::testing::TestParamInfo<PixelWork>& info) {
+  return info.param == PixelWork::device ? "device" : "host";
+}
+
+void skip_unless_path_runs(PixelWork work) {
+  if (!vulkan_missing_reason().empty()) GTEST_SKIP() << "no Vulkan: " << vulkan_missing_reason();
+  if (work == PixelWork::device && !shared_engine(64, Coverage::area, ConeShape::quad, PixelWork::host).float64_split())
+    GTEST_SKIP() << "the device has no shaderFloat64: its split is the float32 one";
+}
+
+SceneCells RasterPaths::cells(const Scene& scene, int resolution, Coverage coverage, ConeShape cone) {
+  SceneCells got = shared_engine(resolution, coverage, cone, work()).compute(scene);
+  if (on_device()) {
+    const SceneCells host = shared_engine(resolution, coverage, cone, PixelWork::host).compute(scene);
+    EXPECT_TRUE(identical_cells(got, host)) << "device and host pixel work differ at resolution " << resolution;
+  }
+  return got;
+}
+
+PathEngine::PathEngine(RasterOptions options, PixelWork work) {
+  options.pixel_work = work;
+  engine_ = std::make_unique<RasterEngine>(options);
+  if (work == PixelWork::device) {
+    options.pixel_work = PixelWork::host;
+    host_ = std::make_unique<RasterEngine>(options);
+  }
+}
+
+void PathEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
+  engine_->compute(scenes, out);
+  if (!host_) return;
+  std::vector<SceneCells> host(scenes.size());
+  host_->compute(scenes, host);
+  for (std::size_t k = 0; k < scenes.size(); ++k)
+    EXPECT_TRUE(identical_cells(out[k], host[k])) << "device and host pixel work differ in scene " << k;
+}
+
 Errors compare_cells(const SceneCells& a, const SceneCells& b, const Scene& scene) {
   Errors e;
   EXPECT_EQ(a.cells.size(), b.cells.size());

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <memory>
+#include <span>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -28,6 +29,49 @@ const std::string& vulkan_missing_reason();
 // every call starts afresh). Released before the process exits.
 RasterEngine& shared_engine(int resolution, Coverage coverage, ConeShape cone = ConeShape::quad,
                             PixelWork work = PixelWork::automatic, bool force_float32 = false);
+
+// Where every raster test runs the per-pixel work: on the host (what `auto` picks on CPU devices)
+// and on the device (the shaders). The two must give the same bits.
+inline constexpr PixelWork kPixelPaths[] = {PixelWork::host, PixelWork::device};
+std::string pixel_path_name(const ::testing::TestParamInfo<PixelWork>& info);
+
+// Skips the test when the device path cannot run: no Vulkan, or no shaderFloat64 (the device
+// path is then the float32 split, whose bound is tested on its own).
+void skip_unless_path_runs(PixelWork work);
+
+// Raster tests parameterised by the pixel-work path (instantiate with kPixelPaths). Each
+// computation runs on the path under test; on the device path the host path computes the same
+// call and the test fails unless the bits agree.
+class RasterPaths : public ::testing::TestWithParam<PixelWork> {
+ protected:
+  void SetUp() override { skip_unless_path_runs(GetParam()); }
+  PixelWork work() const { return GetParam(); }
+  bool on_device() const { return GetParam() == PixelWork::device; }
+  // Options for an engine of the test's own on this path.
+  RasterOptions options() const {
+    RasterOptions o;
+    o.pixel_work = GetParam();
+    return o;
+  }
+  // The cells of `scene` from the shared engine with these options, on this path.
+  SceneCells cells(const Scene& scene, int resolution, Coverage coverage, ConeShape cone = ConeShape::quad);
+};
+
+// An engine on `work`'s path and, when that is the device, a twin with the same options on the
+// host: every compute runs on both (loops too: it is a CentroidEngine), and a difference in any
+// bit fails the test.
+class PathEngine final : public CentroidEngine {
+ public:
+  PathEngine(RasterOptions options, PixelWork work);
+  std::string_view name() const override { return "raster"; }
+  using CentroidEngine::compute;
+  void compute(std::span<const Scene> scenes, std::span<SceneCells> out) override;
+  RasterEngine& engine() { return *engine_; }
+  const RasterStats& stats() const { return engine_->stats(); }
+
+ private:
+  std::unique_ptr<RasterEngine> engine_, host_;
+};
 
 struct Errors {
   double mean = 0.0, max = 0.0, max_area = 0.0, max_second = 0.0;

@@ -48,6 +48,22 @@ def test_raster_engine_matches_the_tool(tool, tmp_path):
     assert np.array_equal(bt.relax(count=64, iterations=3, seed=2, engine="raster"), load_text(out))
 
 
+def test_pixel_work_moves_the_work_not_the_result(tool, tmp_path):
+    # As --pixel-work: the device's shaders and the host's threads give the tool's bits.
+    out = tmp_path / "device.txt"
+    tool("relax", "--count", 200, "--iterations", 3, "--seed", 6, "--engine", "raster", "--pixel-work", "device",
+         "--output", out)
+    from_tool = load_text(out)
+    for work in ("device", "host", "auto"):
+        points = bt.relax(count=200, iterations=3, seed=6, engine="raster", pixel_work=work)
+        assert np.array_equal(points, from_tool), work
+    centres, areas = bt.centroids(from_tool, engine="raster", pixel_work="device")
+    host_centres, host_areas = bt.centroids(from_tool, engine="raster", pixel_work="host")
+    assert np.array_equal(centres, host_centres) and np.array_equal(areas, host_areas)
+    with pytest.raises(ValueError, match="pixel_work: expected one of 'auto', 'device', 'host', got 'gpu'"):
+        bt.relax(count=10, engine="raster", pixel_work="gpu")
+
+
 def test_sets_match_the_tool(tool, tmp_path):
     out = tmp_path / "sets.txt"
     tool("relax", "--count", 40, "--sets", 3, "--iterations", 5, "--seed", 4, "--engine", "exact", "--output", out)

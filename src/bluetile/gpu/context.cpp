@@ -106,12 +106,10 @@ DeviceInfo describe(VkPhysicalDevice device, std::size_t index) {
   DeviceInfo info;
   info.index = index;
   VkPhysicalDeviceDriverProperties driver{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_DRIVER_PROPERTIES};
-  VkPhysicalDeviceSubgroupProperties subgroup{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
   VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
   VkPhysicalDeviceProperties basic;
   vkGetPhysicalDeviceProperties(device, &basic);
-  properties.pNext = &subgroup;
-  if (basic.apiVersion >= VK_API_VERSION_1_2) subgroup.pNext = &driver;
+  if (basic.apiVersion >= VK_API_VERSION_1_2) properties.pNext = &driver;
   vkGetPhysicalDeviceProperties2(device, &properties);
   const auto& p = properties.properties;
   info.name = p.deviceName;
@@ -141,10 +139,6 @@ DeviceInfo describe(VkPhysicalDevice device, std::size_t index) {
   if (!(format.optimalTilingFeatures & VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) missing.push_back("D32_SFLOAT depth");
   info.float64 = features.features.shaderFloat64 == VK_TRUE;
   info.large_points = features.features.largePoints == VK_TRUE;
-  const VkSubgroupFeatureFlags group_ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT |
-                                           VK_SUBGROUP_FEATURE_SHUFFLE_BIT | VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
-  info.group_split = subgroup.subgroupSize >= BLUETILE_SPLIT_LANES && (subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT) &&
-                     (subgroup.supportedOperations & group_ops) == group_ops;
   info.suitable = missing.empty();
   for (std::size_t i = 0; i < missing.size(); ++i) info.missing += (i ? ", " : "") + missing[i];
   return info;

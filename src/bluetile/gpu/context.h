@@ -40,9 +40,6 @@ struct DeviceInfo {
   std::string missing;      // what it lacks when not suitable
   bool float64 = false;     // shaderFloat64: the exact boundary split runs in double precision
   bool large_points = false;  // largePoints: point primitives wider than one pixel
-  // Compute subgroups of at least BLUETILE_SPLIT_LANES invocations with ballot, shuffle and
-  // arithmetic operations: what split_group_f64.comp needs.
-  bool group_split = false;
 };
 
 // Every Vulkan device the loader sees. Throws Error when there is no Vulkan at all.
@@ -103,7 +100,6 @@ class Context {
   VkDeviceSize memory_budget() const { return memory_budget_; }
   // Whether shaders may use 64-bit floats (enabled when the device has shaderFloat64).
   bool float64() const { return info_.float64; }
-  bool group_split() const { return info_.group_split; }
   // Largest point primitive side in pixels (1 without largePoints, which is enabled where present).
   float max_point_size() const { return info_.large_points ? properties_.limits.pointSizeRange[1] : 1.0f; }
 

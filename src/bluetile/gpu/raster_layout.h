@@ -17,17 +17,15 @@
 // Boundary pixels per split workgroup: each invocation keeps its candidates and polygons in
 // shared memory (about 1.4 KiB each in float64), within the 32 KiB a lavapipe group has.
 #define BLUETILE_SPLIT_GROUP 16
-// split_group_f64.comp: invocations per workgroup, one subgroup splitting one pixel at a time
-// (lavapipe's SIMD width for 32-bit lanes at 256 bits).
-#define BLUETILE_SPLIT_LANES 8
 // Split workgroups per row of its indirect dispatch (well below the 65535 every device allows).
 #define BLUETILE_SPLIT_ROW 4096u
 // Sites that may own part of one boundary pixel (after pruning); more go to the host (rare:
 // dense clusters at a coarse resolution).
 #define BLUETILE_MAX_CANDIDATES 16
-// Candidates left after pruning that may share one boundary pixel in split_group_f64.comp:
+// Candidates left after pruning that may share one boundary pixel in split_lane_f64.comp:
 // each piece has at most 4 + (this - 1) vertices, the register slots it keeps; more go to the
-// host (SceneInfo::max_pieces, which split_body.glsl honours too).
+// host (SceneInfo::max_pieces, which split_body.glsl honours too), which splits them as the
+// host reference does, so the bound changes no bit.
 #define BLUETILE_MAX_PIECES 5
 // Grid buckets a split may visit per axis; a wider window (a huge cell in a dense scene) goes
 // to the host.
@@ -54,7 +52,7 @@
 #define BLUETILE_BINDING_GRID 8
 #define BLUETILE_BINDING_OVERFLOW 9
 #define BLUETILE_BINDING_ID_IMAGE 10
-// The positions and the grid again as uniform texel buffers (read by split_group_f64.comp):
+// The positions and the grid again as uniform texel buffers (read by split_lane_f64.comp):
 // lavapipe fetches texels for all lanes without the per-lane loop of a storage-buffer load.
 #define BLUETILE_BINDING_POSITION_TEXELS 11
 #define BLUETILE_BINDING_GRID_TEXELS 12

@@ -55,7 +55,9 @@ struct RasterDevice::Impl {
   VkRenderPass render_pass = VK_NULL_HANDLE;
   VkPipeline cone_pipeline = VK_NULL_HANDLE, classify_pipeline = VK_NULL_HANDLE, split_pipeline = VK_NULL_HANDLE;
   VkPipeline beyond_texels_pipeline = VK_NULL_HANDLE;  // split_for
-  bool group_split = false;  // split_pipeline is split_group_f64.comp
+  // split_lane_f64.comp (positions and grid words as texels, at most BLUETILE_MAX_PIECES
+  // candidates a pixel), else split_f64.comp or, without shaderFloat64, split_f32.comp.
+  bool lane_split = false;
   // ConeDraw::points: the point pipeline (cone_pipeline is then the triangles it falls back to).
   VkPipeline point_pipeline = VK_NULL_HANDLE;
   // ConeDraw::indexed: 0 1 2 2 1 3 per cone, offset by 4 per cone, for this many cones.
@@ -81,7 +83,7 @@ struct RasterDevice::Impl {
   explicit Impl(const RasterDeviceSettings& s) : settings(s) {
     gpu = std::make_unique<gpu::Context>(s.device);
     float64 = gpu->float64() && !s.force_float32;
-    group_split = float64 && s.split_kernel == SplitKernel::group && gpu->group_split();
+    lane_split = float64 && s.split_kernel == SplitKernel::lane;
     try {
       create_pipelines();
     } catch (...) {
@@ -183,7 +185,7 @@ struct RasterDevice::Impl {
   void create_compute_pipelines() {
     if (classify_pipeline) return;
     classify_pipeline = gpu::create_compute_pipeline(*gpu, layout, "classify.comp");
-    const char* split = group_split ? "split_group_f64.comp" : float64 ? "split_f64.comp" : "split_f32.comp";
+    const char* split = lane_split ? "split_lane_f64.comp" : float64 ? "split_f64.comp" : "split_f32.comp";
     split_pipeline = gpu::create_compute_pipeline(*gpu, layout, split);
   }
 
@@ -191,7 +193,7 @@ struct RasterDevice::Impl {
   // (maxTexelBufferElements: 2^27 on lavapipe, 2^16 on some GPUs) is split_f64.comp.
   VkPipeline split_for(std::size_t site_total, std::size_t grid_words) {
     const std::size_t texels = gpu->properties().limits.maxTexelBufferElements;
-    if (!group_split || (site_total <= texels && grid_words <= texels)) return split_pipeline;
+    if (!lane_split || (site_total <= texels && grid_words <= texels)) return split_pipeline;
     if (!beyond_texels_pipeline) beyond_texels_pipeline = gpu::create_compute_pipeline(*gpu, layout, "split_f64.comp");
     return beyond_texels_pipeline;
   }
@@ -330,7 +332,9 @@ struct RasterDevice::Impl {
     info.bucket_size64[0] = double_bits(site_grid.cell_size().x);
     info.bucket_size64[1] = double_bits(site_grid.cell_size().y);
     info.reach_limit64 = double_bits(job.reach_limit);
-    info.max_pieces = static_cast<std::uint32_t>(job.max_pieces);
+    // The kernel's bound (a pass beyond the texel views runs split_f64.comp under it too); the
+    // engine splits the pixels it leaves as the host reference does.
+    info.max_pieces = lane_split ? BLUETILE_MAX_PIECES : BLUETILE_MAX_CANDIDATES;
     info.scale64[0] = double_bits(job.scale_area);
     info.scale64[1] = double_bits(job.scale_first);
     info.scale64[2] = double_bits(job.scale_second);
@@ -396,7 +400,8 @@ struct RasterDevice::Impl {
   }
 
   void run(std::span<RasterScene* const> group, std::uint32_t width, std::uint32_t height, bool read_ids, bool pixel_work) {
-    read_ids = read_ids || !pixel_work;
+    // The lane kernel's pixels left to the host are split there from the corners' owners.
+    read_ids = read_ids || !pixel_work || (lane_split && std::any_of(group.begin(), group.end(), [](const RasterScene* job) { return job->area; }));
     if (pixel_work) create_compute_pipelines();
     auto upload_start = Clock::now();
     group_size = group.size();
@@ -629,12 +634,18 @@ struct RasterDevice::Impl {
   }
 };
 
+std::string device_pixel_work_refusal(const std::string& name, bool has_float64, bool force_float32) {
+  if (has_float64 || force_float32) return "";
+  return "raster engine: pixel work 'device' needs shaderFloat64 for the exact split, which '" + name +
+         "' lacks; use pixel work 'host' or 'auto'";
+}
+
 RasterDevice::RasterDevice(const RasterDeviceSettings& settings) : impl_(std::make_unique<Impl>(settings)) {}
 RasterDevice::~RasterDevice() = default;
 
 std::string RasterDevice::device_name() const { return impl_->gpu->info().name; }
 bool RasterDevice::float64_split() const { return impl_->float64; }
-int RasterDevice::max_pieces() const { return impl_->group_split ? BLUETILE_MAX_PIECES : BLUETILE_MAX_CANDIDATES; }
+bool RasterDevice::lane_split() const { return impl_->lane_split; }
 std::uint32_t RasterDevice::max_side() const { return impl_->gpu->properties().limits.maxImageDimension2D; }
 std::uint32_t RasterDevice::max_scenes_per_pass() const {
   return std::min<std::uint32_t>(impl_->gpu->properties().limits.maxComputeWorkGroupCount[2], 65535);

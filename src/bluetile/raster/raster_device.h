@@ -21,8 +21,13 @@ struct RasterDeviceSettings {
   bool fan = false;         // tessellated cones instead of exact-depth quads
   ConeDraw cone_draw = ConeDraw::points;
   bool force_float32 = false;  // the float32 split even where the device has shaderFloat64
-  SplitKernel split_kernel = SplitKernel::pixel;  // RasterOptions::split_kernel
+  SplitKernel split_kernel = SplitKernel::lane;  // RasterOptions::split_kernel
 };
+
+// Why the per-pixel work cannot run on device `name` when asked for by name (PixelWork::device),
+// empty when it can: the exact split needs shaderFloat64, unless the float32 split is asked for
+// too. The engine throws it as an Error rather than move the work to the host.
+std::string device_pixel_work_refusal(const std::string& name, bool has_float64, bool force_float32);
 
 // Time of the last pass, seconds.
 struct RasterPassTiming {
@@ -45,8 +50,9 @@ class RasterDevice {
   std::string device_name() const;
   bool is_cpu() const;  // a CPU device (lavapipe)
   bool float64_split() const;
-  // RasterScene::max_pieces for this device's split kernel.
-  int max_pieces() const;
+  // The split is split_lane_f64.comp, which leaves pixels with more than BLUETILE_MAX_PIECES
+  // candidates to the host; its area passes read the ID image back for them.
+  bool lane_split() const;
   std::uint32_t max_side() const;           // largest atlas side (maxImageDimension2D)
   std::uint32_t max_scenes_per_pass() const;  // compute workgroup count limit
   // Pixels (samples) one pass may hold, from the device's memory budget and the largest storage

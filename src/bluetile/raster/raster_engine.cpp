@@ -124,9 +124,10 @@ struct RasterEngine::Impl {
     on_device = o.pixel_work == PixelWork::device || (o.pixel_work == PixelWork::automatic && !device.is_cpu());
     // Asked for by name, the device path is the exact one or none: never moved to the host, and
     // never the float32 split unless that is asked for too.
-    if (o.pixel_work == PixelWork::device && !device.float64_split() && !o.force_float32)
-      throw Error("raster engine: pixel work 'device' needs shaderFloat64 for the exact split, which '" +
-                  device.device_name() + "' lacks; use pixel work 'host' or 'auto'");
+    if (o.pixel_work == PixelWork::device) {
+      const std::string refusal = device_pixel_work_refusal(device.device_name(), device.float64_split(), o.force_float32);
+      if (!refusal.empty()) throw Error(refusal);
+    }
   }
 
   RasterSettings settings() const {
@@ -135,7 +136,6 @@ struct RasterEngine::Impl {
     s.resolution = options.resolution;
     s.radius_factor = options.radius_factor;
     s.max_side = device.max_side();
-    s.max_pieces = device.max_pieces();
     return s;
   }
 
@@ -290,6 +290,7 @@ struct RasterEngine::Impl {
       // Pixels left to the host, per scene of the group (in increasing order).
       std::vector<std::vector<std::uint32_t>> host_pixels(group.size());
       for (const gpu::uvec2& e : device.overflow()) host_pixels[e.x].push_back(e.y);
+      std::vector<std::size_t> left(group.size(), 0);  // pixels the per-pixel pass left to the host
       std::vector<std::uint8_t> accepted(group.size(), 0);
       std::vector<std::uint32_t> uncovered(group.size(), 0);
       std::vector<std::uint64_t> boundary(group.size(), 0);
@@ -311,6 +312,16 @@ struct RasterEngine::Impl {
         if (pixel_work_here) {
           sums = device.sums(job);
           uncovered[k] = device.uncovered(k);
+          // split_lane_f64.comp keeps fewer candidates than the host reference: the pixels it
+          // left are split here into the same integer sums as on the host path (the same bits
+          // whatever the kernel); only those the reference leaves too stay for host_split.
+          left[k] = host_pixels[k].size();
+          if (device.lane_split() && !host_pixels[k].empty() && uncovered[k] == 0) {
+            ids = device.ids(job);
+            host_sums[k].assign(sums.begin(), sums.end());
+            std::erase_if(host_pixels[k], [&](std::uint32_t pixel) { return reference_split(job, ids, pixel, host_sums[k]); });
+            sums = host_sums[k];
+          }
         } else {
           const auto readback_start = Clock::now();
           ids = device.ids(job);
@@ -320,6 +331,7 @@ struct RasterEngine::Impl {
           uncovered[k] = reference_pass(job, ids, host_sums[k], true, !across_scenes, host_pixels[k], boundary[k], weighted_sums[k],
                                         &timing.pixels);
           sums = host_sums[k];
+          left[k] = host_pixels[k].size();
         }
         const auto cells_start = Clock::now();
         accepted[k] = check_coverage(job, sums, uncovered[k]);
@@ -360,7 +372,7 @@ struct RasterEngine::Impl {
         stats.split_sites_examined += job.search_cache_->sites_examined.exchange(0);
         if (accepted[k]) {
           job.done = true;
-          stats.host_split_pixels += host_pixels[k].size();
+          stats.host_split_pixels += left[k];
           stats.fallback_cells += out[job.index].fallback_count;
           continue;
         }

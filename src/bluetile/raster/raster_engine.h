@@ -55,8 +55,8 @@ struct RasterOptions {
   // Split boundary pixels in single precision even where the device has shaderFloat64 (the
   // path of devices without it; for tests and measurements).
   bool force_float32 = false;
-  // Which float64 split kernel the device runs (SplitKernel); for measurements.
-  SplitKernel split_kernel = SplitKernel::pixel;
+  // Which float64 split kernel the device runs (SplitKernel); the other is for measurements.
+  SplitKernel split_kernel = SplitKernel::lane;
   PixelWork pixel_work = PixelWork::automatic;
   // Vulkan device: empty (CPU/lavapipe first), an index or a name substring.
   std::string device;
@@ -83,7 +83,7 @@ struct RasterStats {
   std::uint64_t redone_scenes = 0;    // scene passes rejected by the coverage check and redone
   std::uint64_t uncovered_pixels = 0;  // samples no cone reached, in rejected passes
   std::uint64_t boundary_pixels = 0;   // pixels split on the device (area coverage)
-  std::uint64_t host_split_pixels = 0;  // boundary pixels the device left to the host
+  std::uint64_t host_split_pixels = 0;  // boundary pixels the per-pixel pass left to the host
   std::uint64_t fallback_cells = 0;    // cells measured by the exact engine (point coverage, no sample)
   std::uint64_t exact_scenes = 0;      // scenes measured by the exact engine (max_cone_overlap)
   std::uint64_t split_sites_examined = 0;  // sites the host split's candidate searches examined

@@ -262,7 +262,7 @@ bool split_boundary_pixel(const RasterScene& scene, double nearest, std::uint32_
     candidates.resize(kept);
   }
   if (device_bounds) {
-    if (candidates.size() > static_cast<std::size_t>(scene.max_pieces)) return false;
+    if (candidates.size() > static_cast<std::size_t>(BLUETILE_MAX_CANDIDATES)) return false;
     for (const Candidate& c : candidates)
       if (std::sqrt(c.offset.x * c.offset.x + c.offset.y * c.offset.y) + diagonal > scene.reach_limit) return false;
   }

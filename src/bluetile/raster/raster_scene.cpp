@@ -96,7 +96,6 @@ RasterScene prepare_raster_scene(const Scene& scene, std::size_t index, const Ra
   job.serial = ++serials;
   job.index = index;
   job.area = settings.area;
-  job.max_pieces = settings.max_pieces;
   const std::size_t n = scene.sites.size();
   job.rx = settings.resolution > 0 ? settings.resolution
                                    : default_resolution(n, settings.area ? Coverage::area : Coverage::point);

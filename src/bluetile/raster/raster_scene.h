@@ -27,14 +27,12 @@ enum class ConeDraw {
               // device's largest point fall back to triangles)
 };
 
-// Which float64 split kernel the device runs; for measurements. Both give the same bits, but
-// `group` leaves more pixels to the host (more than BLUETILE_MAX_PIECES candidates), and the
-// host reference then leaves the same ones. Measured on lavapipe: docs/BENCHMARKS.md, "The
-// split with one pixel per subgroup".
+// Which float64 split kernel the device runs. Both give the same bits: `lane` leaves pixels with
+// more than BLUETILE_MAX_PIECES candidates to the host, which splits them as the host reference
+// does. Measured on lavapipe: docs/BENCHMARKS.md, "The split with candidates in registers".
 enum class SplitKernel {
-  pixel,  // split_f64.comp: one pixel per invocation
-  group,  // split_group_f64.comp: one pixel per subgroup, one piece per lane (where the device
-          // has the subgroup operations; split_f64.comp elsewhere)
+  lane,   // split_lane_f64.comp: one pixel per invocation, candidates and pieces in registers
+  pixel,  // split_f64.comp: one pixel per invocation, candidates and pieces in shared memory
 };
 
 struct RasterScene {
@@ -56,9 +54,6 @@ struct RasterScene {
   // Pieces may lie at most this far from their site (else the pixel goes to the host), which
   // bounds each site's piece sums; the fixed-point scales follow (powers of two).
   double reach_limit = 0.0;
-  // Candidates left after pruning that one pixel may have on the device (more: the host): the
-  // split kernel's bound, so the device and the host reference leave the same pixels.
-  int max_pieces = BLUETILE_MAX_CANDIDATES;
   double scale_area = 1.0, scale_first = 1.0, scale_second = 1.0;
   // The scene's density, when it varies (else null: a uniform density only scales mass and
   // second moment). Whole pixels are weighted by their moments in `pixel_density`, pieces by
@@ -125,7 +120,6 @@ struct RasterSettings {
   int resolution = 0;          // 0: default_resolution
   double radius_factor = 2.5;  // start radius: factor * sqrt(area / N)
   std::uint32_t max_side = 16384;  // device limit on the atlas side
-  int max_pieces = BLUETILE_MAX_CANDIDATES;  // RasterScene::max_pieces
 };
 
 // Prepares `scene` (index `index` in its batch). Throws Error on a bad scene (non-finite site,

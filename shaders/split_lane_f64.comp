@@ -1,0 +1,310 @@
+// split_lane_f64.comp: the exact float64 split of boundary pixels (as split_body.glsl computes
+// it, bit for bit) with one pixel per invocation and no memory of its own: nothing in shared
+// memory, nothing in a variably indexed array.
+//
+// On lavapipe a load or store whose address differs between lanes (storage buffers, shared
+// memory) is a loop over the lanes, a texel fetch is one gather, and a private array indexed by a
+// variable is a ladder of selects (docs/BENCHMARKS.md, "Every stage, host and device pixel work
+// side by side"). So positions and grid words come as texels, and the candidates are never
+// stored: one walk over the grid window finds the nearest site and counts those within reach, a
+// second walk (the same arithmetic, so the same decisions) keeps the ones that survive pruning
+// in BLUETILE_MAX_PIECES register slots, and each piece is clipped in eight register slots (every
+// slot index a constant once the clip steps are spelled out). A pixel with more candidates, or a
+// wider window, goes to the host, which splits it as the host reference does (same bits).
+// Measured against split_f64.comp: docs/BENCHMARKS.md, "The split with candidates in registers".
+#version 450
+#extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_shader_atomic_int64 : require
+#include "raster_common.glsl"
+
+layout(local_size_x = BLUETILE_SPLIT_GROUP) in;
+layout(binding = BLUETILE_BINDING_ID_IMAGE, r32ui) uniform readonly uimage2D id_image;
+layout(binding = BLUETILE_BINDING_POSITION_TEXELS) uniform usamplerBuffer position_texels;
+layout(binding = BLUETILE_BINDING_GRID_TEXELS) uniform usamplerBuffer grid_texels;
+
+// Four corners and at most one vertex more per clip by the other BLUETILE_MAX_PIECES - 1.
+#define MAX_VERTICES (3 + BLUETILE_MAX_PIECES)
+#if MAX_VERTICES != 8 || BLUETILE_MAX_PIECES != 5
+#error "clip_by_bisector spells out eight CLIP_STEPs and the kept slots are five"
+#endif
+
+dvec2 pixel_size, domain_size;
+
+double unpack_real(uvec2 bits) { return packDouble2x32(bits); }
+dvec2 unpack_real2(uvec2 bits[2]) { return dvec2(unpack_real(bits[0]), unpack_real(bits[1])); }
+dvec2 position(uint g) {
+  uvec4 p = texelFetch(position_texels, int(g));
+  return dvec2(unpack_real(p.xy), unpack_real(p.zw));
+}
+uint grid_word(uint k) { return texelFetch(grid_texels, int(k)).x; }
+// Site g relative to sample (i, j), domain units (as split_body.glsl).
+dvec2 site_from_sample(uint g, ivec2 ij) {
+  precise dvec2 lattice = dvec2(ij) * pixel_size;
+  precise dvec2 o = position(g) - lattice;
+  return o;
+}
+
+// floor(a / n) for n > 0 without integer division (lane by lane on lavapipe): the floor of the
+// double quotient, off by at most one, corrected.
+int floor_division(int a, int n) {
+  int q = int(floor(double(a) / double(n)));
+  q -= a - q * n < 0 ? 1 : 0;
+  q += a - q * n >= n ? 1 : 0;
+  return q;
+}
+
+double wrap_axis(double d, double period) { return d < -0.5 * period ? d + period : (d >= 0.5 * period ? d - period : d); }
+
+// The piece being clipped: vertices [0, vertex_count) relative to its owner.
+dvec2 polygon[MAX_VERTICES];
+int vertex_count;
+double max_radius_squared;
+
+// Vertex k of the clip, as ConvexPolygon::clip's edge (k - 1) -> k: slot m is sought among the
+// first k + 2 only, a constant bound once k is a literal.
+#define CLIP_STEP(k)                                                              \
+  if ((k) < vertex_count) {                                                       \
+    const dvec2 pk = polygon[k];                                                  \
+    const double sk = side[k];                                                    \
+    if ((sl < 0.0 && sk > 0.0) || (sl > 0.0 && sk < 0.0)) {                       \
+      precise double t = sl / (sl - sk);                                          \
+      precise dvec2 x = pl + t * (pk - pl);                                       \
+      for (int j = 0; j <= min((k) + 1, MAX_VERTICES - 1); ++j)                   \
+        if (j == m) clipped[j] = x;                                               \
+      ++m;                                                                        \
+      precise double r2 = x.x * x.x + x.y * x.y;                                  \
+      radius_squared = max(radius_squared, r2);                                   \
+    }                                                                             \
+    if (sk <= 0.0) {                                                              \
+      for (int j = 0; j <= min((k) + 1, MAX_VERTICES - 1); ++j)                   \
+        if (j == m) clipped[j] = pk;                                              \
+      ++m;                                                                        \
+      precise double r2 = pk.x * pk.x + pk.y * pk.y;                              \
+      radius_squared = max(radius_squared, r2);                                   \
+    }                                                                             \
+    pl = pk;                                                                      \
+    sl = sk;                                                                      \
+  }
+
+// ConvexPolygon::clip_by_bisector on registers (same arithmetic, same order).
+void clip_by_bisector(dvec2 d) {
+  precise double dd = d.x * d.x + d.y * d.y;
+  if (dd >= 4.0 * max_radius_squared) return;
+  precise double offset = 0.5 * dd;
+  double side[MAX_VERTICES];
+  bool any_outside = false;
+  for (int k = 0; k < MAX_VERTICES; ++k) {
+    precise double s = polygon[k].x * d.x + polygon[k].y * d.y - offset;
+    side[k] = s;
+    any_outside = any_outside || (k < vertex_count && s > 0.0);
+  }
+  if (!any_outside) return;
+  dvec2 pl = polygon[0];
+  double sl = side[0];
+  for (int k = 1; k < MAX_VERTICES; ++k) {
+    if (k == vertex_count - 1) {
+      pl = polygon[k];
+      sl = side[k];
+    }
+  }
+  dvec2 clipped[MAX_VERTICES];
+  for (int k = 0; k < MAX_VERTICES; ++k) clipped[k] = dvec2(0.0);
+  int m = 0;
+  precise double radius_squared = 0.0;
+  CLIP_STEP(0) CLIP_STEP(1) CLIP_STEP(2) CLIP_STEP(3) CLIP_STEP(4) CLIP_STEP(5) CLIP_STEP(6) CLIP_STEP(7)
+  for (int k = 0; k < MAX_VERTICES; ++k) polygon[k] = clipped[k];
+  vertex_count = m;
+  max_radius_squared = radius_squared;
+}
+
+int64_t fixed_point(double v, double scale) {
+  precise double scaled = floor(v * scale + 0.5);
+  return int64_t(scaled);
+}
+
+// The kept candidates: global site index and periodic image (16 bits per axis, offset by 32768),
+// five named slots so that no array is indexed by a variable.
+uint kept_site0, kept_site1, kept_site2, kept_site3, kept_site4;
+uint kept_image0, kept_image1, kept_image2, kept_image3, kept_image4;
+void keep_candidate(uint at, uint g, uint image_bits) {
+  if (at == 0u) { kept_site0 = g; kept_image0 = image_bits; }
+  if (at == 1u) { kept_site1 = g; kept_image1 = image_bits; }
+  if (at == 2u) { kept_site2 = g; kept_image2 = image_bits; }
+  if (at == 3u) { kept_site3 = g; kept_image3 = image_bits; }
+  if (at == 4u) { kept_site4 = g; kept_image4 = image_bits; }
+}
+uint kept_site(uint a) { return a == 0u ? kept_site0 : a == 1u ? kept_site1 : a == 2u ? kept_site2 : a == 3u ? kept_site3 : kept_site4; }
+ivec2 kept_image(uint a) {
+  const uint bits = a == 0u ? kept_image0 : a == 1u ? kept_image1 : a == 2u ? kept_image2 : a == 3u ? kept_image3 : kept_image4;
+  return ivec2(int(bits & 0xffffu) - 32768, int(bits >> 16) - 32768);
+}
+
+// Splits pixel `entry`; false where it goes to the host.
+bool split_pixel(uvec2 entry) {
+  const SceneInfo scene = scenes[entry.x];
+  pixel_size = unpack_real2(scene.pixel_size64);
+  domain_size = unpack_real2(scene.domain_size64);
+  const dvec2 bucket_size = unpack_real2(scene.bucket_size64);
+  const double reach_limit = unpack_real(scene.reach_limit64);
+  const int j = floor_division(int(entry.y), scene.size.x), i = int(entry.y) - j * scene.size.x;
+  const ivec2 ij = ivec2(i, j);
+  const dvec2 half_pixel = 0.5 * pixel_size;
+  precise const double diagonal = sqrt(pixel_size.x * pixel_size.x + pixel_size.y * pixel_size.y) * (1.0 + 1.0 / 65536.0);
+
+  // Reach from the corner owners (any site's distance bounds the nearest one's).
+  double nearest = 1e30;
+  for (int corner = 0; corner < 4; ++corner) {
+    const ivec2 at = ivec2(wrap_index(i + (corner & 1), scene.size.x), wrap_index(j + (corner >> 1), scene.size.y));
+    const uint id = imageLoad(id_image, scene.origin + at).x;
+    if (id == 0u) continue;
+    precise dvec2 o = site_from_sample(id - 1u, ij) - half_pixel;
+    o = dvec2(wrap_axis(o.x, domain_size.x), wrap_axis(o.y, domain_size.y));
+    precise double d = sqrt(o.x * o.x + o.y * o.y);
+    nearest = min(nearest, d);
+  }
+  if (nearest >= 1e30) return true;  // uncovered: this pass is redone
+  precise const double reach = nearest + diagonal;
+
+  // The grid window that holds every site within reach of the centre, periodic images included.
+  const dvec2 centre = (dvec2(ij) + 0.5) * pixel_size;
+  const ivec2 lo = ivec2(floor((centre - reach) / bucket_size)), hi = ivec2(floor((centre + reach) / bucket_size));
+  if (hi.x - lo.x >= BLUETILE_MAX_WINDOW || hi.y - lo.y >= BLUETILE_MAX_WINDOW) return false;
+  const int columns = scene.grid_size.x, rows = scene.grid_size.y;
+  const uint site_list = scene.grid_offset + uint(columns * rows) + 1u;
+
+  // First walk: the candidates within reach are counted, the nearest (the first of equals) kept.
+  uint count = 0u, nearest_index = 0u, nearest_site = 0u;
+  ivec2 nearest_image = ivec2(0);
+  double nearest2 = 1e30;
+  for (int by = lo.y; by <= hi.y; ++by) {
+    const int wy = floor_division(by, rows);
+    const uint row = scene.grid_offset + uint((by - wy * rows) * columns);
+    for (int bx = lo.x; bx <= hi.x; ++bx) {
+      const int wx = floor_division(bx, columns);
+      const uint bucket = row + uint(bx - wx * columns);
+      const uint last = grid_word(bucket + 1u);
+      for (uint s = grid_word(bucket); s < last; ++s) {
+        const uint g = scene.site_begin + grid_word(site_list + s);
+        precise dvec2 o = (site_from_sample(g, ij) - half_pixel) + dvec2(wx, wy) * domain_size;
+        precise double d2 = o.x * o.x + o.y * o.y;
+        if (d2 > reach * reach) continue;
+        if (count == 0u || d2 < nearest2) {
+          nearest2 = d2;
+          nearest_index = count;
+          nearest_site = g;
+          nearest_image = ivec2(wx, wy);
+        }
+        ++count;
+      }
+    }
+  }
+  if (count > uint(BLUETILE_MAX_CANDIDATES)) return false;
+  if (count == 0u) return true;
+
+  // Second walk: only sites within (nearest + diagonal) of the centre can be nearest somewhere in
+  // the pixel, and of those only the ones nearer than the nearest, s0, at some corner.
+  precise const double reach0 = sqrt(nearest2) + diagonal;
+  const dvec2 s0_position = position(nearest_site);
+  precise const dvec2 corner0 = -(site_from_sample(nearest_site, ij) + dvec2(nearest_image) * domain_size);
+  uint c = 0u, kept = 0u;
+  bool beyond = false;
+  for (int by = lo.y; by <= hi.y; ++by) {
+    const int wy = floor_division(by, rows);
+    const uint row = scene.grid_offset + uint((by - wy * rows) * columns);
+    for (int bx = lo.x; bx <= hi.x; ++bx) {
+      const int wx = floor_division(bx, columns);
+      const uint bucket = row + uint(bx - wx * columns);
+      const uint last = grid_word(bucket + 1u);
+      for (uint s = grid_word(bucket); s < last; ++s) {
+        const uint g = scene.site_begin + grid_word(site_list + s);
+        const dvec2 p = position(g);
+        precise dvec2 lattice = dvec2(ij) * pixel_size;
+        precise dvec2 o = ((p - lattice) - half_pixel) + dvec2(wx, wy) * domain_size;
+        precise double d2 = o.x * o.x + o.y * o.y;
+        if (d2 > reach * reach) continue;
+        const uint here = c++;
+        if (d2 > reach0 * reach0) continue;
+        if (here != nearest_index) {
+          precise dvec2 between = p - s0_position;
+          precise dvec2 d = between + dvec2(ivec2(wx, wy) - nearest_image) * domain_size;
+          precise double offset = 0.5 * (d.x * d.x + d.y * d.y);
+          bool nearer_somewhere = false;
+          for (int corner = 0; corner < 4; ++corner) {
+            precise dvec2 q = corner0 + dvec2(corner & 1, corner >> 1) * pixel_size;
+            precise double side = q.x * d.x + q.y * d.y - offset;
+            nearer_somewhere = nearer_somewhere || side > 0.0;
+          }
+          if (!nearer_somewhere) continue;
+        }
+        precise double distance = sqrt(o.x * o.x + o.y * o.y);
+        beyond = beyond || distance + diagonal > reach_limit;
+        keep_candidate(kept, g, uint(wx + 32768) | (uint(wy + 32768) << 16));
+        ++kept;
+      }
+    }
+  }
+  if (kept > scene.max_pieces || beyond) return false;  // the bounds the host reference applies too
+
+  const double scale_area = unpack_real(scene.scale64[0]), scale_first = unpack_real(scene.scale64[1]),
+               scale_second = unpack_real(scene.scale64[2]);
+  for (uint a = 0u; a < kept; ++a) {
+    const uint owner = kept_site(a);
+    if ((sites[owner].flags & BLUETILE_SITE_WANTED) == 0u) continue;
+    const ivec2 owner_image = kept_image(a);
+    const dvec2 owner_position = position(owner);
+    // The pixel square relative to this image of the owner.
+    precise const dvec2 corner = -(site_from_sample(owner, ij) + dvec2(owner_image) * domain_size);
+    polygon[0] = corner;
+    polygon[1] = corner + dvec2(pixel_size.x, 0.0);
+    polygon[2] = corner + pixel_size;
+    polygon[3] = corner + dvec2(0.0, pixel_size.y);
+    for (int k = 4; k < MAX_VERTICES; ++k) polygon[k] = dvec2(0.0);
+    vertex_count = 4;
+    max_radius_squared = 0.0;
+    for (int v = 0; v < 4; ++v) {
+      precise double r2 = polygon[v].x * polygon[v].x + polygon[v].y * polygon[v].y;
+      max_radius_squared = max(max_radius_squared, r2);
+    }
+    for (uint b = 0u; b < kept && vertex_count >= 3; ++b) {
+      if (b == a) continue;
+      precise dvec2 between = position(kept_site(b)) - owner_position;
+      precise dvec2 d = between + dvec2(kept_image(b) - owner_image) * domain_size;
+      if (d.x == 0.0 && d.y == 0.0) continue;
+      clip_by_bisector(d);
+    }
+    if (vertex_count < 3) continue;
+    precise double cross_sum = 0.0, x_sum = 0.0, y_sum = 0.0, xx_sum = 0.0, yy_sum = 0.0;
+    dvec2 p = polygon[0];
+    for (int k = 1; k < MAX_VERTICES; ++k)
+      if (k == vertex_count - 1) p = polygon[k];
+    for (int k = 0; k < MAX_VERTICES; ++k) {
+      if (k >= vertex_count) continue;
+      const dvec2 q = polygon[k];
+      precise double cross = p.x * q.y - q.x * p.y;
+      cross_sum += cross;
+      x_sum += (p.x + q.x) * cross;
+      y_sum += (p.y + q.y) * cross;
+      xx_sum += (p.x * p.x + p.x * q.x + q.x * q.x) * cross;
+      yy_sum += (p.y * p.y + p.y * q.y + q.y * q.y) * cross;
+      p = q;
+    }
+    precise double piece_area = 0.5 * cross_sum;
+    if (!(piece_area > 0.0)) continue;
+    atomicAdd(sums[owner].piece_area, fixed_point(piece_area, scale_area));
+    precise double first_x = x_sum / 6.0, first_y = y_sum / 6.0, second = (xx_sum + yy_sum) / 12.0;
+    atomicAdd(sums[owner].piece_x, fixed_point(first_x, scale_first));
+    atomicAdd(sums[owner].piece_y, fixed_point(first_y, scale_first));
+    atomicAdd(sums[owner].piece_second, fixed_point(second, scale_second));
+  }
+  return true;
+}
+
+void main() {
+  const uint k = (gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x) * BLUETILE_SPLIT_GROUP + gl_LocalInvocationID.x;
+  if (k >= counters[BLUETILE_COUNTER_BOUNDARY]) return;
+  const uvec2 entry = boundary[k];
+  if (!split_pixel(entry)) {
+    const uint at = atomicAdd(counters[BLUETILE_COUNTER_OVERFLOW], 1u);
+    overflow[at] = entry;
+  }
+}
