@@ -263,28 +263,62 @@ std::vector<Point> square_lattice(int k, Point offset) {
   return sites;
 }
 
+// The lower `rows` rows of a k x k square lattice, and `extra` uniform sites above them: a patch of
+// cocircular ties in a scene that is not on rows and columns as a whole (so it is triangulated).
+std::vector<Point> lattice_band(int k, int rows, std::size_t extra, std::uint64_t seed) {
+  std::vector<Point> sites = square_lattice(k, {0.5, 0.5});
+  sites.resize(static_cast<std::size_t>(k) * static_cast<std::size_t>(rows));
+  const double lower = (rows + 0.5) / k;
+  for (Point p : uniform_points(extra, seed)) sites.push_back({p.x, lower + p.y * (1.0 - lower)});
+  return sites;
+}
+
+void move_by_ulps(std::vector<Point>& sites, std::size_t count, std::uint64_t seed) {
+  Rng rng(seed);
+  for (std::size_t i = 0; i < count; ++i) {
+    Point& p = sites[i];
+    for (int k = static_cast<int>(rng.uniform() * 5.0) - 2; k != 0; k += k > 0 ? -1 : 1) p.x = std::nextafter(p.x, k > 0 ? 1.0 : 0.0);
+    for (int k = static_cast<int>(rng.uniform() * 5.0) - 2; k != 0; k += k > 0 ? -1 : 1) p.y = std::nextafter(p.y, k > 0 ? 1.0 : 0.0);
+  }
+}
+
 TEST(ExactTopology, CocircularTiesAreSearchedAndTheirNeighboursKept) {
-  // A square lattice: four sites on every empty circle; every cell is on a tie and searched (the
-  // search's own bits), whatever the calls before.
+  // A square lattice as a whole is on rows and columns: searched as a whole (the search's own
+  // bits), no triangulation, whatever the calls before.
   const Scene lattice = make_scene(square_lattice(40, {0.5, 0.5}));
   ExactEngine engine;
   ExactEngine search = searching();
   for (int call = 0; call < 2; ++call) {
     EXPECT_TRUE(identical(engine.compute(lattice), search.compute(lattice)));
-    EXPECT_EQ(engine.last_topology_stats().tie_cells, 1600u);
+    EXPECT_EQ(engine.last_topology_stats().kept_cells, 0u);
+    EXPECT_EQ(engine.last_topology_stats().searched_cells, 1600u);
+    EXPECT_EQ(engine.last_topology_stats().exact_stars, 0u);
+  }
+  // Fourteen lattice rows below uniform sites: four sites on every empty circle of the patch,
+  // whose cells are on a tie and searched, the rest kept.
+  const Scene band = make_scene(lattice_band(40, 14, 1040, 31));
+  ExactEngine banded;
+  for (int call = 0; call < 2; ++call) {
+    const SceneCells a = banded.compute(band);
+    const KeptTopologyStats stats = banded.last_topology_stats();
+    EXPECT_GE(stats.tie_cells, 400u);
+    EXPECT_GE(stats.kept_cells, 1000u);
     // The clipping's neighbours of a tie do not fit together: the stars came from the exact
     // predicates, once.
-    EXPECT_EQ(engine.last_topology_stats().exact_stars, call == 0 ? 1600u : 0u);
+    EXPECT_EQ(stats.exact_stars, call == 0 ? 1600u : 0u);
+    const Difference d = compare(band, a, search.compute(band));
+    EXPECT_LE(d.centroid, 1e-12);
+    EXPECT_LE(d.area, 1e-12);
   }
-  // Shifted by a step each call (sites wrap across the border): still a lattice.
-  run_side_by_side(lattice, 4, [](Scene& scene, int) {
+  // Shifted by a step each call (sites wrap across the border): still the same patch.
+  run_side_by_side(band, 4, [](Scene& scene, int) {
     for (Point& p : scene.sites) p = wrap_point(p + Point{0.004, -0.003}, scene.domain);
   });
   // One lattice row moved by a tenth of a spacing: the ties there are gone, the rest stay.
-  Scene sheared = lattice;
-  for (int i = 0; i < 40; ++i) sheared.sites[20 * 40 + i].x += 0.1 / 40.0;
-  const SceneCells a = engine.compute(sheared);
-  const KeptTopologyStats stats = engine.last_topology_stats();
+  Scene sheared = band;
+  for (int i = 0; i < 40; ++i) sheared.sites[7 * 40 + i].x += 0.1 / 40.0;
+  const SceneCells a = banded.compute(sheared);
+  const KeptTopologyStats stats = banded.last_topology_stats();
   EXPECT_GT(stats.kept_cells, 0u);
   EXPECT_GT(stats.tie_cells, 0u);
   const Difference d = compare(sheared, a, search.compute(sheared));
@@ -295,14 +329,11 @@ TEST(ExactTopology, CocircularTiesAreSearchedAndTheirNeighboursKept) {
 }
 
 TEST(ExactTopology, NearlyCocircularSitesAnUlpOffTheLattice) {
-  // Every site moved by at most an ulp or two: cocircular within rounding, not exactly. The
-  // clipping's neighbours do not fit together; the stars come from the exact predicates.
-  std::vector<Point> sites = square_lattice(32, {0.5, 0.5});
-  Rng rng(21);
-  for (Point& p : sites) {
-    for (int k = static_cast<int>(rng.uniform() * 5.0) - 2; k != 0; k += k > 0 ? -1 : 1) p.x = std::nextafter(p.x, k > 0 ? 1.0 : 0.0);
-    for (int k = static_cast<int>(rng.uniform() * 5.0) - 2; k != 0; k += k > 0 ? -1 : 1) p.y = std::nextafter(p.y, k > 0 ? 1.0 : 0.0);
-  }
+  // The band's lattice sites moved by at most an ulp or two: cocircular within rounding, not
+  // exactly. The clipping's neighbours do not fit together; the stars come from the exact
+  // predicates.
+  std::vector<Point> sites = lattice_band(32, 12, 640, 33);
+  move_by_ulps(sites, 32 * 12, 21);
   const Scene scene = make_scene(sites);
   ExactEngine engine;
   const SceneCells a = engine.compute(scene);
@@ -315,6 +346,49 @@ TEST(ExactTopology, NearlyCocircularSitesAnUlpOffTheLattice) {
   EXPECT_EQ(engine.last_topology_stats().exact_stars, sites.size());
   // A perturbed copy relaxed a few steps from here: flips only.
   run_side_by_side(scene, 3);
+}
+
+TEST(ExactTopology, LatticesGiveTheSameBitsWhateverCameBefore) {
+  // A 70 x 70 lattice (searched as a whole: on rows and columns), the same moved by an ulp or two
+  // (whichever path its sites choose) and by up to 1e-9 (triangulated): each the same bits fresh,
+  // after the others (kept state from a scene of the same count) and on 1, 2 or 7 threads, within
+  // 1e-12 of the search and of brute force.
+  const int k = 70;
+  const std::vector<Point> exact = square_lattice(k, {0.5, 0.5});
+  std::vector<Point> ulps = exact;
+  move_by_ulps(ulps, ulps.size(), 41);
+  std::vector<Point> jittered = exact;
+  Rng rng(42);
+  for (Point& p : jittered) p = wrap_point(p + Point{(rng.uniform() - 0.5) * 2e-9, (rng.uniform() - 0.5) * 2e-9}, Domain{});
+  const std::vector<Scene> scenes{make_scene(exact), make_scene(ulps), make_scene(jittered)};
+  ExactEngine search = searching();
+  std::vector<SceneCells> fresh;
+  for (const Scene& scene : scenes) {
+    fresh.push_back(ExactEngine().compute(scene));
+    const Difference d = compare(scene, fresh.back(), search.compute(scene));
+    EXPECT_LE(d.centroid, 1e-12);
+    EXPECT_LE(d.area, 1e-12);
+    EXPECT_LE(d.second_moment, 1e-12);
+    EXPECT_TRUE(d.statuses);
+    for (std::size_t w = 0; w < scene.sites.size(); w += 97) {
+      const Reference r = brute_force(scene, w);
+      EXPECT_NEAR(fresh.back().cells[w].area, r.area, 1e-12) << "site " << w;
+      EXPECT_LE(scene_distance(scene, fresh.back().cells[w].centroid, r.centroid), 1e-12) << "site " << w;
+    }
+  }
+  const std::size_t before = thread_count();
+  for (std::size_t threads : {1u, 2u, 7u}) {
+    set_thread_count(threads);
+    // Every order of calls on one engine, twice over: each result as the fresh one.
+    for (int order = 0; order < 3; ++order) {
+      ExactEngine engine;
+      for (int call = 0; call < 6; ++call) {
+        const std::size_t i = static_cast<std::size_t>(order + call) % 3;
+        EXPECT_TRUE(identical(engine.compute(scenes[i]), fresh[i])) << threads << " threads, scene " << i << ", call " << call;
+      }
+    }
+  }
+  set_thread_count(before);
 }
 
 TEST(ExactTopology, NearDegenerateCoincidentCollinearAndClustered) {

@@ -15,8 +15,11 @@
 // reaches is unique (the perturbation breaks ties alike everywhere), its cells' arithmetic is
 // canonical, and a scene goes to the search as a whole only for properties of its sites (too
 // few, coincident ones, a circumcircle of a tenth of a period or more, coordinates the predicates
-// cannot take exactly); cells on a cocircular tie are searched one by one. So results never
-// depend on the calls before, nor on the thread count.
+// cannot take exactly, most of a fixed sample of the sites sharing their x and their y with other
+// samples: a grid of rows and columns, cocircular at nearly every vertex, whose cells would all be
+// ties); cells on a cocircular tie are searched one by one. So results never depend on the calls
+// before, nor on the thread count. A scene searched whole drops the kept triangulation; the next
+// one that suits a triangulation builds it again.
 #pragma once
 
 #include <cstddef>
