@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cerrno>
 #include <charconv>
+#include <chrono>
 #include <climits>
 #include <csignal>
 #include <cstdarg>
@@ -50,9 +51,15 @@ StagingRegistry& registry() {
   return *r;
 }
 
-void register_staging(const std::string& folder) {
+// Makes a staging folder and registers it under one hold of the lock: a signal between the two
+// would otherwise find the folder made but not listed, and leave it behind. `make` returns false
+// with errno set when the folder cannot be made.
+template <typename Make>
+bool make_registered_staging(const std::string& folder, Make make) {
   std::lock_guard<std::mutex> lock(registry().mutex);
+  if (!make()) return false;
   registry().folders.push_back(folder);
+  return true;
 }
 
 void unregister_staging_locked(const std::string& folder) {
@@ -74,16 +81,27 @@ sigset_t cleanup_signals() {
   return set;
 }
 
+// Removes a staged folder that other threads may still be writing in: a file they create while
+// remove_all lists the folder makes its last step (rmdir) fail, so it is tried again until the
+// folder is gone; once it is, nothing more can be created in it. Bounded, for a folder that
+// cannot be removed at all.
+void remove_while_written(const std::string& folder) {
+  for (int attempt = 0; attempt < 1000; ++attempt) {
+    std::error_code ignored;
+    fs::remove_all(folder, ignored);
+    struct stat st {};
+    if (lstat(folder.c_str(), &st) != 0 && errno == ENOENT) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+}
+
 [[noreturn]] void watch_signals(sigset_t set) {
   int signal_number = 0;
   while (sigwait(&set, &signal_number) != 0) {
   }
   {
     std::lock_guard<std::mutex> lock(registry().mutex);
-    for (const std::string& folder : registry().folders) {
-      std::error_code ignored;
-      fs::remove_all(folder, ignored);
-    }
+    for (const std::string& folder : registry().folders) remove_while_written(folder);
     registry().folders.clear();
     // Keep the lock: no thread may stage anything more. End the process by the same signal,
     // so that the parent sees what happened (a shell prints nothing, exit status 128 + n).
@@ -324,8 +342,8 @@ void OutputFile::write_through_path(const std::function<void(const std::string&)
   }
   // A device or descriptor: write a private temporary file, then copy its bytes.
   std::string pattern = (fs::temp_directory_path() / ("bluetile-" + unique_suffix() + "-XXXXXX")).string();
-  if (!mkdtemp(pattern.data())) fail(path_, "cannot make a temporary folder", errno);
-  register_staging(pattern);
+  if (!make_registered_staging(pattern, [&] { return mkdtemp(pattern.data()) != nullptr; }))
+    fail(path_, "cannot make a temporary folder", errno);
   auto remove_temporary = [&] {
     std::error_code ignored;
     fs::remove_all(pattern, ignored);
@@ -555,13 +573,16 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
       name += fs::path(folder.target).filename().string();
       name += ".bluetile-";
       name += unique_suffix();
-      folder.staging = (fs::path(folder.ancestor) / name).string();
-      if (mkdir(folder.staging.c_str(), 0777) != 0) fail(path, "cannot create a folder in '" + folder.ancestor + "'", errno);
+      const std::string staging = (fs::path(folder.ancestor) / name).string();
+      if (!make_registered_staging(staging, [&] { return mkdir(staging.c_str(), 0777) == 0; }))
+        fail(path, "cannot create a folder in '" + folder.ancestor + "'", errno);
+      folder.staging = staging;
     } else {
-      folder.staging = (fs::path(folder.target) / (".bluetile-" + unique_suffix())).string();
-      if (mkdir(folder.staging.c_str(), 0700) != 0) fail(path, "cannot write in folder '" + folder.target + "'", errno);
+      const std::string staging = (fs::path(folder.target) / (".bluetile-" + unique_suffix())).string();
+      if (!make_registered_staging(staging, [&] { return mkdir(staging.c_str(), 0700) == 0; }))
+        fail(path, "cannot write in folder '" + folder.target + "'", errno);
+      folder.staging = staging;
     }
-    register_staging(folder.staging);
   }
   output->kind_ = OutputFile::Kind::staged;
   output->staged_ = folder.staging + "/" + output->name_;
