@@ -109,18 +109,6 @@ TEST_P(EngineRefusals, BrokenScenesAreRefusedWithTheProjectsError) {
   }
 }
 
-// Bit-for-bit equality of every field an engine returns.
-bool identical(const SceneCells& a, const SceneCells& b) {
-  if (a.cells.size() != b.cells.size()) return false;
-  for (std::size_t i = 0; i < a.cells.size(); ++i) {
-    const Cell &x = a.cells[i], &y = b.cells[i];
-    const double fx[6] = {x.centroid.x, x.centroid.y, x.area, x.mass, x.second_moment, x.radius};
-    const double fy[6] = {y.centroid.x, y.centroid.y, y.area, y.mass, y.second_moment, y.radius};
-    if (std::memcmp(fx, fy, sizeof fx) != 0 || x.status != y.status) return false;
-  }
-  return true;
-}
-
 TEST_P(EngineContract, ResultsDoNotDependOnTheCallsBefore) {
   // An engine may keep state between calls (the exact engine keeps a Delaunay triangulation per
   // place in the batch); a scene's result must still be the same bits whatever it measured
@@ -135,8 +123,8 @@ TEST_P(EngineContract, ResultsDoNotDependOnTheCallsBefore) {
   engine->compute(other);
   const SceneCells b = engine->compute(moved);
   const SceneCells c = engine->compute(first);
-  EXPECT_TRUE(identical(a, c));
-  EXPECT_TRUE(identical(b, GetParam().make()->compute(moved)));
+  EXPECT_TRUE(test::identical_cells(a, c));
+  EXPECT_TRUE(test::identical_cells(b, GetParam().make()->compute(moved)));
 }
 
 TEST_P(EngineContract, EmptyWantedRangesGiveNoCells) {

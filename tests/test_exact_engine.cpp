@@ -73,18 +73,6 @@ void expect_matches_brute_force(const std::vector<Point>& sites, double toleranc
   EXPECT_NEAR(total, domain.area(), 1e-12 * domain.area());
 }
 
-// Bit-for-bit equality of every field (memcmp would also compare padding bytes).
-bool identical(const SceneCells& a, const SceneCells& b) {
-  if (a.cells.size() != b.cells.size()) return false;
-  for (std::size_t i = 0; i < a.cells.size(); ++i) {
-    const Cell &x = a.cells[i], &y = b.cells[i];
-    double fx[4] = {x.centroid.x, x.centroid.y, x.area, x.second_moment};
-    double fy[4] = {y.centroid.x, y.centroid.y, y.area, y.second_moment};
-    if (std::memcmp(fx, fy, sizeof fx) != 0 || x.status != y.status) return false;
-  }
-  return true;
-}
-
 double total_area(const SceneCells& cells) {
   double sum = 0.0;
   for (const Cell& c : cells.cells) sum += c.area;
@@ -300,7 +288,7 @@ TEST(ExactEngine, BatchEqualsOneByOne) {
   ExactEngine engine;
   engine.compute(scenes, batch);
   for (std::size_t k = 0; k < scenes.size(); ++k) {
-    EXPECT_TRUE(identical(engine.compute(scenes[k]), batch[k])) << "scene " << k;
+    EXPECT_TRUE(test::identical_cells(engine.compute(scenes[k]), batch[k])) << "scene " << k;
   }
 }
 
@@ -314,8 +302,8 @@ TEST(ExactEngine, BitIdenticalWhateverTheThreadCount) {
   set_thread_count(7);
   SceneCells seven = ExactEngine().compute(scene);
   set_thread_count(before);
-  EXPECT_TRUE(identical(one, two));
-  EXPECT_TRUE(identical(one, seven));
+  EXPECT_TRUE(test::identical_cells(one, two));
+  EXPECT_TRUE(test::identical_cells(one, seven));
 }
 
 }  // namespace

@@ -69,17 +69,6 @@ Reference brute_force(const Scene& scene, std::size_t i) {
   return r;
 }
 
-bool identical(const SceneCells& a, const SceneCells& b) {
-  if (a.cells.size() != b.cells.size()) return false;
-  for (std::size_t i = 0; i < a.cells.size(); ++i) {
-    const Cell &x = a.cells[i], &y = b.cells[i];
-    const double fx[6] = {x.centroid.x, x.centroid.y, x.area, x.mass, x.second_moment, x.radius};
-    const double fy[6] = {y.centroid.x, y.centroid.y, y.area, y.mass, y.second_moment, y.radius};
-    if (std::memcmp(fx, fy, sizeof fx) != 0 || x.status != y.status) return false;
-  }
-  return true;
-}
-
 // The largest differences between two results, and whether every status agrees.
 struct Difference {
   double centroid = 0.0, area = 0.0, mass = 0.0, second_moment = 0.0;
@@ -191,8 +180,8 @@ TEST(ExactTopology, SameSitesGiveTheSameBitsWhateverTheCallsBefore) {
     const SceneCells b = interrupted.compute(scene);
     ExactEngine fresh;
     const SceneCells c = fresh.compute(scene);
-    EXPECT_TRUE(identical(a, c)) << "call " << it;
-    EXPECT_TRUE(identical(b, c)) << "call " << it;
+    EXPECT_TRUE(test::identical_cells(a, c)) << "call " << it;
+    EXPECT_TRUE(test::identical_cells(b, c)) << "call " << it;
     std::vector<Scene> scenes{scene};
     move_to_centroids(scenes, std::span<const SceneCells>(&a, 1));
     scene = scenes[0];
@@ -220,8 +209,8 @@ TEST(ExactTopology, BitIdenticalWhateverTheThreadCount) {
   }
   set_thread_count(before);
   for (std::size_t it = 0; it < runs[0].size(); ++it) {
-    EXPECT_TRUE(identical(runs[0][it], runs[1][it])) << "call " << it;
-    EXPECT_TRUE(identical(runs[0][it], runs[2][it])) << "call " << it;
+    EXPECT_TRUE(test::identical_cells(runs[0][it], runs[1][it])) << "call " << it;
+    EXPECT_TRUE(test::identical_cells(runs[0][it], runs[2][it])) << "call " << it;
   }
 }
 
@@ -253,7 +242,7 @@ TEST(ExactTopology, BoundedAndSmallScenesAreSearched) {
   // Searched cells are the search's own bits.
   Scene small = make_scene(uniform_points(200, 4));
   ExactEngine search = searching();
-  EXPECT_TRUE(identical(ExactEngine().compute(small), search.compute(small)));
+  EXPECT_TRUE(test::identical_cells(ExactEngine().compute(small), search.compute(small)));
 }
 
 std::vector<Point> square_lattice(int k, Point offset) {
@@ -289,7 +278,7 @@ TEST(ExactTopology, CocircularTiesAreSearchedAndTheirNeighboursKept) {
   ExactEngine engine;
   ExactEngine search = searching();
   for (int call = 0; call < 2; ++call) {
-    EXPECT_TRUE(identical(engine.compute(lattice), search.compute(lattice)));
+    EXPECT_TRUE(test::identical_cells(engine.compute(lattice), search.compute(lattice)));
     EXPECT_EQ(engine.last_topology_stats().kept_cells, 0u);
     EXPECT_EQ(engine.last_topology_stats().searched_cells, 1600u);
     EXPECT_EQ(engine.last_topology_stats().exact_stars, 0u);
@@ -325,7 +314,7 @@ TEST(ExactTopology, CocircularTiesAreSearchedAndTheirNeighboursKept) {
   EXPECT_LE(d.centroid, 1e-12);
   EXPECT_LE(d.area, 1e-12);
   ExactEngine fresh;
-  EXPECT_TRUE(identical(a, fresh.compute(sheared)));
+  EXPECT_TRUE(test::identical_cells(a, fresh.compute(sheared)));
 }
 
 TEST(ExactTopology, NearlyCocircularSitesAnUlpOffTheLattice) {
@@ -384,7 +373,7 @@ TEST(ExactTopology, LatticesGiveTheSameBitsWhateverCameBefore) {
       ExactEngine engine;
       for (int call = 0; call < 6; ++call) {
         const std::size_t i = static_cast<std::size_t>(order + call) % 3;
-        EXPECT_TRUE(identical(engine.compute(scenes[i]), fresh[i])) << threads << " threads, scene " << i << ", call " << call;
+        EXPECT_TRUE(test::identical_cells(engine.compute(scenes[i]), fresh[i])) << threads << " threads, scene " << i << ", call " << call;
       }
     }
   }
@@ -407,7 +396,7 @@ TEST(ExactTopology, NearDegenerateCoincidentCollinearAndClustered) {
   const SceneCells twins = engine.compute(make_scene(sites));
   EXPECT_EQ(engine.last_topology_stats().kept_cells, 0u);
   EXPECT_EQ(twins.coincident_count, 6u);
-  EXPECT_TRUE(identical(twins, search.compute(make_scene(sites))));
+  EXPECT_TRUE(test::identical_cells(twins, search.compute(make_scene(sites))));
   EXPECT_EQ(run_side_by_side(make_scene(sites), 3).kept, 2u * 1526u);
   // Collinear sites (three lines): empty circles of a third of the torus, searched.
   std::vector<Point> lines;
@@ -447,7 +436,7 @@ TEST(ExactTopology, FoldedTrianglesAreRepairedAndManyAreRebuilt) {
   EXPECT_LE(d.area, 1e-12);
   EXPECT_LE(d.second_moment, 1e-12);
   ExactEngine fresh;
-  EXPECT_TRUE(identical(a, fresh.compute(scene)));
+  EXPECT_TRUE(test::identical_cells(a, fresh.compute(scene)));
   // Another set of sites of the same count: most triangles fold, the triangulation is rebuilt.
   Scene other = make_scene(uniform_points(3000, 12));
   const SceneCells b = engine.compute(other);
@@ -455,7 +444,7 @@ TEST(ExactTopology, FoldedTrianglesAreRepairedAndManyAreRebuilt) {
   EXPECT_EQ(stats.rebuilds, 1u);
   EXPECT_EQ(stats.repaired_vertices, 0u);
   ExactEngine fresh_other;
-  EXPECT_TRUE(identical(b, fresh_other.compute(other)));
+  EXPECT_TRUE(test::identical_cells(b, fresh_other.compute(other)));
 }
 
 TEST(ExactTopology, LargerRelaxationsAgreeWithTheSearch) {

@@ -130,17 +130,6 @@ Errors compare_cells(const SceneCells& a, const SceneCells& b, const Scene& scen
   return e;
 }
 
-bool identical_cells(const SceneCells& a, const SceneCells& b) {
-  if (a.cells.size() != b.cells.size()) return false;
-  for (std::size_t i = 0; i < a.cells.size(); ++i) {
-    const Cell &x = a.cells[i], &y = b.cells[i];
-    const double fx[5] = {x.centroid.x, x.centroid.y, x.area, x.second_moment, x.radius};
-    const double fy[5] = {y.centroid.x, y.centroid.y, y.area, y.second_moment, y.radius};
-    if (std::memcmp(fx, fy, sizeof fx) != 0 || x.status != y.status) return false;
-  }
-  return true;
-}
-
 Scene fixed_site_rectangle(Rng& rng, std::size_t sites, std::size_t fixed) {
   Scene scene;
   scene.domain.size = {2.0, 1.0};

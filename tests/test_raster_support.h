@@ -13,6 +13,7 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/engine.h"
 #include "bluetile/raster/raster_engine.h"
+#include "test_support.h"
 
 namespace bluetile::test {
 
@@ -80,9 +81,6 @@ struct Errors {
 
 // Centroid, area and second-moment differences of a against b, over the wanted cells.
 Errors compare_cells(const SceneCells& a, const SceneCells& b, const Scene& scene);
-
-// True when every field of every cell is the same bits.
-bool identical_cells(const SceneCells& a, const SceneCells& b);
 
 Scene relaxed_scene(std::size_t n, std::uint64_t seed, int iterations);
 

@@ -1,6 +1,7 @@
 #include "test_support.h"
 
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -76,6 +77,17 @@ std::vector<Point> uniform_points(std::size_t count, std::uint64_t seed) {
   std::vector<Point> points(count);
   for (Point& p : points) p = rng.point(Domain{});
   return points;
+}
+
+bool identical_cells(const SceneCells& a, const SceneCells& b) {
+  if (a.cells.size() != b.cells.size()) return false;
+  for (std::size_t i = 0; i < a.cells.size(); ++i) {
+    const Cell &x = a.cells[i], &y = b.cells[i];
+    const double fx[6] = {x.centroid.x, x.centroid.y, x.area, x.mass, x.second_moment, x.radius};
+    const double fy[6] = {y.centroid.x, y.centroid.y, y.area, y.mass, y.second_moment, y.radius};
+    if (std::memcmp(fx, fy, sizeof fx) != 0 || x.status != y.status) return false;
+  }
+  return true;
 }
 
 }  // namespace bluetile::test

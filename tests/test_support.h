@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "bluetile/core/torus.h"
+#include "bluetile/voronoi/engine.h"
 
 namespace bluetile::test {
 
@@ -44,5 +45,9 @@ std::string read_text(const std::string& path);
 std::string error_of(const std::function<void()>& f);
 
 std::vector<Point> uniform_points(std::size_t count, std::uint64_t seed);
+
+// True when every field of every cell is the same bits (fields compared one by one: memcmp of
+// the cells would also compare padding bytes).
+bool identical_cells(const SceneCells& a, const SceneCells& b);
 
 }  // namespace bluetile::test
