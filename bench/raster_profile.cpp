@@ -4,7 +4,8 @@
 // pixels per iteration. Engine construction (Vulkan device, pipelines) is timed apart.
 //
 //   bluetile_raster_profile [--jobs paper,n1e4,n1e5,sets256,sets4096,point] [--repeats 3]
-//                           [--device-pixels]   (also the per-pixel work on the device)
+//                           [--device-pixels]   (the per-pixel work on the host and on the
+//                                                device, one engine each; without it `auto`)
 //                           [--stages]          (and a table of every stage, host and device
 //                                                pixel work side by side; implies --device-pixels)
 //                           [--cone-draws triangles,indexed,instanced,points]  (one engine each)
@@ -105,7 +106,8 @@ int main(int argc, char** argv) {
   double pixels_per_cell = 0.0;
   app.add_option("--jobs", jobs_text, "comma-separated jobs: paper, n1e4, n1e5, sets256, sets4096, point");
   app.add_option("--repeats", repeats, "interleaved repeats per job");
-  app.add_flag("--device-pixels", device_pixels, "also run the per-pixel work on the device (PixelWork::device)");
+  app.add_flag("--device-pixels", device_pixels,
+               "run the per-pixel work on the host and on the device, one engine each (without it: PixelWork::automatic)");
   std::string cone_draws_text;
   app.add_option("--cone-draws", cone_draws_text,
                  "comma-separated ways to draw the cones, each a raster engine of its own (host pixel work): "
@@ -129,8 +131,9 @@ int main(int argc, char** argv) {
   std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Job& job : all) {
     if (("," + jobs_text + ",").find("," + job.name + ",") == std::string::npos) continue;
+    // Both paths by name: what `auto` picks depends on the device and the coverage.
     std::vector<PixelWork> works = {PixelWork::automatic};
-    if (device_pixels) works.push_back(PixelWork::device);
+    if (device_pixels) works = {PixelWork::host, PixelWork::device};
     struct Entry {
       std::string label;
       std::unique_ptr<CentroidEngine> engine;

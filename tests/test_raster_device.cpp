@@ -244,5 +244,43 @@ TEST(RasterCones, EveryDrawGivesTheSameIdImagesAndCells) {
   }
 }
 
+// `auto`: the device on GPUs; on CPU devices the device for point coverage (within 1.2x of the
+// host there, on lavapipe) and the host for area coverage (docs/BENCHMARKS.md, "Point coverage and
+// `auto`"); `device` and `host` as named.
+TEST(RasterPixelWork, AutomaticResolvesByDeviceKindAndCoverage) {
+  EXPECT_TRUE(runs_pixel_work_on_device(PixelWork::automatic, Coverage::point, true));
+  EXPECT_FALSE(runs_pixel_work_on_device(PixelWork::automatic, Coverage::area, true));
+  EXPECT_TRUE(runs_pixel_work_on_device(PixelWork::automatic, Coverage::point, false));
+  EXPECT_TRUE(runs_pixel_work_on_device(PixelWork::automatic, Coverage::area, false));
+  for (Coverage coverage : {Coverage::point, Coverage::area})
+    for (bool cpu_device : {true, false}) {
+      EXPECT_TRUE(runs_pixel_work_on_device(PixelWork::device, coverage, cpu_device));
+      EXPECT_FALSE(runs_pixel_work_on_device(PixelWork::host, coverage, cpu_device));
+    }
+}
+
+// The engine runs its per-pixel work where `auto` resolves, for each coverage: the host path
+// times its classification, the device path in point coverage has none on the host.
+TEST(RasterPixelWork, AutomaticEngineRunsWhereItResolves) {
+  REQUIRE_VULKAN();
+  const Scene scene = make_scene(uniform_points(100, 71));
+  for (Coverage coverage : {Coverage::point, Coverage::area}) {
+    RasterOptions options;
+    options.resolution = 64;
+    options.coverage = coverage;
+    options.adapt_radius = false;
+    ASSERT_EQ(options.pixel_work, PixelWork::automatic);
+    RasterEngine engine(options);
+    const bool expected = coverage == Coverage::point || !engine.cpu_device();
+    EXPECT_EQ(engine.pixel_work_on_device(), expected) << "coverage " << static_cast<int>(coverage) << ", device " << engine.device_name();
+    engine.compute(scene);
+    if (!expected) {
+      EXPECT_GT(engine.stats().host_classify_seconds, 0.0) << "area coverage on a CPU device runs on the host";
+    } else if (coverage == Coverage::point) {
+      EXPECT_EQ(engine.stats().host_classify_seconds, 0.0) << "point coverage runs on the device";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace bluetile

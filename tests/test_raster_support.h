@@ -31,8 +31,8 @@ const std::string& vulkan_missing_reason();
 RasterEngine& shared_engine(int resolution, Coverage coverage, ConeShape cone = ConeShape::quad,
                             PixelWork work = PixelWork::automatic, bool force_float32 = false);
 
-// Where every raster test runs the per-pixel work: on the host (what `auto` picks on CPU devices)
-// and on the device (the shaders). The two must give the same bits.
+// Where every raster test runs the per-pixel work: on the host (what `auto` picks for area
+// coverage on CPU devices) and on the device (the shaders). The two must give the same bits.
 inline constexpr PixelWork kPixelPaths[] = {PixelWork::host, PixelWork::device};
 std::string pixel_path_name(const ::testing::TestParamInfo<PixelWork>& info);
 

@@ -28,7 +28,8 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
   command->add_option("--device", options.device, "Raster engine: Vulkan device name or index (see 'bluetile devices')");
   command->add_option("--pixel-work", options.pixel_work,
                       "Raster engine: where the per-pixel work (classification, sums, boundary split) runs: auto (the "
-                      "device on GPUs, the host on CPU devices such as lavapipe), device (compute shaders; refused on a "
+                      "device on GPUs; on CPU devices such as lavapipe the device for point coverage and the host for area "
+                      "coverage), device (compute shaders; refused on a "
                       "device without the features they need, or with a density map or a bounded domain) or host "
                       "(threaded); the output is the same bits")
       ->check(CLI::IsMember(pixel_work_names()))

@@ -107,6 +107,14 @@ int default_resolution(std::size_t sites, Coverage coverage) {
   return std::clamp(rounded, lo, 8192);
 }
 
+bool runs_pixel_work_on_device(PixelWork work, Coverage coverage, bool cpu_device) {
+  if (work != PixelWork::automatic) return work == PixelWork::device;
+  // On lavapipe the device path is within 1.2x of the host path for point coverage (classify.comp
+  // against the host's classification and ID readback) and 1.8-3.2x for area coverage (the split):
+  // docs/BENCHMARKS.md, "Point coverage and `auto`".
+  return !cpu_device || coverage == Coverage::point;
+}
+
 struct RasterEngine::Impl {
   RasterOptions options;
   RasterDevice device;
@@ -121,7 +129,7 @@ struct RasterEngine::Impl {
 
   explicit Impl(const RasterOptions& o)
       : options(o), device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.cone_draw, o.force_float32, o.split_kernel}) {
-    on_device = o.pixel_work == PixelWork::device || (o.pixel_work == PixelWork::automatic && !device.is_cpu());
+    on_device = runs_pixel_work_on_device(o.pixel_work, o.coverage, device.is_cpu());
     // Asked for by name, the device path is the exact one or none: never moved to the host, and
     // never the float32 split unless that is asked for too.
     if (o.pixel_work == PixelWork::device) {

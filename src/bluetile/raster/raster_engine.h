@@ -31,12 +31,17 @@ enum class ConeShape {
 // same bits. Scenes with a varying density or a bounded domain need the host (the shaders
 // neither weigh pixels nor know a border).
 enum class PixelWork {
-  automatic,  // the host on CPU devices (measured faster on lavapipe: docs/RASTER.md), the
-              // device elsewhere; a batch holding a weighted or bounded scene runs on the host
+  automatic,  // the device on GPUs; on CPU devices the device for point coverage and the host for
+              // area coverage (as measured on lavapipe: docs/RASTER.md); a batch holding a
+              // weighted or bounded scene runs on the host
   device,     // classify.comp and split_f64.comp: RasterEngine throws Error on a device without
               // shaderFloat64 (unless force_float32) and compute() on a weighted or bounded scene
   host,       // the host reference (raster_reference.cpp), threaded
 };
+
+// Whether `work` puts the per-pixel work of periodic unweighted scenes of `coverage` on the
+// device, on a device that is (`cpu_device`) or is not a CPU implementation such as lavapipe.
+bool runs_pixel_work_on_device(PixelWork work, Coverage coverage, bool cpu_device);
 
 struct RasterOptions {
   // Pixels along the domain's x side (y follows the aspect ratio); 0 picks one from the
