@@ -2,7 +2,7 @@
 // split_f32.comp) against the host reference (raster_reference.cpp): the same per-site sums bit
 // for bit on an IEEE device (lavapipe), on uniform and relaxed sets and every hard case; the
 // host path against the device path; the float32 split within its stated bound; determinism
-// across rasterizer threads.
+// across rasterizer threads; where `auto` runs the per-pixel work.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
