@@ -214,6 +214,42 @@ TEST(ExactTopology, BitIdenticalWhateverTheThreadCount) {
   }
 }
 
+TEST(ExactTopology, SecondMomentsNotWantedLeaveEveryOtherBitAlone) {
+  // Scene::second_moments false: the kept cells' second moments are not summed (left 0); every
+  // other field has the bits it has when they are wanted, call after call, on 1, 2 and 7 threads.
+  const std::size_t before = thread_count();
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  for (std::size_t threads : {1u, 2u, 7u}) {
+    set_thread_count(threads);
+    Scene wanted = make_scene(uniform_points(6000, 21));
+    Scene skipped = wanted;
+    skipped.second_moments = false;
+    ExactEngine with, without;
+    for (int it = 0; it < 8; ++it) {
+      const SceneCells a = with.compute(wanted);
+      const SceneCells b = without.compute(skipped);
+      EXPECT_EQ(without.last_topology_stats().kept_cells, 6000u) << threads << " threads, call " << it;
+      ASSERT_EQ(a.cells.size(), b.cells.size());
+      std::size_t differ = 0, moments = 0;
+      for (std::size_t i = 0; i < a.cells.size(); ++i) {
+        const Cell& x = a.cells[i];
+        const Cell& y = b.cells[i];
+        differ += !same(x.centroid.x, y.centroid.x) || !same(x.centroid.y, y.centroid.y) || !same(x.area, y.area) ||
+                  !same(x.mass, y.mass) || !same(x.radius, y.radius) || x.status != y.status;
+        moments += x.second_moment > 0.0 && y.second_moment == 0.0;
+      }
+      EXPECT_EQ(differ, 0u) << threads << " threads, call " << it;
+      EXPECT_EQ(moments, a.cells.size()) << threads << " threads, call " << it;
+      EXPECT_EQ(a.coincident_count, b.coincident_count);
+      std::vector<Scene> scenes{wanted};
+      move_to_centroids(scenes, std::span<const SceneCells>(&a, 1));
+      wanted.sites = scenes[0].sites;
+      skipped.sites = scenes[0].sites;
+    }
+  }
+  set_thread_count(before);
+}
+
 TEST(ExactTopology, RectangularDomainWantedRangeAndWeightedCells) {
   const Domain domain{{2.0, 1.0}};
   Scene periodic = make_scene(relaxed_points(1500, 8, domain), domain);

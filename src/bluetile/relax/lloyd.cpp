@@ -82,10 +82,23 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
 LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, const LloydOptions& options) {
   LloydResult result;
   std::vector<SceneCells> cells(scenes.size());
+  // The scenes' own requests, given back however the run ends (an interrupt throws).
+  struct Requests {
+    std::vector<Scene>& scenes;
+    std::vector<char> wanted;
+    ~Requests() {
+      for (std::size_t k = 0; k < scenes.size(); ++k) scenes[k].second_moments = wanted[k];
+    }
+  } requests{scenes, std::vector<char>(scenes.size())};
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    requests.wanted[k] = scenes[k].second_moments;
+    scenes[k].second_moments = requests.wanted[k] && options.energy;
+  }
   for (int it = 1; it <= options.iterations; ++it) {
     engine.compute(scenes, cells);
     LloydIteration log = move_to_centroids(scenes, cells);
     log.iteration = it;
+    if (!options.energy) log.energy = 0.0;
     result.last = log;
     result.iterations = it;
     if (options.keep_history) result.history.push_back(log);

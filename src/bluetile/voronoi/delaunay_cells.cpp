@@ -200,6 +200,14 @@ bool DelaunayCells::fits(const PeriodicDelaunay& triangulation, std::uint32_t tr
 
 bool DelaunayCells::measure(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
                             const Weighting& weighting, Cell& cell) const {
+  // A density map weighs the polygon itself (its second moment comes from the map's tables).
+  if (scene.second_moments || weighting.prefix) return walk<true>(triangulation, vertex, scene, origin, weighting, cell);
+  return walk<false>(triangulation, vertex, scene, origin, weighting, cell);
+}
+
+template <bool kSecond>
+bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
+                         const Weighting& weighting, Cell& cell) const {
   const bool ties = triangulation.tie_edges() > 0;
   // The shoelace sums over the cell's edges (p, q), counter-clockwise from its canonical corner
   // (the vertex's corner_of: after the edge to its neighbour of lowest site index): c = p x q
@@ -233,7 +241,7 @@ bool DelaunayCells::measure(const PeriodicDelaunay& triangulation, std::uint32_t
     cross += c;
     sx += (px + qx) * c;
     sy += (py + qy) * c;
-    second += (pr + (px * qx + py * qy) + qr) * c;
+    if constexpr (kSecond) second += (pr + (px * qx + py * qy) + qr) * c;
     radius_squared = std::max(radius_squared, pr);
     if (closed) break;
     px = qx, py = qy, pr = qr;
