@@ -267,6 +267,32 @@ TEST(ExactTopology, RectangularDomainWantedRangeAndWeightedCells) {
   EXPECT_EQ(run_side_by_side(weighted, 6).kept, 6u * 2000u);
 }
 
+TEST(ExactTopology, KeptCellsCountTheirStatuses) {
+  // The kept path counts statuses as it measures: a density zero over a band of the domain gives
+  // cells without density among kept ones, and the counts are the search's, call after call.
+  auto density = std::make_shared<DensityGrid>(32, 32);
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) density->at(i, j) = i < 6 ? 0.0f : 1.0f;
+  Scene scene = make_scene(uniform_points(3000, 23));
+  scene.density = density;
+  ExactEngine kept;
+  ExactEngine search = searching();
+  for (int it = 0; it < 4; ++it) {
+    const SceneCells a = kept.compute(scene);
+    const SceneCells b = search.compute(scene);
+    EXPECT_EQ(kept.last_topology_stats().kept_cells, 3000u) << it;
+    std::size_t zero = 0;
+    for (const Cell& c : b.cells) zero += c.status == CellStatus::zero_density;
+    EXPECT_GT(zero, 100u) << it;
+    EXPECT_EQ(a.zero_density_count, zero) << it;
+    EXPECT_EQ(b.zero_density_count, zero) << it;
+    EXPECT_EQ(a.coincident_count, 0u) << it;
+    std::vector<Scene> scenes{scene};
+    move_to_centroids(scenes, std::span<const SceneCells>(&a, 1));
+    scene = scenes[0];
+  }
+}
+
 TEST(ExactTopology, BoundedAndSmallScenesAreSearched) {
   const Domain domain{{2.0, 1.0}};
   Scene bounded = make_scene(relaxed_points(2400, 7, domain, Boundary::bounded), domain);

@@ -412,8 +412,8 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   return triangulation_.build(star_start, stars) && settle(stats);
 }
 
-void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,
-                           KeptTopologyStats& stats) {
+bool KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,
+                           KeptTopologyStats& stats, StatusCounts& counts) {
   assert(suits(scene));
   scene_area_ = scene.domain.area();
   if (on_rows_and_columns(scene.sites)) {
@@ -422,7 +422,7 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
     valid_ = false;
     search_cells(scene, CellSearch(scene), weighting, cells, parallel);
     stats.searched_cells += scene.wanted_count();
-    return;
+    return false;
   }
   bool searched = false;  // every wanted cell measured by the search already
   bool ready = matches(scene) && move_vertices(scene);
@@ -448,7 +448,7 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
     valid_ = false;
     if (!searched) search_cells(scene, CellSearch(scene), weighting, cells, parallel);
     stats.searched_cells += scene.wanted_count();
-    return;
+    return false;
   }
   valid_ = true;
   domain_ = scene.domain;
@@ -460,6 +460,11 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
   const std::size_t n = scene.sites.size();
   const std::size_t chunks = (n + kVertexChunk - 1) / kVertexChunk;
   std::vector<std::vector<std::uint32_t>> ties(chunks);
+  std::vector<StatusCounts> found(chunks);
+  auto count = [](const Cell& cell, StatusCounts& c) {
+    c.coincident += cell.status == CellStatus::coincident;
+    c.zero_density += cell.status == CellStatus::zero_density;
+  };
   auto measure = [&](std::size_t begin, std::size_t end) {
     const auto positions = triangulation_.positions();
     for (std::size_t c = begin; c < end; ++c) {
@@ -477,9 +482,12 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
         }
         const std::uint32_t site = site_of_vertex_[v];
         if (site < scene.wanted_begin || site >= scene.wanted_end) continue;
-        if (!cells_.measure(triangulation_, static_cast<std::uint32_t>(v), scene, positions[v], weighting,
-                            cells[site - scene.wanted_begin]))
+        Cell& cell = cells[site - scene.wanted_begin];
+        if (cells_.measure(triangulation_, static_cast<std::uint32_t>(v), scene, positions[v], weighting, cell)) {
+          count(cell, found[c]);
+        } else {
           ties[c].push_back(site);
+        }
       }
     }
   };
@@ -494,6 +502,13 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
   stats.kept_cells += scene.wanted_count() - tied.size();
   stats.searched_cells += tied.size();
   stats.tie_cells += tied.size();
+  counts = StatusCounts{};
+  for (const StatusCounts& c : found) {
+    counts.coincident += c.coincident;
+    counts.zero_density += c.zero_density;
+  }
+  for (std::uint32_t site : tied) count(cells[site - scene.wanted_begin], counts);
+  return true;
 }
 
 }  // namespace bluetile
