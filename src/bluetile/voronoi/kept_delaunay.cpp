@@ -41,6 +41,16 @@ bool on_rows_and_columns(std::span<const Point> sites) {
   const std::size_t n = sites.size();
   const auto root = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
   const std::size_t m = std::min(n, kGridSample * root);
+  // At most the samples that share their x share both: when fewer than half do, the answer is no
+  // without the pairs below (the common case, a plain sort of doubles; this runs every call, on
+  // the calling thread alone).
+  std::vector<double> plain(m);
+  for (std::size_t i = 0; i < m; ++i) plain[i] = sites[i * n / m].x;
+  std::sort(plain.begin(), plain.end());
+  std::size_t x_shared = 0;
+  for (std::size_t k = 0; k < m; ++k)
+    x_shared += (k > 0 && plain[k] == plain[k - 1]) || (k + 1 < m && plain[k] == plain[k + 1]);
+  if (2 * x_shared < m) return false;
   std::vector<std::pair<double, std::uint32_t>> xs(m), ys(m);
   for (std::size_t i = 0; i < m; ++i) {
     const Point p = sites[i * n / m];
@@ -65,8 +75,9 @@ bool on_rows_and_columns(std::span<const Point> sites) {
 // A repair that would remove more than one vertex in this many is a rebuild instead.
 constexpr std::size_t kRepairShare = 16;
 
-// The chunks of the vertex passes.
-constexpr std::size_t kVertexChunk = 1024;
+// The chunks of the vertex passes: about forty at 10^4 sites, for the same reason as the sweep's
+// (delaunay_cells.cpp).
+constexpr std::size_t kVertexChunk = 256;
 // How many vertices ahead the passes that read or write at a site's place (scattered in
 // memory) fetch it: enough to cover a miss to memory at the pass's pace.
 constexpr std::size_t kPrefetch = 16;
