@@ -32,6 +32,11 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   // sums added in chunk order: the same bits whatever the thread count. A few chunks already at
   // 10^4 sites, where a Lloyd step takes about a millisecond.
   constexpr std::size_t kChunk = 4096;
+  // Up to this many chunks the move runs on the calling thread: the cells come from every thread
+  // (written at their sites' places), so on two threads half of each one's reads were the other
+  // core's lines, and three chunks split 2:1; at 10^4 sites the move took 110-125 us on two
+  // threads against 80 us on one (docs/BENCHMARKS.md, "Topology kept between iterations").
+  constexpr std::size_t kCallerChunks = 4;
   struct Sums {
     double energy = 0.0, displacement = 0.0, largest = 0.0;
   };
@@ -68,7 +73,11 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
       log.max_displacement = sums[0].largest;
       continue;
     }
-    parallel_for(chunks, 1, move);
+    if (chunks <= kCallerChunks) {
+      move(0, chunks);
+    } else {
+      parallel_for(chunks, 1, move);
+    }
     for (const Sums& c : sums) {
       log.energy += c.energy;
       log.max_displacement = std::max(log.max_displacement, c.largest);
