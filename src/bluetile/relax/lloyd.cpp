@@ -35,7 +35,8 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   // Up to this many chunks the move runs on the calling thread: the cells come from every thread
   // (written at their sites' places), so on two threads half of each one's reads were the other
   // core's lines, and three chunks split 2:1; at 10^4 sites the move took 110-125 us on two
-  // threads against 80 us on one (docs/BENCHMARKS.md, "Topology kept between iterations").
+  // threads against 78-85 us on the calling thread alone (docs/BENCHMARKS.md, "Fewer passes, the
+  // move on one thread").
   constexpr std::size_t kCallerChunks = 4;
   struct Sums {
     double energy = 0.0, displacement = 0.0, largest = 0.0;
@@ -96,7 +97,7 @@ LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, cons
     std::vector<Scene>& scenes;
     std::vector<char> wanted;
     ~Requests() {
-      for (std::size_t k = 0; k < scenes.size(); ++k) scenes[k].second_moments = wanted[k];
+      for (std::size_t k = 0; k < std::min(scenes.size(), wanted.size()); ++k) scenes[k].second_moments = wanted[k];
     }
   } requests{scenes, std::vector<char>(scenes.size())};
   for (std::size_t k = 0; k < scenes.size(); ++k) {
