@@ -7,6 +7,7 @@
 // Usage: bluetile_topology_bench [--sizes 1000,10000,100000,1000000] [--starts random,relaxed]
 //        [--relax 30] [--iterations 20] [--random-iterations 20] [--threads 1,2] [--repeats 3]
 //        [--engines search,kept,cgal-band,cgal-periodic] [--max-cgal 1000000] [--check] [--spatial-order]
+//        [--no-energy]   (the exact engine asked for no second moments, as `bluetile relax` without a log)
 //        [--profile search|kept --sizes N]   (that engine only, one thread, relaxed: for a profiler)
 #include <algorithm>
 #include <chrono>
@@ -63,8 +64,9 @@ void compare_with_search(const Scene& scene, const SceneCells& cells, Run& run) 
 }
 
 // `warm` untimed iterations, then `iterations` timed ones (one engine call and the move each).
-Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int warm, int iterations, bool check) {
+Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int warm, int iterations, bool check, bool energy) {
   std::vector<Scene> scenes{make_scene(start)};
+  scenes[0].second_moments = energy;
   std::vector<SceneCells> cells(1);
   for (int i = 0; i < warm; ++i) {
     engine.compute(scenes, cells);
@@ -96,7 +98,8 @@ Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int warm,
   run.cpu_seconds_per_iteration = cpu / iterations;
   if (exact) run.kept_share = all ? static_cast<double>(kept) / static_cast<double>(all) : 0.0;
   if (check) {
-    // The last sites, measured by this engine once more and by the search.
+    // The last sites, measured by this engine once more and by the search, second moments included.
+    scenes[0].second_moments = true;
     const SceneCells last = engine.compute(scenes[0]);
     compare_with_search(scenes[0], last, run);
   }
@@ -136,7 +139,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> engines{"search", "kept", "cgal-band", "cgal-periodic"};
   int relax = 30, iterations = 20, random_iterations = 20, repeats = 3;
   std::size_t max_cgal = 1000000;
-  bool check = false, spatial = false;
+  bool check = false, spatial = false, no_energy = false;
   std::string profile;
   app.add_option("--sizes", sizes, "Site counts")->delimiter(',');
   app.add_option("--starts", starts, "random (a relaxation from random sites) and/or relaxed")->delimiter(',');
@@ -150,6 +153,8 @@ int main(int argc, char** argv) {
   app.add_flag("--check", check, "After each run, the last sites against a fresh search (differences reported)");
   app.add_flag("--spatial-order", spatial,
                "Number the sites in the order of a grid's rows (neighbours near in memory) instead of at random");
+  app.add_flag("--no-energy", no_energy,
+               "Ask the exact engine for no second moments (Scene::second_moments), as bluetile relax without --log or -v");
   app.add_option("--profile", profile, "Run only this engine (search or kept), one thread, relaxed, for a profiler");
   CLI11_PARSE(app, argc, argv);
 #if !BLUETILE_HAVE_CGAL
@@ -177,7 +182,7 @@ int main(int argc, char** argv) {
     if (!profile.empty()) {
       set_thread_count(1);
       ExactEngine engine(ExactEngineOptions{profile == "kept"});
-      const Run r = lloyd_run(engine, relaxed, 2, iterations, false);
+      const Run r = lloyd_run(engine, relaxed, 2, iterations, false, !no_energy);
       std::printf("%s N=%zu: %.1f ns per site and iteration (cpu %.1f)\n", profile.c_str(), n,
                   1e9 * r.seconds_per_iteration / static_cast<double>(n), 1e9 * r.cpu_seconds_per_iteration / static_cast<double>(n));
       continue;
@@ -206,7 +211,7 @@ int main(int argc, char** argv) {
           Row& row = rows[(k + static_cast<std::size_t>(r)) % rows.size()];
           set_thread_count(row.threads);
           auto engine = make_engine(row.name);
-          row.last = lloyd_run(*engine, sites, warm, timed, check && r == 0 && row.name == "kept");
+          row.last = lloyd_run(*engine, sites, warm, timed, check && r == 0 && row.name == "kept", !no_energy);
           if (r == 0) row.checked = row.last;
           row.times.push_back(row.last.seconds_per_iteration);
           row.cpu.push_back(row.last.cpu_seconds_per_iteration);

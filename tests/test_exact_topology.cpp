@@ -214,6 +214,42 @@ TEST(ExactTopology, BitIdenticalWhateverTheThreadCount) {
   }
 }
 
+TEST(ExactTopology, SecondMomentsNotWantedLeaveEveryOtherBitAlone) {
+  // Scene::second_moments false: the kept cells' second moments are not summed (left 0); every
+  // other field has the bits it has when they are wanted, call after call, on 1, 2 and 7 threads.
+  const std::size_t before = thread_count();
+  auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
+  for (std::size_t threads : {1u, 2u, 7u}) {
+    set_thread_count(threads);
+    Scene wanted = make_scene(uniform_points(6000, 21));
+    Scene skipped = wanted;
+    skipped.second_moments = false;
+    ExactEngine with, without;
+    for (int it = 0; it < 8; ++it) {
+      const SceneCells a = with.compute(wanted);
+      const SceneCells b = without.compute(skipped);
+      EXPECT_EQ(without.last_topology_stats().kept_cells, 6000u) << threads << " threads, call " << it;
+      ASSERT_EQ(a.cells.size(), b.cells.size());
+      std::size_t differ = 0, moments = 0;
+      for (std::size_t i = 0; i < a.cells.size(); ++i) {
+        const Cell& x = a.cells[i];
+        const Cell& y = b.cells[i];
+        differ += !same(x.centroid.x, y.centroid.x) || !same(x.centroid.y, y.centroid.y) || !same(x.area, y.area) ||
+                  !same(x.mass, y.mass) || !same(x.radius, y.radius) || x.status != y.status;
+        moments += x.second_moment > 0.0 && y.second_moment == 0.0;
+      }
+      EXPECT_EQ(differ, 0u) << threads << " threads, call " << it;
+      EXPECT_EQ(moments, a.cells.size()) << threads << " threads, call " << it;
+      EXPECT_EQ(a.coincident_count, b.coincident_count);
+      std::vector<Scene> scenes{wanted};
+      move_to_centroids(scenes, std::span<const SceneCells>(&a, 1));
+      wanted.sites = scenes[0].sites;
+      skipped.sites = scenes[0].sites;
+    }
+  }
+  set_thread_count(before);
+}
+
 TEST(ExactTopology, RectangularDomainWantedRangeAndWeightedCells) {
   const Domain domain{{2.0, 1.0}};
   Scene periodic = make_scene(relaxed_points(1500, 8, domain), domain);
@@ -229,6 +265,32 @@ TEST(ExactTopology, RectangularDomainWantedRangeAndWeightedCells) {
   options.iterations = 30;
   relax_lloyd(engine, weighted, options);
   EXPECT_EQ(run_side_by_side(weighted, 6).kept, 6u * 2000u);
+}
+
+TEST(ExactTopology, KeptCellsCountTheirStatuses) {
+  // The kept path counts statuses as it measures: a density zero over a band of the domain gives
+  // cells without density among kept ones, and the counts are the search's, call after call.
+  auto density = std::make_shared<DensityGrid>(32, 32);
+  for (int j = 0; j < 32; ++j)
+    for (int i = 0; i < 32; ++i) density->at(i, j) = i < 6 ? 0.0f : 1.0f;
+  Scene scene = make_scene(uniform_points(3000, 23));
+  scene.density = density;
+  ExactEngine kept;
+  ExactEngine search = searching();
+  for (int it = 0; it < 4; ++it) {
+    const SceneCells a = kept.compute(scene);
+    const SceneCells b = search.compute(scene);
+    EXPECT_EQ(kept.last_topology_stats().kept_cells, 3000u) << it;
+    std::size_t zero = 0;
+    for (const Cell& c : b.cells) zero += c.status == CellStatus::zero_density;
+    EXPECT_GT(zero, 100u) << it;
+    EXPECT_EQ(a.zero_density_count, zero) << it;
+    EXPECT_EQ(b.zero_density_count, zero) << it;
+    EXPECT_EQ(a.coincident_count, 0u) << it;
+    std::vector<Scene> scenes{scene};
+    move_to_centroids(scenes, std::span<const SceneCells>(&a, 1));
+    scene = scenes[0];
+  }
 }
 
 TEST(ExactTopology, BoundedAndSmallScenesAreSearched) {

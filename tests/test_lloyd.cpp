@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 
 #include "bluetile/relax/lloyd.h"
 #include "test_support.h"
@@ -87,6 +88,32 @@ TEST(Lloyd, KeepsNoHistoryUnlessAsked) {
   EXPECT_EQ(result.iterations, 300);
   EXPECT_EQ(result.last.iteration, 300);
   EXPECT_EQ(calls, 300);
+}
+
+TEST(Lloyd, WithoutEnergyTheSitesMoveTheSameBits) {
+  // LloydOptions::energy false: every iteration's energy is 0 and the sites end where they end
+  // with it, bit for bit; the scene's own request is given back after the run.
+  for (std::size_t n : {200u, 3000u}) {  // searched (below 256 sites), and on the kept triangulation
+    Scene a = make_scene(test::uniform_points(n, 9));
+    Scene b = a;
+    ExactEngine with, without;
+    LloydOptions options;
+    options.iterations = 12;
+    options.keep_history = true;
+    const LloydResult r = relax_lloyd(with, a, options);
+    options.energy = false;
+    const LloydResult s = relax_lloyd(without, b, options);
+    ASSERT_EQ(r.history.size(), s.history.size());
+    for (std::size_t i = 0; i < r.history.size(); ++i) {
+      EXPECT_GT(r.history[i].energy, 0.0) << i;
+      EXPECT_EQ(s.history[i].energy, 0.0) << i;
+      EXPECT_EQ(r.history[i].max_displacement, s.history[i].max_displacement) << i;
+      EXPECT_EQ(r.history[i].mean_displacement, s.history[i].mean_displacement) << i;
+    }
+    ASSERT_EQ(a.sites.size(), b.sites.size());
+    EXPECT_EQ(std::memcmp(a.sites.data(), b.sites.data(), a.sites.size() * sizeof(Point)), 0) << n << " sites";
+    EXPECT_TRUE(b.second_moments);
+  }
 }
 
 TEST(Lloyd, CoincidentSiteKeepsItsPlace) {

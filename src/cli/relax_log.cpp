@@ -14,6 +14,9 @@ LloydOptions RelaxLog::lloyd_options(int iterations, double tolerance) {
   options.iterations = iterations;
   options.tolerance = tolerance;
   options.on_iteration = [this](const LloydIteration& it) { record(it); };
+  // Only the CSV and the verbose lines show the energy; without them the cells' second moments
+  // are not measured.
+  options.energy = csv_ != nullptr || verbose_;
   return options;
 }
 

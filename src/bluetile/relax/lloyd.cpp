@@ -32,6 +32,12 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   // sums added in chunk order: the same bits whatever the thread count. A few chunks already at
   // 10^4 sites, where a Lloyd step takes about a millisecond.
   constexpr std::size_t kChunk = 4096;
+  // Up to this many chunks the move runs on the calling thread: the cells come from every thread
+  // (written at their sites' places), so on two threads half of each one's reads were the other
+  // core's lines, and three chunks split 2:1; at 10^4 sites the move took 110-125 us on two
+  // threads against 78-85 us on the calling thread alone (docs/BENCHMARKS.md, "Fewer passes, the
+  // move on one thread").
+  constexpr std::size_t kCallerChunks = 4;
   struct Sums {
     double energy = 0.0, displacement = 0.0, largest = 0.0;
   };
@@ -68,7 +74,11 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
       log.max_displacement = sums[0].largest;
       continue;
     }
-    parallel_for(chunks, 1, move);
+    if (chunks <= kCallerChunks) {
+      move(0, chunks);
+    } else {
+      parallel_for(chunks, 1, move);
+    }
     for (const Sums& c : sums) {
       log.energy += c.energy;
       log.max_displacement = std::max(log.max_displacement, c.largest);
@@ -82,10 +92,23 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
 LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, const LloydOptions& options) {
   LloydResult result;
   std::vector<SceneCells> cells(scenes.size());
+  // The scenes' own requests, given back however the run ends (an interrupt throws).
+  struct Requests {
+    std::vector<Scene>& scenes;
+    std::vector<char> wanted;
+    ~Requests() {
+      for (std::size_t k = 0; k < std::min(scenes.size(), wanted.size()); ++k) scenes[k].second_moments = wanted[k];
+    }
+  } requests{scenes, std::vector<char>(scenes.size())};
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    requests.wanted[k] = scenes[k].second_moments;
+    scenes[k].second_moments = requests.wanted[k] && options.energy;
+  }
   for (int it = 1; it <= options.iterations; ++it) {
     engine.compute(scenes, cells);
     LloydIteration log = move_to_centroids(scenes, cells);
     log.iteration = it;
+    if (!options.energy) log.energy = 0.0;
     result.last = log;
     result.iterations = it;
     if (options.keep_history) result.history.push_back(log);

@@ -41,6 +41,10 @@ struct LloydOptions {
   // Keep every iteration's figures in LloydResult::history (memory grows with the iterations:
   // about 56 bytes each); otherwise only the last is kept.
   bool keep_history = false;
+  // Whether to measure the energy. False: the engine is asked for no second moments (each
+  // scene's Scene::second_moments is false during the run and restored after) and every
+  // LloydIteration::energy is 0; the sites move bit for bit as with it.
+  bool energy = true;
 };
 
 struct LloydResult {

@@ -55,13 +55,19 @@ class DelaunayCells {
   bool fits(const PeriodicDelaunay& triangulation, std::uint32_t triangle) const;
 
   // The cell of `vertex`, whose site is at `origin` in `scene`. Returns false, leaving `cell`
-  // alone, when the cell lies on a cocircular tie (left to the search).
+  // alone, when the cell lies on a cocircular tie (left to the search). Without a density map and
+  // with scene.second_moments false, the second moment is not summed and is left 0.
   bool measure(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
                const Weighting& weighting, Cell& cell) const;
 
   std::size_t bytes() const { return centres_.capacity() * sizeof(Point); }
 
  private:
+  // measure, with or without the second moment's sum (a separate loop each, no branch in it).
+  template <bool kSecond>
+  bool walk(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
+            const Weighting& weighting, Cell& cell) const;
+
   // Per triangle t, its circumcentre relative to each corner k: centres_[3 t + k].
   std::vector<Point> centres_;
 };

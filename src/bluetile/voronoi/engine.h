@@ -37,6 +37,12 @@ struct Scene {
   std::size_t wanted_begin = 0;
   std::size_t wanted_end = 0;
 
+  // Whether the cells' second moments (Cell::second_moment, the Lloyd energy) are wanted. When
+  // false an engine may skip them (the exact engine leaves them 0 on the kept triangulation,
+  // about a tenth of its cell work) and their values are unspecified; every other field is bit
+  // for bit what it is when they are wanted.
+  bool second_moments = true;
+
   std::size_t wanted_count() const { return wanted_end - wanted_begin; }
   bool periodic() const { return boundary == Boundary::periodic; }
 };

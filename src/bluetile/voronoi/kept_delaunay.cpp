@@ -41,6 +41,16 @@ bool on_rows_and_columns(std::span<const Point> sites) {
   const std::size_t n = sites.size();
   const auto root = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
   const std::size_t m = std::min(n, kGridSample * root);
+  // At most the samples that share their x share both: when fewer than half do, the answer is no
+  // without the pairs below (the common case, a plain sort of doubles; this runs every call, on
+  // the calling thread alone).
+  std::vector<double> plain(m);
+  for (std::size_t i = 0; i < m; ++i) plain[i] = sites[i * n / m].x;
+  std::sort(plain.begin(), plain.end());
+  std::size_t x_shared = 0;
+  for (std::size_t k = 0; k < m; ++k)
+    x_shared += (k > 0 && plain[k] == plain[k - 1]) || (k + 1 < m && plain[k] == plain[k + 1]);
+  if (2 * x_shared < m) return false;
   std::vector<std::pair<double, std::uint32_t>> xs(m), ys(m);
   for (std::size_t i = 0; i < m; ++i) {
     const Point p = sites[i * n / m];
@@ -65,8 +75,9 @@ bool on_rows_and_columns(std::span<const Point> sites) {
 // A repair that would remove more than one vertex in this many is a rebuild instead.
 constexpr std::size_t kRepairShare = 16;
 
-// The chunks of the vertex passes.
-constexpr std::size_t kVertexChunk = 1024;
+// The chunks of the vertex passes: about forty at 10^4 sites, for the same reason as the sweep's
+// (delaunay_cells.cpp).
+constexpr std::size_t kVertexChunk = 256;
 // How many vertices ahead the passes that read or write at a site's place (scattered in
 // memory) fetch it: enough to cover a miss to memory at the pass's pace.
 constexpr std::size_t kPrefetch = 16;
@@ -412,8 +423,8 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   return triangulation_.build(star_start, stars) && settle(stats);
 }
 
-void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,
-                           KeptTopologyStats& stats) {
+bool KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,
+                           KeptTopologyStats& stats, StatusCounts& counts) {
   assert(suits(scene));
   scene_area_ = scene.domain.area();
   if (on_rows_and_columns(scene.sites)) {
@@ -422,7 +433,7 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
     valid_ = false;
     search_cells(scene, CellSearch(scene), weighting, cells, parallel);
     stats.searched_cells += scene.wanted_count();
-    return;
+    return false;
   }
   bool searched = false;  // every wanted cell measured by the search already
   bool ready = matches(scene) && move_vertices(scene);
@@ -448,7 +459,7 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
     valid_ = false;
     if (!searched) search_cells(scene, CellSearch(scene), weighting, cells, parallel);
     stats.searched_cells += scene.wanted_count();
-    return;
+    return false;
   }
   valid_ = true;
   domain_ = scene.domain;
@@ -460,6 +471,11 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
   const std::size_t n = scene.sites.size();
   const std::size_t chunks = (n + kVertexChunk - 1) / kVertexChunk;
   std::vector<std::vector<std::uint32_t>> ties(chunks);
+  std::vector<StatusCounts> found(chunks);
+  auto count = [](const Cell& cell, StatusCounts& c) {
+    c.coincident += cell.status == CellStatus::coincident;
+    c.zero_density += cell.status == CellStatus::zero_density;
+  };
   auto measure = [&](std::size_t begin, std::size_t end) {
     const auto positions = triangulation_.positions();
     for (std::size_t c = begin; c < end; ++c) {
@@ -477,9 +493,12 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
         }
         const std::uint32_t site = site_of_vertex_[v];
         if (site < scene.wanted_begin || site >= scene.wanted_end) continue;
-        if (!cells_.measure(triangulation_, static_cast<std::uint32_t>(v), scene, positions[v], weighting,
-                            cells[site - scene.wanted_begin]))
+        Cell& cell = cells[site - scene.wanted_begin];
+        if (cells_.measure(triangulation_, static_cast<std::uint32_t>(v), scene, positions[v], weighting, cell)) {
+          count(cell, found[c]);
+        } else {
           ties[c].push_back(site);
+        }
       }
     }
   };
@@ -494,6 +513,13 @@ void KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
   stats.kept_cells += scene.wanted_count() - tied.size();
   stats.searched_cells += tied.size();
   stats.tie_cells += tied.size();
+  counts = StatusCounts{};
+  for (const StatusCounts& c : found) {
+    counts.coincident += c.coincident;
+    counts.zero_density += c.zero_density;
+  }
+  for (std::uint32_t site : tied) count(cells[site - scene.wanted_begin], counts);
+  return true;
 }
 
 }  // namespace bluetile

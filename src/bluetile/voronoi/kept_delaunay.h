@@ -47,11 +47,19 @@ class KeptDelaunay {
   // exact range).
   static bool suits(const Scene& scene);
 
+  // How many measured cells have each status that SceneCells counts.
+  struct StatusCounts {
+    std::size_t coincident = 0, zero_density = 0;
+  };
+
   // Measures the wanted cells of `scene` (which suits()) into cells[site - wanted_begin]:
   // through the triangulation, kept or built now, or by the search where the scene or a cell
-  // asks for it. Adds what it did to `stats`.
-  void compute(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,
-               KeptTopologyStats& stats);
+  // asks for it. Adds what it did to `stats`. Returns true when the cells came from the
+  // triangulation (ties searched one by one) and their statuses are counted in `counts`, while
+  // each cell is still in its thread's cache; false when the scene was searched whole (the
+  // caller counts them).
+  bool compute(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,
+               KeptTopologyStats& stats, StatusCounts& counts);
 
   std::size_t bytes() const;
 
