@@ -39,8 +39,8 @@ struct Scene {
 
   // Whether the cells' second moments (Cell::second_moment, the Lloyd energy) are wanted. When
   // false an engine may skip them (the exact engine leaves them 0 on the kept triangulation,
-  // about a tenth of its cell work) and their values are unspecified; every other field is bit
-  // for bit what it is when they are wanted.
+  // 1-3 ns of about 150 per site: docs/BENCHMARKS.md) and their values are unspecified; every
+  // other field is bit for bit what it is when they are wanted.
   bool second_moments = true;
 
   std::size_t wanted_count() const { return wanted_end - wanted_begin; }
