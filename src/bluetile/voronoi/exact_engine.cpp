@@ -75,12 +75,12 @@ void compute_scene(SceneRun run) {
   out.zero_density_count = 0;
   if (scene.wanted_count() == 0) return;
   if (run.kept) {
-    KeptDelaunay::StatusCounts counts;
-    if (run.kept->compute(scene, run.weighting, out.cells, run.parallel_inside, run.stats, counts)) {
+    KeptDelaunay::StatusCounts measured;
+    if (run.kept->compute(scene, run.weighting, out.cells, run.parallel_inside, run.stats, measured)) {
       // Counted as the cells were measured: a pass over every cell less (at 10^4 sites it ran on
       // the calling thread alone, between two parallel loops).
-      out.coincident_count = counts.coincident;
-      out.zero_density_count = counts.zero_density;
+      out.coincident_count = measured.coincident;
+      out.zero_density_count = measured.zero_density;
       return;
     }
   } else {
@@ -90,24 +90,20 @@ void compute_scene(SceneRun run) {
   // The statuses counted in chunks (on all threads for a large scene), added in chunk order.
   constexpr std::size_t kCountChunk = 16384;
   const std::size_t chunks = (out.cells.size() + kCountChunk - 1) / kCountChunk;
-  std::vector<std::size_t> coincident(chunks, 0), zero_density(chunks, 0);
+  std::vector<KeptDelaunay::StatusCounts> counts(chunks);
   auto count = [&](std::size_t begin, std::size_t end) {
-    for (std::size_t c = begin; c < end; ++c) {
-      for (std::size_t i = c * kCountChunk; i < std::min(out.cells.size(), (c + 1) * kCountChunk); ++i) {
-        coincident[c] += out.cells[i].status == CellStatus::coincident;
-        zero_density[c] += out.cells[i].status == CellStatus::zero_density;
-      }
-    }
+    for (std::size_t c = begin; c < end; ++c)
+      for (std::size_t i = c * kCountChunk; i < std::min(out.cells.size(), (c + 1) * kCountChunk); ++i) counts[c].add(out.cells[i]);
   };
   if (run.parallel_inside) {
     parallel_for(chunks, 1, count);
   } else {
     count(0, chunks);
   }
-  for (std::size_t c = 0; c < chunks; ++c) {
-    out.coincident_count += coincident[c];
-    out.zero_density_count += zero_density[c];
-  }
+  KeptDelaunay::StatusCounts total;
+  for (const KeptDelaunay::StatusCounts& c : counts) total += c;
+  out.coincident_count = total.coincident;
+  out.zero_density_count = total.zero_density;
 }
 
 }  // namespace

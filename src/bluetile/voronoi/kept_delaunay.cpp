@@ -41,16 +41,6 @@ bool on_rows_and_columns(std::span<const Point> sites) {
   const std::size_t n = sites.size();
   const auto root = static_cast<std::size_t>(std::ceil(std::sqrt(static_cast<double>(n))));
   const std::size_t m = std::min(n, kGridSample * root);
-  // At most the samples that share their x share both: when fewer than half do, the answer is no
-  // without the pairs below (the common case, a plain sort of doubles; this runs every call, on
-  // the calling thread alone).
-  std::vector<double> plain(m);
-  for (std::size_t i = 0; i < m; ++i) plain[i] = sites[i * n / m].x;
-  std::sort(plain.begin(), plain.end());
-  std::size_t x_shared = 0;
-  for (std::size_t k = 0; k < m; ++k)
-    x_shared += (k > 0 && plain[k] == plain[k - 1]) || (k + 1 < m && plain[k] == plain[k + 1]);
-  if (2 * x_shared < m) return false;
   std::vector<std::pair<double, std::uint32_t>> xs(m), ys(m);
   for (std::size_t i = 0; i < m; ++i) {
     const Point p = sites[i * n / m];
@@ -67,6 +57,10 @@ bool on_rows_and_columns(std::span<const Point> sites) {
     }
   };
   mark(xs, 1);
+  // At most the samples that share their x share both: when fewer than half do (the common case;
+  // this runs every call, on the calling thread alone), the answer is no without sorting y.
+  const auto x_shared = static_cast<std::size_t>(std::count(shared.begin(), shared.end(), std::uint8_t{1}));
+  if (2 * x_shared < m) return false;
   mark(ys, 2);
   const auto both = static_cast<std::size_t>(std::count(shared.begin(), shared.end(), std::uint8_t{3}));
   return 2 * both >= m;
@@ -472,10 +466,6 @@ bool KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
   const std::size_t chunks = (n + kVertexChunk - 1) / kVertexChunk;
   std::vector<std::vector<std::uint32_t>> ties(chunks);
   std::vector<StatusCounts> found(chunks);
-  auto count = [](const Cell& cell, StatusCounts& c) {
-    c.coincident += cell.status == CellStatus::coincident;
-    c.zero_density += cell.status == CellStatus::zero_density;
-  };
   auto measure = [&](std::size_t begin, std::size_t end) {
     const auto positions = triangulation_.positions();
     for (std::size_t c = begin; c < end; ++c) {
@@ -495,7 +485,7 @@ bool KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
         if (site < scene.wanted_begin || site >= scene.wanted_end) continue;
         Cell& cell = cells[site - scene.wanted_begin];
         if (cells_.measure(triangulation_, static_cast<std::uint32_t>(v), scene, positions[v], weighting, cell)) {
-          count(cell, found[c]);
+          found[c].add(cell);
         } else {
           ties[c].push_back(site);
         }
@@ -514,11 +504,8 @@ bool KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
   stats.searched_cells += tied.size();
   stats.tie_cells += tied.size();
   counts = StatusCounts{};
-  for (const StatusCounts& c : found) {
-    counts.coincident += c.coincident;
-    counts.zero_density += c.zero_density;
-  }
-  for (std::uint32_t site : tied) count(cells[site - scene.wanted_begin], counts);
+  for (const StatusCounts& c : found) counts += c;
+  for (std::uint32_t site : tied) counts.add(cells[site - scene.wanted_begin]);
   return true;
 }
 

@@ -50,6 +50,15 @@ class KeptDelaunay {
   // How many measured cells have each status that SceneCells counts.
   struct StatusCounts {
     std::size_t coincident = 0, zero_density = 0;
+    void add(const Cell& cell) {
+      coincident += cell.status == CellStatus::coincident;
+      zero_density += cell.status == CellStatus::zero_density;
+    }
+    StatusCounts& operator+=(const StatusCounts& other) {
+      coincident += other.coincident;
+      zero_density += other.zero_density;
+      return *this;
+    }
   };
 
   // Measures the wanted cells of `scene` (which suits()) into cells[site - wanted_begin]:
