@@ -98,8 +98,8 @@ void run_wang(const WangCommandOptions& o) {
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
   check_points_per_tile(o, TileRules(w.kind).tile_count());
   if (w.level.rank_order == RankOrder::fill && o.levels > 1) {
-    // The filled levels' grids (the last is the largest) and their time, which grows as the square
-    // of the points per tile.
+    // The filled levels' grids (the last is the largest) and their time, which grows as N log N in
+    // the points per tile.
     const std::size_t tiles = static_cast<std::size_t>(TileRules(w.kind).tile_count());
     std::size_t count = static_cast<std::size_t>(o.points);
     FillCost fill;
@@ -107,14 +107,14 @@ void run_wang(const WangCommandOptions& o) {
       const std::size_t add = level_size(count, 0, o.ratio);
       const FillCost level = band_fill_cost(count, add, tiles, w.level.fill);
       fill.bytes = std::max(fill.bytes, level.bytes);
-      fill.places_scanned += level.places_scanned;
+      fill.places_visited += level.places_visited;
       count += add;
     }
     check_memory(fill.bytes, "filling " + std::to_string(count) + " points per tile");
-    const double seconds = fill.places_scanned * kFillSecondsPerPlace;
+    const double seconds = fill.places_visited * kFillSecondsPerPlace;
     if (seconds >= 60.0)
-      std::fprintf(stderr, "bluetile: note: the fill order scans about %.2g grid places, about %s (it grows as the square "
-                   "of the points per tile)\n", fill.places_scanned, duration_words(seconds).c_str());
+      std::fprintf(stderr, "bluetile: note: the fill order visits about %.2g grid places, about %s on one thread (it grows "
+                   "as N log N in the points per tile)\n", fill.places_visited, duration_words(seconds).c_str());
   }
 
   auto engine = make_engine(o.engine);

@@ -73,6 +73,8 @@ outputs() {
   run - progressive -n 8 -l 2 -k 2 -s 2 --sets 2 --engine exact -o progressive_sets.npy
   run - progressive -i relax.txt -a 32 -k 3 --engine exact -o progressive_from_relax.bpt
   run - progressive -n 1 -a 1 -l 64 -k 4 -s 2 --rank-order voids --engine exact -o progressive_voids.txt
+  # the fill order: its grid's search (a tree of block summaries) gives the bytes of a full scan
+  run - progressive -n 32 -l 4 -s 2 --rank-order fill -o progressive_fill.txt
 
   # centroids: both engines.
   run - centroids -i relax.txt --engine exact -o centroids.txt
@@ -95,6 +97,7 @@ outputs() {
   # the built-in set, in every output kind.
   run wang8 wang --set wang8 -n 8 -k 3 --warm 2 -s 3 -o wang8.tiles --check
   run - wang --set wang16 -n 13 -k 2 --warm 1 -l 2 --ratio 2 -s 3 --strategy rounds --rank-order voids -o wang16.tiles
+  run - wang --set wang8 -n 8 -k 3 --warm 2 -l 3 --ratio 2 -s 3 -o wang8_fill.tiles
   run - wang --set corner16 -n 13 -k 2 --warm 1 --margin 0.05 -s 3 -o corner16.tiles
   run - wang --set wang8 -n 6 -k 2 --warm 1 --strategy instances --period 4 --lattice-steps 2 --seam-steps 2 \
     -s 4 -o wang8_instances.tiles

@@ -2,12 +2,14 @@
 #include "bluetile/relax/band_fill.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 #include <string>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/field_checks.h"
+#include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 
 namespace bluetile {
@@ -55,6 +57,77 @@ double grid_side(std::size_t total, int cells_per_spacing) {
   return std::ceil(cells_per_spacing / hexagonal_spacing(static_cast<double>(total)));
 }
 
+// A point changes the grid only within its kernel's reach, so the choice of the next place keeps a
+// summary per block of kBlockSide^2 cells (its least potential among the places far enough from
+// every point) in a tournament tree, and re-reads only the blocks a stamp touched or whose places
+// a falling floor let in. A round then costs about the cells its stamps cover, not a scan of every
+// place: the fill grows as N log N instead of N^2. The choice is the same as a scan's, ties and all.
+constexpr std::size_t kBlockSide = 16;
+// Rows of a grid per task of a parallel restamp.
+constexpr std::size_t kRebuildBandRows = 32;
+constexpr float kNoneIneligible = -1.0f;  // below every squared distance
+
+struct BlockSummary {
+  double least = 0.0;                   // least potential of an eligible place
+  std::size_t place = 0;                // where it is, when `eligible`
+  bool eligible = false;                // a place of the block is at least the floor from every point
+  bool tied = false;                    // another eligible place of the block has the same potential
+  float ineligible2 = kNoneIneligible;  // largest squared distance below the floor (a falling floor lets it in)
+  bool dirty = true;                    // to be read again before the next choice
+};
+
+// A node of the tournament tree: the least of the blocks below it, and the largest squared distance
+// of their ineligible places.
+struct BlockNode {
+  double least = 0.0;
+  std::size_t block = 0;  // the block count when no block below holds an eligible place
+  bool tied = false;      // two blocks below share the least potential, or the block itself has a tie
+  float ineligible2 = kNoneIneligible;
+};
+
+class BlockTree {
+ public:
+  void reset(std::size_t blocks) {
+    blocks_ = blocks;
+    leaves_ = std::bit_ceil(std::max<std::size_t>(blocks, 1));
+    node_.assign(2 * leaves_, BlockNode{0.0, blocks, false, kNoneIneligible});
+  }
+  void set(std::size_t b, const BlockSummary& s) {
+    std::size_t n = leaves_ + b;
+    node_[n] = BlockNode{s.least, s.eligible ? b : blocks_, s.tied, s.ineligible2};
+    for (n /= 2; n >= 1; n /= 2) node_[n] = merge(node_[2 * n], node_[2 * n + 1]);
+  }
+  const BlockNode& root() const { return node_[1]; }
+  // Appends the blocks holding an ineligible place at squared distance >= threshold2.
+  void crossed(float threshold2, std::vector<std::size_t>& out) const { crossed(1, threshold2, out); }
+
+ private:
+  BlockNode merge(const BlockNode& a, const BlockNode& b) const {
+    BlockNode m;
+    m.ineligible2 = std::max(a.ineligible2, b.ineligible2);
+    if (b.block == blocks_ || (a.block != blocks_ && a.least < b.least)) {
+      m.least = a.least, m.block = a.block, m.tied = a.tied;
+    } else if (a.block == blocks_ || b.least < a.least) {
+      m.least = b.least, m.block = b.block, m.tied = b.tied;
+    } else {
+      m.least = a.least, m.block = a.block, m.tied = true;
+    }
+    return m;
+  }
+  void crossed(std::size_t n, float threshold2, std::vector<std::size_t>& out) const {
+    if (!(node_[n].ineligible2 >= threshold2)) return;
+    if (n >= leaves_) {
+      out.push_back(n - leaves_);
+      return;
+    }
+    crossed(2 * n, threshold2, out);
+    crossed(2 * n + 1, threshold2, out);
+  }
+
+  std::size_t blocks_ = 0, leaves_ = 0;
+  std::vector<BlockNode> node_;
+};
+
 // One tile's grid of candidate places: cell (i, j), at index j * side + i, offers one place, at
 // ((i + 1/2, j + 1/2) + jitter) / side with a seeded jitter in [-1/2, 1/2)^2 fixed for the run, so
 // that the points fall on no lattice and the floor is checked where a point would go.
@@ -62,6 +135,10 @@ struct TileGrid {
   std::vector<Point> place;
   std::vector<double> potential;
   std::vector<float> nearest2;  // squared distance to the nearest point stamped within its reach
+  std::vector<BlockSummary> blocks;
+  BlockTree tree;
+  std::vector<std::size_t> dirty;  // the blocks marked dirty since the last choice
+  float threshold2 = std::numeric_limits<float>::infinity();  // the squared floor of the last choice
 };
 
 class Filler {
@@ -77,6 +154,7 @@ class Filler {
       throw Error("band fill: " + std::to_string(total_) + " points per tile need a grid of " + std::to_string(side_) +
                   " cells a side, more than " + std::to_string(kMaxGrid));
     cell_ = 1.0 / static_cast<double>(side_);
+    block_side_ = (side_ + kBlockSide - 1) / kBlockSide;
     grids_.resize(count);
     for (std::size_t t = 0; t < count; ++t) {
       TileGrid& grid = grids_[t];
@@ -90,6 +168,10 @@ class Filler {
       }
       grid.potential.assign(side_ * side_, 0.0);
       grid.nearest2.assign(side_ * side_, std::numeric_limits<float>::infinity());
+      grid.blocks.assign(block_side_ * block_side_, BlockSummary{});
+      grid.tree.reset(grid.blocks.size());
+      grid.dirty.resize(grid.blocks.size());
+      for (std::size_t b = 0; b < grid.dirty.size(); ++b) grid.dirty[b] = b;
     }
     // Where each tile's points count: the reverse of `sources`.
     targets_.resize(count);
@@ -125,12 +207,21 @@ class Filler {
 
  private:
   // The cell of least potential among those whose nearest point is at least sqrt(threshold2)
-  // away, else the cell farthest from every point. The scan starts at a random cell, so that
-  // exact ties (an empty grid) go to a random one.
-  std::size_t choose(std::size_t t, float threshold2, Rng& rng) const {
-    const TileGrid& grid = grids_[t];
+  // away, else the cell farthest from every point; exact ties go to the first in the order of a
+  // scan from a random cell (so that an empty grid gives a random one), which only a scan knows.
+  std::size_t choose(std::size_t t, float threshold2, Rng& rng) {
+    TileGrid& grid = grids_[t];
+    const std::size_t start = static_cast<std::size_t>(rng.below(side_ * side_));
+    refresh(grid, threshold2);
+    const BlockNode& best = grid.tree.root();
+    if (best.block == grid.blocks.size() || best.tied) return scan(grid, threshold2, start);
+    return grid.blocks[best.block].place;
+  }
+
+  // Every place, from `start` on: the first of least potential among the eligible ones, else the
+  // first farthest from every point.
+  std::size_t scan(const TileGrid& grid, float threshold2, std::size_t start) const {
     const std::size_t cells = side_ * side_;
-    const std::size_t start = static_cast<std::size_t>(rng.below(cells));
     std::size_t best = cells, farthest = start;
     double best_value = 0.0;
     for (std::size_t n = 0, c = start; n < cells; ++n, c = c + 1 == cells ? 0 : c + 1) {
@@ -144,20 +235,79 @@ class Filler {
     return best != cells ? best : farthest;
   }
 
-  // The places of a grid within `radius` of q (tile units, possibly outside the tile).
-  template <class Visit>
-  void for_places_near(const TileGrid& grid, Point q, double radius, Visit visit) const {
-    // A cell's place lies inside the cell: the cells whose square meets the disc.
+  // Reads again the blocks stamped since the last choice and those a lower floor lets places into.
+  void refresh(TileGrid& grid, float threshold2) {
+    if (threshold2 > grid.threshold2) {  // a higher floor shuts places out anywhere (not in a fill's rounds)
+      for (std::size_t b = 0; b < grid.blocks.size(); ++b) mark_dirty(grid, b);
+    } else {
+      crossed_.clear();
+      grid.tree.crossed(threshold2, crossed_);
+      for (std::size_t b : crossed_) mark_dirty(grid, b);
+    }
+    grid.threshold2 = threshold2;
+    for (std::size_t b : grid.dirty) {
+      BlockSummary& s = grid.blocks[b];
+      summarize(grid, b, threshold2, s);
+      grid.tree.set(b, s);
+    }
+    grid.dirty.clear();
+  }
+
+  void summarize(const TileGrid& grid, std::size_t b, float threshold2, BlockSummary& s) const {
+    s = BlockSummary{};
+    s.dirty = false;
+    const std::size_t i0 = b % block_side_ * kBlockSide, j0 = b / block_side_ * kBlockSide;
+    const std::size_t i1 = std::min(side_, i0 + kBlockSide), j1 = std::min(side_, j0 + kBlockSide);
+    for (std::size_t j = j0; j < j1; ++j) {
+      for (std::size_t c = j * side_ + i0, end = j * side_ + i1; c < end; ++c) {
+        const float d2 = grid.nearest2[c];
+        if (d2 >= threshold2) {
+          const double p = grid.potential[c];
+          if (!s.eligible || p < s.least) {
+            s.eligible = true, s.least = p, s.place = c, s.tied = false;
+          } else if (p == s.least) {
+            s.tied = true;
+          }
+        } else {
+          s.ineligible2 = std::max(s.ineligible2, d2);
+        }
+      }
+    }
+  }
+
+  static void mark_dirty(TileGrid& grid, std::size_t b) {
+    if (grid.blocks[b].dirty) return;
+    grid.blocks[b].dirty = true;
+    grid.dirty.push_back(b);
+  }
+
+  // The cells of the grid whose square meets the disc of `radius` about q (tile units, possibly
+  // outside the tile): false when none.
+  bool window(Point q, double radius, long& i0, long& i1, long& j0, long& j1) const {
     const auto range = [&](double centre, long& lo, long& hi) {
       lo = std::max(0L, static_cast<long>(std::floor((centre - radius) / cell_)));
       hi = std::min(static_cast<long>(side_) - 1, static_cast<long>(std::floor((centre + radius) / cell_)));
     };
-    long i0, i1, j0, j1;
     range(q.x, i0, i1);
     range(q.y, j0, j1);
+    return i0 <= i1 && j0 <= j1;
+  }
+
+  // The places within `radius` of q in rows row_lo to row_hi - 1 (a cell's place lies inside
+  // the cell: only the cells whose square meets the disc are looked at).
+  template <class Visit>
+  void for_places_near(const TileGrid& grid, Point q, double radius, long row_lo, long row_hi, Visit visit) const {
+    long i0, i1, j0, j1;
+    if (!window(q, radius, i0, i1, j0, j1)) return;
     const double r2 = radius * radius;
-    for (long j = j0; j <= j1; ++j) {
-      for (long i = i0; i <= i1; ++i) {
+    for (long j = std::max(j0, row_lo), j_end = std::min(j1 + 1, row_hi); j < j_end; ++j) {
+      // Only the cells of the row whose square meets the disc (a hair wider, for rounding).
+      const double bottom = static_cast<double>(j) * cell_, dy = std::max({0.0, bottom - q.y, q.y - (bottom + cell_)});
+      if (dy >= radius) continue;
+      const double half = std::sqrt(r2 - dy * dy) * (1.0 + 1e-9) + 1e-12;
+      const long row_i0 = std::max(i0, static_cast<long>(std::floor((q.x - half) / cell_)));
+      const long row_i1 = std::min(i1, static_cast<long>(std::floor((q.x + half) / cell_)));
+      for (long i = row_i0; i <= row_i1; ++i) {
         const std::size_t c = static_cast<std::size_t>(j) * side_ + static_cast<std::size_t>(i);
         const Point d = grid.place[c] - q;
         const double d2 = d.x * d.x + d.y * d.y;
@@ -166,38 +316,84 @@ class Filler {
     }
   }
 
+  // for_places_near over every row, the blocks it may change marked to be read again.
+  template <class Visit>
+  void change_places_near(TileGrid& grid, Point q, double radius, Visit visit) {
+    long i0, i1, j0, j1;
+    if (!window(q, radius, i0, i1, j0, j1)) return;
+    const std::size_t bi1 = static_cast<std::size_t>(i1) / kBlockSide, bj1 = static_cast<std::size_t>(j1) / kBlockSide;
+    for (std::size_t bj = static_cast<std::size_t>(j0) / kBlockSide; bj <= bj1; ++bj)
+      for (std::size_t bi = static_cast<std::size_t>(i0) / kBlockSide; bi <= bi1; ++bi) mark_dirty(grid, bj * block_side_ + bi);
+    for_places_near(grid, q, radius, 0, static_cast<long>(side_), visit);
+  }
+
   void stamp_potential(std::size_t u, Point p) {
     for (const FillSource& target : targets_[u]) {
       if (!(target.weight > 0.0)) continue;
       TileGrid& grid = grids_[target.tile];
       const double w = target.weight;
-      for_places_near(grid, p + target.shift, kernel_.radius(), [&](std::size_t c, double d2) { grid.potential[c] += w * kernel_.at(d2); });
+      change_places_near(grid, p + target.shift, kernel_.radius(), [&](std::size_t c, double d2) { grid.potential[c] += w * kernel_.at(d2); });
     }
   }
 
   void stamp_nearest(std::size_t u, Point p, double radius) {
     for (const FillSource& target : targets_[u]) {
       TileGrid& grid = grids_[target.tile];
-      for_places_near(grid, p + target.shift, radius, [&](std::size_t c, double d2) {
+      change_places_near(grid, p + target.shift, radius, [&](std::size_t c, double d2) {
         grid.nearest2[c] = std::min(grid.nearest2[c], static_cast<float>(d2));
       });
     }
   }
 
-  // A new kernel for prefixes from `prefix` on: every potential restamped with it.
+  // A new kernel for prefixes from `prefix` on: every potential restamped with it, in bands of
+  // rows on every thread. A place adds the points' terms in the order of a serial restamp (tile,
+  // then rank, then source), so the bits do not depend on the thread count.
   void rebuild(std::size_t prefix) {
     kernel_prefix_ = prefix;
     kernel_.build(static_cast<double>(prefix), options_.window);
-    for (TileGrid& grid : grids_) std::fill(grid.potential.begin(), grid.potential.end(), 0.0);
-    for (std::size_t u = 0; u < points_.size(); ++u)
-      for (const Point& p : points_[u]) stamp_potential(u, p);
+    // Every stamp, in that order, listed under the grid it lands in with its rows, so that a band
+    // finds its stamps by two comparisons each.
+    for (std::vector<Restamp>& list : restamps_) list.clear();
+    restamps_.resize(grids_.size());
+    for (std::size_t u = 0; u < points_.size(); ++u) {
+      for (const Point& p : points_[u]) {
+        for (const FillSource& target : targets_[u]) {
+          long i0, i1, j0, j1;
+          if (!(target.weight > 0.0) || !window(p + target.shift, kernel_.radius(), i0, i1, j0, j1)) continue;
+          restamps_[target.tile].push_back({p + target.shift, target.weight, j0, j1});
+        }
+      }
+    }
+    const std::size_t bands = (side_ + kRebuildBandRows - 1) / kRebuildBandRows;
+    parallel_for(grids_.size() * bands, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t chunk = begin; chunk < end; ++chunk) {
+        TileGrid& grid = grids_[chunk / bands];
+        const long row_lo = static_cast<long>(chunk % bands * kRebuildBandRows);
+        const long row_hi = std::min(static_cast<long>(side_), row_lo + static_cast<long>(kRebuildBandRows));
+        std::fill(grid.potential.begin() + row_lo * static_cast<long>(side_), grid.potential.begin() + row_hi * static_cast<long>(side_), 0.0);
+        for (const Restamp& r : restamps_[chunk / bands]) {
+          if (r.row_last < row_lo || r.row_first >= row_hi) continue;
+          for_places_near(grid, r.centre, kernel_.radius(), row_lo, row_hi,
+                          [&](std::size_t c, double d2) { grid.potential[c] += r.weight * kernel_.at(d2); });
+        }
+      }
+    });
+    for (TileGrid& grid : grids_)
+      for (std::size_t b = 0; b < grid.blocks.size(); ++b) mark_dirty(grid, b);
   }
 
   FillOptions options_;
   std::vector<std::vector<Point>> points_;
   std::vector<std::vector<FillSource>> targets_;
   std::vector<TileGrid> grids_;
-  std::size_t existing_ = 0, total_ = 0, side_ = 0;
+  std::size_t existing_ = 0, total_ = 0, side_ = 0, block_side_ = 0;
+  std::vector<std::size_t> crossed_;  // scratch of refresh
+  struct Restamp {
+    Point centre;
+    double weight;
+    long row_first, row_last;
+  };
+  std::vector<std::vector<Restamp>> restamps_;  // scratch of rebuild, per grid
   double cell_ = 0.0;
   BandKernel kernel_;
   std::size_t kernel_prefix_ = 0;
@@ -242,10 +438,29 @@ std::vector<std::vector<Point>> band_fill(std::span<const std::vector<Point>> ti
 FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles, const FillOptions& options) {
   FillCost cost;
   if (add == 0) return cost;
-  const double side = grid_side(existing + add, options.cells_per_spacing);
-  const double places = side * side * static_cast<double>(tiles);
-  cost.bytes = places * static_cast<double>(sizeof(Point) + sizeof(double) + sizeof(float));
-  cost.places_scanned = places * static_cast<double>(add);
+  const std::size_t total = existing + add;
+  const double side = grid_side(total, options.cells_per_spacing);
+  const double places = side * side;
+  const double blocks = std::ceil(side / kBlockSide) * std::ceil(side / kBlockSide);
+  cost.bytes = static_cast<double>(tiles) * (places * static_cast<double>(sizeof(Point) + sizeof(double) + sizeof(float)) +
+                                             blocks * static_cast<double>(sizeof(BlockSummary) + 2 * sizeof(BlockNode)));
+  // The places one stamp of the kernel for a prefix covers, its shifted copies together.
+  const auto disc = [&](double prefix) {
+    const double radius = std::min(options.window * hexagonal_spacing(prefix), 1.0) * side;
+    return std::min(kPi * radius * radius, 9.0 * places);
+  };
+  // The fill's own schedule: a restamp of every point so far at each new kernel, then per round
+  // the new point's stamp and the blocks it touched read again.
+  double visits = 0.0, kernel_prefix = 0.0, round = 0.0;
+  for (std::size_t p = existing + 1; p <= total; ++p) {
+    if (kernel_prefix == 0.0 || static_cast<double>(p) > options.regrid * kernel_prefix) {
+      kernel_prefix = static_cast<double>(p);
+      round = 2.0 * disc(kernel_prefix);
+      visits += static_cast<double>(p - 1) * disc(kernel_prefix);
+    }
+    visits += round;
+  }
+  cost.places_visited = visits * static_cast<double>(tiles);
   return cost;
 }
 

@@ -59,21 +59,22 @@ struct FillOptions {
 // Adds `add` points to every tile. tiles[t] holds tile t's existing points, in [0,1)^2, ranked
 // before the new ones; every tile must hold the same number. sources[t] lists where points count
 // near tile t; it must hold {t, (0, 0), 1}. Returns each tile's new points in rank order: round r
-// gives every tile its point r, tile by tile in index order. Serial and deterministic.
+// gives every tile its point r, tile by tile in index order. The same bits for any thread count.
 // Throws Error for inconsistent input or options outside their ranges.
 std::vector<std::vector<Point>> band_fill(std::span<const std::vector<Point>> tiles,
                                           std::span<const std::vector<FillSource>> sources, std::size_t add,
                                           const FillOptions& options);
 
 // What filling `add` points per tile onto `existing` costs, for checks before the work: the grids'
-// memory, and the grid places the rounds scan (one scan of a tile's grid per point: the time grows
-// as the square of the count; about 4 ns a place on this project's machines, docs/RESULTS.md).
+// memory, and about how many grid places the stamps and the choices visit (they grow as
+// N log N: each new kernel restamps every point so far; about 6 ns a place on this project's
+// machines, one thread, docs/RESULTS.md).
 struct FillCost {
   double bytes = 0.0;
-  double places_scanned = 0.0;
+  double places_visited = 0.0;
 };
 FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles, const FillOptions& options);
-inline constexpr double kFillSecondsPerPlace = 4e-9;
+inline constexpr double kFillSecondsPerPlace = 6e-9;
 
 // The untiled form on the unit torus: `existing` points first (kept), then `add` filled ones.
 std::vector<Point> band_fill_torus(std::span<const Point> existing, std::size_t add, const FillOptions& options);
