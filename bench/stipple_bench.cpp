@@ -68,9 +68,14 @@ struct Timing {
   double wall = 0.0, cpu = 0.0;
 };
 
+// Whether the runs ask for the Lloyd energy (--no-energy: not, as bluetile stipple and relax run
+// without --log or -v).
+bool g_energy = true;
+
 Timing time_run(CentroidEngine& engine, Scene scene, int iterations, Scene* relaxed = nullptr) {
   LloydOptions options;
   options.iterations = iterations;
+  options.energy = g_energy;
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
   relax_lloyd(engine, scene, options);
@@ -82,7 +87,8 @@ Timing time_run(CentroidEngine& engine, Scene scene, int iterations, Scene* rela
 
 // `iterations` centroid computations of one fixed scene: what an iteration costs once the
 // sites are where the stipple leaves them, with and without the density (site motion excluded).
-Timing time_measure(CentroidEngine& engine, const Scene& scene, int iterations) {
+Timing time_measure(CentroidEngine& engine, Scene scene, int iterations) {
+  scene.second_moments = g_energy;
   std::vector<SceneCells> cells(1);
   const auto start = std::chrono::steady_clock::now();
   const std::clock_t cpu_start = std::clock();
@@ -115,11 +121,16 @@ int main(int argc, char** argv) {
   app.add_option("--iterations", iterations, "Lloyd iterations per run")->capture_default_str();
   app.add_option("--repeats", repeats, "Interleaved repeats (the median is reported)")->capture_default_str();
   app.add_option("--engines", engines, "Engines")->delimiter(',');
+  bool no_energy = false;
+  app.add_flag("--no-energy", no_energy,
+               "Ask for no Lloyd energy (no second moments), as bluetile stipple and relax without --log or -v");
   CLI11_PARSE(app, argc, argv);
+  g_energy = !no_energy;
 
   auto density = std::make_shared<DensityGrid>(bench_density(image, texels));
-  std::printf("density %d x %d texels from %s, %d iterations, median of %d interleaved repeats\n\n", texels, texels,
-              image.empty() ? "a procedural picture" : image.c_str(), iterations, repeats);
+  std::printf("density %d x %d texels from %s, %d iterations, median of %d interleaved repeats, energy %s\n\n", texels,
+              texels, image.empty() ? "a procedural picture" : image.c_str(), iterations, repeats,
+              g_energy ? "asked" : "not asked");
   std::printf("Seconds for the whole run, wall clock (CPU time of all threads in brackets).\n\n");
   std::printf("| engine | N | stipple (weighted, bounded) | unweighted bounded | unweighted periodic | "
               "stipple / unweighted bounded | stipple / unweighted periodic | stipple's sites: weighted / unweighted |\n"

@@ -11,7 +11,7 @@ namespace bluetile {
 Cell weigh_cell(const Scene& scene, Point origin, const Weighting& weighting, std::span<const Point> polygon, Cell cell,
                 Point offset) {
   if (weighting.prefix) {
-    const WeightedMoments m = weighting.prefix->moments(polygon, origin, scene.domain.size, scene.periodic());
+    const WeightedMoments m = weighting.prefix->moments(polygon, origin, scene.domain.size, scene.periodic(), scene.second_moments);
     cell.mass = m.mass;
     cell.second_moment = m.second;
     offset = m.mass > 0.0 ? m.first / m.mass : Point{0.0, 0.0};

@@ -66,13 +66,14 @@ struct Moments3 {
 // A piece across more than one column line: N_j texel by texel. `f` holds F from the row's
 // reference column to c1; `column_index` maps frame columns to grid columns. Out of line: about one piece
 // in eight at 10^4 sites, and inlined it would crowd the common path's registers.
+template <bool kSecond>
 [[gnu::noinline]] void wide_piece(const float* rho, const long* column_index, double u1, double v1, double u2,
                                   double v2, double sign, long c1, long c2, Moments3 f, Sums& sums) {
   const double rw1 = rho[column_index[c1]] * (u1 - static_cast<double>(c1));
   const double c = static_cast<double>(c1);
   f.m0 += rw1;
   f.m1 += rw1 * (u1 + c) * 0.5;
-  f.m2 += rw1 * (u1 * u1 + u1 * c + c * c) * (1.0 / 3.0);
+  if constexpr (kSecond) f.m2 += rw1 * (u1 * u1 + u1 * c + c * c) * (1.0 / 3.0);
   // N_j times (j + 1), texel by texel from the right end leftwards.
   double n1 = 0.0, n2 = 0.0, n3 = 0.0;
   double t0 = 0.0;  // s at the texel's right side
@@ -84,7 +85,7 @@ struct Moments3 {
     const double t01 = t0 * t1, t00 = t0 * t0, t11 = t1 * t1;
     n1 += rw * (t0 + t1);
     n2 += rw * (t00 + t01 + t11);
-    n3 += rw * (t0 + t1) * (t00 + t11);
+    if constexpr (kSecond) n3 += rw * (t0 + t1) * (t00 + t11);
     t0 = t1;
   }
   n1 *= 0.5;
@@ -94,10 +95,12 @@ struct Moments3 {
   const double m = dv / (u2 - u1);
   sums.s0 += sign * (dv * f.m0 + m * n1);
   sums.su += sign * (dv * f.m1 + m * (u2 * n1 - n2));
-  sums.suu += sign * (dv * f.m2 + m * (u2 * (u2 * n1 - 2.0 * n2) + n3));
   sums.sv += sign * (dv * 0.5 * (v1 + v2) * f.m0 + m * (v2 * n1 - 0.5 * m * n2));
-  sums.svv += sign * (dv * (v1 * v1 + v1 * v2 + v2 * v2) * (1.0 / 3.0) * f.m0 +
-                      m * (v2 * (v2 * n1 - m * n2) + m * m * n3 * (1.0 / 3.0)));
+  if constexpr (kSecond) {
+    sums.suu += sign * (dv * f.m2 + m * (u2 * (u2 * n1 - 2.0 * n2) + n3));
+    sums.svv += sign * (dv * (v1 * v1 + v1 * v2 + v2 * v2) * (1.0 / 3.0) * f.m0 +
+                        m * (v2 * (v2 * n1 - m * n2) + m * m * n3 * (1.0 / 3.0)));
+  }
 }
 
 using Lanes = double __attribute__((vector_size(16)));
@@ -127,7 +130,9 @@ class PieceBatch {
 
   // Adds the pieces' integrals of H dv (the derivation at the top of this file): the texel the
   // piece starts in covers s from ta = du down to tb, the next one from tb to 0 (tb = 0 for a
-  // piece inside one texel). Two pieces a step in two lanes.
+  // piece inside one texel). Two pieces a step in two lanes. Without kSecond the u^2 and v^2
+  // sums are left alone (the other three take the same steps either way).
+  template <bool kSecond>
   void integrate(Sums& sums) {
     if (size_ % 2) push(0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);  // adds nothing
     Lanes a0{0.0, 0.0}, a1{0.0, 0.0}, a2{0.0, 0.0}, a3{0.0, 0.0}, a4{0.0, 0.0};
@@ -141,23 +146,27 @@ class PieceBatch {
       const Lanes p1 = rho1 * (line - u1), p2 = rho2 * tb;
       const Lanes n1 = 0.5 * (p1 * (ta + tb) + p2 * tb);
       const Lanes n2 = third * (p1 * (ta * ta + ta * tb + tb * tb) + p2 * (tb * tb));
-      const Lanes n3 = 0.25 * (p1 * (ta + tb) * (ta * ta + tb * tb) + p2 * (tb * tb * tb));
       const Lanes rw = rho1 * (u1 - k);
       const Lanes f0 = load(8, i) + rw, f1 = load(9, i) + rw * (u1 + k) * 0.5;
-      const Lanes f2 = load(10, i) + rw * (u1 * u1 + u1 * k + k * k) * third;
       const auto slanted = du > kVerticalDu;
       const Lanes m = select(slanted, dv, Lanes{0.0, 0.0}) / select(slanted, du, Lanes{1.0, 1.0});
       a0 += sign * (dv * f0 + m * n1);
       a1 += sign * (dv * f1 + m * (u2 * n1 - n2));
-      a2 += sign * (dv * f2 + m * (u2 * (u2 * n1 - 2.0 * n2) + n3));
       a3 += sign * (dv * 0.5 * (v1 + v2) * f0 + m * (v2 * n1 - 0.5 * m * n2));
-      a4 += sign * (dv * (v1 * v1 + v1 * v2 + v2 * v2) * third * f0 + m * (v2 * (v2 * n1 - m * n2) + m * m * n3 * third));
+      if constexpr (kSecond) {
+        const Lanes n3 = 0.25 * (p1 * (ta + tb) * (ta * ta + tb * tb) + p2 * (tb * tb * tb));
+        const Lanes f2 = load(10, i) + rw * (u1 * u1 + u1 * k + k * k) * third;
+        a2 += sign * (dv * f2 + m * (u2 * (u2 * n1 - 2.0 * n2) + n3));
+        a4 += sign * (dv * (v1 * v1 + v1 * v2 + v2 * v2) * third * f0 + m * (v2 * (v2 * n1 - m * n2) + m * m * n3 * third));
+      }
     }
     sums.s0 += a0[0] + a0[1];
     sums.su += a1[0] + a1[1];
-    sums.suu += a2[0] + a2[1];
     sums.sv += a3[0] + a3[1];
-    sums.svv += a4[0] + a4[1];
+    if constexpr (kSecond) {
+      sums.suu += a2[0] + a2[1];
+      sums.svv += a4[0] + a4[1];
+    }
   }
 
  private:
@@ -209,8 +218,15 @@ DensityPrefix::DensityPrefix(const DensityGrid& density) : density_(&density) {
   }
 }
 
-WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point origin, Point domain_size,
-                                       bool periodic) const {
+WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point origin, Point domain_size, bool periodic,
+                                       bool second) const {
+  return second ? integrate<true>(polygon, origin, domain_size, periodic)
+                : integrate<false>(polygon, origin, domain_size, periodic);
+}
+
+template <bool kSecond>
+WeightedMoments DensityPrefix::integrate(std::span<const Point> polygon, Point origin, Point domain_size,
+                                         bool periodic) const {
   WeightedMoments moments;
   const std::size_t n = polygon.size();
   if (n < 3) return moments;
@@ -298,20 +314,24 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
         double* at = out + 12 * c;  // F_0, F_1, F_2 of rows r, r + 1; then of rows r + 2, r + 3
         std::memcpy(at, &a0, sizeof a0);
         std::memcpy(at + 2, &a1, sizeof a1);
-        std::memcpy(at + 4, &a2, sizeof a2);
         std::memcpy(at + 6, &b0, sizeof b0);
         std::memcpy(at + 8, &b1, sizeof b1);
-        std::memcpy(at + 10, &b2, sizeof b2);
+        if constexpr (kSecond) {  // the stores bound the scan: F_2's are left out without it
+          std::memcpy(at + 4, &a2, sizeof a2);
+          std::memcpy(at + 10, &b2, sizeof b2);
+        }
         if (c == columns) break;
         const long g = column_index[static_cast<std::size_t>(c)];
         const double i = static_cast<double>(c), w1 = i + 0.5, w2 = i * i + i + 1.0 / 3.0;
         const Lanes ta{rho[0][g], rho[1][g]}, tb{rho[2][g], rho[3][g]};
         a0 += ta;
         a1 += ta * w1;
-        a2 += ta * w2;
         b0 += tb;
         b1 += tb * w1;
-        b2 += tb * w2;
+        if constexpr (kSecond) {
+          a2 += ta * w2;
+          b2 += tb * w2;
+        }
       }
     }
   } else {
@@ -360,7 +380,7 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
     if (scan) {
       const std::size_t k = static_cast<std::size_t>(r);
       const double* at = scanned.data() + group_stride * (k / 4) + 12 * static_cast<std::size_t>(c1) + 6 * (k / 2 % 2) + k % 2;
-      f = {at[0], at[2], at[4]};
+      f = {at[0], at[2], kSecond ? at[4] : 0.0};
     } else {
       side_columns(r, c1, up, sign, v1, v2, rho, row, f);
     }
@@ -369,7 +389,7 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
                  rho[column_index[static_cast<std::size_t>(c2)]], f.f0, f.f1, f.f2);
       return;
     }
-    wide_piece(rho, column_index.data(), u1, v1, u2, v2, sign, c1, c2, {f.f0, f.f1, f.f2}, sums);
+    wide_piece<kSecond>(rho, column_index.data(), u1, v1, u2, v2, sign, c1, c2, {f.f0, f.f1, f.f2}, sums);
   };
 
   for (std::size_t e = 0; e < n; ++e) {
@@ -391,7 +411,7 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
     }
     piece(pu, pv, b.x, b.y, r, up);
   }
-  batch.integrate(sums);
+  batch.integrate<kSecond>(sums);
   // Wide boxes: the up pieces' H from their column, moved to the down pieces' column (the whole
   // texels between the two, once per row).
   for (long r = 0; !scan && r < rows; ++r) {
@@ -416,9 +436,12 @@ WeightedMoments DensityPrefix::moments(std::span<const Point> polygon, Point ori
   const double area = texel.x * texel.y;
   moments.mass = sums.s0 * area;
   const Point first{sums.su * area * texel.x, sums.sv * area * texel.y};
-  const double second = (sums.suu * texel.x * texel.x + sums.svv * texel.y * texel.y) * area;
   moments.first = first - moments.mass * site;
-  moments.second = second - 2.0 * (first.x * site.x + first.y * site.y) + moments.mass * (site.x * site.x + site.y * site.y);
+  if constexpr (kSecond) {
+    const double second = (sums.suu * texel.x * texel.x + sums.svv * texel.y * texel.y) * area;
+    moments.second =
+        second - 2.0 * (first.x * site.x + first.y * site.y) + moments.mass * (site.x * site.x + site.y * site.y);
+  }
   return moments;
 }
 

@@ -23,8 +23,11 @@ class DensityPrefix {
 
   // As density_moments(polygon, origin, density, domain_size, periodic) (density_moments.h):
   // the integrals of rho, rho x, rho |x|^2 over the counter-clockwise polygon (relative to
-  // `origin`), agreeing with it to about 1e-13 relative. Thread-safe.
-  WeightedMoments moments(std::span<const Point> polygon, Point origin, Point domain_size, bool periodic) const;
+  // `origin`), agreeing with it to about 1e-13 relative. Thread-safe. With `second` false the
+  // second moment is not integrated and is left 0 (Scene::second_moments; about a tenth of the
+  // integration); mass and first moments are the same bits either way.
+  WeightedMoments moments(std::span<const Point> polygon, Point origin, Point domain_size, bool periodic,
+                          bool second = true) const;
 
   // Texels per block: the moments of a row are kept per block, about the block's first column,
   // and summed from there to the cell, so that nothing grows far beyond the moments it is
@@ -40,6 +43,9 @@ class DensityPrefix {
   };
 
  private:
+  template <bool kSecond>
+  WeightedMoments integrate(std::span<const Point> polygon, Point origin, Point domain_size, bool periodic) const;
+
   const DensityGrid* density_;
   std::size_t blocks_per_row_ = 0;
   std::vector<Entry> table_;  // row by row as the grid, a row's blocks left to right
