@@ -8,10 +8,12 @@
 // side by side"). So positions and grid words come as texels, and the candidates are never
 // stored: one walk over the grid window finds the nearest site and counts those within reach, a
 // second walk (the same arithmetic, so the same decisions) keeps the ones that survive pruning
-// in BLUETILE_MAX_PIECES register slots, and each piece is clipped in eight register slots (every
-// slot index a constant once the clip steps are spelled out). A pixel with more candidates, or a
-// wider window, goes to the host, which splits it as the host reference does (same bits).
-// Measured against split_f64.comp: docs/BENCHMARKS.md, "The split with candidates in registers".
+// in BLUETILE_MAX_PIECES (three) register slots, and each piece is clipped in six register slots
+// (every slot index a constant once the clip steps are spelled out, writes included). A pixel
+// with more candidates, or a wider window, goes to the host, which splits it as the host
+// reference does (same bits). Measured against split_f64.comp: docs/BENCHMARKS.md, "The split
+// with candidates in registers"; for three candidates with constant writes, "The lane kernel for
+// three".
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -24,8 +26,8 @@ layout(binding = BLUETILE_BINDING_GRID_TEXELS) uniform usamplerBuffer grid_texel
 
 // Four corners and at most one vertex more per clip by the other BLUETILE_MAX_PIECES - 1.
 #define MAX_VERTICES (3 + BLUETILE_MAX_PIECES)
-#if MAX_VERTICES != 8 || BLUETILE_MAX_PIECES != 5
-#error "clip_by_bisector spells out eight CLIP_STEPs and the kept slots are five"
+#if MAX_VERTICES != 6 || BLUETILE_MAX_PIECES != 3
+#error "clip_by_bisector spells out six CLIP_STEPs and the kept slots are three"
 #endif
 
 dvec2 pixel_size, domain_size;
@@ -60,30 +62,39 @@ dvec2 polygon[MAX_VERTICES];
 int vertex_count;
 double max_radius_squared;
 
-// Vertex k of the clip, as ConvexPolygon::clip's edge (k - 1) -> k: slot m is sought among the
-// first k + 2 only, a constant bound once k is a literal.
+// Prepends v to the output: slots 0 .. bound - 1 move up by one. Every slot index is a constant, so
+// each slot is one select under the step's condition; writing at the end (slot m) would compare
+// every slot with m and select under a mask of its own, which on lavapipe cost several times the
+// clip's arithmetic (docs/BENCHMARKS.md, "The lane kernel under perf").
+#define PREPEND(v, bound)                                                       \
+  for (int j = (bound); j > 0; --j) clipped[j] = clipped[j - 1];               \
+  clipped[0] = v;                                                              \
+  ++m;
+
+// Vertex k of the clip, as ConvexPolygon::clip's edge (k - 1) -> k, taken from the last vertex
+// to the first: its output, the crossing then the vertex, is prepended vertex first, so the
+// output ends in the host's order. A convex piece of n < MAX_VERTICES vertices gives at most
+// n - k + 1 vertices from steps k and later, so the slots that move are constant too. A piece
+// being clipped has at most MAX_VERTICES - 1 vertices (four corners, one more per earlier clip),
+// so there is no step MAX_VERTICES - 1: lavapipe would run it for every pixel.
 #define CLIP_STEP(k)                                                              \
   if ((k) < vertex_count) {                                                       \
     const dvec2 pk = polygon[k];                                                  \
     const double sk = side[k];                                                    \
-    if ((sl < 0.0 && sk > 0.0) || (sl > 0.0 && sk < 0.0)) {                       \
-      precise double t = sl / (sl - sk);                                          \
-      precise dvec2 x = pl + t * (pk - pl);                                       \
-      for (int j = 0; j <= min((k) + 1, MAX_VERTICES - 1); ++j)                   \
-        if (j == m) clipped[j] = x;                                               \
-      ++m;                                                                        \
-      precise double r2 = x.x * x.x + x.y * x.y;                                  \
-      radius_squared = max(radius_squared, r2);                                   \
-    }                                                                             \
+    const dvec2 pl = (k) == 0 ? last : polygon[max((k) - 1, 0)];                  \
+    const double sl = (k) == 0 ? last_side : side[max((k) - 1, 0)];               \
     if (sk <= 0.0) {                                                              \
-      for (int j = 0; j <= min((k) + 1, MAX_VERTICES - 1); ++j)                   \
-        if (j == m) clipped[j] = pk;                                              \
-      ++m;                                                                        \
+      PREPEND(pk, MAX_VERTICES - 1 - (k))                                         \
       precise double r2 = pk.x * pk.x + pk.y * pk.y;                              \
       radius_squared = max(radius_squared, r2);                                   \
     }                                                                             \
-    pl = pk;                                                                      \
-    sl = sk;                                                                      \
+    if ((sl < 0.0 && sk > 0.0) || (sl > 0.0 && sk < 0.0)) {                       \
+      precise double t = sl / (sl - sk);                                          \
+      precise dvec2 x = pl + t * (pk - pl);                                       \
+      PREPEND(x, MAX_VERTICES - 1 - (k))                                          \
+      precise double r2 = x.x * x.x + x.y * x.y;                                  \
+      radius_squared = max(radius_squared, r2);                                   \
+    }                                                                             \
   }
 
 // ConvexPolygon::clip_by_bisector on registers (same arithmetic, same order).
@@ -99,19 +110,19 @@ void clip_by_bisector(dvec2 d) {
     any_outside = any_outside || (k < vertex_count && s > 0.0);
   }
   if (!any_outside) return;
-  dvec2 pl = polygon[0];
-  double sl = side[0];
+  dvec2 last = polygon[0];
+  double last_side = side[0];
   for (int k = 1; k < MAX_VERTICES; ++k) {
     if (k == vertex_count - 1) {
-      pl = polygon[k];
-      sl = side[k];
+      last = polygon[k];
+      last_side = side[k];
     }
   }
   dvec2 clipped[MAX_VERTICES];
   for (int k = 0; k < MAX_VERTICES; ++k) clipped[k] = dvec2(0.0);
   int m = 0;
   precise double radius_squared = 0.0;
-  CLIP_STEP(0) CLIP_STEP(1) CLIP_STEP(2) CLIP_STEP(3) CLIP_STEP(4) CLIP_STEP(5) CLIP_STEP(6) CLIP_STEP(7)
+  CLIP_STEP(4) CLIP_STEP(3) CLIP_STEP(2) CLIP_STEP(1) CLIP_STEP(0)
   for (int k = 0; k < MAX_VERTICES; ++k) polygon[k] = clipped[k];
   vertex_count = m;
   max_radius_squared = radius_squared;
@@ -123,19 +134,17 @@ int64_t fixed_point(double v, double scale) {
 }
 
 // The kept candidates: global site index and periodic image (16 bits per axis, offset by 32768),
-// five named slots so that no array is indexed by a variable.
-uint kept_site0, kept_site1, kept_site2, kept_site3, kept_site4;
-uint kept_image0, kept_image1, kept_image2, kept_image3, kept_image4;
+// three named slots so that no array is indexed by a variable.
+uint kept_site0, kept_site1, kept_site2;
+uint kept_image0, kept_image1, kept_image2;
 void keep_candidate(uint at, uint g, uint image_bits) {
   if (at == 0u) { kept_site0 = g; kept_image0 = image_bits; }
   if (at == 1u) { kept_site1 = g; kept_image1 = image_bits; }
   if (at == 2u) { kept_site2 = g; kept_image2 = image_bits; }
-  if (at == 3u) { kept_site3 = g; kept_image3 = image_bits; }
-  if (at == 4u) { kept_site4 = g; kept_image4 = image_bits; }
 }
-uint kept_site(uint a) { return a == 0u ? kept_site0 : a == 1u ? kept_site1 : a == 2u ? kept_site2 : a == 3u ? kept_site3 : kept_site4; }
+uint kept_site(uint a) { return a == 0u ? kept_site0 : a == 1u ? kept_site1 : kept_site2; }
 ivec2 kept_image(uint a) {
-  const uint bits = a == 0u ? kept_image0 : a == 1u ? kept_image1 : a == 2u ? kept_image2 : a == 3u ? kept_image3 : kept_image4;
+  const uint bits = a == 0u ? kept_image0 : a == 1u ? kept_image1 : kept_image2;
   return ivec2(int(bits & 0xffffu) - 32768, int(bits >> 16) - 32768);
 }
 
@@ -265,8 +274,10 @@ bool split_pixel(uvec2 entry) {
       precise double r2 = polygon[v].x * polygon[v].x + polygon[v].y * polygon[v].y;
       max_radius_squared = max(max_radius_squared, r2);
     }
-    for (uint b = 0u; b < kept && vertex_count >= 3; ++b) {
-      if (b == a) continue;
+    // The others in the host's order, a skipped without a pass of its own (lavapipe would run
+    // the pass's whole body under a mask).
+    for (uint other = 1u; other < kept && vertex_count >= 3; ++other) {
+      const uint b = other <= a ? other - 1u : other;
       precise dvec2 between = position(kept_site(b)) - owner_position;
       precise dvec2 d = between + dvec2(kept_image(b) - owner_image) * domain_size;
       if (d.x == 0.0 && d.y == 0.0) continue;

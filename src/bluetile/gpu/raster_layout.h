@@ -25,8 +25,10 @@
 // Candidates left after pruning that may share one boundary pixel in split_lane_f64.comp:
 // each piece has at most 4 + (this - 1) vertices, the register slots it keeps; more go to the
 // host (SceneInfo::max_pieces, which split_body.glsl honours too), which splits them as the
-// host reference does, so the bound changes no bit.
-#define BLUETILE_MAX_PIECES 5
+// host reference does, so the bound changes no bit. Three: 89% of the boundary pixels of a
+// relaxed set keep two or three, and lavapipe runs every slot and clip step of the kernel for
+// every pixel, whether it needs it or not (docs/BENCHMARKS.md, "The lane kernel for three").
+#define BLUETILE_MAX_PIECES 3
 // Grid buckets a split may visit per axis; a wider window (a huge cell in a dense scene) goes
 // to the host.
 #define BLUETILE_MAX_WINDOW 9
