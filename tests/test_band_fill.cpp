@@ -254,7 +254,12 @@ TEST(BandFill, CommandLineFillOrdersAreTheLibrarys) {
     EXPECT_EQ(read.points[i], library.points[i]) << i;
     EXPECT_EQ(read.levels[i], library.levels[i]) << i;
   }
-  EXPECT_NE(test::read_text(out).find("rank order fill"), std::string::npos);
+  // The header says what was done: no random start, no engine, no iterations.
+  const std::string header = test::read_text(out).substr(0, test::read_text(out).find('\n'));
+  EXPECT_NE(header.find("256 points in 3 levels from no points, seed 9, every point filled, no relaxation, rank order fill"),
+            std::string::npos)
+      << header;
+  EXPECT_EQ(header.find("engine"), std::string::npos) << header;
   const std::string tiles = dir.path() + "/fill.tiles";
   ASSERT_EQ(run_bluetile({"wang", "--points", "8", "--levels", "2", "--iterations", "5", "--rank-order", "fill", "-o", tiles}).exit_code, 0);
   EXPECT_NE(test::read_text(tiles).find("--rank-order fill"), std::string::npos);

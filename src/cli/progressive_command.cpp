@@ -130,16 +130,22 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     }
   }
   note_exact_hand_over(*engine);
-  std::string how = o.input.empty() ? "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed)
-                                    : "on " + input_name(o.input) + ", seed " + std::to_string(o.seed);
+  // The fill order starts from no points and relaxes nothing: its header names no start, engine,
+  // iterations or placement, which it never used.
+  const bool filled = options.rank_order == ProgressiveOrder::fill;
+  std::string how = !o.input.empty() ? "on " + input_name(o.input) + ", seed " + std::to_string(o.seed)
+                    : filled         ? "from no points, seed " + std::to_string(o.seed)
+                                     : "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed);
   if (sets.size() > 1) how += " + set index";
   const std::string what = sets.size() == 1 ? std::to_string(sets[0].points.size()) + " points"
                                             : std::to_string(sets.size()) + " sets of " +
                                                   std::to_string(sets[0].points.size()) + " points";
+  const std::string method = filled ? (o.input.empty() ? "every point filled, no relaxation" : "every new point filled, no relaxation")
+                                    : std::to_string(o.iterations) + " iterations per level, engine " +
+                                          std::string(engine->name()) + ", placement " + o.placement;
   const std::vector<std::string> header = {
-      "bluetile progressive: " + what + " in " + std::to_string(target_levels) + " levels " + how + ", " +
-          std::to_string(o.iterations) + " iterations per level, engine " + std::string(engine->name()) +
-          ", placement " + o.placement + ", rank order " + rank_order_name(options.rank_order),
+      "bluetile progressive: " + what + " in " + std::to_string(target_levels) + (target_levels == 1 ? " level " : " levels ") +
+          how + ", " + method + ", rank order " + rank_order_name(options.rank_order),
       "columns: x y level"};
   output.write(sets, header);
   outputs.publish();

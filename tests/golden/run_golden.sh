@@ -73,7 +73,7 @@ outputs() {
   run - progressive -n 8 -l 2 -k 2 -s 2 --sets 2 --engine exact -o progressive_sets.npy
   run - progressive -i relax.txt -a 32 -k 3 --engine exact -o progressive_from_relax.bpt
   run - progressive -n 1 -a 1 -l 64 -k 4 -s 2 --rank-order voids --engine exact -o progressive_voids.txt
-  # the fill order: its grid's search (a tree of block summaries) gives the bytes of a full scan
+  # the fill order: its grid's search (a tree of block summaries) gives the points of a full scan
   run - progressive -n 32 -l 4 -s 2 --rank-order fill -o progressive_fill.txt
 
   # centroids: both engines.
