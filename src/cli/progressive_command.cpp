@@ -81,8 +81,11 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     total += static_cast<double>(set.points.size());
     for (std::size_t add : sizes) total += static_cast<double>(add);
   }
+  // The fill order starts from no points and relaxes nothing: no engine time to speak of, and a
+  // header that names no start, engine, iterations or placement.
+  const bool filled = options.rank_order == ProgressiveOrder::fill;
   FillCost fill;
-  if (options.rank_order == ProgressiveOrder::fill) {
+  if (filled) {
     // The fill order's grid (one set at a time per thread) and its time, which grows as N log N.
     const std::size_t largest = static_cast<std::size_t>(total / static_cast<double>(sets.size()));
     fill = band_fill_cost(0, largest, 1, options.fill);
@@ -97,8 +100,7 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
                  "as N log N in the points of a set)\n", fill.places_visited, duration_words(fill_seconds).c_str());
 
   auto engine = make_engine(o.engine);
-  // The fill order relaxes nothing: no engine time to speak of.
-  if (options.rank_order != ProgressiveOrder::fill) note_faster_engine(*engine, total * o.iterations);
+  if (!filled) note_faster_engine(*engine, total * o.iterations);
   if (sets.size() > 1 && o.engine.engine == "exact") {
     // Set k of a batch is the set --seed S+k gives alone (wrapping past 2^64 - 1); the exact
     // engine is cheap to make, so the sets are built in parallel, one engine per worker.
@@ -130,9 +132,6 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     }
   }
   note_exact_hand_over(*engine);
-  // The fill order starts from no points and relaxes nothing: its header names no start, engine,
-  // iterations or placement, which it never used.
-  const bool filled = options.rank_order == ProgressiveOrder::fill;
   std::string how = !o.input.empty() ? "on " + input_name(o.input) + ", seed " + std::to_string(o.seed)
                     : filled         ? "from no points, seed " + std::to_string(o.seed)
                                      : "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed);

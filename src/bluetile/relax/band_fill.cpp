@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -67,51 +68,40 @@ constexpr std::size_t kBlockSide = 16;
 constexpr std::size_t kRebuildBandRows = 32;
 constexpr float kNoneIneligible = -1.0f;  // below every squared distance
 
+// A block's summary, and a node's of the blocks below it: the least potential of an eligible
+// place (at least the floor from every point) and where it is, whether another eligible place
+// has the same potential, and the largest squared distance below the floor (a falling floor
+// lets that place in).
 struct BlockSummary {
-  double least = 0.0;                   // least potential of an eligible place
-  std::size_t place = 0;                // where it is, when `eligible`
-  bool eligible = false;                // a place of the block is at least the floor from every point
-  bool tied = false;                    // another eligible place of the block has the same potential
-  float ineligible2 = kNoneIneligible;  // largest squared distance below the floor (a falling floor lets it in)
-  bool dirty = true;                    // to be read again before the next choice
-};
-
-// A node of the tournament tree: the least of the blocks below it, and the largest squared distance
-// of their ineligible places.
-struct BlockNode {
   double least = 0.0;
-  std::size_t block = 0;  // the block count when no block below holds an eligible place
-  bool tied = false;      // two blocks below share the least potential, or the block itself has a tie
+  std::size_t place = kNoPlace;  // kNoPlace: no eligible place
+  bool tied = false;
   float ineligible2 = kNoneIneligible;
+
+  static constexpr std::size_t kNoPlace = static_cast<std::size_t>(-1);
 };
 
 class BlockTree {
  public:
   void reset(std::size_t blocks) {
-    blocks_ = blocks;
     leaves_ = std::bit_ceil(std::max<std::size_t>(blocks, 1));
-    node_.assign(2 * leaves_, BlockNode{0.0, blocks, false, kNoneIneligible});
+    node_.assign(2 * leaves_, BlockSummary{});
   }
   void set(std::size_t b, const BlockSummary& s) {
     std::size_t n = leaves_ + b;
-    node_[n] = BlockNode{s.least, s.eligible ? b : blocks_, s.tied, s.ineligible2};
+    node_[n] = s;
     for (n /= 2; n >= 1; n /= 2) node_[n] = merge(node_[2 * n], node_[2 * n + 1]);
   }
-  const BlockNode& root() const { return node_[1]; }
+  const BlockSummary& root() const { return node_[1]; }
   // Appends the blocks holding an ineligible place at squared distance >= threshold2.
   void crossed(float threshold2, std::vector<std::size_t>& out) const { crossed(1, threshold2, out); }
 
  private:
-  BlockNode merge(const BlockNode& a, const BlockNode& b) const {
-    BlockNode m;
+  static BlockSummary merge(const BlockSummary& a, const BlockSummary& b) {
+    const bool a_has = a.place != BlockSummary::kNoPlace, b_has = b.place != BlockSummary::kNoPlace;
+    BlockSummary m = !b_has || (a_has && a.least < b.least) ? a : !a_has || b.least < a.least ? b : a;
+    if (a_has && b_has && a.least == b.least) m.tied = true;
     m.ineligible2 = std::max(a.ineligible2, b.ineligible2);
-    if (b.block == blocks_ || (a.block != blocks_ && a.least < b.least)) {
-      m.least = a.least, m.block = a.block, m.tied = a.tied;
-    } else if (a.block == blocks_ || b.least < a.least) {
-      m.least = b.least, m.block = b.block, m.tied = b.tied;
-    } else {
-      m.least = a.least, m.block = a.block, m.tied = true;
-    }
     return m;
   }
   void crossed(std::size_t n, float threshold2, std::vector<std::size_t>& out) const {
@@ -124,8 +114,13 @@ class BlockTree {
     crossed(2 * n + 1, threshold2, out);
   }
 
-  std::size_t blocks_ = 0, leaves_ = 0;
-  std::vector<BlockNode> node_;
+  std::size_t leaves_ = 0;
+  std::vector<BlockSummary> node_;  // node n's children are 2n and 2n + 1; the blocks are the leaves
+};
+
+// The cells of a grid whose squares meet a disc: columns i0..i1, rows j0..j1.
+struct Window {
+  long i0, i1, j0, j1;
 };
 
 // One tile's grid of candidate places: cell (i, j), at index j * side + i, offers one place, at
@@ -135,9 +130,9 @@ struct TileGrid {
   std::vector<Point> place;
   std::vector<double> potential;
   std::vector<float> nearest2;  // squared distance to the nearest point stamped within its reach
-  std::vector<BlockSummary> blocks;
   BlockTree tree;
-  std::vector<std::size_t> dirty;  // the blocks marked dirty since the last choice
+  std::vector<std::uint8_t> is_dirty;  // per block: to be read again before the next choice
+  std::vector<std::size_t> dirty;      // those blocks, in the order they were marked
   float threshold2 = std::numeric_limits<float>::infinity();  // the squared floor of the last choice
 };
 
@@ -168,10 +163,9 @@ class Filler {
       }
       grid.potential.assign(side_ * side_, 0.0);
       grid.nearest2.assign(side_ * side_, std::numeric_limits<float>::infinity());
-      grid.blocks.assign(block_side_ * block_side_, BlockSummary{});
-      grid.tree.reset(grid.blocks.size());
-      grid.dirty.resize(grid.blocks.size());
-      for (std::size_t b = 0; b < grid.dirty.size(); ++b) grid.dirty[b] = b;
+      grid.tree.reset(block_side_ * block_side_);
+      grid.is_dirty.assign(block_side_ * block_side_, 0);
+      for (std::size_t b = 0; b < grid.is_dirty.size(); ++b) mark_dirty(grid, b);
     }
     // Where each tile's points count: the reverse of `sources`.
     targets_.resize(count);
@@ -213,9 +207,9 @@ class Filler {
     TileGrid& grid = grids_[t];
     const std::size_t start = static_cast<std::size_t>(rng.below(side_ * side_));
     refresh(grid, threshold2);
-    const BlockNode& best = grid.tree.root();
-    if (best.block == grid.blocks.size() || best.tied) return scan(grid, threshold2, start);
-    return grid.blocks[best.block].place;
+    const BlockSummary& best = grid.tree.root();
+    if (best.place == BlockSummary::kNoPlace || best.tied) return scan(grid, threshold2, start);
+    return best.place;
   }
 
   // Every place, from `start` on: the first of least potential among the eligible ones, else the
@@ -238,7 +232,7 @@ class Filler {
   // Reads again the blocks stamped since the last choice and those a lower floor lets places into.
   void refresh(TileGrid& grid, float threshold2) {
     if (threshold2 > grid.threshold2) {  // a higher floor shuts places out anywhere (not in a fill's rounds)
-      for (std::size_t b = 0; b < grid.blocks.size(); ++b) mark_dirty(grid, b);
+      for (std::size_t b = 0; b < grid.is_dirty.size(); ++b) mark_dirty(grid, b);
     } else {
       crossed_.clear();
       grid.tree.crossed(threshold2, crossed_);
@@ -246,16 +240,14 @@ class Filler {
     }
     grid.threshold2 = threshold2;
     for (std::size_t b : grid.dirty) {
-      BlockSummary& s = grid.blocks[b];
-      summarize(grid, b, threshold2, s);
-      grid.tree.set(b, s);
+      grid.tree.set(b, summarize(grid, b, threshold2));
+      grid.is_dirty[b] = 0;
     }
     grid.dirty.clear();
   }
 
-  void summarize(const TileGrid& grid, std::size_t b, float threshold2, BlockSummary& s) const {
-    s = BlockSummary{};
-    s.dirty = false;
+  BlockSummary summarize(const TileGrid& grid, std::size_t b, float threshold2) const {
+    BlockSummary s;
     const std::size_t i0 = b % block_side_ * kBlockSide, j0 = b / block_side_ * kBlockSide;
     const std::size_t i1 = std::min(side_, i0 + kBlockSide), j1 = std::min(side_, j0 + kBlockSide);
     for (std::size_t j = j0; j < j1; ++j) {
@@ -263,8 +255,8 @@ class Filler {
         const float d2 = grid.nearest2[c];
         if (d2 >= threshold2) {
           const double p = grid.potential[c];
-          if (!s.eligible || p < s.least) {
-            s.eligible = true, s.least = p, s.place = c, s.tied = false;
+          if (s.place == BlockSummary::kNoPlace || p < s.least) {
+            s.least = p, s.place = c, s.tied = false;
           } else if (p == s.least) {
             s.tied = true;
           }
@@ -273,40 +265,40 @@ class Filler {
         }
       }
     }
+    return s;
   }
 
   static void mark_dirty(TileGrid& grid, std::size_t b) {
-    if (grid.blocks[b].dirty) return;
-    grid.blocks[b].dirty = true;
+    if (grid.is_dirty[b]) return;
+    grid.is_dirty[b] = 1;
     grid.dirty.push_back(b);
   }
 
   // The cells of the grid whose square meets the disc of `radius` about q (tile units, possibly
   // outside the tile): false when none.
-  bool window(Point q, double radius, long& i0, long& i1, long& j0, long& j1) const {
+  bool window(Point q, double radius, Window& w) const {
     const auto range = [&](double centre, long& lo, long& hi) {
       lo = std::max(0L, static_cast<long>(std::floor((centre - radius) / cell_)));
       hi = std::min(static_cast<long>(side_) - 1, static_cast<long>(std::floor((centre + radius) / cell_)));
     };
-    range(q.x, i0, i1);
-    range(q.y, j0, j1);
-    return i0 <= i1 && j0 <= j1;
+    range(q.x, w.i0, w.i1);
+    range(q.y, w.j0, w.j1);
+    return w.i0 <= w.i1 && w.j0 <= w.j1;
   }
 
-  // The places within `radius` of q in rows row_lo to row_hi - 1 (a cell's place lies inside
-  // the cell: only the cells whose square meets the disc are looked at).
+  // The places within `radius` of q (its window w) in rows row_lo to row_hi - 1 (a cell's place
+  // lies inside the cell: only the cells whose square meets the disc are looked at).
   template <class Visit>
-  void for_places_near(const TileGrid& grid, Point q, double radius, long row_lo, long row_hi, Visit visit) const {
-    long i0, i1, j0, j1;
-    if (!window(q, radius, i0, i1, j0, j1)) return;
+  void for_places_near(const TileGrid& grid, Point q, double radius, const Window& w, long row_lo, long row_hi,
+                       Visit visit) const {
     const double r2 = radius * radius;
-    for (long j = std::max(j0, row_lo), j_end = std::min(j1 + 1, row_hi); j < j_end; ++j) {
+    for (long j = std::max(w.j0, row_lo), j_end = std::min(w.j1 + 1, row_hi); j < j_end; ++j) {
       // Only the cells of the row whose square meets the disc (a hair wider, for rounding).
       const double bottom = static_cast<double>(j) * cell_, dy = std::max({0.0, bottom - q.y, q.y - (bottom + cell_)});
       if (dy >= radius) continue;
       const double half = std::sqrt(r2 - dy * dy) * (1.0 + 1e-9) + 1e-12;
-      const long row_i0 = std::max(i0, static_cast<long>(std::floor((q.x - half) / cell_)));
-      const long row_i1 = std::min(i1, static_cast<long>(std::floor((q.x + half) / cell_)));
+      const long row_i0 = std::max(w.i0, static_cast<long>(std::floor((q.x - half) / cell_)));
+      const long row_i1 = std::min(w.i1, static_cast<long>(std::floor((q.x + half) / cell_)));
       for (long i = row_i0; i <= row_i1; ++i) {
         const std::size_t c = static_cast<std::size_t>(j) * side_ + static_cast<std::size_t>(i);
         const Point d = grid.place[c] - q;
@@ -319,12 +311,12 @@ class Filler {
   // for_places_near over every row, the blocks it may change marked to be read again.
   template <class Visit>
   void change_places_near(TileGrid& grid, Point q, double radius, Visit visit) {
-    long i0, i1, j0, j1;
-    if (!window(q, radius, i0, i1, j0, j1)) return;
-    const std::size_t bi1 = static_cast<std::size_t>(i1) / kBlockSide, bj1 = static_cast<std::size_t>(j1) / kBlockSide;
-    for (std::size_t bj = static_cast<std::size_t>(j0) / kBlockSide; bj <= bj1; ++bj)
-      for (std::size_t bi = static_cast<std::size_t>(i0) / kBlockSide; bi <= bi1; ++bi) mark_dirty(grid, bj * block_side_ + bi);
-    for_places_near(grid, q, radius, 0, static_cast<long>(side_), visit);
+    Window w;
+    if (!window(q, radius, w)) return;
+    const std::size_t bi1 = static_cast<std::size_t>(w.i1) / kBlockSide, bj1 = static_cast<std::size_t>(w.j1) / kBlockSide;
+    for (std::size_t bj = static_cast<std::size_t>(w.j0) / kBlockSide; bj <= bj1; ++bj)
+      for (std::size_t bi = static_cast<std::size_t>(w.i0) / kBlockSide; bi <= bi1; ++bi) mark_dirty(grid, bj * block_side_ + bi);
+    for_places_near(grid, q, radius, w, 0, static_cast<long>(side_), visit);
   }
 
   void stamp_potential(std::size_t u, Point p) {
@@ -358,9 +350,9 @@ class Filler {
     for (std::size_t u = 0; u < points_.size(); ++u) {
       for (const Point& p : points_[u]) {
         for (const FillSource& target : targets_[u]) {
-          long i0, i1, j0, j1;
-          if (!(target.weight > 0.0) || !window(p + target.shift, kernel_.radius(), i0, i1, j0, j1)) continue;
-          restamps_[target.tile].push_back({p + target.shift, target.weight, j0, j1});
+          Window w;
+          if (!(target.weight > 0.0) || !window(p + target.shift, kernel_.radius(), w)) continue;
+          restamps_[target.tile].push_back({p + target.shift, target.weight, w});
         }
       }
     }
@@ -372,14 +364,14 @@ class Filler {
         const long row_hi = std::min(static_cast<long>(side_), row_lo + static_cast<long>(kRebuildBandRows));
         std::fill(grid.potential.begin() + row_lo * static_cast<long>(side_), grid.potential.begin() + row_hi * static_cast<long>(side_), 0.0);
         for (const Restamp& r : restamps_[chunk / bands]) {
-          if (r.row_last < row_lo || r.row_first >= row_hi) continue;
-          for_places_near(grid, r.centre, kernel_.radius(), row_lo, row_hi,
+          if (r.window.j1 < row_lo || r.window.j0 >= row_hi) continue;
+          for_places_near(grid, r.centre, kernel_.radius(), r.window, row_lo, row_hi,
                           [&](std::size_t c, double d2) { grid.potential[c] += r.weight * kernel_.at(d2); });
         }
       }
     });
     for (TileGrid& grid : grids_)
-      for (std::size_t b = 0; b < grid.blocks.size(); ++b) mark_dirty(grid, b);
+      for (std::size_t b = 0; b < grid.is_dirty.size(); ++b) mark_dirty(grid, b);
   }
 
   FillOptions options_;
@@ -391,7 +383,7 @@ class Filler {
   struct Restamp {
     Point centre;
     double weight;
-    long row_first, row_last;
+    Window window;
   };
   std::vector<std::vector<Restamp>> restamps_;  // scratch of rebuild, per grid
   double cell_ = 0.0;
@@ -443,7 +435,7 @@ FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles
   const double places = side * side;
   const double blocks = std::ceil(side / kBlockSide) * std::ceil(side / kBlockSide);
   cost.bytes = static_cast<double>(tiles) * (places * static_cast<double>(sizeof(Point) + sizeof(double) + sizeof(float)) +
-                                             blocks * static_cast<double>(sizeof(BlockSummary) + 2 * sizeof(BlockNode)));
+                                             blocks * static_cast<double>(1 + 2 * sizeof(BlockSummary)));
   // The places one stamp of the kernel for a prefix covers, its shifted copies together.
   const auto disc = [&](double prefix) {
     const double radius = std::min(options.window * hexagonal_spacing(prefix), 1.0) * side;
