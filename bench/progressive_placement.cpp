@@ -16,6 +16,10 @@
 // `bluetile progressive --count N/16 --ratio 2 --levels 5 --engine exact`, as `--count N/16 --ratio 4
 // --levels 3` and as `--count 1 --ratio 2 --levels log2(N)+1` (one point, then doubling). A fourth argument sets the
 // void order's kernel width in hexagonal spacings (default kVoidSigmaFactor).
+//
+// `bluetile_progressive_bench anchors N seeds`: the same sweep for ranked tables from published
+// samplers (ranked_samplers.h: Owen-scrambled Sobol', Mitchell's best candidate with 10 k
+// candidates for point k) beside the fill order, seeds 1..seeds.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -32,6 +36,7 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/voronoi/exact_engine.h"
+#include "ranked_samplers.h"
 
 using namespace bluetile;
 
@@ -87,6 +92,29 @@ std::vector<SweepRow> measure_sweep(const std::vector<PointSet>& sets, const std
   return rows;
 }
 
+void print_sweep_table(const std::vector<std::string>& names, const std::vector<std::size_t>& sweep,
+                       const std::vector<std::vector<SweepRow>>& results, const std::vector<std::size_t>& dense,
+                       const std::vector<std::vector<SweepRow>>& dense_results) {
+  std::printf("| k | k / N |");
+  for (const std::string& name : names) std::printf(" %s rho | %s LF |", name.c_str(), name.c_str());
+  std::printf("\n|---|---|");
+  for (std::size_t i = 0; i < names.size(); ++i) std::printf("---|---|");
+  std::printf("\n");
+  for (std::size_t i = 0; i < sweep.size(); ++i) {
+    std::printf("| %zu | %.4f |", sweep[i], static_cast<double>(sweep[i]) / static_cast<double>(sweep.back()));
+    for (const std::vector<SweepRow>& r : results)
+      std::printf(" %.3f / %.3f | %.4f / %.4f |", r[i].worst_rho, r[i].mean_rho, r[i].worst_lf, r[i].mean_lf);
+    std::printf("\n");
+  }
+  std::printf("| dense (%zu prefixes, worst) | |", dense.size());
+  for (const std::vector<SweepRow>& r : dense_results) {
+    SweepRow w;
+    for (const SweepRow& row : r) w.worst_rho = std::min(w.worst_rho, row.worst_rho), w.worst_lf = std::max(w.worst_lf, row.worst_lf);
+    std::printf(" %.3f | %.4f |", w.worst_rho, w.worst_lf);
+  }
+  std::printf("\n");
+}
+
 int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
   struct Construction {
     const char* name;
@@ -132,28 +160,64 @@ int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
     }
     std::printf("\n%s (%zu points), worst / mean of seeds 1-%zu; built in %.2f s, %.2f s and %.2f s (%zu threads), sigma %.2f\n",
                 c.name, sweep.back(), seeds, seconds[0], seconds[1], seconds[2], thread_count(), sigma);
-    std::printf("| k | k / N | placement rho | placement LF | voids rho | voids LF | fill rho | fill LF |\n"
-                "|---|---|---|---|---|---|---|---|\n");
-    for (std::size_t i = 0; i < sweep.size(); ++i) {
-      std::printf("| %zu | %.4f |", sweep[i], static_cast<double>(sweep[i]) / static_cast<double>(sweep.back()));
-      for (const std::vector<SweepRow>& r : results)
-        std::printf(" %.3f / %.3f | %.4f / %.4f |", r[i].worst_rho, r[i].mean_rho, r[i].worst_lf, r[i].mean_lf);
-      std::printf("\n");
-    }
-    std::printf("| dense (%zu prefixes, worst) | |", dense.size());
-    for (const std::vector<SweepRow>& r : dense_results) {
-      SweepRow w;
-      for (const SweepRow& row : r) w.worst_rho = std::min(w.worst_rho, row.worst_rho), w.worst_lf = std::max(w.worst_lf, row.worst_lf);
-      std::printf(" %.3f | %.4f |", w.worst_rho, w.worst_lf);
-    }
-    std::printf("\n");
+    print_sweep_table({"placement", "voids", "fill"}, sweep, results, dense, dense_results);
   }
+  return 0;
+}
+
+int compare_anchors(std::size_t n, std::size_t seeds) {
+  using Clock = std::chrono::steady_clock;
+  const std::size_t boundaries[] = {n / 16, n / 8, n / 4, n / 2};
+  const std::vector<std::size_t> sweep = prefix_sweep(n, boundaries);
+  std::vector<std::size_t> dense;
+  for (double k = static_cast<double>(n) / 16.0; k < static_cast<double>(n); k *= 1.05)
+    dense.push_back(static_cast<std::size_t>(std::lround(k)));
+  const std::vector<std::string> names = {"Owen-Sobol", "best candidate", "fill"};
+  std::vector<std::vector<PointSet>> sets(names.size());
+  std::vector<double> seconds;
+  for (std::size_t which = 0; which < names.size(); ++which) {
+    const auto start = Clock::now();
+    if (which == 2) {
+      HierarchyOptions options;
+      options.count = n / 16;
+      options.ratio = 2.0;
+      options.levels = 5;
+      options.seed = 1;
+      options.rank_order = ProgressiveOrder::fill;
+      sets[which] = add_levels([] { return std::make_unique<ExactEngine>(); }, std::vector<PointSet>(seeds), options);
+    } else {
+      for (std::size_t s = 1; s <= seeds; ++s) {
+        PointSet set;
+        set.points = which == 0 ? bench::owen_sobol_points(n, s) : bench::best_candidate_points(n, s, 10);
+        sets[which].push_back(std::move(set));
+      }
+    }
+    seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+  }
+  std::vector<std::vector<SweepRow>> results, dense_results;
+  for (const std::vector<PointSet>& s : sets) {
+    if (s[0].points.size() != n) {
+      std::fprintf(stderr, "anchors: N must be 16 times a power of two (a set came out with %zu points)\n",
+                   s[0].points.size());
+      return 1;
+    }
+    results.push_back(measure_sweep(s, sweep));
+    dense_results.push_back(measure_sweep(s, dense));
+  }
+  std::printf("%zu points, worst / mean of seeds 1-%zu; made in %.2f s, %.2f s and %.2f s\n", n, seeds, seconds[0],
+              seconds[1], seconds[2]);
+  print_sweep_table(names, sweep, results, dense, dense_results);
   return 0;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  if (argc > 1 && std::strcmp(argv[1], "anchors") == 0) {
+    const std::size_t n = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 4096;
+    const std::size_t seeds = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 4;
+    return compare_anchors(n, seeds);
+  }
   if (argc > 1 && std::strcmp(argv[1], "prefixes") == 0) {
     const std::size_t n = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 4096;
     const std::size_t seeds = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 4;
