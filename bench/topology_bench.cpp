@@ -65,7 +65,8 @@ void compare_with_search(const Scene& scene, const SceneCells& cells, Run& run) 
 
 // `warm` untimed iterations, then `iterations` timed ones (one engine call and the move each).
 Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int warm, int iterations, bool check, bool energy) {
-  std::vector<Scene> scenes{make_scene(start)};
+  std::vector<Scene> scenes;
+  scenes.push_back(make_scene(start));  // moved, not copied: its sites stay where make_scene put them
   scenes[0].second_moments = energy;
   std::vector<SceneCells> cells(1);
   for (int i = 0; i < warm; ++i) {

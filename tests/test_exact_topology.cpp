@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "bluetile/core/huge_pages.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
@@ -212,6 +213,30 @@ TEST(ExactTopology, BitIdenticalWhateverTheThreadCount) {
     EXPECT_TRUE(test::identical_cells(runs[0][it], runs[1][it])) << "call " << it;
     EXPECT_TRUE(test::identical_cells(runs[0][it], runs[2][it])) << "call " << it;
   }
+}
+
+TEST(ExactTopology, ArraysOnHugePagesKeepTheirBits) {
+  // Past kHugePageArray bytes a scene's sites (make_scene) and its cells (the engine's output)
+  // move to memory advised for huge pages (core/huge_pages.h): the sites keep their values, and
+  // the cells are the same bits in a fresh output, in one of another size and in one reused.
+  const std::vector<Point> many = uniform_points(kHugePageArray / sizeof(Point) + 3, 20);
+  EXPECT_EQ(make_scene(many).sites, many);
+  std::vector<double> values(5, 1.0);
+  assign_on_huge_pages(values, kHugePageArray / sizeof(double) + 3, 2.5);
+  EXPECT_EQ(values, std::vector<double>(kHugePageArray / sizeof(double) + 3, 2.5));
+
+  const std::size_t n = kHugePageArray / sizeof(Cell) + 1000;
+  std::vector<Scene> scenes;
+  scenes.push_back(make_scene(uniform_points(n, 21)));
+  ExactEngine engine;
+  const SceneCells fresh = engine.compute(scenes[0]);
+  std::vector<SceneCells> out(1);
+  out[0].cells.assign(7, Cell{});
+  for (int call = 0; call < 2; ++call) {
+    engine.compute(scenes, out);
+    EXPECT_TRUE(test::identical_cells(fresh, out[0])) << "call " << call;
+  }
+  EXPECT_EQ(engine.last_topology_stats().kept_cells, n);
 }
 
 TEST(ExactTopology, SecondMomentsNotWantedLeaveEveryOtherBitAlone) {

@@ -202,11 +202,12 @@ bool DelaunayCells::fits(const PeriodicDelaunay& triangulation, std::uint32_t tr
 bool DelaunayCells::measure(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
                             const Weighting& weighting, Cell& cell) const {
   // A density map weighs the polygon itself (its second moment comes from the map's tables).
-  if (scene.second_moments || weighting.prefix) return walk<true>(triangulation, vertex, scene, origin, weighting, cell);
-  return walk<false>(triangulation, vertex, scene, origin, weighting, cell);
+  if (weighting.prefix) return walk<true, true>(triangulation, vertex, scene, origin, weighting, cell);
+  if (scene.second_moments) return walk<true, false>(triangulation, vertex, scene, origin, weighting, cell);
+  return walk<false, false>(triangulation, vertex, scene, origin, weighting, cell);
 }
 
-template <bool kSecond>
+template <bool kSecond, bool kPolygon>
 bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
                          const Weighting& weighting, Cell& cell) const {
   const bool ties = triangulation.tie_edges() > 0;
@@ -225,9 +226,10 @@ bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t ve
   double px = first.x, py = first.y, pr = px * px + py * py;
   const double first_r = pr;
   std::uint32_t corner = start;
-  // With a density the vertices themselves are needed, in order.
+  // With a density the vertices themselves are needed, in order. Without, the loop calls nothing
+  // and its sums stay in registers (a possible allocation in it kept them on the stack).
   std::vector<Point> polygon;
-  if (weighting.prefix) polygon.push_back(first);
+  if constexpr (kPolygon) polygon.push_back(first);
   for (;;) {
     corner = triangulation.next_around(corner);
     double qx = first.x, qy = first.y, qr = first_r;
@@ -236,7 +238,7 @@ bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t ve
       if (ties && triangulation.ties(PeriodicDelaunay::triangle_of(corner))) return false;
       const Point q = centre(corner);
       qx = q.x, qy = q.y, qr = qx * qx + qy * qy;
-      if (weighting.prefix) polygon.push_back(q);
+      if constexpr (kPolygon) polygon.push_back(q);
     }
     const double c = px * qy - qx * py;
     cross += c;
@@ -249,7 +251,7 @@ bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t ve
   }
   const double area = 0.5 * cross;
   const Point centroid = cross > 0.0 ? Point{sx / (3.0 * cross), sy / (3.0 * cross)} : Point{0.0, 0.0};
-  if (!weighting.prefix && weighting.constant == 1.0) {
+  if (!kPolygon && weighting.constant == 1.0) {
     // measure_sums without a density, inline.
     cell.area = area;
     cell.mass = area;

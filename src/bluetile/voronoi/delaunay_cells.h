@@ -63,8 +63,9 @@ class DelaunayCells {
   std::size_t bytes() const { return centres_.capacity() * sizeof(Point); }
 
  private:
-  // measure, with or without the second moment's sum (a separate loop each, no branch in it).
-  template <bool kSecond>
+  // measure, with or without the second moment's sum and the polygon a density map weighs (a
+  // separate loop each, no branch in it).
+  template <bool kSecond, bool kPolygon>
   bool walk(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
             const Weighting& weighting, Cell& cell) const;
 

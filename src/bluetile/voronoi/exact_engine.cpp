@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/huge_pages.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/voronoi/cell_measure.h"
 #include "bluetile/voronoi/cell_search.h"
@@ -69,7 +70,9 @@ void compute_scene(SceneRun run) {
   // Every wanted cell is written below, so a vector of the right size is not cleared: clearing
   // it here, on the calling thread, cost each call a pass over the cells and moved them to that
   // thread's cache.
-  if (out.cells.size() != scene.wanted_count()) out.cells.assign(scene.wanted_count(), Cell{});
+  // Huge pages when large: the kept triangulation writes each cell at its site's index, in its
+  // own (spatial) order of the sites (core/huge_pages.h).
+  if (out.cells.size() != scene.wanted_count()) assign_on_huge_pages(out.cells, scene.wanted_count(), Cell{});
   out.coincident_count = 0;
   out.fallback_count = 0;
   out.zero_density_count = 0;
@@ -118,7 +121,9 @@ Scene make_scene(std::vector<Point> sites, Domain domain) {
   Scene scene;
   scene.domain = domain;
   scene.wanted_end = sites.size();
-  scene.sites = std::move(sites);
+  // Huge pages when large: the kept triangulation reads each site at its index, in its own
+  // (spatial) order of the sites.
+  scene.sites = on_huge_pages(std::move(sites));
   return scene;
 }
 
