@@ -9,7 +9,8 @@
 //                           [--stages]          (and a table of every stage, host and device
 //                                                pixel work side by side; implies --device-pixels)
 //                           [--cone-draws triangles,indexed,instanced,points]  (one engine each)
-//                           [--split-kernels lane,pixel]  (device pixel work, one engine each)
+//                           [--split-kernels lane,lane3,lane5,pixel]  (device pixel work, one engine
+//                                                each; lane: the device's choice)
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -114,7 +115,8 @@ int main(int argc, char** argv) {
                  "triangles, indexed, instanced, points");
   std::string split_kernels_text;
   app.add_option("--split-kernels", split_kernels_text,
-                 "comma-separated float64 split kernels, each a raster engine of its own (device pixel work): lane, pixel");
+                 "comma-separated float64 split kernels, each a raster engine of its own (device pixel work): lane (the "
+                 "device's choice), lane3, lane5, pixel");
   bool stages = false;
   app.add_flag("--stages", stages, "also print every stage's time per iteration, host and device pixel work side by side");
   app.add_option("--pixels-per-cell", pixels_per_cell, "resolution from this many pixels per cell (default: the engine's)");
@@ -170,8 +172,11 @@ int main(int argc, char** argv) {
         return 1;
       }
       if (variant.split == "pixel") options.split_kernel = SplitKernel::pixel;
+      else if (variant.split == "lane3") options.split_kernel = SplitKernel::lane_three;
+      else if (variant.split == "lane5") options.split_kernel = SplitKernel::lane_five;
       else if (variant.split != "lane" && !variant.split.empty()) {
-        std::fprintf(stderr, "bluetile_raster_profile: --split-kernels: unknown '%s' (lane, pixel)\n", variant.split.c_str());
+        std::fprintf(stderr, "bluetile_raster_profile: --split-kernels: unknown '%s' (lane, lane3, lane5, pixel)\n",
+                     variant.split.c_str());
         return 1;
       }
       options.coverage = job.coverage;

@@ -2,21 +2,32 @@
 # arrays, so the binary runs from any folder. Lookup at run time: gpu/embedded_shaders.h.
 find_program(GLSLANG_VALIDATOR glslangValidator REQUIRED)
 
-# bluetile_embed_shaders(<target> <shader files...>)
+# bluetile_embed_shaders(<target> <shader files...>): each embedded under its file name. An
+# entry "<file>|<name>|<MACRO=value>" embeds <file> compiled with -D<MACRO=value> as <name> (a
+# variant of one source).
 function(bluetile_embed_shaders target)
   set(out_dir ${CMAKE_CURRENT_BINARY_DIR}/shaders)
   file(MAKE_DIRECTORY ${out_dir})
   set(headers)
   set(includes "")
   set(entries "")
-  foreach(shader ${ARGN})
+  foreach(entry ${ARGN})
+    string(REPLACE "|" ";" parts "${entry}")
+    list(GET parts 0 shader)
     get_filename_component(file_name ${shader} NAME)
+    set(defines)
+    list(LENGTH parts part_count)
+    if(part_count EQUAL 3)
+      list(GET parts 1 file_name)
+      list(GET parts 2 define)
+      set(defines -D${define})
+    endif()
     string(MAKE_C_IDENTIFIER ${file_name} symbol)
     set(header ${out_dir}/${file_name}.h)
     add_custom_command(
       OUTPUT ${header}
       COMMAND ${GLSLANG_VALIDATOR} --quiet --target-env vulkan1.1 -I${PROJECT_SOURCE_DIR}/shaders
-              -I${PROJECT_SOURCE_DIR}/src --depfile ${header}.d --vn spirv_${symbol} -o ${header} ${shader}
+              -I${PROJECT_SOURCE_DIR}/src ${defines} --depfile ${header}.d --vn spirv_${symbol} -o ${header} ${shader}
       DEPENDS ${shader}
       DEPFILE ${header}.d
       COMMENT "SPIR-V ${file_name}"

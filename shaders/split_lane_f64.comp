@@ -8,12 +8,16 @@
 // side by side"). So positions and grid words come as texels, and the candidates are never
 // stored: one walk over the grid window finds the nearest site and counts those within reach, a
 // second walk (the same arithmetic, so the same decisions) keeps the ones that survive pruning
-// in BLUETILE_MAX_PIECES (three) register slots, and each piece is clipped in six register slots
-// (every slot index a constant once the clip steps are spelled out, writes included). A pixel
-// with more candidates, or a wider window, goes to the host, which splits it as the host
-// reference does (same bits). Measured against split_f64.comp: docs/BENCHMARKS.md, "The split
-// with candidates in registers"; for three candidates with constant writes, "The lane kernel for
-// three".
+// in BLUETILE_LANE_PIECES register slots, and each piece is clipped in 3 + BLUETILE_LANE_PIECES
+// register slots (every slot index a constant once the clip steps are spelled out, writes
+// included). A pixel with more candidates, or a wider window, or a clip that would need more
+// than one new vertex (rounding on nearly coincident bisectors; the host's polygon has room),
+// goes to the host, which splits it as the host reference does (same bits); its pieces' sums are
+// held in registers until every piece is clipped, so such a pixel adds nothing here. Three slots
+// (BLUETILE_MAX_PIECES) on CPU devices; the build compiles this source again with
+// BLUETILE_LANE_PIECES=5 as split_lane5_f64.comp, for other devices. Measured against
+// split_f64.comp: docs/BENCHMARKS.md, "The split with candidates in registers"; for three
+// candidates with constant writes, and five, "The lane kernel for three".
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -24,10 +28,13 @@ layout(binding = BLUETILE_BINDING_ID_IMAGE, r32ui) uniform readonly uimage2D id_
 layout(binding = BLUETILE_BINDING_POSITION_TEXELS) uniform usamplerBuffer position_texels;
 layout(binding = BLUETILE_BINDING_GRID_TEXELS) uniform usamplerBuffer grid_texels;
 
-// Four corners and at most one vertex more per clip by the other BLUETILE_MAX_PIECES - 1.
-#define MAX_VERTICES (3 + BLUETILE_MAX_PIECES)
-#if MAX_VERTICES != 6 || BLUETILE_MAX_PIECES != 3
-#error "clip_by_bisector spells out six CLIP_STEPs and the kept slots are three"
+#ifndef BLUETILE_LANE_PIECES
+#define BLUETILE_LANE_PIECES BLUETILE_MAX_PIECES
+#endif
+// Four corners and at most one vertex more per clip by the other BLUETILE_LANE_PIECES - 1.
+#define MAX_VERTICES (3 + BLUETILE_LANE_PIECES)
+#if (BLUETILE_LANE_PIECES != 3 && BLUETILE_LANE_PIECES != 5) || BLUETILE_MAX_PIECES != 3 || BLUETILE_MAX_PIECES_GPU != 5
+#error "clip_by_bisector's CLIP_STEPs and the kept and pending slots are spelled out for three and five"
 #endif
 
 dvec2 pixel_size, domain_size;
@@ -61,12 +68,16 @@ double wrap_axis(double d, double period) { return d < -0.5 * period ? d + perio
 dvec2 polygon[MAX_VERTICES];
 int vertex_count;
 double max_radius_squared;
+// Set by a clip that needed more than one new vertex, or a slot the kernel lacks: the pixel goes
+// to the host. force_guard: SceneInfo::guard_test trips it on the next clip (tests only).
+bool clip_lost, force_guard;
 
 // Prepends v to the output: slots 0 .. bound - 1 move up by one. Every slot index is a constant, so
 // each slot is one select under the step's condition; writing at the end (slot m) would compare
 // every slot with m and select under a mask of its own, which on lavapipe cost several times the
 // clip's arithmetic (docs/BENCHMARKS.md, "The lane kernel under perf").
 #define PREPEND(v, bound)                                                       \
+  clip_lost = clip_lost || m > (bound);                                        \
   for (int j = (bound); j > 0; --j) clipped[j] = clipped[j - 1];               \
   clipped[0] = v;                                                              \
   ++m;
@@ -76,7 +87,9 @@ double max_radius_squared;
 // output ends in the host's order. A convex piece of n < MAX_VERTICES vertices gives at most
 // n - k + 1 vertices from steps k and later, so the slots that move are constant too. A piece
 // being clipped has at most MAX_VERTICES - 1 vertices (four corners, one more per earlier clip),
-// so there is no step MAX_VERTICES - 1: lavapipe would run it for every pixel.
+// so there is no step MAX_VERTICES - 1: lavapipe would run it for every pixel. Rounding could
+// break the bound (vertices alternating sides along a line nearly on an edge); PREPEND and the
+// clip's end check it (clip_lost) instead of losing a vertex the host keeps.
 #define CLIP_STEP(k)                                                              \
   if ((k) < vertex_count) {                                                       \
     const dvec2 pk = polygon[k];                                                  \
@@ -122,7 +135,11 @@ void clip_by_bisector(dvec2 d) {
   for (int k = 0; k < MAX_VERTICES; ++k) clipped[k] = dvec2(0.0);
   int m = 0;
   precise double radius_squared = 0.0;
+#if BLUETILE_LANE_PIECES == 5
+  CLIP_STEP(6) CLIP_STEP(5)
+#endif
   CLIP_STEP(4) CLIP_STEP(3) CLIP_STEP(2) CLIP_STEP(1) CLIP_STEP(0)
+  clip_lost = clip_lost || m > vertex_count + 1 || force_guard;
   for (int k = 0; k < MAX_VERTICES; ++k) polygon[k] = clipped[k];
   vertex_count = m;
   max_radius_squared = radius_squared;
@@ -134,19 +151,50 @@ int64_t fixed_point(double v, double scale) {
 }
 
 // The kept candidates: global site index and periodic image (16 bits per axis, offset by 32768),
-// three named slots so that no array is indexed by a variable.
-uint kept_site0, kept_site1, kept_site2;
-uint kept_image0, kept_image1, kept_image2;
+// named slots so that no array is indexed by a variable.
+uint kept_site0, kept_site1, kept_site2, kept_site3, kept_site4;
+uint kept_image0, kept_image1, kept_image2, kept_image3, kept_image4;
 void keep_candidate(uint at, uint g, uint image_bits) {
   if (at == 0u) { kept_site0 = g; kept_image0 = image_bits; }
   if (at == 1u) { kept_site1 = g; kept_image1 = image_bits; }
   if (at == 2u) { kept_site2 = g; kept_image2 = image_bits; }
+#if BLUETILE_LANE_PIECES == 5
+  if (at == 3u) { kept_site3 = g; kept_image3 = image_bits; }
+  if (at == 4u) { kept_site4 = g; kept_image4 = image_bits; }
+#endif
 }
+#if BLUETILE_LANE_PIECES == 5
+uint kept_site(uint a) { return a == 0u ? kept_site0 : a == 1u ? kept_site1 : a == 2u ? kept_site2 : a == 3u ? kept_site3 : kept_site4; }
+uint kept_image_bits(uint a) { return a == 0u ? kept_image0 : a == 1u ? kept_image1 : a == 2u ? kept_image2 : a == 3u ? kept_image3 : kept_image4; }
+#else
 uint kept_site(uint a) { return a == 0u ? kept_site0 : a == 1u ? kept_site1 : kept_site2; }
+uint kept_image_bits(uint a) { return a == 0u ? kept_image0 : a == 1u ? kept_image1 : kept_image2; }
+#endif
 ivec2 kept_image(uint a) {
-  const uint bits = a == 0u ? kept_image0 : a == 1u ? kept_image1 : kept_image2;
+  const uint bits = kept_image_bits(a);
   return ivec2(int(bits & 0xffffu) - 32768, int(bits >> 16) - 32768);
 }
+
+// A pixel's piece sums (area, first moments, second moment; fixed point) per kept slot, added
+// to its owner's only after every piece was clipped within the slots.
+i64vec4 pending0, pending1, pending2, pending3, pending4;
+bool has0, has1, has2, has3, has4;
+void hold_piece(uint at, i64vec4 v) {
+  if (at == 0u) { pending0 = v; has0 = true; }
+  if (at == 1u) { pending1 = v; has1 = true; }
+  if (at == 2u) { pending2 = v; has2 = true; }
+#if BLUETILE_LANE_PIECES == 5
+  if (at == 3u) { pending3 = v; has3 = true; }
+  if (at == 4u) { pending4 = v; has4 = true; }
+#endif
+}
+#define COMMIT(s)                                          \
+  if (has##s) {                                            \
+    atomicAdd(sums[kept_site##s].piece_area, pending##s.x);   \
+    atomicAdd(sums[kept_site##s].piece_x, pending##s.y);      \
+    atomicAdd(sums[kept_site##s].piece_y, pending##s.z);      \
+    atomicAdd(sums[kept_site##s].piece_second, pending##s.w); \
+  }
 
 // Splits pixel `entry`; false where it goes to the host.
 bool split_pixel(uvec2 entry) {
@@ -252,10 +300,14 @@ bool split_pixel(uvec2 entry) {
       }
     }
   }
-  if (kept > scene.max_pieces || beyond) return false;  // the bounds the host reference applies too
+  // The bounds the host reference applies too (scene.max_pieces is this kernel's slot count).
+  if (kept > scene.max_pieces || kept > uint(BLUETILE_LANE_PIECES) || beyond) return false;
 
   const double scale_area = unpack_real(scene.scale64[0]), scale_first = unpack_real(scene.scale64[1]),
                scale_second = unpack_real(scene.scale64[2]);
+  has0 = has1 = has2 = has3 = has4 = false;
+  clip_lost = false;
+  const bool force_here = scene.guard_test != 0u && (entry.y & scene.guard_test) == scene.guard_test;
   for (uint a = 0u; a < kept; ++a) {
     const uint owner = kept_site(a);
     if ((sites[owner].flags & BLUETILE_SITE_WANTED) == 0u) continue;
@@ -276,12 +328,17 @@ bool split_pixel(uvec2 entry) {
     }
     // The others in the host's order, a skipped without a pass of its own (lavapipe would run
     // the pass's whole body under a mask).
+    force_guard = force_here && a + 1u == kept;  // the last piece: the others' sums are held
     for (uint other = 1u; other < kept && vertex_count >= 3; ++other) {
       const uint b = other <= a ? other - 1u : other;
       precise dvec2 between = position(kept_site(b)) - owner_position;
       precise dvec2 d = between + dvec2(kept_image(b) - owner_image) * domain_size;
       if (d.x == 0.0 && d.y == 0.0) continue;
       clip_by_bisector(d);
+    }
+    if (clip_lost) {
+      atomicAdd(counters[BLUETILE_COUNTER_GUARD], 1u);
+      return false;
     }
     if (vertex_count < 3) continue;
     precise double cross_sum = 0.0, x_sum = 0.0, y_sum = 0.0, xx_sum = 0.0, yy_sum = 0.0;
@@ -301,12 +358,14 @@ bool split_pixel(uvec2 entry) {
     }
     precise double piece_area = 0.5 * cross_sum;
     if (!(piece_area > 0.0)) continue;
-    atomicAdd(sums[owner].piece_area, fixed_point(piece_area, scale_area));
     precise double first_x = x_sum / 6.0, first_y = y_sum / 6.0, second = (xx_sum + yy_sum) / 12.0;
-    atomicAdd(sums[owner].piece_x, fixed_point(first_x, scale_first));
-    atomicAdd(sums[owner].piece_y, fixed_point(first_y, scale_first));
-    atomicAdd(sums[owner].piece_second, fixed_point(second, scale_second));
+    hold_piece(a, i64vec4(fixed_point(piece_area, scale_area), fixed_point(first_x, scale_first),
+                          fixed_point(first_y, scale_first), fixed_point(second, scale_second)));
   }
+  COMMIT(0) COMMIT(1) COMMIT(2)
+#if BLUETILE_LANE_PIECES == 5
+  COMMIT(3) COMMIT(4)
+#endif
   return true;
 }
 

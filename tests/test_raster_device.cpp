@@ -54,8 +54,8 @@ bool same_sums(const gpu::SiteSums& a, const gpu::SiteSums& b) {
 TEST(RasterDevice, SumsMatchTheHostReferenceBitForBit) {
   REQUIRE_VULKAN();
   for (Coverage coverage : {Coverage::area, Coverage::point})
-  for (SplitKernel kernel : {SplitKernel::lane, SplitKernel::pixel}) {
-    if (coverage == Coverage::point && kernel != SplitKernel::lane) continue;  // no split
+  for (SplitKernel kernel : {SplitKernel::lane_three, SplitKernel::lane_five, SplitKernel::pixel}) {
+    if (coverage == Coverage::point && kernel != SplitKernel::lane_three) continue;  // no split
     RasterOptions options;
     options.resolution = 64;
     options.coverage = coverage;
@@ -90,46 +90,54 @@ TEST(RasterDevice, HostPathGivesTheDevicePathsBits) {
   const std::vector<Scene> scenes = device_scenes();
   // 64: one classification tile per scene; 150: partial tiles on both axes.
   for (int resolution : {64, 150})
-    for (Coverage coverage : {Coverage::area, Coverage::point}) {
-      RasterEngine& device = test::shared_engine(resolution, coverage, ConeShape::quad, PixelWork::device);
-      RasterEngine& host = test::shared_engine(resolution, coverage, ConeShape::quad, PixelWork::host);
-      if (!device.float64_split()) GTEST_SKIP() << "the device has no shaderFloat64";
-      std::vector<SceneCells> a(scenes.size()), b(scenes.size());
-      device.compute(scenes, a);
-      host.compute(scenes, b);
-      for (std::size_t k = 0; k < scenes.size(); ++k)
-        EXPECT_TRUE(test::identical_cells(a[k], b[k])) << "resolution " << resolution << " scene " << k;
-    }
+    for (Coverage coverage : {Coverage::area, Coverage::point})
+      for (SplitKernel kernel : {SplitKernel::lane_three, SplitKernel::lane_five}) {
+        if (coverage == Coverage::point && kernel != SplitKernel::lane_three) continue;  // no split
+        RasterEngine& device = test::shared_engine(resolution, coverage, ConeShape::quad, PixelWork::device, false, kernel);
+        RasterEngine& host = test::shared_engine(resolution, coverage, ConeShape::quad, PixelWork::host);
+        if (!device.float64_split()) GTEST_SKIP() << "the device has no shaderFloat64";
+        std::vector<SceneCells> a(scenes.size()), b(scenes.size());
+        device.compute(scenes, a);
+        host.compute(scenes, b);
+        for (std::size_t k = 0; k < scenes.size(); ++k)
+          EXPECT_TRUE(test::identical_cells(a[k], b[k]))
+              << "resolution " << resolution << " scene " << k << " kernel " << static_cast<int>(kernel);
+      }
 }
 
-// split_lane_f64.comp leaves the pixels with more than BLUETILE_MAX_PIECES candidates to the
+// The lane splits leave the pixels with more candidates than their slots (three, five) to the
 // host, which splits them as the host reference does: the same bits as split_f64.comp and the
 // host path; and the exact engine's cells within the float64 split's bound.
 TEST(RasterDevice, LaneSplitGivesThePixelSplitsAndTheHostPathsBits) {
   REQUIRE_VULKAN();
   const std::vector<Scene> scenes = device_scenes();
-  auto engine_for = [](int resolution, PixelWork work, SplitKernel kernel) {
+  auto engine_for = [](int resolution, PixelWork work, SplitKernel kernel, std::uint32_t guard_test = 0) {
     RasterOptions options;
     options.resolution = resolution;
     options.pixel_work = work;
     options.split_kernel = kernel;
+    options.split_guard_test = guard_test;
     return std::make_unique<RasterEngine>(options);
   };
   for (int resolution : {64, 150}) {
-    auto lane = engine_for(resolution, PixelWork::device, SplitKernel::lane);
+    auto three = engine_for(resolution, PixelWork::device, SplitKernel::lane_three);
+    auto five = engine_for(resolution, PixelWork::device, SplitKernel::lane_five);
     auto pixel = engine_for(resolution, PixelWork::device, SplitKernel::pixel);
     auto host = engine_for(resolution, PixelWork::host, SplitKernel::lane);
-    if (!lane->float64_split()) GTEST_SKIP() << "the device has no shaderFloat64";
-    std::vector<SceneCells> a(scenes.size()), b(scenes.size()), c(scenes.size());
-    lane->compute(scenes, a);
+    if (!three->float64_split()) GTEST_SKIP() << "the device has no shaderFloat64";
+    std::vector<SceneCells> a(scenes.size()), b(scenes.size()), c(scenes.size()), d(scenes.size());
+    three->compute(scenes, a);
+    five->compute(scenes, d);
     pixel->compute(scenes, b);
     host->compute(scenes, c);
     for (std::size_t k = 0; k < scenes.size(); ++k) {
       EXPECT_TRUE(test::identical_cells(a[k], b[k])) << "resolution " << resolution << " scene " << k;
       EXPECT_TRUE(test::identical_cells(a[k], c[k])) << "resolution " << resolution << " scene " << k;
+      EXPECT_TRUE(test::identical_cells(d[k], c[k])) << "resolution " << resolution << " scene " << k;
     }
-    // The dense cluster has pixels beyond the lane kernel's bound.
-    EXPECT_GT(lane->stats().host_split_pixels, pixel->stats().host_split_pixels) << "resolution " << resolution;
+    // The dense cluster has pixels beyond both lane kernels' bounds, more beyond three's.
+    EXPECT_GT(five->stats().host_split_pixels, pixel->stats().host_split_pixels) << "resolution " << resolution;
+    EXPECT_GT(three->stats().host_split_pixels, five->stats().host_split_pixels) << "resolution " << resolution;
   }
   auto lane = engine_for(128, PixelWork::device, SplitKernel::lane);
   for (const Scene& scene : {make_scene(uniform_points(1000, 58)), test::relaxed_scene(1000, 59, 10)}) {
@@ -137,6 +145,46 @@ TEST(RasterDevice, LaneSplitGivesThePixelSplitsAndTheHostPathsBits) {
     EXPECT_LT(e.max, 1e-12);
     EXPECT_LT(e.max_area, 1e-12);
     EXPECT_NEAR(e.total_area, 1.0, 1e-12);
+  }
+}
+
+// A clip that would need more than one new vertex (rounding along nearly coincident bisectors;
+// the host's polygon has room, the kernels' slots assume one) sends its pixel to the host whole:
+// the pieces already clipped add nothing on the device. No known input reaches it, so the test
+// trips the guard on the last piece of a quarter of the boundary pixels (split_guard_test): more
+// pixels go to the host, and every bit stays the host path's.
+TEST(RasterDevice, LaneSplitGuardSendsWholePixelsToTheHost) {
+  REQUIRE_VULKAN();
+  const std::vector<Scene> scenes = device_scenes();
+  auto engine_for = [](PixelWork work, SplitKernel kernel, std::uint32_t guard_test) {
+    RasterOptions options;
+    options.resolution = 150;
+    options.pixel_work = work;
+    options.split_kernel = kernel;
+    options.split_guard_test = guard_test;
+    return std::make_unique<RasterEngine>(options);
+  };
+  auto host = engine_for(PixelWork::host, SplitKernel::lane, 0);
+  if (!host->float64_split()) GTEST_SKIP() << "the device has no shaderFloat64";
+  std::vector<SceneCells> expected(scenes.size());
+  host->compute(scenes, expected);
+  for (SplitKernel kernel : {SplitKernel::lane_three, SplitKernel::lane_five}) {
+    auto plain = engine_for(PixelWork::device, kernel, 0);
+    auto guarded = engine_for(PixelWork::device, kernel, 0b101);
+    std::vector<SceneCells> a(scenes.size()), b(scenes.size());
+    plain->compute(scenes, a);
+    guarded->compute(scenes, b);
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
+      EXPECT_TRUE(test::identical_cells(a[k], expected[k])) << "kernel " << static_cast<int>(kernel) << " scene " << k;
+      EXPECT_TRUE(test::identical_cells(b[k], expected[k])) << "kernel " << static_cast<int>(kernel) << " scene " << k;
+    }
+    // The guard trips only where asked (a quarter of the pixels with a clip on their last piece:
+    // 2.6% of the boundary pixels here), and those pixels are split on the host.
+    EXPECT_EQ(guarded->stats().boundary_pixels, plain->stats().boundary_pixels);
+    EXPECT_EQ(plain->stats().guard_pixels, 0u);
+    EXPECT_GT(guarded->stats().guard_pixels, plain->stats().boundary_pixels / 100) << "kernel " << static_cast<int>(kernel);
+    EXPECT_GT(guarded->stats().host_split_pixels, plain->stats().host_split_pixels + plain->stats().boundary_pixels / 100)
+        << "kernel " << static_cast<int>(kernel);
   }
 }
 

@@ -24,7 +24,7 @@ const bool validation_requested = [] {
   return true;
 }();
 
-using EngineKey = std::tuple<int, Coverage, ConeShape, PixelWork, bool>;
+using EngineKey = std::tuple<int, Coverage, ConeShape, PixelWork, bool, SplitKernel>;
 std::vector<std::pair<EngineKey, std::unique_ptr<RasterEngine>>>& engines() {
   static std::vector<std::pair<EngineKey, std::unique_ptr<RasterEngine>>> cache;
   return cache;
@@ -63,8 +63,9 @@ const std::string& vulkan_missing_reason() {
   return reason;
 }
 
-RasterEngine& shared_engine(int resolution, Coverage coverage, ConeShape cone, PixelWork work, bool force_float32) {
-  const EngineKey key{resolution, coverage, cone, work, force_float32};
+RasterEngine& shared_engine(int resolution, Coverage coverage, ConeShape cone, PixelWork work, bool force_float32,
+                            SplitKernel split) {
+  const EngineKey key{resolution, coverage, cone, work, force_float32, split};
   for (auto& [k, e] : engines())
     if (k == key) return *e;
   RasterOptions options;
@@ -73,9 +74,14 @@ RasterEngine& shared_engine(int resolution, Coverage coverage, ConeShape cone, P
   options.cone = cone;
   options.pixel_work = work;
   options.force_float32 = force_float32;
+  options.split_kernel = split;
   options.adapt_radius = false;
   engines().emplace_back(key, std::make_unique<RasterEngine>(options));
   return *engines().back().second;
+}
+
+SplitKernel other_lane_split(const RasterEngine& engine) {
+  return engine.cpu_device() ? SplitKernel::lane_five : SplitKernel::lane_three;
 }
 
 std::string pixel_path_name(const ::testing::TestParamInfo<PixelWork>& info) {
@@ -93,6 +99,11 @@ SceneCells RasterPaths::cells(const Scene& scene, int resolution, Coverage cover
   if (on_device()) {
     const SceneCells host = shared_engine(resolution, coverage, cone, PixelWork::host).compute(scene);
     EXPECT_TRUE(identical_cells(got, host)) << "device and host pixel work differ at resolution " << resolution;
+    if (coverage == Coverage::area) {
+      const SplitKernel other = other_lane_split(shared_engine(resolution, coverage, cone, work()));
+      const SceneCells got_other = shared_engine(resolution, coverage, cone, work(), false, other).compute(scene);
+      EXPECT_TRUE(identical_cells(got_other, host)) << "the other lane split and the host differ at resolution " << resolution;
+    }
   }
   return got;
 }
@@ -101,6 +112,11 @@ PathEngine::PathEngine(RasterOptions options, PixelWork work) {
   options.pixel_work = work;
   engine_ = std::make_unique<RasterEngine>(options);
   if (work == PixelWork::device) {
+    if (options.coverage == Coverage::area && options.split_kernel == SplitKernel::lane) {
+      RasterOptions other = options;
+      other.split_kernel = other_lane_split(*engine_);
+      other_split_ = std::make_unique<RasterEngine>(other);
+    }
     options.pixel_work = PixelWork::host;
     host_ = std::make_unique<RasterEngine>(options);
   }
@@ -113,6 +129,11 @@ void PathEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> ou
   host_->compute(scenes, host);
   for (std::size_t k = 0; k < scenes.size(); ++k)
     EXPECT_TRUE(identical_cells(out[k], host[k])) << "device and host pixel work differ in scene " << k;
+  if (!other_split_) return;
+  std::vector<SceneCells> other(scenes.size());
+  other_split_->compute(scenes, other);
+  for (std::size_t k = 0; k < scenes.size(); ++k)
+    EXPECT_TRUE(identical_cells(other[k], host[k])) << "the other lane split and the host differ in scene " << k;
 }
 
 Errors compare_cells(const SceneCells& a, const SceneCells& b, const Scene& scene) {

@@ -29,7 +29,12 @@ const std::string& vulkan_missing_reason();
 // A raster engine with these options, shared by the tests of the process (adapt_radius off:
 // every call starts afresh). Released before the process exits.
 RasterEngine& shared_engine(int resolution, Coverage coverage, ConeShape cone = ConeShape::quad,
-                            PixelWork work = PixelWork::automatic, bool force_float32 = false);
+                            PixelWork work = PixelWork::automatic, bool force_float32 = false,
+                            SplitKernel split = SplitKernel::lane);
+
+// The lane split `engine`'s device does not pick by itself (SplitKernel::lane): five slots on a
+// CPU device, three elsewhere. The device path's checks run it too, for the same bits.
+SplitKernel other_lane_split(const RasterEngine& engine);
 
 // Where every raster test runs the per-pixel work: on the host (what `auto` picks for area
 // coverage on CPU devices) and on the device (the shaders). The two must give the same bits.
@@ -41,8 +46,8 @@ std::string pixel_path_name(const ::testing::TestParamInfo<PixelWork>& info);
 void skip_unless_path_runs(PixelWork work);
 
 // Raster tests parameterised by the pixel-work path (instantiate with kPixelPaths). Each
-// computation runs on the path under test; on the device path the host path computes the same
-// call and the test fails unless the bits agree.
+// computation runs on the path under test; on the device path the host path and the other lane
+// split (area coverage) compute the same call and the test fails unless the bits agree.
 class RasterPaths : public ::testing::TestWithParam<PixelWork> {
  protected:
   void SetUp() override { skip_unless_path_runs(GetParam()); }
@@ -59,8 +64,8 @@ class RasterPaths : public ::testing::TestWithParam<PixelWork> {
 };
 
 // An engine on `work`'s path and, when that is the device, a twin with the same options on the
-// host: every compute runs on both (loops too: it is a CentroidEngine), and a difference in any
-// bit fails the test.
+// host and one with the other lane split (area coverage, SplitKernel::lane): every compute runs
+// on all (loops too: it is a CentroidEngine), and a difference in any bit fails the test.
 class PathEngine final : public CentroidEngine {
  public:
   PathEngine(RasterOptions options, PixelWork work);
@@ -71,7 +76,7 @@ class PathEngine final : public CentroidEngine {
   const RasterStats& stats() const { return engine_->stats(); }
 
  private:
-  std::unique_ptr<RasterEngine> engine_, host_;
+  std::unique_ptr<RasterEngine> engine_, host_, other_split_;
 };
 
 struct Errors {

@@ -29,6 +29,10 @@
 // relaxed set keep two or three, and lavapipe runs every slot and clip step of the kernel for
 // every pixel, whether it needs it or not (docs/BENCHMARKS.md, "The lane kernel for three").
 #define BLUETILE_MAX_PIECES 3
+// The same on other devices (split_lane5_f64.comp): a GPU runs only the steps its pixels need,
+// and three leave 11-24% of the boundary pixels to the host, five about 1% (docs/BENCHMARKS.md,
+// "The lane kernel for three").
+#define BLUETILE_MAX_PIECES_GPU 5
 // Grid buckets a split may visit per axis; a wider window (a huge cell in a dense scene) goes
 // to the host.
 #define BLUETILE_MAX_WINDOW 9
@@ -64,6 +68,7 @@
 #define BLUETILE_COUNTER_DISPATCH 0   // 3 words: the split's indirect dispatch (x, y, z)
 #define BLUETILE_COUNTER_BOUNDARY 3   // boundary pixels listed
 #define BLUETILE_COUNTER_OVERFLOW 4   // boundary pixels left to the host
+#define BLUETILE_COUNTER_GUARD 5      // of those, the ones the lane split's clip guard left
 #define BLUETILE_COUNTER_UNCOVERED 8  // first per-scene uncovered-sample count
 
 #ifdef __cplusplus
@@ -102,7 +107,8 @@ struct SceneInfo {
   uint max_pieces;    // candidates after pruning a pixel may keep; more go to the host
   vec2 bucket_size;   // site grid bucket sides, domain units
   float reach_limit;  // farthest a piece may lie from its site for the fixed-point bounds (domain)
-  float pad1;
+  uint guard_test;    // tests only (RasterOptions::split_guard_test): nonzero trips the lane
+                      // split's clip guard on pixels whose index i + j rx has all its bits
   // The same in double precision (bit patterns), for the float64 split.
   uvec2 pixel_size64[2];
   uvec2 domain_size64[2];

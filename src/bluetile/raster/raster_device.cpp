@@ -56,8 +56,10 @@ struct RasterDevice::Impl {
   VkPipeline cone_pipeline = VK_NULL_HANDLE, classify_pipeline = VK_NULL_HANDLE, split_pipeline = VK_NULL_HANDLE;
   VkPipeline beyond_texels_pipeline = VK_NULL_HANDLE;  // split_for
   // split_lane_f64.comp (positions and grid words as texels, at most BLUETILE_MAX_PIECES
-  // candidates a pixel), else split_f64.comp or, without shaderFloat64, split_f32.comp.
+  // candidates a pixel; split_lane5_f64.comp with BLUETILE_MAX_PIECES_GPU), else split_f64.comp
+  // or, without shaderFloat64, split_f32.comp.
   bool lane_split = false;
+  std::uint32_t lane_pieces = 0;  // the lane split's candidate slots
   // ConeDraw::points: the point pipeline (cone_pipeline is then the triangles it falls back to).
   VkPipeline point_pipeline = VK_NULL_HANDLE;
   // ConeDraw::indexed: 0 1 2 2 1 3 per cone, offset by 4 per cone, for this many cones.
@@ -83,7 +85,10 @@ struct RasterDevice::Impl {
   explicit Impl(const RasterDeviceSettings& s) : settings(s) {
     gpu = std::make_unique<gpu::Context>(s.device);
     float64 = gpu->float64() && !s.force_float32;
-    lane_split = float64 && s.split_kernel == SplitKernel::lane;
+    lane_split = float64 && s.split_kernel != SplitKernel::pixel;
+    // Three on a CPU device (lavapipe runs every slot's code for every pixel), five elsewhere.
+    const bool five = s.split_kernel == SplitKernel::lane_five || (s.split_kernel == SplitKernel::lane && gpu->info().type != "cpu");
+    if (lane_split) lane_pieces = five ? BLUETILE_MAX_PIECES_GPU : BLUETILE_MAX_PIECES;
     try {
       create_pipelines();
     } catch (...) {
@@ -185,7 +190,8 @@ struct RasterDevice::Impl {
   void create_compute_pipelines() {
     if (classify_pipeline) return;
     classify_pipeline = gpu::create_compute_pipeline(*gpu, layout, "classify.comp");
-    const char* split = lane_split ? "split_lane_f64.comp" : float64 ? "split_f64.comp" : "split_f32.comp";
+    const char* split = !lane_split ? (float64 ? "split_f64.comp" : "split_f32.comp")
+                        : lane_pieces == BLUETILE_MAX_PIECES_GPU ? "split_lane5_f64.comp" : "split_lane_f64.comp";
     split_pipeline = gpu::create_compute_pipeline(*gpu, layout, split);
   }
 
@@ -334,7 +340,8 @@ struct RasterDevice::Impl {
     info.reach_limit64 = double_bits(job.reach_limit);
     // The kernel's bound (a pass beyond the texel views runs split_f64.comp under it too); the
     // engine splits the pixels it leaves as the host reference does.
-    info.max_pieces = lane_split ? BLUETILE_MAX_PIECES : BLUETILE_MAX_CANDIDATES;
+    info.max_pieces = lane_split ? lane_pieces : BLUETILE_MAX_CANDIDATES;
+    info.guard_test = settings.split_guard_test;
     info.scale64[0] = double_bits(job.scale_area);
     info.scale64[1] = double_bits(job.scale_first);
     info.scale64[2] = double_bits(job.scale_second);
@@ -677,6 +684,10 @@ std::uint32_t RasterDevice::uncovered(std::size_t group_index) const {
 
 std::uint32_t RasterDevice::boundary_pixels() const {
   return static_cast<const std::uint32_t*>(impl_->counters.host())[BLUETILE_COUNTER_BOUNDARY];
+}
+
+std::uint32_t RasterDevice::guard_pixels() const {
+  return static_cast<const std::uint32_t*>(impl_->counters.host())[BLUETILE_COUNTER_GUARD];
 }
 
 std::span<const gpu::uvec2> RasterDevice::overflow() const { return impl_->overflow_copy; }

@@ -22,6 +22,7 @@ struct RasterDeviceSettings {
   ConeDraw cone_draw = ConeDraw::points;
   bool force_float32 = false;  // the float32 split even where the device has shaderFloat64
   SplitKernel split_kernel = SplitKernel::lane;  // RasterOptions::split_kernel
+  std::uint32_t split_guard_test = 0;            // RasterOptions::split_guard_test
 };
 
 // Why the per-pixel work cannot run on device `name` when asked for by name (PixelWork::device),
@@ -72,6 +73,7 @@ class RasterDevice {
   std::span<const gpu::SiteSums> sums(const RasterScene& scene) const;
   std::uint32_t uncovered(std::size_t group_index) const;
   std::uint32_t boundary_pixels() const;
+  std::uint32_t guard_pixels() const;  // overflow() entries the lane split's clip guard left
   // Boundary pixels the device left to the host: (group index, pixel index in its scene).
   std::span<const gpu::uvec2> overflow() const;
   // The ID image of a scene of the last pass (read_ids): scene-local site index + 1, 0 for none.

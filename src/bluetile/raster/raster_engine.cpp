@@ -128,7 +128,9 @@ struct RasterEngine::Impl {
   ExactEngine exact;
 
   explicit Impl(const RasterOptions& o)
-      : options(o), device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.cone_draw, o.force_float32, o.split_kernel}) {
+      : options(o),
+        device(RasterDeviceSettings{o.device, o.cone == ConeShape::fan, o.cone_draw, o.force_float32, o.split_kernel,
+                                    o.split_guard_test}) {
     on_device = runs_pixel_work_on_device(o.pixel_work, o.coverage, device.is_cpu());
     // Asked for by name, the device path is the exact one or none: never moved to the host, and
     // never the float32 split unless that is asked for too.
@@ -372,6 +374,7 @@ struct RasterEngine::Impl {
       add_finish_timing(finish_timing, across_scenes ? seconds_since(host_start) : 0.0);
       if (pixel_work_here) {
         stats.boundary_pixels += device.boundary_pixels();
+        stats.guard_pixels += device.guard_pixels();
       } else {
         for (std::uint64_t b : boundary) stats.boundary_pixels += b;
       }

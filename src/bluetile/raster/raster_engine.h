@@ -60,8 +60,13 @@ struct RasterOptions {
   // Split boundary pixels in single precision even where the device has shaderFloat64 (the
   // path of devices without it; for tests and measurements).
   bool force_float32 = false;
-  // Which float64 split kernel the device runs (SplitKernel); the other is for measurements.
+  // Which float64 split kernel the device runs (SplitKernel); the others are for tests and
+  // measurements.
   SplitKernel split_kernel = SplitKernel::lane;
+  // Tests only: nonzero makes the lane split's clip guard (a clip needing more than one new
+  // vertex, which no known input reaches) trip on the last piece of boundary pixels whose index
+  // i + j * resolution has every bit of this mask set, so they go to the host whole.
+  std::uint32_t split_guard_test = 0;
   PixelWork pixel_work = PixelWork::automatic;
   // Vulkan device: empty (CPU/lavapipe first), an index or a name substring.
   std::string device;
@@ -89,6 +94,9 @@ struct RasterStats {
   std::uint64_t uncovered_pixels = 0;  // samples no cone reached, in rejected passes
   std::uint64_t boundary_pixels = 0;   // pixels split on the device (area coverage)
   std::uint64_t host_split_pixels = 0;  // boundary pixels the per-pixel pass left to the host
+  // Of those, pixels the lane split's clip guard left (a clip needing more than one new vertex),
+  // accepted passes and rejected ones alike.
+  std::uint64_t guard_pixels = 0;
   std::uint64_t fallback_cells = 0;    // cells measured by the exact engine (point coverage, no sample)
   std::uint64_t exact_scenes = 0;      // scenes measured by the exact engine (max_cone_overlap)
   std::uint64_t split_sites_examined = 0;  // sites the host split's candidate searches examined

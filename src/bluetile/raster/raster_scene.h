@@ -27,12 +27,16 @@ enum class ConeDraw {
               // device's largest point fall back to triangles)
 };
 
-// Which float64 split kernel the device runs. Both give the same bits: `lane` leaves pixels with
-// more than BLUETILE_MAX_PIECES candidates to the host, which splits them as the host reference
-// does. Measured on lavapipe: docs/BENCHMARKS.md, "The split with candidates in registers".
+// Which float64 split kernel the device runs. All give the same bits: the lane kernels leave
+// pixels with more candidates than their slots to the host, which splits them as the host
+// reference does. Measured on lavapipe: docs/BENCHMARKS.md, "The split with candidates in
+// registers" and "The lane kernel for three".
 enum class SplitKernel {
-  lane,   // split_lane_f64.comp: one pixel per invocation, candidates and pieces in registers
-  pixel,  // split_f64.comp: one pixel per invocation, candidates and pieces in shared memory
+  lane,        // lane_three on a CPU device, lane_five on others
+  lane_three,  // split_lane_f64.comp: one pixel per invocation, candidates and pieces in
+               // registers, BLUETILE_MAX_PIECES (3) candidates
+  lane_five,   // split_lane5_f64.comp: the same with BLUETILE_MAX_PIECES_GPU (5)
+  pixel,       // split_f64.comp: one pixel per invocation, candidates and pieces in shared memory
 };
 
 struct RasterScene {
