@@ -93,9 +93,11 @@ class ConvexPolygon {
       any_outside |= side[i] > 0.0;
     }
     if (!any_outside) return;
-    // A convex polygon cut by a line gains at most one vertex.
-    if (scratch_.size() < n + 1) {
-      grow(2 * (n + 1));  // moves every buffer: the pointers into them are taken again
+    // A convex polygon cut by a line gains at most one vertex, but rounding can give vertices
+    // near the line alternating sides, and each vertex then adds a crossing as well as itself
+    // (a clip by nearly coincident bisectors gains two vertices in about 1 of 8000 such clips).
+    if (scratch_.size() < 2 * n) {
+      grow(2 * n);  // moves every buffer: the pointers into them are taken again
       in = vertices_.data();
       side = side_.data();
     }
