@@ -129,6 +129,36 @@ TEST(DensityPrefix, BoxesEitherSideOfTheScanWidth) {
   }
 }
 
+TEST(DensityPrefix, CellsOfManyPiecesAndWidePieces) {
+  // The narrow pieces are integrated in chunks of 64 whose lane sums run on: tall boxes (up to
+  // 64 columns, a few hundred rows, some hundreds of pieces, odd and even counts) and long
+  // nearly horizontal edges (pieces across many column lines, integrated texel by texel), across
+  // the periodic edges and against the bounded border, all against the reference.
+  auto grid = random_density(300, 700, 13, 0.1);
+  const DensityPrefix prefix(*grid);
+  const Point size{1.0, 1.0};
+  const double tx = size.x / 300, ty = size.y / 700;
+  for (double rows : {40.3, 161.7, 333.0}) {
+    for (double columns : {3.4, 20.5, 63.2}) {
+      const double w = columns * tx, h = rows * ty;
+      const std::vector<Point> cell = {{-0.5 * w, -0.45 * h}, {0.3 * w, -0.5 * h}, {0.5 * w, 0.1 * h},
+                                       {0.1 * w, 0.5 * h},    {-0.45 * w, 0.3 * h}};
+      for (Point origin : {Point{0.5, 0.5}, Point{0.01, 0.98}}) {
+        const std::string what = std::to_string(columns) + " x " + std::to_string(rows) + " texels at x " +
+                                 std::to_string(origin.x);
+        expect_agree(cell, origin, *grid, prefix, size, true, 1e-12, what + ", periodic");
+        if (origin.x > 0.5 * w) expect_agree(cell, origin, *grid, prefix, size, false, 1e-12, what + ", bounded");
+      }
+    }
+  }
+  // Nearly horizontal edges crossing 40 to 200 columns in a row or two.
+  for (double columns : {40.0, 200.0}) {
+    const double w = columns * tx;
+    expect_agree({{-0.5 * w, 0.0}, {0.5 * w, 0.7 * ty}, {0.1 * w, 1.9 * ty}}, {0.6, 0.3}, *grid, prefix, size, true,
+                 1e-12, "long flat triangle " + std::to_string(columns));
+  }
+}
+
 TEST(DensityPrefix, HandComputedSquare) {
   // The square [0.25, 0.75]^2 over a 4 x 4 grid: the four middle texels exactly.
   DensityGrid grid(4, 4, 100.0f);  // the outer texels must not leak in

@@ -226,10 +226,16 @@ bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t ve
   double px = first.x, py = first.y, pr = px * px + py * py;
   const double first_r = pr;
   std::uint32_t corner = start;
-  // With a density the vertices themselves are needed, in order. Without, the loop calls nothing
+  // With a density the vertices themselves are needed, in order: in a per-thread buffer that
+  // keeps its capacity, not a vector allocated for every cell. Without, the loop calls nothing
   // and its sums stay in registers (a possible allocation in it kept them on the stack).
-  std::vector<Point> polygon;
-  if constexpr (kPolygon) polygon.push_back(first);
+  std::vector<Point>* polygon = nullptr;
+  if constexpr (kPolygon) {
+    thread_local std::vector<Point> vertices;
+    polygon = &vertices;
+    polygon->clear();
+    polygon->push_back(first);
+  }
   for (;;) {
     corner = triangulation.next_around(corner);
     double qx = first.x, qy = first.y, qr = first_r;
@@ -238,7 +244,7 @@ bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t ve
       if (ties && triangulation.ties(PeriodicDelaunay::triangle_of(corner))) return false;
       const Point q = centre(corner);
       qx = q.x, qy = q.y, qr = qx * qx + qy * qy;
-      if constexpr (kPolygon) polygon.push_back(q);
+      if constexpr (kPolygon) polygon->push_back(q);
     }
     const double c = px * qy - qx * py;
     cross += c;
@@ -261,7 +267,9 @@ bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t ve
     cell.centroid = wrap_point(origin + centroid, scene.domain);
     return true;
   }
-  cell = measure_sums(scene, origin, area, centroid, second / 12.0, radius_squared, polygon, weighting);
+  std::span<const Point> vertices;
+  if constexpr (kPolygon) vertices = *polygon;
+  cell = measure_sums(scene, origin, area, centroid, second / 12.0, radius_squared, vertices, weighting);
   return true;
 }
 
