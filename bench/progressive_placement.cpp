@@ -166,6 +166,12 @@ int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
 }
 
 int compare_anchors(std::size_t n, std::size_t seeds) {
+  // The fill's five levels from N/16 at ratio 2 make N points only for a multiple of 16.
+  if (n < 16 || n % 16 != 0 || seeds == 0) {
+    std::fprintf(stderr, "bluetile_progressive_bench anchors: N must be a positive multiple of 16 and seeds at least 1 "
+                         "(got N = %zu, seeds = %zu)\n", n, seeds);
+    return 1;
+  }
   using Clock = std::chrono::steady_clock;
   const std::size_t boundaries[] = {n / 16, n / 8, n / 4, n / 2};
   const std::vector<std::size_t> sweep = prefix_sweep(n, boundaries);
@@ -196,11 +202,6 @@ int compare_anchors(std::size_t n, std::size_t seeds) {
   }
   std::vector<std::vector<SweepRow>> results, dense_results;
   for (const std::vector<PointSet>& s : sets) {
-    if (s[0].points.size() != n) {
-      std::fprintf(stderr, "anchors: N must be 16 times a power of two (a set came out with %zu points)\n",
-                   s[0].points.size());
-      return 1;
-    }
     results.push_back(measure_sweep(s, sweep));
     dense_results.push_back(measure_sweep(s, dense));
   }
