@@ -2,6 +2,7 @@
 // replaced in the exact engine (density_moments, density_moments.h), kept as the reference.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -249,6 +250,70 @@ TEST(DensityPrefix, WithoutTheSecondMomentTheRestIsTheSameBits) {
       }
       set_thread_count(saved);
     }
+  }
+}
+
+TEST(DensityPrefix, LongRowsOfBrightAndDarkTexels) {
+  // 4096-texel rows (a row prefix would be about 4096^3 / 3 times a texel in its second moment)
+  // of bright (1) and dark (1e-3) stretches of 50 texels, so that a cell often lies in the dark
+  // with bright texels in its box, beside it in its rows, or at the start of the 64-texel run its
+  // box begins in: hexagons 5 to 70 texels wide, across the 64- and 8-aligned column lines, at
+  // the map's left and right sides (bounded: touching the border; periodic: across the wrap).
+  const int width = 4096, height = 40;
+  auto grid = std::make_shared<DensityGrid>(width, height);
+  Rng rng(97);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      grid->at(x, y) = static_cast<float>(((x / 50 + y / 7) % 2 ? 1.0 : 1e-3) * (0.75 + 0.5 * rng.uniform()));
+  const DensityPrefix prefix(*grid);
+  const Point size{1.0, static_cast<double>(height) / width};
+  const double t = 1.0 / width;  // square texels
+  for (double columns : {5.3, 12.7, 40.1, 63.4, 70.2}) {
+    const double w = columns * t;
+    const std::vector<Point> hexagon = {{-0.5 * w, -3.3 * t}, {0.1 * w, -7.1 * t}, {0.5 * w, -1.2 * t},
+                                        {0.45 * w, 4.4 * t},  {-0.2 * w, 6.9 * t}, {-0.48 * w, 2.0 * t}};
+    for (double x : {0.0, 0.3, 60.5, 64.0, 101.0, 127.7, 2000.2, 2047.9, 4030.0, 4090.0, 4096.0}) {
+      for (double y : {10.0, 20.4, 33.0}) {
+        const Point origin{x * t, y * t};
+        const std::string what =
+            "hexagon " + std::to_string(columns) + " wide at texel " + std::to_string(x) + ", " + std::to_string(y);
+        expect_agree(hexagon, origin, *grid, prefix, size, true, 1e-12, what + ", periodic");
+        // Bounded: the hexagon clipped to the map's columns by moving it inside, touching the side.
+        const double inside = std::clamp(origin.x, 0.5 * w, 1.0 - 0.5 * w);
+        expect_agree(hexagon, {inside, origin.y}, *grid, prefix, size, false, 1e-12, what + ", bounded");
+      }
+    }
+  }
+}
+
+TEST(DensityPrefix, HandComputedAcrossAnAlignedColumnLine) {
+  // A rectangle over texel columns 60.5 to 70.25 of a 130 x 2 grid (across the 64-aligned column
+  // line), row 0 only, texel values 1 + column: each moment a hand sum of whole and partial texels.
+  DensityGrid grid(130, 2, 0.0f);
+  for (int x = 0; x < 130; ++x) {
+    grid.at(x, 0) = static_cast<float>(1 + x);
+    grid.at(x, 1) = 1000.0f;  // must not leak in
+  }
+  const DensityPrefix prefix(grid);
+  const Point size{1.0, 2.0 / 130.0};
+  const double t = 1.0 / 130.0, left = 60.5, right = 70.25;
+  const std::vector<Point> rectangle = {{left * t, 0.0}, {right * t, 0.0}, {right * t, t}, {left * t, t}};
+  double mass = 0.0, mx = 0.0, my = 0.0, second = 0.0;
+  for (int x = 60; x <= 70; ++x) {
+    const double a = std::max(left, static_cast<double>(x)), b = std::min(right, x + 1.0);
+    if (b <= a) continue;
+    const double rho = 1.0 + x;  // per texel area t^2: mass rho (b - a) t^2
+    mass += rho * (b - a) * t * t;
+    mx += rho * 0.5 * (b * b - a * a) * t * t * t;
+    my += rho * (b - a) * 0.5 * t * t * t;
+    second += rho * ((b * b * b - a * a * a) / 3.0 * t * t * t * t + (b - a) * t * t * t * t / 3.0);
+  }
+  for (bool periodic : {false, true}) {
+    const WeightedMoments m = prefix.moments(rectangle, {0.0, 0.0}, size, periodic);
+    EXPECT_NEAR(m.mass, mass, 1e-13 * mass);
+    EXPECT_NEAR(m.first.x, mx, 1e-13 * mx);
+    EXPECT_NEAR(m.first.y, my, 1e-13 * my);
+    EXPECT_NEAR(m.second, second, 1e-13 * second);
   }
 }
 
