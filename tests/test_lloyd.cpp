@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
+#include "bluetile/core/parallel.h"
 #include "bluetile/relax/lloyd.h"
 #include "test_support.h"
 #include "bluetile/voronoi/exact_engine.h"
@@ -127,6 +129,85 @@ TEST(Lloyd, CoincidentSiteKeepsItsPlace) {
   EXPECT_EQ(result.last.coincident, 1u);
   EXPECT_EQ(scene.sites[50], sites[10]);
   EXPECT_NE(scene.sites[10], sites[10]);  // the owner moved to its centroid: they separate
+}
+
+TEST(Lloyd, GridRowOrderIsBucketRowsThenIndex) {
+  // 5 sites: a 3 x 3 grid over [0, 2) x [0, 1), buckets 2/3 wide and 1/3 high.
+  const std::vector<Point> sites{{1.5, 0.9}, {0.1, 0.1}, {1.9, 0.05}, {0.05, 0.2}, {0.7, 0.5}};
+  // Buckets 8, 0, 2, 0, 4: bucket 0 keeps its two sites in index order.
+  EXPECT_EQ(grid_row_order(sites, Domain{{2.0, 1.0}}), (std::vector<std::uint32_t>{1, 3, 2, 4, 0}));
+  EXPECT_TRUE(grid_row_order({}, Domain{}).empty());
+  EXPECT_EQ(grid_row_order(std::vector<Point>{{0.999, 0.999}}, Domain{}), std::vector<std::uint32_t>{0});
+}
+
+// What relax_lloyd should give for a large scene: its wanted sites put in grid_row_order, moved
+// by the engine and move_to_centroids in that order, and put back in the caller's.
+std::vector<Point> relaxed_in_grid_order(std::vector<Point> start, std::size_t fixed, int iterations) {
+  Scene scene = make_scene(start);
+  scene.wanted_begin = fixed;
+  const std::vector<std::uint32_t> order =
+      grid_row_order(std::span<const Point>(start).subspan(fixed), scene.domain);
+  for (std::size_t i = 0; i < order.size(); ++i) scene.sites[fixed + i] = start[fixed + order[i]];
+  ExactEngine engine;
+  std::vector<Scene> scenes{std::move(scene)};
+  std::vector<SceneCells> cells(1);
+  for (int it = 0; it < iterations; ++it) {
+    engine.compute(scenes, cells);
+    move_to_centroids(scenes, cells);
+  }
+  for (std::size_t i = 0; i < order.size(); ++i) start[fixed + order[i]] = scenes[0].sites[fixed + i];
+  return start;
+}
+
+TEST(Lloyd, LargeScenesRelaxInGridOrderAndComeBackInTheirOwn) {
+  const std::size_t n = kGridOrderSites + 1000, fixed = 500;
+  const std::vector<Point> start = test::uniform_points(n, 12);
+  const std::vector<Point> expected = relaxed_in_grid_order(start, fixed, 3);
+  const std::size_t threads_before = thread_count();
+  for (std::size_t threads : {1u, 2u}) {
+    set_thread_count(threads);
+    Scene scene = make_scene(start);
+    scene.wanted_begin = fixed;
+    ExactEngine engine;
+    LloydOptions options;
+    options.iterations = 3;
+    relax_lloyd(engine, scene, options);
+    ASSERT_EQ(scene.sites.size(), n);
+    EXPECT_EQ(std::memcmp(scene.sites.data(), expected.data(), n * sizeof(Point)), 0) << threads << " threads";
+  }
+  set_thread_count(threads_before);
+  // In the caller's order the sums start elsewhere: the same sites to rounding.
+  Scene own = make_scene(start);
+  own.wanted_begin = fixed;
+  ExactEngine engine;
+  std::vector<Scene> scenes{std::move(own)};
+  std::vector<SceneCells> cells(1);
+  std::size_t differing = 0;
+  for (int it = 0; it < 3; ++it) {
+    engine.compute(scenes, cells);
+    move_to_centroids(scenes, cells);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_LT(torus_distance(scenes[0].sites[i], expected[i], Domain{}), 1e-12) << i;
+    differing += scenes[0].sites[i] != expected[i];
+  }
+  EXPECT_GT(differing, 0u);  // else the order would not have been applied
+  for (std::size_t i = 0; i < fixed; ++i) ASSERT_EQ(expected[i], start[i]);
+}
+
+TEST(Lloyd, AnInterruptedRunGivesTheSitesBackInTheirOwnOrder) {
+  const std::size_t n = kGridOrderSites;
+  const std::vector<Point> start = test::uniform_points(n, 13);
+  Scene scene = make_scene(start);
+  ExactEngine engine;
+  LloydOptions options;
+  options.iterations = 5;
+  options.on_iteration = [](const LloydIteration& it) {
+    if (it.iteration == 2) throw std::runtime_error("interrupted");
+  };
+  EXPECT_THROW(relax_lloyd(engine, scene, options), std::runtime_error);
+  const std::vector<Point> expected = relaxed_in_grid_order(start, 0, 2);
+  EXPECT_EQ(std::memcmp(scene.sites.data(), expected.data(), n * sizeof(Point)), 0);
 }
 
 }  // namespace

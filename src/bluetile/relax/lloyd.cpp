@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -89,6 +90,76 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   return log;
 }
 
+std::vector<std::uint32_t> grid_row_order(std::span<const Point> sites, const Domain& domain) {
+  if (sites.size() > std::numeric_limits<std::uint32_t>::max())
+    throw Error("grid order: " + std::to_string(sites.size()) + " sites, more than 2^32 - 1");
+  // A counting sort by bucket: stable, so a bucket keeps its sites in index order.
+  const double side = std::max(1.0, std::ceil(std::sqrt(static_cast<double>(sites.size()))));
+  const std::size_t columns = static_cast<std::size_t>(side);
+  const double sx = side / domain.size.x, sy = side / domain.size.y;
+  // The engine refuses sites outside the domain or not finite; until it has seen them, such a
+  // site goes to the nearest bucket (NaN to the first).
+  auto column = [&](double t) {
+    return t >= 1.0 ? static_cast<std::size_t>(std::min(t, side - 1.0)) : std::size_t{0};
+  };
+  auto bucket_of = [&](Point p) { return column(p.y * sy) * columns + column(p.x * sx); };
+  std::vector<std::uint32_t> starts(columns * columns + 1, 0);
+  for (Point p : sites) ++starts[bucket_of(p) + 1];
+  for (std::size_t b = 1; b < starts.size(); ++b) starts[b] += starts[b - 1];
+  std::vector<std::uint32_t> order(sites.size());
+  for (std::size_t i = 0; i < sites.size(); ++i) order[starts[bucket_of(sites[i])]++] = static_cast<std::uint32_t>(i);
+  return order;
+}
+
+namespace {
+
+// The wanted sites of the large scenes put in grid_row_order for a run, and back in the caller's
+// order when the run ends, however it ends (an interrupt throws).
+class GridOrders {
+ public:
+  explicit GridOrders(std::vector<Scene>& scenes) : scenes_(scenes), orders_(scenes.size()) {
+    // Everything that allocates first: a throw leaves every scene as it was.
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
+      const Scene& scene = scenes[k];
+      // A bad range is the engine's to report; the scene is left as it is.
+      if (scene.wanted_begin > scene.wanted_end || scene.wanted_end > scene.sites.size() ||
+          scene.wanted_count() < kGridOrderSites)
+        continue;
+      orders_[k] = grid_row_order(wanted(k), scene.domain);
+      spare_.resize(std::max(spare_.size(), orders_[k].size()));
+    }
+    for (std::size_t k = 0; k < scenes.size(); ++k) {
+      if (orders_[k].empty()) continue;
+      const std::span<Point> sites = wanted(k);
+      std::copy(sites.begin(), sites.end(), spare_.begin());
+      for (std::size_t i = 0; i < sites.size(); ++i) sites[i] = spare_[orders_[k][i]];
+    }
+  }
+  // Allocates nothing (it may run while an exception unwinds).
+  ~GridOrders() {
+    for (std::size_t k = 0; k < orders_.size(); ++k) {
+      if (orders_[k].empty()) continue;
+      const std::span<Point> sites = wanted(k);
+      std::copy(sites.begin(), sites.end(), spare_.begin());
+      for (std::size_t i = 0; i < sites.size(); ++i) sites[orders_[k][i]] = spare_[i];
+    }
+  }
+  GridOrders(const GridOrders&) = delete;
+  GridOrders& operator=(const GridOrders&) = delete;
+
+ private:
+  std::span<Point> wanted(std::size_t k) const {
+    Scene& scene = scenes_[k];
+    return {scene.sites.data() + scene.wanted_begin, scene.wanted_count()};
+  }
+
+  std::vector<Scene>& scenes_;
+  std::vector<std::vector<std::uint32_t>> orders_;  // per scene; empty: the caller's order kept
+  std::vector<Point> spare_;                         // as many sites as the largest ordered scene
+};
+
+}  // namespace
+
 LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, const LloydOptions& options) {
   LloydResult result;
   std::vector<SceneCells> cells(scenes.size());
@@ -104,6 +175,7 @@ LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, cons
     requests.wanted[k] = scenes[k].second_moments;
     scenes[k].second_moments = requests.wanted[k] && options.energy;
   }
+  const GridOrders grid_orders(scenes);
   for (int it = 1; it <= options.iterations; ++it) {
     engine.compute(scenes, cells);
     LloydIteration log = move_to_centroids(scenes, cells);

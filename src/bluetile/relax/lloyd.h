@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <span>
 #include <vector>
@@ -76,16 +77,37 @@ inline Point lloyd_displacement(const Scene& scene, Point site, const Cell& cell
 // cells[k] (the engine's output for those scenes). Returns the step's log, with `iteration` 0.
 LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneCells> cells);
 
+// The indices of `sites` (all inside `domain`) in the row order of a grid of about one site per
+// bucket, the sites of a bucket in index order: neighbours in the plane near each other in memory.
+std::vector<std::uint32_t> grid_row_order(std::span<const Point> sites, const Domain& domain);
+
+// Scenes with at least this many wanted sites are relaxed in grid_row_order. An engine reads each
+// site and writes each cell at its index; in the caller's order (random for random sites) those
+// are cache and TLB misses once the arrays outgrow the caches (docs/BENCHMARKS.md, "Sites in grid
+// order for the relaxation").
+inline constexpr std::size_t kGridOrderSites = std::size_t{1} << 16;
+
 // Relaxes the wanted sites of every scene in place, all scenes in one engine call per
 // iteration. The tolerance applies to the largest displacement over all scenes; the history
-// sums over scenes.
+// sums over scenes. The wanted sites of a scene of kGridOrderSites or more are relaxed in
+// grid_row_order and given back in their own order (also when the run throws); while it runs,
+// on_iteration sees them in that order. The order is a function of the starting sites alone, so
+// the result still is: the same bits for any thread count. It is not bit for bit the result of
+// relaxing in the caller's order: a cell's sums start at its neighbour of lowest index
+// (periodic_delaunay.h), and coincident sites leave the cell to the lower index.
 LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, const LloydOptions& options);
 
+// One scene, given back however the run ends (an interrupt throws).
 inline LloydResult relax_lloyd(CentroidEngine& engine, Scene& scene, const LloydOptions& options) {
-  std::vector<Scene> scenes{std::move(scene)};
-  LloydResult result = relax_lloyd(engine, scenes, options);
-  scene = std::move(scenes[0]);
-  return result;
+  struct Borrowed {
+    Scene& scene;
+    std::vector<Scene> scenes;
+    ~Borrowed() {
+      if (!scenes.empty()) scene = std::move(scenes[0]);
+    }
+  } borrowed{scene, {}};
+  borrowed.scenes.push_back(std::move(scene));
+  return relax_lloyd(engine, borrowed.scenes, options);
 }
 
 }  // namespace bluetile
