@@ -215,6 +215,45 @@ TEST(ExactTopology, BitIdenticalWhateverTheThreadCount) {
   }
 }
 
+TEST(ExactTopology, ManyFlipsKeepTheCanonicalCorners) {
+  // From random sites the first calls flip about a tenth of the edges, each flip carrying its four
+  // vertices' canonical corners over from the ones they had (PeriodicDelaunay::flip) instead of
+  // walking their stars; the second call also repairs (removals walk, merges and insertions
+  // recompute the corners of what they wrote). A wrong corner starts a cell's sums elsewhere and
+  // changes its bits: every call must equal a fresh engine's on the same sites, on 1, 2 and 7
+  // threads alike.
+  const std::size_t before = thread_count();
+  std::vector<std::vector<SceneCells>> runs;
+  for (std::size_t threads : {1u, 2u, 7u}) {
+    set_thread_count(threads);
+    Scene scene = make_scene(uniform_points(20000, 21));
+    ExactEngine engine;
+    std::vector<SceneCells> calls;
+    std::size_t flips = 0, repaired = 0;
+    for (int it = 0; it < 8; ++it) {
+      calls.push_back(engine.compute(scene));
+      EXPECT_EQ(engine.last_topology_stats().kept_cells, 20000u);
+      flips += engine.last_topology_stats().flips;
+      repaired += engine.last_topology_stats().repaired_vertices;
+      if (it >= 1 && it <= 3) {
+        ExactEngine fresh;
+        EXPECT_TRUE(test::identical_cells(calls.back(), fresh.compute(scene))) << threads << " threads, call " << it;
+      }
+      std::vector<Scene> scenes{scene};
+      move_to_centroids(scenes, std::span<const SceneCells>(&calls.back(), 1));
+      scene = scenes[0];
+    }
+    EXPECT_GT(flips, 5000u);
+    EXPECT_GT(repaired, 0u);
+    runs.push_back(std::move(calls));
+  }
+  set_thread_count(before);
+  for (std::size_t it = 0; it < runs[0].size(); ++it) {
+    EXPECT_TRUE(test::identical_cells(runs[0][it], runs[1][it])) << "call " << it;
+    EXPECT_TRUE(test::identical_cells(runs[0][it], runs[2][it])) << "call " << it;
+  }
+}
+
 TEST(ExactTopology, ArraysOnHugePagesKeepTheirBits) {
   // Past kHugePageArray bytes a scene's sites (make_scene) and its cells (the engine's output)
   // move to memory advised for huge pages (core/huge_pages.h): the sites keep their values, and

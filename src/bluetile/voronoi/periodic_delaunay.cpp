@@ -267,7 +267,7 @@ void PeriodicDelaunay::set_tie(std::uint32_t triangle, int edge, bool tie) {
   o = static_cast<std::uint8_t>(tie ? o | other : o & ~other);
 }
 
-bool PeriodicDelaunay::flip(std::uint32_t ti, int k) {
+bool PeriodicDelaunay::flip(std::uint32_t ti, int k, bool walk_corners) {
   // t = (a, b, c) with a at corner k; across b-c lies u = (d, c, b) with d at corner e. The
   // quadrilateral a, b, d, c is convex (d lies inside the circle through a, b, c, beyond b-c),
   // so the diagonal a-d replaces b-c: t becomes (a, b, d), u becomes (a, d, c).
@@ -294,6 +294,15 @@ bool PeriodicDelaunay::flip(std::uint32_t ti, int k) {
   const std::uint32_t n_bd = u.neighbour[next(e)], n_dc = u.neighbour[previous(e)];
   for (std::uint32_t l : {n_ab, n_ca, n_bd, n_dc})
     if (triangle_of(l) == ti || triangle_of(l) == ui) return false;  // a triangulation too small to flip in
+  // The corners before the flip, and the neighbour each of a's and d's is associated with.
+  const std::uint32_t corner_a = corners_[a.vertex], corner_b = corners_[b.vertex], corner_c = corners_[c.vertex],
+                      corner_d = corners_[d.vertex];
+  auto associated = [&](std::uint32_t corner) {
+    const Triangle& owner = triangles_[triangle_of(corner)];
+    return sites_[owner.vertex[previous(edge_of(corner))]];
+  };
+  const std::uint32_t lowest_a = walk_corners ? 0 : associated(corner_a);
+  const std::uint32_t lowest_d = walk_corners ? 0 : associated(corner_d);
   auto make = [&](Triangle& out, const Corner& p, const Corner& q, const Corner& r) {
     out.vertex[0] = p.vertex;
     out.vertex[1] = q.vertex;
@@ -318,11 +327,36 @@ bool PeriodicDelaunay::flip(std::uint32_t ti, int k) {
   triangles_[triangle_of(n_ab)].neighbour[edge_of(n_ab)] = link(ti, 2);
   triangles_[triangle_of(n_dc)].neighbour[edge_of(n_dc)] = link(ui, 0);
   triangles_[triangle_of(n_ca)].neighbour[edge_of(n_ca)] = link(ui, 1);
-  corners_[a.vertex] = link(ti, 0);
-  corners_[b.vertex] = link(ti, 1);
-  corners_[d.vertex] = link(ti, 2);
-  corners_[c.vertex] = link(ui, 2);
-  for (std::uint32_t v : {a.vertex, b.vertex, c.vertex, d.vertex}) canonical_corner(v);
+  if (walk_corners) {
+    corners_[a.vertex] = link(ti, 0);
+    corners_[b.vertex] = link(ti, 1);
+    corners_[d.vertex] = link(ti, 2);
+    corners_[c.vertex] = link(ui, 2);
+    for (std::uint32_t v : {a.vertex, b.vertex, c.vertex, d.vertex}) canonical_corner(v);
+  } else {
+    // Each vertex's canonical corner from the one it had (corner_a and the others, read before
+    // the rewrite), without walking its star: a gains the neighbour d, d gains a, b loses c and
+    // c loses b; a corner's triangle moves only where it was t or u. Only a vertex that lost its
+    // lowest neighbour walks. (A corner is associated with the neighbour before it, as in
+    // canonical_corner; the sites of a star are distinct.)
+    const std::uint32_t sa = sites_[a.vertex], sb = sites_[b.vertex], sc = sites_[c.vertex], sd = sites_[d.vertex];
+    corners_[a.vertex] = corner_a == link(ti, k) ? (sd < sc ? link(ti, 0) : link(ui, 0))
+                                                 : (sd < lowest_a ? link(ti, 0) : corner_a);
+    corners_[d.vertex] = corner_d == link(ui, e) ? (sa < sb ? link(ui, 1) : link(ti, 2))
+                                                 : (sa < lowest_d ? link(ui, 1) : corner_d);
+    if (corner_b == link(ti, kb)) {
+      corners_[b.vertex] = link(ti, 1);
+    } else if (corner_b == link(ui, previous(e))) {
+      corners_[b.vertex] = link(ti, 1);
+      canonical_corner(b.vertex);
+    }
+    if (corner_c == link(ui, next(e))) {
+      corners_[c.vertex] = link(ui, 2);
+    } else if (corner_c == link(ti, kc)) {
+      corners_[c.vertex] = link(ui, 2);
+      canonical_corner(c.vertex);
+    }
+  }
   // The tie marks of the two triangles start afresh; the outer edges are tested again by the
   // caller, and set them on both sides.
   auto clear_side = [&](std::uint32_t l) {
@@ -459,7 +493,7 @@ bool PeriodicDelaunay::remove_vertex(std::uint32_t vertex, std::vector<std::uint
       if (!short_edge(before, after) || !short_edge(v, after)) continue;
       if (orientation(before, at, after) <= 0 || orientation(v, before, after) <= 0) continue;
       const std::uint32_t other = triangle_of(tri.neighbour[next(jv)]);
-      if (!flip(t, next(jv))) return false;
+      if (!flip(t, next(jv), true)) return false;
       rewritten.push_back(t);
       rewritten.push_back(other);
       flipped = true;
@@ -556,7 +590,7 @@ bool PeriodicDelaunay::repair(std::span<const std::uint32_t> invalid, std::vecto
   positions_.swap(old_positions);
   for (const Wrap& w : wraps) wrap(w.vertex, -w.kx, -w.ky);
   std::vector<std::uint8_t> removed(n, 0);
-  std::vector<std::uint32_t> order, hints, pending, rewritten;
+  std::vector<std::uint32_t> order, hints, pending, rewritten, written;
   auto take = [&](std::uint32_t v) {
     if (!removed[v]) {
       removed[v] = 1;
@@ -579,6 +613,7 @@ bool PeriodicDelaunay::repair(std::span<const std::uint32_t> invalid, std::vecto
     // there go too.
     std::sort(rewritten.begin(), rewritten.end());
     rewritten.erase(std::unique(rewritten.begin(), rewritten.end()), rewritten.end());
+    written.insert(written.end(), rewritten.begin(), rewritten.end());
     for (std::uint32_t t : rewritten) {
       const Triangle& tri = triangles_[t];
       if (tri.vertex[0] == kNoCorner) continue;  // freed by a later removal
@@ -600,10 +635,24 @@ bool PeriodicDelaunay::repair(std::span<const std::uint32_t> invalid, std::vecto
     }
     if (removed[hint] || !insert_vertex(v, hint)) return false;
     removed[v] = 0;
+    // The three triangles the insertion made (around v).
+    std::uint32_t corner = corners_[v];
+    for (int k = 0; k < 3; ++k, corner = next_around(corner)) written.push_back(triangle_of(corner));
   }
   ties_.assign(triangles_.size(), 0);
   tie_edges_ = 0;
-  canonical_corners();
+  // Canonical corners again where a merge or an insertion set them (the removals' flips walk
+  // theirs): the vertices of every triangle the repair wrote that is still in use. The others'
+  // stars did not change.
+  std::vector<std::uint32_t> vertices;
+  for (std::uint32_t t : written) {
+    const Triangle& tri = triangles_[t];
+    if (tri.vertex[0] == kNoCorner) continue;  // a free slot
+    vertices.insert(vertices.end(), tri.vertex, tri.vertex + 3);
+  }
+  std::sort(vertices.begin(), vertices.end());
+  vertices.erase(std::unique(vertices.begin(), vertices.end()), vertices.end());
+  for (std::uint32_t v : vertices) canonical_corner(v);
   repaired = order.size();
   return true;
 }

@@ -147,7 +147,10 @@ class PeriodicDelaunay {
   // The shift that takes the frame of the triangle across edge `edge` of `t` into t's frame.
   void frame_offset(const Triangle& t, int edge, const Triangle& across, int across_edge, int& dx, int& dy) const;
   bool short_edge(const PeriodicPoint& a, const PeriodicPoint& b) const;
-  bool flip(std::uint32_t triangle, int edge);
+  // Flips the edge; the four vertices' canonical corners follow from the ones they had (which
+  // must be canonical for the result to be), or with `walk_corners` from a walk around each
+  // (the repair's removals, where some are not yet).
+  bool flip(std::uint32_t triangle, int edge, bool walk_corners = false);
   void set_tie(std::uint32_t triangle, int edge, bool tie);
   void normalise(Triangle& t) const;
   // Whether t is valid (counter-clockwise, short edges) with its vertices at `positions`, vertex
