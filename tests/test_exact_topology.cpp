@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 
@@ -191,28 +192,39 @@ TEST(ExactTopology, SameSitesGiveTheSameBitsWhateverTheCallsBefore) {
   EXPECT_EQ(following.last_topology_stats().kept_cells, 2500u);
 }
 
-TEST(ExactTopology, BitIdenticalWhateverTheThreadCount) {
+// `calls` calls of a kept engine on `count` random sites (`seed`), each followed by the Lloyd
+// move, once on each of 1, 2 and 7 threads: every call measures every cell from the
+// triangulation, and each call's cells are the same bits on all three. `after_call(engine,
+// scene, cells, threads, call)` checks more, before the move.
+void expect_kept_calls_alike_on_thread_counts(
+    std::size_t count, std::uint64_t seed, int calls,
+    const std::function<void(const ExactEngine&, const Scene&, const SceneCells&, std::size_t, int)>& after_call) {
   const std::size_t before = thread_count();
   std::vector<std::vector<SceneCells>> runs;
   for (std::size_t threads : {1u, 2u, 7u}) {
     set_thread_count(threads);
-    Scene scene = make_scene(uniform_points(12000, 12));
+    Scene scene = make_scene(uniform_points(count, seed));
     ExactEngine engine;
-    std::vector<SceneCells> calls;
-    for (int it = 0; it < 12; ++it) {
-      calls.push_back(engine.compute(scene));
-      EXPECT_EQ(engine.last_topology_stats().kept_cells, 12000u);
+    std::vector<SceneCells> run;
+    for (int it = 0; it < calls; ++it) {
+      run.push_back(engine.compute(scene));
+      EXPECT_EQ(engine.last_topology_stats().kept_cells, count);
+      if (after_call) after_call(engine, scene, run.back(), threads, it);
       std::vector<Scene> scenes{scene};
-      move_to_centroids(scenes, std::span<const SceneCells>(&calls.back(), 1));
+      move_to_centroids(scenes, std::span<const SceneCells>(&run.back(), 1));
       scene = scenes[0];
     }
-    runs.push_back(std::move(calls));
+    runs.push_back(std::move(run));
   }
   set_thread_count(before);
   for (std::size_t it = 0; it < runs[0].size(); ++it) {
     EXPECT_TRUE(test::identical_cells(runs[0][it], runs[1][it])) << "call " << it;
     EXPECT_TRUE(test::identical_cells(runs[0][it], runs[2][it])) << "call " << it;
   }
+}
+
+TEST(ExactTopology, BitIdenticalWhateverTheThreadCount) {
+  expect_kept_calls_alike_on_thread_counts(12000, 12, 12, nullptr);
 }
 
 TEST(ExactTopology, ManyFlipsKeepTheCanonicalCorners) {
@@ -222,35 +234,20 @@ TEST(ExactTopology, ManyFlipsKeepTheCanonicalCorners) {
   // recompute the corners of what they wrote). A wrong corner starts a cell's sums elsewhere and
   // changes its bits: every call must equal a fresh engine's on the same sites, on 1, 2 and 7
   // threads alike.
-  const std::size_t before = thread_count();
-  std::vector<std::vector<SceneCells>> runs;
+  std::map<std::size_t, std::size_t> flips, repaired;  // per thread count
+  expect_kept_calls_alike_on_thread_counts(
+      20000, 21, 8,
+      [&](const ExactEngine& engine, const Scene& scene, const SceneCells& cells, std::size_t threads, int it) {
+        flips[threads] += engine.last_topology_stats().flips;
+        repaired[threads] += engine.last_topology_stats().repaired_vertices;
+        if (it >= 1 && it <= 3) {
+          ExactEngine fresh;
+          EXPECT_TRUE(test::identical_cells(cells, fresh.compute(scene))) << threads << " threads, call " << it;
+        }
+      });
   for (std::size_t threads : {1u, 2u, 7u}) {
-    set_thread_count(threads);
-    Scene scene = make_scene(uniform_points(20000, 21));
-    ExactEngine engine;
-    std::vector<SceneCells> calls;
-    std::size_t flips = 0, repaired = 0;
-    for (int it = 0; it < 8; ++it) {
-      calls.push_back(engine.compute(scene));
-      EXPECT_EQ(engine.last_topology_stats().kept_cells, 20000u);
-      flips += engine.last_topology_stats().flips;
-      repaired += engine.last_topology_stats().repaired_vertices;
-      if (it >= 1 && it <= 3) {
-        ExactEngine fresh;
-        EXPECT_TRUE(test::identical_cells(calls.back(), fresh.compute(scene))) << threads << " threads, call " << it;
-      }
-      std::vector<Scene> scenes{scene};
-      move_to_centroids(scenes, std::span<const SceneCells>(&calls.back(), 1));
-      scene = scenes[0];
-    }
-    EXPECT_GT(flips, 5000u);
-    EXPECT_GT(repaired, 0u);
-    runs.push_back(std::move(calls));
-  }
-  set_thread_count(before);
-  for (std::size_t it = 0; it < runs[0].size(); ++it) {
-    EXPECT_TRUE(test::identical_cells(runs[0][it], runs[1][it])) << "call " << it;
-    EXPECT_TRUE(test::identical_cells(runs[0][it], runs[2][it])) << "call " << it;
+    EXPECT_GT(flips[threads], 5000u) << threads << " threads";
+    EXPECT_GT(repaired[threads], 0u) << threads << " threads";
   }
 }
 
