@@ -85,7 +85,11 @@ def uniform_metrics(points):
 
 if __name__ == "__main__":
     modes = {"--uniform": uniform_metrics, "--warped": warped_metrics}
-    measure = next((modes[a] for a in sys.argv[1:] if a in modes), ramp_metrics)
-    for path in (a for a in sys.argv[1:] if a not in modes):
+    chosen = [a for a in sys.argv[1:] if a in modes]
+    paths = [a for a in sys.argv[1:] if a not in modes]
+    if len(chosen) > 1 or not paths:
+        sys.exit("usage: density_ramp_metrics.py [--uniform | --warped] POINTS.txt ...")
+    measure = modes[chosen[0]] if chosen else ramp_metrics
+    for path in paths:
         figures = measure(load(path))
         print(path + ": " + ", ".join(f"{k} {v:.3f}" if isinstance(v, float) else f"{k} {v}" for k, v in figures.items()))
