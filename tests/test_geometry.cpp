@@ -64,6 +64,46 @@ TEST(Polygon, ClipsPastTheInitialCapacity) {
   EXPECT_NEAR(p.max_radius_squared(), 1.0 / std::pow(std::cos(pi / kSides), 2), 1e-12);
 }
 
+// Rounding lets one clip add two vertices: bisectors of nearly coincident sites (1e-15 apart)
+// cross one another near the middle of the cell, and the last of them finds the vertices there
+// on alternating sides. Here that clip meets a polygon of 63 vertices, one short of the buffers'
+// first size, and leaves 65: with room for only n + 1 it wrote past the buffer (the sanitizer
+// build catches that write). The inputs were found by a search over such bisectors.
+TEST(Polygon, OneClipCanGainTwoVerticesAtTheBuffersEnd) {
+  const Point nearly_coincident[5] = {
+      {-0x1.91649e46c0362p-5, -0x1.51070c1e6c366p-6}, {-0x1.91649e46c02f5p-5, -0x1.51070c1e6c4dep-6},
+      {-0x1.91649e46c02c9p-5, -0x1.51070c1e6c537p-6}, {-0x1.91649e46c034p-5, -0x1.51070c1e6c3c1p-6},
+      {-0x1.91649e46c0361p-5, -0x1.51070c1e6c357p-6}};
+  // Tangents of the circle of radius 0.99 on the far side from the sites (+-0.7 rad around the
+  // direction away from them), each cutting one more vertex into the square without reaching
+  // the vertices the nearly coincident bisectors made.
+  constexpr int kPadding = 58;
+  const double away = std::atan2(-nearly_coincident[0].y, -nearly_coincident[0].x);
+  auto pad = [&](ConvexPolygon& p) {
+    for (int k = 0; k < kPadding; ++k) {
+      const double a = away + (2.0 * k / (kPadding - 1) - 1.0) * 0.7;
+      p.clip_by_bisector({1.98 * std::cos(a), 1.98 * std::sin(a)}, static_cast<std::uint32_t>(100 + k));
+    }
+  };
+  ConvexPolygon p;
+  p.reset_rectangle({-1, -1}, {1, 1});
+  for (int k = 0; k < 4; ++k) p.clip_by_bisector(nearly_coincident[k], static_cast<std::uint32_t>(k));
+  pad(p);
+  ASSERT_EQ(p.size(), 63u);
+  p.clip_by_bisector(nearly_coincident[4], 4);
+  ASSERT_EQ(p.size(), 65u);
+  // The five bisectors agree to about 1e-15: the same square and tangents cut by the last one
+  // alone has the same area and first moment to well within 1e-12.
+  ConvexPolygon reference;
+  reference.reset_rectangle({-1, -1}, {1, 1});
+  pad(reference);
+  reference.clip_by_bisector(nearly_coincident[4], 4);
+  EXPECT_NEAR(p.moments().area(), reference.moments().area(), 1e-12);
+  EXPECT_NEAR(p.moments().first_moment().x, reference.moments().first_moment().x, 1e-12);
+  EXPECT_NEAR(p.moments().first_moment().y, reference.moments().first_moment().y, 1e-12);
+  for (const PolygonVertex& v : p.vertices()) EXPECT_LE(std::max(std::abs(v.p.x), std::abs(v.p.y)), 1.0);
+}
+
 TEST(Polygon, ClipByBisector) {
   ConvexPolygon p;
   p.reset_rectangle({-1, -1}, {1, 1}, 7);
