@@ -5,19 +5,20 @@
 // On lavapipe a load or store whose address differs between lanes (storage buffers, shared
 // memory) is a loop over the lanes, a texel fetch is one gather, and a private array indexed by a
 // variable is a ladder of selects (docs/BENCHMARKS.md, "Every stage, host and device pixel work
-// side by side"). So positions and grid words come as texels, and the candidates are never
-// stored: one walk over the grid window finds the nearest site and counts those within reach, a
-// second walk (the same arithmetic, so the same decisions) keeps the ones that survive pruning
-// in BLUETILE_LANE_PIECES register slots, and each piece is clipped in 3 + BLUETILE_LANE_PIECES
-// register slots (every slot index a constant once the clip steps are spelled out, writes
-// included). A pixel with more candidates, or a wider window, or a clip that would need more
+// side by side"). So positions, grid words, the scene record and the site flags come as texels,
+// and the candidates are never stored: one walk over the grid window finds the nearest site and
+// counts those within reach, a second walk (the same arithmetic, so the same decisions) keeps
+// the ones that survive pruning in BLUETILE_LANE_PIECES register slots, and each piece is clipped
+// in 3 + BLUETILE_LANE_PIECES register slots (every slot index a constant once the clip steps are
+// spelled out, writes included). A pixel with more candidates, or a wider window, or a clip that would need more
 // than one new vertex (rounding on nearly coincident bisectors; the host's polygon has room),
 // goes to the host, which splits it as the host reference does (same bits); its pieces' sums are
 // held in registers until every piece is clipped, so such a pixel adds nothing here. Three slots
 // (BLUETILE_MAX_PIECES) on CPU devices; the build compiles this source again with
 // BLUETILE_LANE_PIECES=5 as split_lane5_f64.comp, for other devices. Measured against
 // split_f64.comp: docs/BENCHMARKS.md, "The split with candidates in registers"; for three
-// candidates with constant writes, and five, "The lane kernel for three".
+// candidates with constant writes, and five, "The lane kernel for three"; the records as texels,
+// "The lane kernel, texels for the set-up".
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -27,6 +28,8 @@ layout(local_size_x = BLUETILE_SPLIT_GROUP) in;
 layout(binding = BLUETILE_BINDING_ID_IMAGE, r32ui) uniform readonly uimage2D id_image;
 layout(binding = BLUETILE_BINDING_POSITION_TEXELS) uniform usamplerBuffer position_texels;
 layout(binding = BLUETILE_BINDING_GRID_TEXELS) uniform usamplerBuffer grid_texels;
+layout(binding = BLUETILE_BINDING_SCENE_TEXELS) uniform usamplerBuffer scene_texels;
+layout(binding = BLUETILE_BINDING_SITE_TEXELS) uniform usamplerBuffer site_texels;
 
 #ifndef BLUETILE_LANE_PIECES
 #define BLUETILE_LANE_PIECES BLUETILE_MAX_PIECES
@@ -40,12 +43,42 @@ layout(binding = BLUETILE_BINDING_GRID_TEXELS) uniform usamplerBuffer grid_texel
 dvec2 pixel_size, domain_size;
 
 double unpack_real(uvec2 bits) { return packDouble2x32(bits); }
-dvec2 unpack_real2(uvec2 bits[2]) { return dvec2(unpack_real(bits[0]), unpack_real(bits[1])); }
 dvec2 position(uint g) {
   uvec4 p = texelFetch(position_texels, int(g));
   return dvec2(unpack_real(p.xy), unpack_real(p.zw));
 }
 uint grid_word(uint k) { return texelFetch(grid_texels, int(k)).x; }
+// The fields of SceneInfo this kernel reads, from its 16-byte texels (offsets asserted in
+// raster_layout.h): a storage-buffer load of the record is a loop over the lanes per field.
+struct SceneFields {
+  ivec2 origin, size, grid_size;
+  uint site_begin, grid_offset, max_pieces, guard_test;
+  dvec2 pixel_size, domain_size, bucket_size;
+  double reach_limit, scale_area, scale_first, scale_second;
+};
+SceneFields scene_fields(uint k) {
+  const int at = int(k) * BLUETILE_SCENE_TEXELS;
+  const uvec4 t0 = texelFetch(scene_texels, at), t2 = texelFetch(scene_texels, at + 2), t3 = texelFetch(scene_texels, at + 3),
+              t4 = texelFetch(scene_texels, at + 4), t5 = texelFetch(scene_texels, at + 5), t6 = texelFetch(scene_texels, at + 6),
+              t7 = texelFetch(scene_texels, at + 7), t8 = texelFetch(scene_texels, at + 8), t9 = texelFetch(scene_texels, at + 9);
+  SceneFields f;
+  f.origin = ivec2(t0.xy);
+  f.size = ivec2(t0.zw);
+  f.site_begin = t2.y;
+  f.grid_size = ivec2(t3.xy);
+  f.grid_offset = t3.z;
+  f.max_pieces = t3.w;
+  f.guard_test = t4.w;
+  f.pixel_size = dvec2(unpack_real(t5.xy), unpack_real(t5.zw));
+  f.domain_size = dvec2(unpack_real(t6.xy), unpack_real(t6.zw));
+  f.bucket_size = dvec2(unpack_real(t7.xy), unpack_real(t7.zw));
+  f.reach_limit = unpack_real(t8.xy);
+  f.scale_area = unpack_real(t8.zw);
+  f.scale_first = unpack_real(t9.xy);
+  f.scale_second = unpack_real(t9.zw);
+  return f;
+}
+uint site_flags(uint g) { return texelFetch(site_texels, int(g) * BLUETILE_SITE_TEXELS + 1).y; }
 // Site g relative to sample (i, j), domain units (as split_body.glsl).
 dvec2 site_from_sample(uint g, ivec2 ij) {
   precise dvec2 lattice = dvec2(ij) * pixel_size;
@@ -198,11 +231,11 @@ void hold_piece(uint at, i64vec4 v) {
 
 // Splits pixel `entry`; false where it goes to the host.
 bool split_pixel(uvec2 entry) {
-  const SceneInfo scene = scenes[entry.x];
-  pixel_size = unpack_real2(scene.pixel_size64);
-  domain_size = unpack_real2(scene.domain_size64);
-  const dvec2 bucket_size = unpack_real2(scene.bucket_size64);
-  const double reach_limit = unpack_real(scene.reach_limit64);
+  const SceneFields scene = scene_fields(entry.x);
+  pixel_size = scene.pixel_size;
+  domain_size = scene.domain_size;
+  const dvec2 bucket_size = scene.bucket_size;
+  const double reach_limit = scene.reach_limit;
   const int j = floor_division(int(entry.y), scene.size.x), i = int(entry.y) - j * scene.size.x;
   const ivec2 ij = ivec2(i, j);
   const dvec2 half_pixel = 0.5 * pixel_size;
@@ -303,14 +336,13 @@ bool split_pixel(uvec2 entry) {
   // The bounds the host reference applies too (scene.max_pieces is this kernel's slot count).
   if (kept > scene.max_pieces || kept > uint(BLUETILE_LANE_PIECES) || beyond) return false;
 
-  const double scale_area = unpack_real(scene.scale64[0]), scale_first = unpack_real(scene.scale64[1]),
-               scale_second = unpack_real(scene.scale64[2]);
+  const double scale_area = scene.scale_area, scale_first = scene.scale_first, scale_second = scene.scale_second;
   has0 = has1 = has2 = has3 = has4 = false;
   clip_lost = false;
   const bool force_here = scene.guard_test != 0u && (entry.y & scene.guard_test) == scene.guard_test;
   for (uint a = 0u; a < kept; ++a) {
     const uint owner = kept_site(a);
-    if ((sites[owner].flags & BLUETILE_SITE_WANTED) == 0u) continue;
+    if ((site_flags(owner) & BLUETILE_SITE_WANTED) == 0u) continue;
     const ivec2 owner_image = kept_image(a);
     const dvec2 owner_position = position(owner);
     // The pixel square relative to this image of the owner.
