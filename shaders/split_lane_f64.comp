@@ -8,17 +8,19 @@
 // side by side"). So positions, grid words, the scene record and the site flags come as texels,
 // and the candidates are never stored: one walk over the grid window finds the nearest site and
 // counts those within reach, a second walk (the same arithmetic, so the same decisions) keeps
-// the ones that survive pruning in BLUETILE_LANE_PIECES register slots, and each piece is clipped
-// in 3 + BLUETILE_LANE_PIECES register slots (every slot index a constant once the clip steps are
-// spelled out, writes included). A pixel with more candidates, or a wider window, or a clip that would need more
-// than one new vertex (rounding on nearly coincident bisectors; the host's polygon has room),
-// goes to the host, which splits it as the host reference does (same bits); its pieces' sums are
-// held in registers until every piece is clipped, so such a pixel adds nothing here. Three slots
-// (BLUETILE_MAX_PIECES) on CPU devices; the build compiles this source again with
-// BLUETILE_LANE_PIECES=5 as split_lane5_f64.comp, for other devices. Measured against
+// the ones that survive pruning in BLUETILE_LANE_PIECES register slots (both walks read positions
+// by grid-list entry from a copy in list order, not by site index: no grid word before each
+// position, the kept entries' site indices fetched once after the walk), and each piece is clipped
+// in 3 + BLUETILE_LANE_PIECES register slots (every slot index a constant once the clip steps
+// are spelled out, writes included). A pixel with more candidates, or a wider window, or a clip
+// that would need more than one new vertex (rounding on nearly coincident bisectors; the host's
+// polygon has room), goes to the host, which splits it as the host reference does (same bits);
+// its pieces' sums are held in registers until every piece is clipped, so such a pixel adds
+// nothing here. Three slots (BLUETILE_MAX_PIECES) on CPU devices; the build compiles this source
+// again with BLUETILE_LANE_PIECES=5 as split_lane5_f64.comp, for other devices. Measured against
 // split_f64.comp: docs/BENCHMARKS.md, "The split with candidates in registers"; for three
-// candidates with constant writes, and five, "The lane kernel for three"; the records as texels,
-// "The lane kernel, texels for the set-up".
+// candidates with constant writes, and five, "The lane kernel for three"; the records as texels
+// and the positions in list order, "The lane kernel, texels for the set-up".
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -30,6 +32,7 @@ layout(binding = BLUETILE_BINDING_POSITION_TEXELS) uniform usamplerBuffer positi
 layout(binding = BLUETILE_BINDING_GRID_TEXELS) uniform usamplerBuffer grid_texels;
 layout(binding = BLUETILE_BINDING_SCENE_TEXELS) uniform usamplerBuffer scene_texels;
 layout(binding = BLUETILE_BINDING_SITE_TEXELS) uniform usamplerBuffer site_texels;
+layout(binding = BLUETILE_BINDING_LIST_POSITION_TEXELS) uniform usamplerBuffer list_position_texels;
 
 #ifndef BLUETILE_LANE_PIECES
 #define BLUETILE_LANE_PIECES BLUETILE_MAX_PIECES
@@ -48,6 +51,11 @@ dvec2 position(uint g) {
   return dvec2(unpack_real(p.xy), unpack_real(p.zw));
 }
 uint grid_word(uint k) { return texelFetch(grid_texels, int(k)).x; }
+// The position of the site at grid word w of a site list (the same bits as position()).
+dvec2 list_position(uint w) {
+  uvec4 p = texelFetch(list_position_texels, int(w));
+  return dvec2(unpack_real(p.xy), unpack_real(p.zw));
+}
 // The fields of SceneInfo this kernel reads, from its 16-byte texels (offsets asserted in
 // raster_layout.h): a storage-buffer load of the record is a loop over the lanes per field.
 struct SceneFields {
@@ -263,7 +271,7 @@ bool split_pixel(uvec2 entry) {
   const uint site_list = scene.grid_offset + uint(columns * rows) + 1u;
 
   // First walk: the candidates within reach are counted, the nearest (the first of equals) kept.
-  uint count = 0u, nearest_index = 0u, nearest_site = 0u;
+  uint count = 0u, nearest_index = 0u, nearest_entry = site_list;
   ivec2 nearest_image = ivec2(0);
   double nearest2 = 1e30;
   for (int by = lo.y; by <= hi.y; ++by) {
@@ -274,14 +282,14 @@ bool split_pixel(uvec2 entry) {
       const uint bucket = row + uint(bx - wx * columns);
       const uint last = grid_word(bucket + 1u);
       for (uint s = grid_word(bucket); s < last; ++s) {
-        const uint g = scene.site_begin + grid_word(site_list + s);
-        precise dvec2 o = (site_from_sample(g, ij) - half_pixel) + dvec2(wx, wy) * domain_size;
+        precise dvec2 lattice = dvec2(ij) * pixel_size;
+        precise dvec2 o = ((list_position(site_list + s) - lattice) - half_pixel) + dvec2(wx, wy) * domain_size;
         precise double d2 = o.x * o.x + o.y * o.y;
         if (d2 > reach * reach) continue;
         if (count == 0u || d2 < nearest2) {
           nearest2 = d2;
           nearest_index = count;
-          nearest_site = g;
+          nearest_entry = site_list + s;
           nearest_image = ivec2(wx, wy);
         }
         ++count;
@@ -294,10 +302,13 @@ bool split_pixel(uvec2 entry) {
   // Second walk: only sites within (nearest + diagonal) of the centre can be nearest somewhere in
   // the pixel, and of those only the ones nearer than the nearest, s0, at some corner.
   precise const double reach0 = sqrt(nearest2) + diagonal;
+  const uint nearest_site = scene.site_begin + grid_word(nearest_entry);
   const dvec2 s0_position = position(nearest_site);
   precise const dvec2 corner0 = -(site_from_sample(nearest_site, ij) + dvec2(nearest_image) * domain_size);
   uint c = 0u, kept = 0u;
   bool beyond = false;
+  // The walk keeps grid words (list entries); their site indices are fetched once after it.
+  kept_site0 = kept_site1 = kept_site2 = kept_site3 = kept_site4 = site_list;
   for (int by = lo.y; by <= hi.y; ++by) {
     const int wy = floor_division(by, rows);
     const uint row = scene.grid_offset + uint((by - wy * rows) * columns);
@@ -306,8 +317,7 @@ bool split_pixel(uvec2 entry) {
       const uint bucket = row + uint(bx - wx * columns);
       const uint last = grid_word(bucket + 1u);
       for (uint s = grid_word(bucket); s < last; ++s) {
-        const uint g = scene.site_begin + grid_word(site_list + s);
-        const dvec2 p = position(g);
+        const dvec2 p = list_position(site_list + s);
         precise dvec2 lattice = dvec2(ij) * pixel_size;
         precise dvec2 o = ((p - lattice) - half_pixel) + dvec2(wx, wy) * domain_size;
         precise double d2 = o.x * o.x + o.y * o.y;
@@ -328,13 +338,20 @@ bool split_pixel(uvec2 entry) {
         }
         precise double distance = sqrt(o.x * o.x + o.y * o.y);
         beyond = beyond || distance + diagonal > reach_limit;
-        keep_candidate(kept, g, uint(wx + 32768) | (uint(wy + 32768) << 16));
+        keep_candidate(kept, site_list + s, uint(wx + 32768) | (uint(wy + 32768) << 16));
         ++kept;
       }
     }
   }
   // The bounds the host reference applies too (scene.max_pieces is this kernel's slot count).
   if (kept > scene.max_pieces || kept > uint(BLUETILE_LANE_PIECES) || beyond) return false;
+  kept_site0 = scene.site_begin + grid_word(kept_site0);
+  kept_site1 = scene.site_begin + grid_word(kept_site1);
+  kept_site2 = scene.site_begin + grid_word(kept_site2);
+#if BLUETILE_LANE_PIECES == 5
+  kept_site3 = scene.site_begin + grid_word(kept_site3);
+  kept_site4 = scene.site_begin + grid_word(kept_site4);
+#endif
 
   const double scale_area = scene.scale_area, scale_first = scene.scale_first, scale_second = scene.scale_second;
   has0 = has1 = has2 = has3 = has4 = false;

@@ -67,7 +67,11 @@
 // (docs/BENCHMARKS.md, "The lane kernel, texels for the set-up").
 #define BLUETILE_BINDING_SCENE_TEXELS 13
 #define BLUETILE_BINDING_SITE_TEXELS 14
-#define BLUETILE_BINDING_COUNT 15
+// The positions again in the order of each scene's grid site list (one 16-byte texel per grid
+// word; the bucket starts' texels unused): the lane split's walks read a site's position by its
+// list entry, without first fetching its index (split_lane_f64.comp).
+#define BLUETILE_BINDING_LIST_POSITION_TEXELS 15
+#define BLUETILE_BINDING_COUNT 16
 // 16-byte texels per SceneInfo and per SiteInfo.
 #define BLUETILE_SCENE_TEXELS 11
 #define BLUETILE_SITE_TEXELS 2

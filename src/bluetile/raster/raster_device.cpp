@@ -44,7 +44,8 @@ constexpr double kMaxPassSamples = 256.0 * 1024 * 1024;
 constexpr std::uint32_t kTimestamps = 5;
 // The bindings read as uniform texel buffers (by split_lane_f64.comp): views over the storage buffers.
 constexpr std::uint32_t texel_bindings[] = {BLUETILE_BINDING_POSITION_TEXELS, BLUETILE_BINDING_GRID_TEXELS,
-                                            BLUETILE_BINDING_SCENE_TEXELS, BLUETILE_BINDING_SITE_TEXELS};
+                                            BLUETILE_BINDING_SCENE_TEXELS, BLUETILE_BINDING_SITE_TEXELS,
+                                            BLUETILE_BINDING_LIST_POSITION_TEXELS};
 
 }  // namespace
 
@@ -59,9 +60,9 @@ struct RasterDevice::Impl {
   VkRenderPass render_pass = VK_NULL_HANDLE;
   VkPipeline cone_pipeline = VK_NULL_HANDLE, classify_pipeline = VK_NULL_HANDLE, split_pipeline = VK_NULL_HANDLE;
   VkPipeline beyond_texels_pipeline = VK_NULL_HANDLE;  // split_for
-  // split_lane_f64.comp (positions and grid words as texels, at most BLUETILE_MAX_PIECES
-  // candidates a pixel; split_lane5_f64.comp with BLUETILE_MAX_PIECES_GPU), else split_f64.comp
-  // or, without shaderFloat64, split_f32.comp.
+  // split_lane_f64.comp (positions, positions in list order, grid words and records as texels,
+  // at most BLUETILE_MAX_PIECES candidates a pixel; split_lane5_f64.comp with
+  // BLUETILE_MAX_PIECES_GPU), else split_f64.comp or, without shaderFloat64, split_f32.comp.
   bool lane_split = false;
   std::uint32_t lane_pieces = 0;  // the lane split's candidate slots
   // ConeDraw::points: the point pipeline (cone_pipeline is then the triangles it falls back to).
@@ -73,11 +74,11 @@ struct RasterDevice::Impl {
   VkQueryPool timestamps = VK_NULL_HANDLE;  // per-stage device times (where the device has them)
   gpu::Image id_image, depth_image;
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
-  HostBuffer instances, scenes, sites, positions, masks, grid, sums, counters, overflow;
+  HostBuffer instances, scenes, sites, positions, masks, grid, list_positions, sums, counters, overflow;
   gpu::Buffer boundary;
   gpu::Buffer id_readback;
   VkBufferView position_texels = VK_NULL_HANDLE, grid_texels = VK_NULL_HANDLE, scene_texels = VK_NULL_HANDLE,
-               site_texels = VK_NULL_HANDLE;
+               site_texels = VK_NULL_HANDLE, list_position_texels = VK_NULL_HANDLE;
   bool descriptors_dirty = true;
 
   // The last pass.
@@ -108,11 +109,12 @@ struct RasterDevice::Impl {
     if (!gpu) return;
     VkDevice d = gpu->device();
     vkDeviceWaitIdle(d);
-    for (HostBuffer* b : {&instances, &scenes, &sites, &positions, &masks, &grid, &sums, &counters, &overflow, &cone_indices}) {
+    for (HostBuffer* b : {&instances, &scenes, &sites, &positions, &masks, &grid, &list_positions, &sums, &counters, &overflow,
+                          &cone_indices}) {
       gpu->destroy(b->device);
       gpu->destroy(b->staging);
     }
-    for (VkBufferView v : {position_texels, grid_texels, scene_texels, site_texels})
+    for (VkBufferView v : {position_texels, grid_texels, scene_texels, site_texels, list_position_texels})
       if (v) vkDestroyBufferView(d, v, nullptr);
     gpu->destroy(boundary);
     gpu->destroy(id_readback);
@@ -271,7 +273,7 @@ struct RasterDevice::Impl {
         instances.device.buffer, scenes.device.buffer, sites.device.buffer, positions.device.buffer,
         sums.device.buffer,      counters.device.buffer, boundary.buffer,   masks.device.buffer,
         grid.device.buffer,      overflow.device.buffer, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE,
-        VK_NULL_HANDLE,          VK_NULL_HANDLE};
+        VK_NULL_HANDLE,          VK_NULL_HANDLE,         VK_NULL_HANDLE};
     VkDescriptorBufferInfo infos[BLUETILE_BINDING_COUNT];
     VkWriteDescriptorSet writes[BLUETILE_BINDING_COUNT];
     for (std::uint32_t b = 0; b < BLUETILE_BINDING_COUNT; ++b) {
@@ -291,7 +293,7 @@ struct RasterDevice::Impl {
     // Texel views over as much of each buffer as the device's texel limit allows (a pass beyond
     // it splits with split_f64.comp: split_for).
     VkDevice d = gpu->device();
-    for (VkBufferView* v : {&position_texels, &grid_texels, &scene_texels, &site_texels})
+    for (VkBufferView* v : {&position_texels, &grid_texels, &scene_texels, &site_texels, &list_position_texels})
       if (*v) vkDestroyBufferView(d, *v, nullptr);
     auto view = [&](const gpu::Buffer& b, VkFormat format, std::size_t texel_bytes) {
       VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
@@ -306,6 +308,7 @@ struct RasterDevice::Impl {
     grid_texels = view(grid.device, VK_FORMAT_R32_UINT, 4);
     scene_texels = view(scenes.device, VK_FORMAT_R32G32B32A32_UINT, 16);
     site_texels = view(sites.device, VK_FORMAT_R32G32B32A32_UINT, 16);
+    list_position_texels = view(list_positions.device, VK_FORMAT_R32G32B32A32_UINT, 16);
     writes[BLUETILE_BINDING_POSITION_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     writes[BLUETILE_BINDING_POSITION_TEXELS].pTexelBufferView = &position_texels;
     writes[BLUETILE_BINDING_GRID_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
@@ -314,6 +317,8 @@ struct RasterDevice::Impl {
     writes[BLUETILE_BINDING_SCENE_TEXELS].pTexelBufferView = &scene_texels;
     writes[BLUETILE_BINDING_SITE_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     writes[BLUETILE_BINDING_SITE_TEXELS].pTexelBufferView = &site_texels;
+    writes[BLUETILE_BINDING_LIST_POSITION_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    writes[BLUETILE_BINDING_LIST_POSITION_TEXELS].pTexelBufferView = &list_position_texels;
     vkUpdateDescriptorSets(gpu->device(), BLUETILE_BINDING_COUNT, writes, 0, nullptr);
     descriptors_dirty = false;
   }
@@ -401,11 +406,18 @@ struct RasterDevice::Impl {
     const std::size_t buckets = site_grid.bucket_count();
     std::uint32_t* starts = g;
     std::uint32_t* indices = g + buckets + 1;
+    auto* list_position_data = static_cast<gpu::uvec2*>(list_positions.host()) + 2 * (at.grid_begin + buckets + 1);
     std::uint32_t filled = 0;
     for (std::size_t b = 0; b < buckets; ++b) {
       starts[b] = filled;
-      for (std::uint32_t s : site_grid.sites_in_bucket(b))
-        if (!job.coincident[s]) indices[filled++] = s;
+      for (std::uint32_t s : site_grid.sites_in_bucket(b)) {
+        if (job.coincident[s]) continue;
+        if (lane_split) {
+          list_position_data[2 * filled] = position_data[2 * s];
+          list_position_data[2 * filled + 1] = position_data[2 * s + 1];
+        }
+        indices[filled++] = s;
+      }
     }
     starts[buckets] = filled;
   }
@@ -460,6 +472,7 @@ struct RasterDevice::Impl {
     reserve(positions, site_total * 16, texels);
     reserve(masks, mask_words * 4, storage);
     reserve(grid, grid_words * 4, texels);
+    reserve(list_positions, lane_split ? grid_words * 16 : 0, texels);
     reserve(sums, site_total * sizeof(gpu::SiteSums), storage);
     reserve(counters, (BLUETILE_COUNTER_UNCOVERED + group.size()) * 4, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     reserve(overflow, pixel_total * sizeof(gpu::uvec2), storage);
@@ -515,6 +528,7 @@ struct RasterDevice::Impl {
     upload(positions, site_total * 16);
     upload(masks, mask_words * 4);
     upload(grid, grid_words * 4);
+    if (lane_split) upload(list_positions, grid_words * 16);
     vkCmdFillBuffer(cb, sums.device.buffer, 0, std::max<std::size_t>(site_total * sizeof(gpu::SiteSums), 4), 0u);
     vkCmdFillBuffer(cb, counters.device.buffer, 0, (BLUETILE_COUNTER_UNCOVERED + group.size()) * 4, 0u);
     const std::uint32_t dispatch_yz[2] = {1u, 1u};
