@@ -269,17 +269,19 @@ bool split_pixel(uvec2 entry) {
   if (hi.x - lo.x >= BLUETILE_MAX_WINDOW || hi.y - lo.y >= BLUETILE_MAX_WINDOW) return false;
   const int columns = scene.grid_size.x, rows = scene.grid_size.y;
   const uint site_list = scene.grid_offset + uint(columns * rows) + 1u;
+  // The window's first bucket (column cx0, row cy0) and its periodic image (wx0, wy0); the walks
+  // step both along, without a division per bucket.
+  const int wx0 = floor_division(lo.x, columns), wy0 = floor_division(lo.y, rows);
+  const int cx0 = lo.x - wx0 * columns, cy0 = lo.y - wy0 * rows;
 
   // First walk: the candidates within reach are counted, the nearest (the first of equals) kept.
   uint count = 0u, nearest_index = 0u, nearest_entry = site_list;
   ivec2 nearest_image = ivec2(0);
   double nearest2 = 1e30;
-  for (int by = lo.y; by <= hi.y; ++by) {
-    const int wy = floor_division(by, rows);
-    const uint row = scene.grid_offset + uint((by - wy * rows) * columns);
-    for (int bx = lo.x; bx <= hi.x; ++bx) {
-      const int wx = floor_division(bx, columns);
-      const uint bucket = row + uint(bx - wx * columns);
+  for (int by = lo.y, wy = wy0, cy = cy0; by <= hi.y; ++by, cy = cy + 1 == rows ? 0 : cy + 1, wy += cy == 0 ? 1 : 0) {
+    const uint row = scene.grid_offset + uint(cy * columns);
+    for (int bx = lo.x, wx = wx0, cx = cx0; bx <= hi.x; ++bx, cx = cx + 1 == columns ? 0 : cx + 1, wx += cx == 0 ? 1 : 0) {
+      const uint bucket = row + uint(cx);
       const uint last = grid_word(bucket + 1u);
       for (uint s = grid_word(bucket); s < last; ++s) {
         precise dvec2 lattice = dvec2(ij) * pixel_size;
@@ -309,12 +311,10 @@ bool split_pixel(uvec2 entry) {
   bool beyond = false;
   // The walk keeps grid words (list entries); their site indices are fetched once after it.
   kept_site0 = kept_site1 = kept_site2 = kept_site3 = kept_site4 = site_list;
-  for (int by = lo.y; by <= hi.y; ++by) {
-    const int wy = floor_division(by, rows);
-    const uint row = scene.grid_offset + uint((by - wy * rows) * columns);
-    for (int bx = lo.x; bx <= hi.x; ++bx) {
-      const int wx = floor_division(bx, columns);
-      const uint bucket = row + uint(bx - wx * columns);
+  for (int by = lo.y, wy = wy0, cy = cy0; by <= hi.y; ++by, cy = cy + 1 == rows ? 0 : cy + 1, wy += cy == 0 ? 1 : 0) {
+    const uint row = scene.grid_offset + uint(cy * columns);
+    for (int bx = lo.x, wx = wx0, cx = cx0; bx <= hi.x; ++bx, cx = cx + 1 == columns ? 0 : cx + 1, wx += cx == 0 ? 1 : 0) {
+      const uint bucket = row + uint(cx);
       const uint last = grid_word(bucket + 1u);
       for (uint s = grid_word(bucket); s < last; ++s) {
         const dvec2 p = list_position(site_list + s);
