@@ -5,19 +5,22 @@
 // On lavapipe a load or store whose address differs between lanes (storage buffers, shared
 // memory) is a loop over the lanes, a texel fetch is one gather, and a private array indexed by a
 // variable is a ladder of selects (docs/BENCHMARKS.md, "Every stage, host and device pixel work
-// side by side"). So positions and grid words come as texels, and the candidates are never
-// stored: one walk over the grid window finds the nearest site and counts those within reach, a
-// second walk (the same arithmetic, so the same decisions) keeps the ones that survive pruning
-// in BLUETILE_LANE_PIECES register slots, and each piece is clipped in 3 + BLUETILE_LANE_PIECES
-// register slots (every slot index a constant once the clip steps are spelled out, writes
-// included). A pixel with more candidates, or a wider window, or a clip that would need more
-// than one new vertex (rounding on nearly coincident bisectors; the host's polygon has room),
-// goes to the host, which splits it as the host reference does (same bits); its pieces' sums are
-// held in registers until every piece is clipped, so such a pixel adds nothing here. Three slots
-// (BLUETILE_MAX_PIECES) on CPU devices; the build compiles this source again with
-// BLUETILE_LANE_PIECES=5 as split_lane5_f64.comp, for other devices. Measured against
+// side by side"). So positions, grid words, the scene record and the site flags come as texels,
+// and the candidates are never stored: one walk over the grid window finds the nearest site and
+// counts those within reach, a second walk (the same arithmetic, so the same decisions) keeps
+// the ones that survive pruning in BLUETILE_LANE_PIECES register slots (both walks read positions
+// by grid-list entry from a copy in list order, not by site index: no grid word before each
+// position, the kept entries' site indices fetched once after the walk), and each piece is clipped
+// in 3 + BLUETILE_LANE_PIECES register slots (every slot index a constant once the clip steps
+// are spelled out, writes included). A pixel with more candidates, or a wider window, or a clip
+// that would need more than one new vertex (rounding on nearly coincident bisectors; the host's
+// polygon has room), goes to the host, which splits it as the host reference does (same bits);
+// its pieces' sums are held in registers until every piece is clipped, so such a pixel adds
+// nothing here. Three slots (BLUETILE_MAX_PIECES) on CPU devices; the build compiles this source
+// again with BLUETILE_LANE_PIECES=5 as split_lane5_f64.comp, for other devices. Measured against
 // split_f64.comp: docs/BENCHMARKS.md, "The split with candidates in registers"; for three
-// candidates with constant writes, and five, "The lane kernel for three".
+// candidates with constant writes, and five, "The lane kernel for three"; the records as texels
+// and the positions in list order, "The lane kernel, texels for the set-up".
 #version 450
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_shader_atomic_int64 : require
@@ -27,6 +30,9 @@ layout(local_size_x = BLUETILE_SPLIT_GROUP) in;
 layout(binding = BLUETILE_BINDING_ID_IMAGE, r32ui) uniform readonly uimage2D id_image;
 layout(binding = BLUETILE_BINDING_POSITION_TEXELS) uniform usamplerBuffer position_texels;
 layout(binding = BLUETILE_BINDING_GRID_TEXELS) uniform usamplerBuffer grid_texels;
+layout(binding = BLUETILE_BINDING_SCENE_TEXELS) uniform usamplerBuffer scene_texels;
+layout(binding = BLUETILE_BINDING_SITE_TEXELS) uniform usamplerBuffer site_texels;
+layout(binding = BLUETILE_BINDING_LIST_POSITION_TEXELS) uniform usamplerBuffer list_position_texels;
 
 #ifndef BLUETILE_LANE_PIECES
 #define BLUETILE_LANE_PIECES BLUETILE_MAX_PIECES
@@ -40,12 +46,47 @@ layout(binding = BLUETILE_BINDING_GRID_TEXELS) uniform usamplerBuffer grid_texel
 dvec2 pixel_size, domain_size;
 
 double unpack_real(uvec2 bits) { return packDouble2x32(bits); }
-dvec2 unpack_real2(uvec2 bits[2]) { return dvec2(unpack_real(bits[0]), unpack_real(bits[1])); }
 dvec2 position(uint g) {
   uvec4 p = texelFetch(position_texels, int(g));
   return dvec2(unpack_real(p.xy), unpack_real(p.zw));
 }
 uint grid_word(uint k) { return texelFetch(grid_texels, int(k)).x; }
+// The position of the site at grid word w of a site list (the same bits as position()).
+dvec2 list_position(uint w) {
+  uvec4 p = texelFetch(list_position_texels, int(w));
+  return dvec2(unpack_real(p.xy), unpack_real(p.zw));
+}
+// The fields of SceneInfo this kernel reads, from its 16-byte texels (offsets asserted in
+// raster_layout.h): a storage-buffer load of the record is a loop over the lanes per field.
+struct SceneFields {
+  ivec2 origin, size, grid_size;
+  uint site_begin, grid_offset, max_pieces, guard_test;
+  dvec2 pixel_size, domain_size, bucket_size;
+  double reach_limit, scale_area, scale_first, scale_second;
+};
+SceneFields scene_fields(uint k) {
+  const int at = int(k) * BLUETILE_SCENE_TEXELS;
+  const uvec4 t0 = texelFetch(scene_texels, at), t2 = texelFetch(scene_texels, at + 2), t3 = texelFetch(scene_texels, at + 3),
+              t4 = texelFetch(scene_texels, at + 4), t5 = texelFetch(scene_texels, at + 5), t6 = texelFetch(scene_texels, at + 6),
+              t7 = texelFetch(scene_texels, at + 7), t8 = texelFetch(scene_texels, at + 8), t9 = texelFetch(scene_texels, at + 9);
+  SceneFields f;
+  f.origin = ivec2(t0.xy);
+  f.size = ivec2(t0.zw);
+  f.site_begin = t2.y;
+  f.grid_size = ivec2(t3.xy);
+  f.grid_offset = t3.z;
+  f.max_pieces = t3.w;
+  f.guard_test = t4.w;
+  f.pixel_size = dvec2(unpack_real(t5.xy), unpack_real(t5.zw));
+  f.domain_size = dvec2(unpack_real(t6.xy), unpack_real(t6.zw));
+  f.bucket_size = dvec2(unpack_real(t7.xy), unpack_real(t7.zw));
+  f.reach_limit = unpack_real(t8.xy);
+  f.scale_area = unpack_real(t8.zw);
+  f.scale_first = unpack_real(t9.xy);
+  f.scale_second = unpack_real(t9.zw);
+  return f;
+}
+uint site_flags(uint g) { return texelFetch(site_texels, int(g) * BLUETILE_SITE_TEXELS + 1).y; }
 // Site g relative to sample (i, j), domain units (as split_body.glsl).
 dvec2 site_from_sample(uint g, ivec2 ij) {
   precise dvec2 lattice = dvec2(ij) * pixel_size;
@@ -198,11 +239,11 @@ void hold_piece(uint at, i64vec4 v) {
 
 // Splits pixel `entry`; false where it goes to the host.
 bool split_pixel(uvec2 entry) {
-  const SceneInfo scene = scenes[entry.x];
-  pixel_size = unpack_real2(scene.pixel_size64);
-  domain_size = unpack_real2(scene.domain_size64);
-  const dvec2 bucket_size = unpack_real2(scene.bucket_size64);
-  const double reach_limit = unpack_real(scene.reach_limit64);
+  const SceneFields scene = scene_fields(entry.x);
+  pixel_size = scene.pixel_size;
+  domain_size = scene.domain_size;
+  const dvec2 bucket_size = scene.bucket_size;
+  const double reach_limit = scene.reach_limit;
   const int j = floor_division(int(entry.y), scene.size.x), i = int(entry.y) - j * scene.size.x;
   const ivec2 ij = ivec2(i, j);
   const dvec2 half_pixel = 0.5 * pixel_size;
@@ -228,27 +269,29 @@ bool split_pixel(uvec2 entry) {
   if (hi.x - lo.x >= BLUETILE_MAX_WINDOW || hi.y - lo.y >= BLUETILE_MAX_WINDOW) return false;
   const int columns = scene.grid_size.x, rows = scene.grid_size.y;
   const uint site_list = scene.grid_offset + uint(columns * rows) + 1u;
+  // The window's first bucket (column cx0, row cy0) and its periodic image (wx0, wy0); the walks
+  // step both along, without a division per bucket.
+  const int wx0 = floor_division(lo.x, columns), wy0 = floor_division(lo.y, rows);
+  const int cx0 = lo.x - wx0 * columns, cy0 = lo.y - wy0 * rows;
 
   // First walk: the candidates within reach are counted, the nearest (the first of equals) kept.
-  uint count = 0u, nearest_index = 0u, nearest_site = 0u;
+  uint count = 0u, nearest_index = 0u, nearest_entry = site_list;
   ivec2 nearest_image = ivec2(0);
   double nearest2 = 1e30;
-  for (int by = lo.y; by <= hi.y; ++by) {
-    const int wy = floor_division(by, rows);
-    const uint row = scene.grid_offset + uint((by - wy * rows) * columns);
-    for (int bx = lo.x; bx <= hi.x; ++bx) {
-      const int wx = floor_division(bx, columns);
-      const uint bucket = row + uint(bx - wx * columns);
+  for (int by = lo.y, wy = wy0, cy = cy0; by <= hi.y; ++by, cy = cy + 1 == rows ? 0 : cy + 1, wy += cy == 0 ? 1 : 0) {
+    const uint row = scene.grid_offset + uint(cy * columns);
+    for (int bx = lo.x, wx = wx0, cx = cx0; bx <= hi.x; ++bx, cx = cx + 1 == columns ? 0 : cx + 1, wx += cx == 0 ? 1 : 0) {
+      const uint bucket = row + uint(cx);
       const uint last = grid_word(bucket + 1u);
       for (uint s = grid_word(bucket); s < last; ++s) {
-        const uint g = scene.site_begin + grid_word(site_list + s);
-        precise dvec2 o = (site_from_sample(g, ij) - half_pixel) + dvec2(wx, wy) * domain_size;
+        precise dvec2 lattice = dvec2(ij) * pixel_size;
+        precise dvec2 o = ((list_position(site_list + s) - lattice) - half_pixel) + dvec2(wx, wy) * domain_size;
         precise double d2 = o.x * o.x + o.y * o.y;
         if (d2 > reach * reach) continue;
         if (count == 0u || d2 < nearest2) {
           nearest2 = d2;
           nearest_index = count;
-          nearest_site = g;
+          nearest_entry = site_list + s;
           nearest_image = ivec2(wx, wy);
         }
         ++count;
@@ -261,20 +304,20 @@ bool split_pixel(uvec2 entry) {
   // Second walk: only sites within (nearest + diagonal) of the centre can be nearest somewhere in
   // the pixel, and of those only the ones nearer than the nearest, s0, at some corner.
   precise const double reach0 = sqrt(nearest2) + diagonal;
+  const uint nearest_site = scene.site_begin + grid_word(nearest_entry);
   const dvec2 s0_position = position(nearest_site);
   precise const dvec2 corner0 = -(site_from_sample(nearest_site, ij) + dvec2(nearest_image) * domain_size);
   uint c = 0u, kept = 0u;
   bool beyond = false;
-  for (int by = lo.y; by <= hi.y; ++by) {
-    const int wy = floor_division(by, rows);
-    const uint row = scene.grid_offset + uint((by - wy * rows) * columns);
-    for (int bx = lo.x; bx <= hi.x; ++bx) {
-      const int wx = floor_division(bx, columns);
-      const uint bucket = row + uint(bx - wx * columns);
+  // The walk keeps grid words (list entries); their site indices are fetched once after it.
+  kept_site0 = kept_site1 = kept_site2 = kept_site3 = kept_site4 = site_list;
+  for (int by = lo.y, wy = wy0, cy = cy0; by <= hi.y; ++by, cy = cy + 1 == rows ? 0 : cy + 1, wy += cy == 0 ? 1 : 0) {
+    const uint row = scene.grid_offset + uint(cy * columns);
+    for (int bx = lo.x, wx = wx0, cx = cx0; bx <= hi.x; ++bx, cx = cx + 1 == columns ? 0 : cx + 1, wx += cx == 0 ? 1 : 0) {
+      const uint bucket = row + uint(cx);
       const uint last = grid_word(bucket + 1u);
       for (uint s = grid_word(bucket); s < last; ++s) {
-        const uint g = scene.site_begin + grid_word(site_list + s);
-        const dvec2 p = position(g);
+        const dvec2 p = list_position(site_list + s);
         precise dvec2 lattice = dvec2(ij) * pixel_size;
         precise dvec2 o = ((p - lattice) - half_pixel) + dvec2(wx, wy) * domain_size;
         precise double d2 = o.x * o.x + o.y * o.y;
@@ -295,22 +338,28 @@ bool split_pixel(uvec2 entry) {
         }
         precise double distance = sqrt(o.x * o.x + o.y * o.y);
         beyond = beyond || distance + diagonal > reach_limit;
-        keep_candidate(kept, g, uint(wx + 32768) | (uint(wy + 32768) << 16));
+        keep_candidate(kept, site_list + s, uint(wx + 32768) | (uint(wy + 32768) << 16));
         ++kept;
       }
     }
   }
   // The bounds the host reference applies too (scene.max_pieces is this kernel's slot count).
   if (kept > scene.max_pieces || kept > uint(BLUETILE_LANE_PIECES) || beyond) return false;
+  kept_site0 = scene.site_begin + grid_word(kept_site0);
+  kept_site1 = scene.site_begin + grid_word(kept_site1);
+  kept_site2 = scene.site_begin + grid_word(kept_site2);
+#if BLUETILE_LANE_PIECES == 5
+  kept_site3 = scene.site_begin + grid_word(kept_site3);
+  kept_site4 = scene.site_begin + grid_word(kept_site4);
+#endif
 
-  const double scale_area = unpack_real(scene.scale64[0]), scale_first = unpack_real(scene.scale64[1]),
-               scale_second = unpack_real(scene.scale64[2]);
+  const double scale_area = scene.scale_area, scale_first = scene.scale_first, scale_second = scene.scale_second;
   has0 = has1 = has2 = has3 = has4 = false;
   clip_lost = false;
   const bool force_here = scene.guard_test != 0u && (entry.y & scene.guard_test) == scene.guard_test;
   for (uint a = 0u; a < kept; ++a) {
     const uint owner = kept_site(a);
-    if ((sites[owner].flags & BLUETILE_SITE_WANTED) == 0u) continue;
+    if ((site_flags(owner) & BLUETILE_SITE_WANTED) == 0u) continue;
     const ivec2 owner_image = kept_image(a);
     const dvec2 owner_position = position(owner);
     // The pixel square relative to this image of the owner.

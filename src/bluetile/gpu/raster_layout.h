@@ -62,7 +62,19 @@
 // lavapipe fetches texels for all lanes without the per-lane loop of a storage-buffer load.
 #define BLUETILE_BINDING_POSITION_TEXELS 11
 #define BLUETILE_BINDING_GRID_TEXELS 12
-#define BLUETILE_BINDING_COUNT 13
+// The scene records and the site records as uniform texel buffers (read by split_lane_f64.comp):
+// its set-up read each field of the scene record lane by lane, 15% of the kernel's time
+// (docs/BENCHMARKS.md, "The lane kernel, texels for the set-up").
+#define BLUETILE_BINDING_SCENE_TEXELS 13
+#define BLUETILE_BINDING_SITE_TEXELS 14
+// The positions again in the order of each scene's grid site list (one 16-byte texel per grid
+// word; the bucket starts' texels unused): the lane split's walks read a site's position by its
+// list entry, without first fetching its index (split_lane_f64.comp).
+#define BLUETILE_BINDING_LIST_POSITION_TEXELS 15
+#define BLUETILE_BINDING_COUNT 16
+// 16-byte texels per SceneInfo and per SiteInfo.
+#define BLUETILE_SCENE_TEXELS 11
+#define BLUETILE_SITE_TEXELS 2
 
 // Fixed slots of the counters buffer; per-scene uncovered-sample counts follow.
 #define BLUETILE_COUNTER_DISPATCH 0   // 3 words: the split's indirect dispatch (x, y, z)
@@ -154,6 +166,13 @@ static_assert(sizeof(ConeInstance) == 16);
 static_assert(sizeof(SceneInfo) == 176);
 static_assert(offsetof(SceneInfo, pixel_size64) == 80);
 static_assert(offsetof(SceneInfo, scale64) == 136);
+// split_lane_f64.comp reads the records as 16-byte texels at these offsets.
+static_assert(sizeof(SceneInfo) == 16 * BLUETILE_SCENE_TEXELS && sizeof(SiteInfo) == 16 * BLUETILE_SITE_TEXELS);
+static_assert(offsetof(SceneInfo, origin) == 0 && offsetof(SceneInfo, size) == 8 && offsetof(SceneInfo, site_begin) == 36);
+static_assert(offsetof(SceneInfo, grid_size) == 48 && offsetof(SceneInfo, grid_offset) == 56 && offsetof(SceneInfo, max_pieces) == 60);
+static_assert(offsetof(SceneInfo, guard_test) == 76 && offsetof(SceneInfo, domain_size64) == 96);
+static_assert(offsetof(SceneInfo, bucket_size64) == 112 && offsetof(SceneInfo, reach_limit64) == 128);
+static_assert(offsetof(SiteInfo, flags) == 20);
 static_assert(sizeof(SiteInfo) == 32);
 static_assert(sizeof(SiteSums) == 80);
 }  // namespace bluetile::gpu

@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <iterator>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
@@ -41,6 +42,10 @@ constexpr double kBytesPerSample = 32.0;
 constexpr double kMaxPassSamples = 256.0 * 1024 * 1024;
 // Device timestamps of a pass: before the cones, after the cones, classify, split and readback.
 constexpr std::uint32_t kTimestamps = 5;
+// The bindings read as uniform texel buffers (by split_lane_f64.comp): views over the storage buffers.
+constexpr std::uint32_t texel_bindings[] = {BLUETILE_BINDING_POSITION_TEXELS, BLUETILE_BINDING_GRID_TEXELS,
+                                            BLUETILE_BINDING_SCENE_TEXELS, BLUETILE_BINDING_SITE_TEXELS,
+                                            BLUETILE_BINDING_LIST_POSITION_TEXELS};
 
 }  // namespace
 
@@ -55,9 +60,9 @@ struct RasterDevice::Impl {
   VkRenderPass render_pass = VK_NULL_HANDLE;
   VkPipeline cone_pipeline = VK_NULL_HANDLE, classify_pipeline = VK_NULL_HANDLE, split_pipeline = VK_NULL_HANDLE;
   VkPipeline beyond_texels_pipeline = VK_NULL_HANDLE;  // split_for
-  // split_lane_f64.comp (positions and grid words as texels, at most BLUETILE_MAX_PIECES
-  // candidates a pixel; split_lane5_f64.comp with BLUETILE_MAX_PIECES_GPU), else split_f64.comp
-  // or, without shaderFloat64, split_f32.comp.
+  // split_lane_f64.comp (positions, positions in list order, grid words and records as texels,
+  // at most BLUETILE_MAX_PIECES candidates a pixel; split_lane5_f64.comp with
+  // BLUETILE_MAX_PIECES_GPU), else split_f64.comp or, without shaderFloat64, split_f32.comp.
   bool lane_split = false;
   std::uint32_t lane_pieces = 0;  // the lane split's candidate slots
   // ConeDraw::points: the point pipeline (cone_pipeline is then the triangles it falls back to).
@@ -69,10 +74,11 @@ struct RasterDevice::Impl {
   VkQueryPool timestamps = VK_NULL_HANDLE;  // per-stage device times (where the device has them)
   gpu::Image id_image, depth_image;
   VkFramebuffer framebuffer = VK_NULL_HANDLE;
-  HostBuffer instances, scenes, sites, positions, masks, grid, sums, counters, overflow;
+  HostBuffer instances, scenes, sites, positions, masks, grid, list_positions, sums, counters, overflow;
   gpu::Buffer boundary;
   gpu::Buffer id_readback;
-  VkBufferView position_texels = VK_NULL_HANDLE, grid_texels = VK_NULL_HANDLE;
+  VkBufferView position_texels = VK_NULL_HANDLE, grid_texels = VK_NULL_HANDLE, scene_texels = VK_NULL_HANDLE,
+               site_texels = VK_NULL_HANDLE, list_position_texels = VK_NULL_HANDLE;
   bool descriptors_dirty = true;
 
   // The last pass.
@@ -103,11 +109,12 @@ struct RasterDevice::Impl {
     if (!gpu) return;
     VkDevice d = gpu->device();
     vkDeviceWaitIdle(d);
-    for (HostBuffer* b : {&instances, &scenes, &sites, &positions, &masks, &grid, &sums, &counters, &overflow, &cone_indices}) {
+    for (HostBuffer* b : {&instances, &scenes, &sites, &positions, &masks, &grid, &list_positions, &sums, &counters, &overflow,
+                          &cone_indices}) {
       gpu->destroy(b->device);
       gpu->destroy(b->staging);
     }
-    for (VkBufferView v : {position_texels, grid_texels})
+    for (VkBufferView v : {position_texels, grid_texels, scene_texels, site_texels, list_position_texels})
       if (v) vkDestroyBufferView(d, v, nullptr);
     gpu->destroy(boundary);
     gpu->destroy(id_readback);
@@ -130,13 +137,14 @@ struct RasterDevice::Impl {
     VkDescriptorType types[BLUETILE_BINDING_COUNT];
     std::fill(std::begin(types), std::end(types), VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
     types[BLUETILE_BINDING_ID_IMAGE] = VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    types[BLUETILE_BINDING_POSITION_TEXELS] = types[BLUETILE_BINDING_GRID_TEXELS] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    for (std::uint32_t b : texel_bindings) types[b] = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     set_layout = gpu::create_set_layout(d, types);
     layout = gpu::create_pipeline_layout(d, set_layout, VK_SHADER_STAGE_VERTEX_BIT, 16);
 
-    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, BLUETILE_BINDING_COUNT - 3},
+    constexpr std::uint32_t texel_count = std::size(texel_bindings);
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, BLUETILE_BINDING_COUNT - 1 - texel_count},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_IMAGE, 1},
-                                     {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, 2}};
+                                     {VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER, texel_count}};
     VkDescriptorPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pool_info.maxSets = 1;
     pool_info.poolSizeCount = 3;
@@ -197,9 +205,11 @@ struct RasterDevice::Impl {
 
   // The split of a pass whose sites or grid words reach beyond the texel views
   // (maxTexelBufferElements: 2^27 on lavapipe, 2^16 on some GPUs) is split_f64.comp.
-  VkPipeline split_for(std::size_t site_total, std::size_t grid_words) {
+  VkPipeline split_for(std::size_t scene_count, std::size_t site_total, std::size_t grid_words) {
     const std::size_t texels = gpu->properties().limits.maxTexelBufferElements;
-    if (!lane_split || (site_total <= texels && grid_words <= texels)) return split_pipeline;
+    if (!lane_split || (scene_count * BLUETILE_SCENE_TEXELS <= texels && site_total * BLUETILE_SITE_TEXELS <= texels &&
+                        grid_words <= texels))
+      return split_pipeline;
     if (!beyond_texels_pipeline) beyond_texels_pipeline = gpu::create_compute_pipeline(*gpu, layout, "split_f64.comp");
     return beyond_texels_pipeline;
   }
@@ -262,7 +272,8 @@ struct RasterDevice::Impl {
     const VkBuffer buffers[BLUETILE_BINDING_COUNT] = {
         instances.device.buffer, scenes.device.buffer, sites.device.buffer, positions.device.buffer,
         sums.device.buffer,      counters.device.buffer, boundary.buffer,   masks.device.buffer,
-        grid.device.buffer,      overflow.device.buffer, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};
+        grid.device.buffer,      overflow.device.buffer, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE,
+        VK_NULL_HANDLE,          VK_NULL_HANDLE,         VK_NULL_HANDLE};
     VkDescriptorBufferInfo infos[BLUETILE_BINDING_COUNT];
     VkWriteDescriptorSet writes[BLUETILE_BINDING_COUNT];
     for (std::uint32_t b = 0; b < BLUETILE_BINDING_COUNT; ++b) {
@@ -270,7 +281,8 @@ struct RasterDevice::Impl {
       writes[b].dstSet = set;
       writes[b].dstBinding = b;
       writes[b].descriptorCount = 1;
-      if (b == BLUETILE_BINDING_ID_IMAGE || b == BLUETILE_BINDING_POSITION_TEXELS || b == BLUETILE_BINDING_GRID_TEXELS) continue;
+      if (b == BLUETILE_BINDING_ID_IMAGE || std::find(std::begin(texel_bindings), std::end(texel_bindings), b) != std::end(texel_bindings))
+        continue;
       infos[b] = {buffers[b], 0, VK_WHOLE_SIZE};
       writes[b].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
       writes[b].pBufferInfo = &infos[b];
@@ -281,7 +293,7 @@ struct RasterDevice::Impl {
     // Texel views over as much of each buffer as the device's texel limit allows (a pass beyond
     // it splits with split_f64.comp: split_for).
     VkDevice d = gpu->device();
-    for (VkBufferView* v : {&position_texels, &grid_texels})
+    for (VkBufferView* v : {&position_texels, &grid_texels, &scene_texels, &site_texels, &list_position_texels})
       if (*v) vkDestroyBufferView(d, *v, nullptr);
     auto view = [&](const gpu::Buffer& b, VkFormat format, std::size_t texel_bytes) {
       VkBufferViewCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
@@ -294,10 +306,19 @@ struct RasterDevice::Impl {
     };
     position_texels = view(positions.device, VK_FORMAT_R32G32B32A32_UINT, 16);
     grid_texels = view(grid.device, VK_FORMAT_R32_UINT, 4);
+    scene_texels = view(scenes.device, VK_FORMAT_R32G32B32A32_UINT, 16);
+    site_texels = view(sites.device, VK_FORMAT_R32G32B32A32_UINT, 16);
+    list_position_texels = view(list_positions.device, VK_FORMAT_R32G32B32A32_UINT, 16);
     writes[BLUETILE_BINDING_POSITION_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     writes[BLUETILE_BINDING_POSITION_TEXELS].pTexelBufferView = &position_texels;
     writes[BLUETILE_BINDING_GRID_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     writes[BLUETILE_BINDING_GRID_TEXELS].pTexelBufferView = &grid_texels;
+    writes[BLUETILE_BINDING_SCENE_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    writes[BLUETILE_BINDING_SCENE_TEXELS].pTexelBufferView = &scene_texels;
+    writes[BLUETILE_BINDING_SITE_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    writes[BLUETILE_BINDING_SITE_TEXELS].pTexelBufferView = &site_texels;
+    writes[BLUETILE_BINDING_LIST_POSITION_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+    writes[BLUETILE_BINDING_LIST_POSITION_TEXELS].pTexelBufferView = &list_position_texels;
     vkUpdateDescriptorSets(gpu->device(), BLUETILE_BINDING_COUNT, writes, 0, nullptr);
     descriptors_dirty = false;
   }
@@ -385,11 +406,18 @@ struct RasterDevice::Impl {
     const std::size_t buckets = site_grid.bucket_count();
     std::uint32_t* starts = g;
     std::uint32_t* indices = g + buckets + 1;
+    auto* list_position_data = static_cast<gpu::uvec2*>(list_positions.host()) + 2 * (at.grid_begin + buckets + 1);
     std::uint32_t filled = 0;
     for (std::size_t b = 0; b < buckets; ++b) {
       starts[b] = filled;
-      for (std::uint32_t s : site_grid.sites_in_bucket(b))
-        if (!job.coincident[s]) indices[filled++] = s;
+      for (std::uint32_t s : site_grid.sites_in_bucket(b)) {
+        if (job.coincident[s]) continue;
+        if (lane_split) {
+          list_position_data[2 * filled] = position_data[2 * s];
+          list_position_data[2 * filled + 1] = position_data[2 * s + 1];
+        }
+        indices[filled++] = s;
+      }
     }
     starts[buckets] = filled;
   }
@@ -438,12 +466,13 @@ struct RasterDevice::Impl {
     reserve_atlas(width, height);
     const VkBufferUsageFlags storage = VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
     reserve(instances, instance_total * sizeof(gpu::ConeInstance), storage);
-    reserve(scenes, group.size() * sizeof(gpu::SceneInfo), storage);
-    reserve(sites, site_total * sizeof(gpu::SiteInfo), storage);
     const VkBufferUsageFlags texels = storage | VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT;
+    reserve(scenes, group.size() * sizeof(gpu::SceneInfo), texels);
+    reserve(sites, site_total * sizeof(gpu::SiteInfo), texels);
     reserve(positions, site_total * 16, texels);
     reserve(masks, mask_words * 4, storage);
     reserve(grid, grid_words * 4, texels);
+    reserve(list_positions, lane_split ? grid_words * 16 : 0, texels);
     reserve(sums, site_total * sizeof(gpu::SiteSums), storage);
     reserve(counters, (BLUETILE_COUNTER_UNCOVERED + group.size()) * 4, storage | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT);
     reserve(overflow, pixel_total * sizeof(gpu::uvec2), storage);
@@ -499,6 +528,7 @@ struct RasterDevice::Impl {
     upload(positions, site_total * 16);
     upload(masks, mask_words * 4);
     upload(grid, grid_words * 4);
+    if (lane_split) upload(list_positions, grid_words * 16);
     vkCmdFillBuffer(cb, sums.device.buffer, 0, std::max<std::size_t>(site_total * sizeof(gpu::SiteSums), 4), 0u);
     vkCmdFillBuffer(cb, counters.device.buffer, 0, (BLUETILE_COUNTER_UNCOVERED + group.size()) * 4, 0u);
     const std::uint32_t dispatch_yz[2] = {1u, 1u};
@@ -571,7 +601,7 @@ struct RasterDevice::Impl {
       vkCmdPipelineBarrier(cb, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT, 0, 1, &compute_to_compute, 0,
                            nullptr, 0, nullptr);
-      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, split_for(site_total, grid_words));
+      vkCmdBindPipeline(cb, VK_PIPELINE_BIND_POINT_COMPUTE, split_for(group.size(), site_total, grid_words));
       vkCmdDispatchIndirect(cb, counters.device.buffer, 4 * BLUETILE_COUNTER_DISPATCH);
     }
     stamp(3);
