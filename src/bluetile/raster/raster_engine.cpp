@@ -110,8 +110,8 @@ int default_resolution(std::size_t sites, Coverage coverage) {
 bool runs_pixel_work_on_device(PixelWork work, Coverage coverage, bool cpu_device) {
   if (work != PixelWork::automatic) return work == PixelWork::device;
   // On lavapipe the device path is within 1.2x of the host path for point coverage (classify.comp
-  // against the host's classification and ID readback) and 1.5-2.5x for area coverage (the split):
-  // docs/BENCHMARKS.md, "Point coverage and `auto`" and "The lane kernel for three".
+  // against the host's classification and ID readback) and 1.6-1.7x for area coverage (the split):
+  // docs/BENCHMARKS.md, "Point coverage and `auto`" and "The lane kernel, texels for the set-up".
   return !cpu_device || coverage == Coverage::point;
 }
 
