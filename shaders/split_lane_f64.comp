@@ -246,6 +246,8 @@ bool split_pixel(uvec2 entry) {
   const double reach_limit = scene.reach_limit;
   const int j = floor_division(int(entry.y), scene.size.x), i = int(entry.y) - j * scene.size.x;
   const ivec2 ij = ivec2(i, j);
+  // The sample's lattice point: the walks measure every site from it (as site_from_sample).
+  precise const dvec2 lattice = dvec2(ij) * pixel_size;
   const dvec2 half_pixel = 0.5 * pixel_size;
   precise const double diagonal = sqrt(pixel_size.x * pixel_size.x + pixel_size.y * pixel_size.y) * (1.0 + 1.0 / 65536.0);
 
@@ -284,7 +286,6 @@ bool split_pixel(uvec2 entry) {
       const uint bucket = row + uint(cx);
       const uint last = grid_word(bucket + 1u);
       for (uint s = grid_word(bucket); s < last; ++s) {
-        precise dvec2 lattice = dvec2(ij) * pixel_size;
         precise dvec2 o = ((list_position(site_list + s) - lattice) - half_pixel) + dvec2(wx, wy) * domain_size;
         precise double d2 = o.x * o.x + o.y * o.y;
         if (d2 > reach * reach) continue;
@@ -318,7 +319,6 @@ bool split_pixel(uvec2 entry) {
       const uint last = grid_word(bucket + 1u);
       for (uint s = grid_word(bucket); s < last; ++s) {
         const dvec2 p = list_position(site_list + s);
-        precise dvec2 lattice = dvec2(ij) * pixel_size;
         precise dvec2 o = ((p - lattice) - half_pixel) + dvec2(wx, wy) * domain_size;
         precise double d2 = o.x * o.x + o.y * o.y;
         if (d2 > reach * reach) continue;

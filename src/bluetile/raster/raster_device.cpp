@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <iterator>
+#include <utility>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
@@ -309,16 +310,14 @@ struct RasterDevice::Impl {
     scene_texels = view(scenes.device, VK_FORMAT_R32G32B32A32_UINT, 16);
     site_texels = view(sites.device, VK_FORMAT_R32G32B32A32_UINT, 16);
     list_position_texels = view(list_positions.device, VK_FORMAT_R32G32B32A32_UINT, 16);
-    writes[BLUETILE_BINDING_POSITION_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    writes[BLUETILE_BINDING_POSITION_TEXELS].pTexelBufferView = &position_texels;
-    writes[BLUETILE_BINDING_GRID_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    writes[BLUETILE_BINDING_GRID_TEXELS].pTexelBufferView = &grid_texels;
-    writes[BLUETILE_BINDING_SCENE_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    writes[BLUETILE_BINDING_SCENE_TEXELS].pTexelBufferView = &scene_texels;
-    writes[BLUETILE_BINDING_SITE_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    writes[BLUETILE_BINDING_SITE_TEXELS].pTexelBufferView = &site_texels;
-    writes[BLUETILE_BINDING_LIST_POSITION_TEXELS].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
-    writes[BLUETILE_BINDING_LIST_POSITION_TEXELS].pTexelBufferView = &list_position_texels;
+    const std::pair<std::uint32_t, const VkBufferView*> texel_views[] = {
+        {BLUETILE_BINDING_POSITION_TEXELS, &position_texels}, {BLUETILE_BINDING_GRID_TEXELS, &grid_texels},
+        {BLUETILE_BINDING_SCENE_TEXELS, &scene_texels},       {BLUETILE_BINDING_SITE_TEXELS, &site_texels},
+        {BLUETILE_BINDING_LIST_POSITION_TEXELS, &list_position_texels}};
+    for (const auto& [binding, texel_view] : texel_views) {
+      writes[binding].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+      writes[binding].pTexelBufferView = texel_view;
+    }
     vkUpdateDescriptorSets(gpu->device(), BLUETILE_BINDING_COUNT, writes, 0, nullptr);
     descriptors_dirty = false;
   }
