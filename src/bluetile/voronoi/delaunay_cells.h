@@ -41,8 +41,9 @@ class DelaunayCells {
   // One pass over every triangle at the vertices' current positions (on all threads): checks it,
   // tests its edges (each edge once, from the lower-numbered triangle) and computes its
   // circumcentre, all from the same offsets. The test results stand only when no triangle is
-  // invalid; the circumcentres only for triangles the flips after leave alone.
-  Sweep sweep(const PeriodicDelaunay& triangulation);
+  // invalid; the circumcentres only for triangles the flips after leave alone. `lanes`: four
+  // triangles at a time where the processor has AVX2 (delaunay_sweep.h; the same bits either way).
+  Sweep sweep(const PeriodicDelaunay& triangulation, bool lanes = true);
 
   // Circumcentres of the triangles in `triangles` again (after flips); adds those whose
   // circumcircle reaches the radius limit to `oversized`.

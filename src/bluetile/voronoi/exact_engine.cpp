@@ -190,7 +190,7 @@ void ExactEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> o
     if (i < kept_.size() && !suits) kept_[i].reset();
     if (!suits) continue;
     if (kept_.size() <= i) kept_.resize(i + 1);
-    if (!kept_[i]) kept_[i] = std::make_unique<KeptDelaunay>();
+    if (!kept_[i]) kept_[i] = std::make_unique<KeptDelaunay>(options_.simd);
     states[i] = kept_[i].get();
   }
   std::vector<KeptTopologyStats> scene_stats(scenes.size());

@@ -35,8 +35,12 @@ class DensityPrefix;
 // sites, an empty circle of a tenth of a period or more, cells on an exact cocircular tie). Off:
 // every cell is searched (the reference the tests compare with); ExactEngine() turns it off when
 // the environment sets BLUETILE_EXACT_KEEP_TOPOLOGY=0.
+//
+// simd: the triangulation's sweep four triangles at a time where the processor has AVX2 and the
+// environment does not set BLUETILE_SIMD=0; the same bits as one at a time (delaunay_sweep.h).
 struct ExactEngineOptions {
   bool keep_topology = true;
+  bool simd = true;
 };
 ExactEngineOptions default_exact_engine_options();
 

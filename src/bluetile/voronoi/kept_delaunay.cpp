@@ -259,7 +259,7 @@ bool KeptDelaunay::move_vertices(const Scene& scene) {
 }
 
 KeptDelaunay::Settled KeptDelaunay::settle(KeptTopologyStats& stats, std::vector<std::uint32_t>& folded) {
-  DelaunayCells::Sweep sweep = cells_.sweep(triangulation_);
+  DelaunayCells::Sweep sweep = cells_.sweep(triangulation_, lanes_);
   if (!sweep.invalid.empty()) {
     folded = std::move(sweep.invalid);
     return Settled::folded;

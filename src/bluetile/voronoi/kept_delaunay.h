@@ -47,6 +47,9 @@ class KeptDelaunay {
   // exact range).
   static bool suits(const Scene& scene);
 
+  // `lanes`: the sweep in SIMD lanes where the processor has them (DelaunayCells::sweep).
+  explicit KeptDelaunay(bool lanes = true) : lanes_(lanes) {}
+
   // How many measured cells have each status that SceneCells counts.
   struct StatusCounts {
     std::size_t coincident = 0, zero_density = 0;
@@ -91,6 +94,7 @@ class KeptDelaunay {
   bool rebuild(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,
                KeptTopologyStats& stats);
 
+  bool lanes_ = true;
   bool valid_ = false;
   bool fits_ = false;
   double scene_area_ = 0.0;
