@@ -81,6 +81,19 @@ inline double circumcentres(const Offsets& o, const Triangle& t, std::span<const
   return px * px + py * py;
 }
 
+// A cell without a density from walk's sums: measure_sums without a density, inline.
+inline void plain_cell(const Scene& scene, Point origin, double cross, double sx, double sy, double second,
+                       double radius_squared, Cell& cell) {
+  const double area = 0.5 * cross;
+  const Point centroid = cross > 0.0 ? Point{sx / (3.0 * cross), sy / (3.0 * cross)} : Point{0.0, 0.0};
+  cell.area = area;
+  cell.mass = area;
+  cell.radius = std::sqrt(radius_squared);
+  cell.second_moment = second / 12.0;
+  cell.status = CellStatus::ok;
+  cell.centroid = wrap_point(origin + centroid, scene.domain);
+}
+
 // Whether no corner uses a shifted copy (corner 0 is always at shift 0).
 inline bool unshifted(const Triangle& t) { return (t.shift_x[1] | t.shift_x[2] | t.shift_y[1] | t.shift_y[2]) == 0; }
 
@@ -239,6 +252,22 @@ bool DelaunayCells::measure(const PeriodicDelaunay& triangulation, std::uint32_t
   return walk<false, false>(triangulation, vertex, scene, origin, weighting, cell);
 }
 
+int DelaunayCells::measure_four(const PeriodicDelaunay& triangulation, const std::uint32_t* vertices, const Scene& scene,
+                                const Point* origins, const Weighting& weighting, Cell* const* cells, bool lanes) const {
+  int measured = 0;
+  if (lanes && !weighting.prefix && weighting.constant == 1.0 && triangulation.tie_edges() == 0 &&
+      detail::sweep_lanes_available()) {
+    detail::WalkSums s;
+    detail::walk_lanes(triangulation, centres_.data(), vertices, scene.second_moments, s);
+    for (int j = 0; j < 4; ++j)
+      plain_cell(scene, origins[j], s.cross[j], s.sx[j], s.sy[j], s.second[j], s.radius_squared[j], *cells[j]);
+    return 0xf;
+  }
+  for (int j = 0; j < 4; ++j)
+    measured |= static_cast<int>(measure(triangulation, vertices[j], scene, origins[j], weighting, *cells[j])) << j;
+  return measured;
+}
+
 template <bool kSecond, bool kPolygon>
 bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t vertex, const Scene& scene, Point origin,
                          const Weighting& weighting, Cell& cell) const {
@@ -287,18 +316,12 @@ bool DelaunayCells::walk(const PeriodicDelaunay& triangulation, std::uint32_t ve
     if (closed) break;
     px = qx, py = qy, pr = qr;
   }
-  const double area = 0.5 * cross;
-  const Point centroid = cross > 0.0 ? Point{sx / (3.0 * cross), sy / (3.0 * cross)} : Point{0.0, 0.0};
   if (!kPolygon && weighting.constant == 1.0) {
-    // measure_sums without a density, inline.
-    cell.area = area;
-    cell.mass = area;
-    cell.radius = std::sqrt(radius_squared);
-    cell.second_moment = second / 12.0;
-    cell.status = CellStatus::ok;
-    cell.centroid = wrap_point(origin + centroid, scene.domain);
+    plain_cell(scene, origin, cross, sx, sy, second, radius_squared, cell);
     return true;
   }
+  const double area = 0.5 * cross;
+  const Point centroid = cross > 0.0 ? Point{sx / (3.0 * cross), sy / (3.0 * cross)} : Point{0.0, 0.0};
   std::span<const Point> vertices;
   if constexpr (kPolygon) vertices = *polygon;
   cell = measure_sums(scene, origin, area, centroid, second / 12.0, radius_squared, vertices, weighting);

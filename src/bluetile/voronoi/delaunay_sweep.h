@@ -35,4 +35,14 @@ bool sweep_lanes_available();
 // the same bits and lists as sweep_triangle over them in order.
 void sweep_lanes(const SweepFrame& frame, std::size_t begin, std::size_t end, DelaunayCells::Sweep& found);
 
+// A cell walk's sums (DelaunayCells::walk) for four vertices at once, lane j for vertex j: the
+// shoelace sums over each cell's edges from its canonical corner, in walk's order and arithmetic
+// (the second moment's only with `second`, else 0), and the largest squared vertex distance.
+// Precondition: sweep_lanes_available(), no tie in the triangulation.
+struct WalkSums {
+  double cross[4], sx[4], sy[4], second[4], radius_squared[4];
+};
+void walk_lanes(const PeriodicDelaunay& triangulation, const Point* centres, const std::uint32_t* vertices, bool second,
+                WalkSums& sums);
+
 }  // namespace bluetile::detail

@@ -221,6 +221,54 @@ BLUETILE_AVX2 std::size_t sweep_quads(const SweepFrame& frame, std::size_t begin
   return ti;
 }
 
+// The index in the centres of a corner (a link: triangle, corner).
+inline std::uint32_t centre_of(std::uint32_t corner) {
+  return 3 * PeriodicDelaunay::triangle_of(corner) + static_cast<std::uint32_t>(PeriodicDelaunay::edge_of(corner));
+}
+
+template <bool kSecond>
+BLUETILE_AVX2 void walk_quad(const PeriodicDelaunay& triangulation, const Point* centres, const std::uint32_t* vertices,
+                             WalkSums& sums) {
+  std::uint32_t start[4], corner[4];
+  for (int j = 0; j < 4; ++j) corner[j] = start[j] = triangulation.corner_of(vertices[j]);
+  const Lanes first = gather(centres, centre_of(start[0]), centre_of(start[1]), centre_of(start[2]), centre_of(start[3]));
+  __m256d px = first.x, py = first.y, pr = add(mul(px, px), mul(py, py));
+  __m256d cross = _mm256_setzero_pd(), sx = cross, sy = cross, second = cross, radius_squared = cross;
+  // Lanes still walking (all bits set), and the same as bits.
+  __m256d active = _mm256_castsi256_pd(_mm256_set1_epi64x(-1));
+  int open = 0xf;
+  while (open) {
+    std::uint32_t next[4];
+    int closed = 0;
+    for (int j = 0; j < 4; ++j) {
+      // A lane that closed its cell reads its first centre again (its sums no longer change).
+      if (open >> j & 1) corner[j] = triangulation.next_around(corner[j]);
+      closed |= static_cast<int>(corner[j] == start[j]) << j;
+      next[j] = centre_of(corner[j]);
+    }
+    // The closing edge's q is the first vertex again, so walk's q and its square are the same
+    // bits as loaded and squared here.
+    const Lanes q = gather(centres, next[0], next[1], next[2], next[3]);
+    const __m256d qr = add(mul(q.x, q.x), mul(q.y, q.y));
+    const __m256d c = sub(mul(px, q.y), mul(q.x, py));
+    cross = pick(cross, add(cross, c), active);
+    sx = pick(sx, add(sx, mul(add(px, q.x), c)), active);
+    sy = pick(sy, add(sy, mul(add(py, q.y), c)), active);
+    if constexpr (kSecond) second = pick(second, add(second, mul(add(add(pr, add(mul(px, q.x), mul(py, q.y))), qr), c)), active);
+    radius_squared = pick(radius_squared, pr, _mm256_and_pd(active, less(radius_squared, pr)));
+    px = q.x, py = q.y, pr = qr;
+    open &= ~closed;
+    active = _mm256_and_pd(active, _mm256_castsi256_pd(_mm256_cmpeq_epi64(
+                                       _mm256_and_si256(_mm256_set1_epi64x(open), _mm256_setr_epi64x(1, 2, 4, 8)),
+                                       _mm256_setr_epi64x(1, 2, 4, 8))));
+  }
+  _mm256_storeu_pd(sums.cross, cross);
+  _mm256_storeu_pd(sums.sx, sx);
+  _mm256_storeu_pd(sums.sy, sy);
+  _mm256_storeu_pd(sums.second, second);
+  _mm256_storeu_pd(sums.radius_squared, radius_squared);
+}
+
 }  // namespace
 
 bool sweep_lanes_available() {
@@ -236,6 +284,15 @@ void sweep_lanes(const SweepFrame& frame, std::size_t begin, std::size_t end, De
     sweep_triangle(frame, static_cast<std::uint32_t>(ti), found);
 }
 
+void walk_lanes(const PeriodicDelaunay& triangulation, const Point* centres, const std::uint32_t* vertices, bool second,
+                WalkSums& sums) {
+  if (second) {
+    walk_quad<true>(triangulation, centres, vertices, sums);
+  } else {
+    walk_quad<false>(triangulation, centres, vertices, sums);
+  }
+}
+
 #else
 
 bool sweep_lanes_available() { return false; }
@@ -243,6 +300,8 @@ bool sweep_lanes_available() { return false; }
 void sweep_lanes(const SweepFrame& frame, std::size_t begin, std::size_t end, DelaunayCells::Sweep& found) {
   for (std::size_t ti = begin; ti < end; ++ti) sweep_triangle(frame, static_cast<std::uint32_t>(ti), found);
 }
+
+void walk_lanes(const PeriodicDelaunay&, const Point*, const std::uint32_t*, bool, WalkSums&) {}
 
 #endif
 

@@ -468,6 +468,21 @@ bool KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
   std::vector<StatusCounts> found(chunks);
   auto measure = [&](std::size_t begin, std::size_t end) {
     const auto positions = triangulation_.positions();
+    std::uint32_t vertices[4], sites[4];
+    Point origins[4];
+    Cell* targets[4];
+    int pending = 0;
+    // The pending cells' results in vertex order: bit j of `measured`, cell j measured.
+    auto flush = [&](std::size_t c, int measured) {
+      for (int j = 0; j < pending; ++j) {
+        if (measured >> j & 1) {
+          found[c].add(*targets[j]);
+        } else {
+          ties[c].push_back(sites[j]);
+        }
+      }
+      pending = 0;
+    };
     for (std::size_t c = begin; c < end; ++c) {
       const std::size_t chunk_end = std::min(n, (c + 1) * kVertexChunk);
       for (std::size_t v = c * kVertexChunk; v < chunk_end; ++v) {
@@ -483,13 +498,17 @@ bool KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::
         }
         const std::uint32_t site = site_of_vertex_[v];
         if (site < scene.wanted_begin || site >= scene.wanted_end) continue;
-        Cell& cell = cells[site - scene.wanted_begin];
-        if (cells_.measure(triangulation_, static_cast<std::uint32_t>(v), scene, positions[v], weighting, cell)) {
-          found[c].add(cell);
-        } else {
-          ties[c].push_back(site);
-        }
+        // Four wanted cells at a time (DelaunayCells::measure_four), the last few one by one.
+        vertices[pending] = static_cast<std::uint32_t>(v);
+        origins[pending] = positions[v];
+        sites[pending] = site;
+        targets[pending] = &cells[site - scene.wanted_begin];
+        if (++pending == 4) flush(c, cells_.measure_four(triangulation_, vertices, scene, origins, weighting, targets, lanes_));
       }
+      int measured = 0;
+      for (int j = 0; j < pending; ++j)
+        measured |= static_cast<int>(cells_.measure(triangulation_, vertices[j], scene, origins[j], weighting, *targets[j])) << j;
+      flush(c, measured);
     }
   };
   if (parallel) {
