@@ -1,9 +1,10 @@
-// The sweep of DelaunayCells (delaunay_cells.h) in two forms that give the same bits: one triangle
-// at a time in plain doubles, and four triangles at a time in AVX2 lanes (delaunay_sweep_avx2.cpp),
-// chosen at run time. A lane does exactly the scalar form's IEEE operations in the same order (no
-// fused multiply-add: the files are compiled with -ffp-contract=off); a triangle that needs a
-// branch the lanes do not take (a corner's shifted copy, an orientation the filter cannot decide)
-// goes through the scalar form whole, and the found lists keep triangle order.
+// The sweep and the cell walks of DelaunayCells (delaunay_cells.h) in two forms that give the same
+// bits: one triangle (cell) at a time in plain doubles, and four at a time in AVX2 lanes
+// (delaunay_sweep_avx2.cpp), chosen at run time. A lane does exactly the scalar form's IEEE
+// operations in the same order (no fused multiply-add: the files are compiled with
+// -ffp-contract=off); a triangle that needs a branch the lanes do not take (a corner's shifted
+// copy, an orientation the filter cannot decide) goes through the scalar form whole, and the found
+// lists keep triangle order.
 #pragma once
 
 #include <cstddef>
