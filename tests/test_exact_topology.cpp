@@ -17,6 +17,7 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/voronoi/periodic_delaunay.h"
 #include "bluetile/core/torus.h"
 #include "test_support.h"
 
@@ -568,6 +569,87 @@ TEST(ExactTopology, FoldedTrianglesAreRepairedAndManyAreRebuilt) {
   EXPECT_EQ(stats.repaired_vertices, 0u);
   ExactEngine fresh_other;
   EXPECT_TRUE(test::identical_cells(b, fresh_other.compute(other)));
+}
+
+// The stars of a k x k triangular lattice on the unit torus (each square cut along its rising
+// diagonal): vertex i + k j at ((i + 0.5) / k, (j + 0.5) / k), its six neighbours counter-
+// clockwise from the east, with the periods a copy across the border takes.
+void lattice_stars(int k, std::vector<std::uint32_t>& star_start, std::vector<PeriodicDelaunay::StarEntry>& stars) {
+  const int steps[6][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 0}, {-1, -1}, {0, -1}};
+  star_start = {0};
+  stars.clear();
+  for (int j = 0; j < k; ++j) {
+    for (int i = 0; i < k; ++i) {
+      for (const auto& s : steps) {
+        const int x = i + s[0], y = j + s[1];
+        const int wx = (x + k) % k, wy = (y + k) % k;
+        stars.push_back({static_cast<std::uint32_t>(wx + k * wy), static_cast<std::int8_t>((x - wx) / k),
+                         static_cast<std::int8_t>((y - wy) / k)});
+      }
+      star_start.push_back(static_cast<std::uint32_t>(stars.size()));
+    }
+  }
+}
+
+TEST(ExactTopology, BuildFromStarsLinksTrianglesAndCanonicalCorners) {
+  // PeriodicDelaunay::build finds each corner's triangle through the twin of each star entry (the
+  // vertex in its neighbour's star) and reads each vertex's canonical corner off its star (the
+  // corner before the neighbour of lowest site). Checked here against the definitions: every
+  // neighbour link reciprocal, the corners around each vertex its star's, and the canonical corner
+  // the one a walk around the vertex picks, with sites numbered in a scrambled order.
+  const int k = 8;
+  const std::size_t n = static_cast<std::size_t>(k * k);
+  std::vector<std::uint32_t> star_start;
+  std::vector<PeriodicDelaunay::StarEntry> stars;
+  lattice_stars(k, star_start, stars);
+  std::vector<Point> positions;
+  std::vector<std::uint32_t> sites;
+  for (std::size_t v = 0; v < n; ++v) {
+    positions.push_back({(static_cast<double>(v % k) + 0.5) / k, (static_cast<double>(v / k) + 0.5) / k});
+    sites.push_back(static_cast<std::uint32_t>((37 * v + 11) % n));  // a permutation: 37 is prime to 64
+  }
+  PeriodicDelaunay triangulation;
+  triangulation.reset(Domain{}, positions, sites);
+  ASSERT_TRUE(triangulation.build(star_start, stars));
+  const auto triangles = triangulation.triangles();
+  ASSERT_EQ(triangles.size(), 2 * n);
+  using PD = PeriodicDelaunay;
+  for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t l = triangles[t].neighbour[e];
+      EXPECT_EQ(triangles[PD::triangle_of(l)].neighbour[PD::edge_of(l)], PD::link(t, e)) << "triangle " << t;
+    }
+  }
+  for (std::uint32_t v = 0; v < n; ++v) {
+    // Around the vertex from its canonical corner: the star's neighbours in order (each corner's
+    // previous vertex is the star entry after the corner's), starting after the lowest site.
+    const std::uint32_t start = triangulation.corner_of(v);
+    EXPECT_EQ(triangles[PD::triangle_of(start)].vertex[PD::edge_of(start)], v);
+    std::vector<std::uint32_t> around;
+    std::uint32_t corner = start;
+    do {
+      const PD::Triangle& t = triangles[PD::triangle_of(corner)];
+      around.push_back(t.vertex[PD::previous(PD::edge_of(corner))]);
+      corner = triangulation.next_around(corner);
+    } while (corner != start && around.size() <= 6);
+    ASSERT_EQ(around.size(), 6u) << "vertex " << v;
+    std::uint32_t lowest = 0;
+    for (std::uint32_t w = 1; w < 6; ++w)
+      if (sites[stars[star_start[v] + w].vertex] < sites[stars[star_start[v] + lowest].vertex]) lowest = w;
+    for (std::uint32_t w = 0; w < 6; ++w)
+      EXPECT_EQ(around[w], stars[star_start[v] + (lowest + w) % 6].vertex) << "vertex " << v << ", step " << w;
+  }
+  // Stars that do not fit together are refused: a neighbour's copy in the wrong period, and two
+  // neighbours swapped (the twins are then found, the triangles do not close).
+  std::vector<PeriodicDelaunay::StarEntry> shifted = stars;
+  shifted[star_start[k + 1] + 2].shift_y = 1;
+  triangulation.reset(Domain{}, positions, sites);
+  EXPECT_FALSE(triangulation.build(star_start, shifted));
+  std::vector<PeriodicDelaunay::StarEntry> swapped = stars;
+  std::swap(swapped[star_start[k + 1] + 1], swapped[star_start[k + 1] + 2]);
+  triangulation.reset(Domain{}, positions, sites);
+  EXPECT_FALSE(triangulation.build(star_start, swapped));
+  EXPECT_TRUE(triangulation.empty());
 }
 
 TEST(ExactTopology, LargerRelaxationsAgreeWithTheSearch) {
