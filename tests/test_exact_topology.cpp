@@ -539,6 +539,42 @@ TEST(ExactTopology, NearDegenerateCoincidentCollinearAndClustered) {
   EXPECT_EQ(run_side_by_side(make_scene(spread), 3).kept, 3u * 2000u);
 }
 
+TEST(ExactTopology, ScenesTheFirstCallCannotTriangulateGiveTheSearchsBits) {
+  // The first call searches every cell for its star and measures the cells only when the scene
+  // turns out not to suit a triangulation: from the cell that shows it on (a circumcircle of a
+  // tenth of a period), and the cells before it afterwards, by the same search. Every wanted cell
+  // must then be the search's own bits, on any thread count (the threads' chunks see it at
+  // different cells): uniform sites around an empty disc (the cells that show it come in the
+  // middle of the buckets' order), three lines, exact twins; a wanted range inside the scene.
+  Rng rng(17);
+  std::vector<Point> hole;  // no site within 0.2 of the centre: an empty circle of a fifth of the torus
+  while (hole.size() < 3000) {
+    const Point p{rng.uniform(), rng.uniform()};
+    if (std::hypot(p.x - 0.5, p.y - 0.5) > 0.2) hole.push_back(p);
+  }
+  std::vector<Point> lines;
+  for (int k = 0; k < 1200; ++k) lines.push_back({(k + 0.25) / 1200.0, 0.2 + 0.3 * (k % 3)});
+  std::vector<Point> twins = uniform_points(2000, 18);
+  for (std::size_t k = 0; k < 4; ++k) twins.push_back(twins[k * 211 + 7]);
+  const std::size_t before = thread_count();
+  for (const std::vector<Point>* sites : {&hole, &lines, &twins}) {
+    Scene scene = make_scene(*sites);
+    scene.wanted_begin = 100;
+    scene.wanted_end = sites->size() - 50;
+    ExactEngine search = searching();
+    const SceneCells expected = search.compute(scene);
+    for (std::size_t threads : {1u, 2u, 7u}) {
+      set_thread_count(threads);
+      ExactEngine engine;
+      const SceneCells cells = engine.compute(scene);
+      EXPECT_EQ(engine.last_topology_stats().kept_cells, 0u) << sites->size() << " sites, " << threads << " threads";
+      EXPECT_EQ(engine.last_topology_stats().rebuilds, 1u);
+      EXPECT_TRUE(test::identical_cells(cells, expected)) << sites->size() << " sites, " << threads << " threads";
+    }
+  }
+  set_thread_count(before);
+}
+
 TEST(ExactTopology, FoldedTrianglesAreRepairedAndManyAreRebuilt) {
   Scene scene = make_scene(relaxed_points(3000, 11));
   ExactEngine engine;
