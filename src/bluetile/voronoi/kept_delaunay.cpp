@@ -310,9 +310,16 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   site_of_vertex_.assign(grid.site_indices().begin(), grid.site_indices().end());
   std::vector<std::uint32_t> vertex_of_site(n);
   std::vector<Point> positions(n);
-  for (std::uint32_t v = 0; v < n; ++v) {
-    vertex_of_site[site_of_vertex_[v]] = v;
-    positions[v] = grid.stored_point(v);
+  auto number = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      vertex_of_site[site_of_vertex_[v]] = static_cast<std::uint32_t>(v);
+      positions[v] = grid.stored_point(v);
+    }
+  };
+  if (parallel) {
+    parallel_for(n, kVertexChunk, number);
+  } else {
+    number(0, n);
   }
   // Every site's cell by the search, its neighbours as its star. The cells are measured only
   // once the scene is found not to suit a triangulation (hopeless, below; the rest afterwards
