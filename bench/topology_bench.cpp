@@ -9,6 +9,7 @@
 //        [--engines search,kept,cgal-band,cgal-periodic] [--max-cgal 1000000] [--check] [--caller-order]
 //        [--no-energy]   (the exact engine asked for no second moments, as `bluetile relax` without a log)
 //        [--profile search|kept --sizes N]   (that engine only, one thread, relaxed: for a profiler)
+//        [--per-call]   (each timed call of every row: wall and CPU ns per site, rebuilds, flips, repaired)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -49,6 +50,13 @@ struct Run {
   std::size_t bytes = 0;
   // Against the search on the same sites (--check): the largest differences over the calls.
   double max_centroid_difference = 0.0, max_area_difference = 0.0, max_moment_difference = 0.0;
+  // Each timed call (--per-call): wall and CPU seconds, the kept engine's rebuilds, flips and
+  // repaired vertices.
+  struct Call {
+    double seconds = 0.0, cpu = 0.0;
+    std::size_t rebuilds = 0, flips = 0, repaired = 0;
+  };
+  std::vector<Call> calls;
 };
 
 void compare_with_search(const Scene& scene, const SceneCells& cells, Run& run) {
@@ -80,8 +88,10 @@ Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int warm,
   for (int i = 0; i < iterations; ++i) {
     const double t0 = now(), c0 = cpu_now();
     engine.compute(scenes, cells);
+    Run::Call call;
     if (exact) {
       const KeptTopologyStats& stats = exact->last_topology_stats();
+      call = {0.0, 0.0, stats.rebuilds, stats.flips, stats.repaired_vertices};
       kept += stats.kept_cells;
       all += start.size();
       run.rebuilds += stats.rebuilds;
@@ -92,8 +102,11 @@ Run lloyd_run(CentroidEngine& engine, const std::vector<Point>& start, int warm,
       run.bytes = std::max(run.bytes, stats.bytes);
     }
     move_to_centroids(scenes, cells);
-    seconds += now() - t0;
-    cpu += cpu_now() - c0;
+    call.seconds = now() - t0;
+    call.cpu = cpu_now() - c0;
+    seconds += call.seconds;
+    cpu += call.cpu;
+    run.calls.push_back(call);
   }
   run.seconds_per_iteration = seconds / iterations;
   run.cpu_seconds_per_iteration = cpu / iterations;
@@ -140,7 +153,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> engines{"search", "kept", "cgal-band", "cgal-periodic"};
   int relax = 30, iterations = 20, random_iterations = 20, repeats = 3;
   std::size_t max_cgal = 1000000;
-  bool check = false, caller_order = false, no_energy = false;
+  bool check = false, caller_order = false, no_energy = false, per_call = false;
   std::string profile;
   app.add_option("--sizes", sizes, "Site counts")->delimiter(',');
   app.add_option("--starts", starts, "random (a relaxation from random sites) and/or relaxed")->delimiter(',');
@@ -157,6 +170,9 @@ int main(int argc, char** argv) {
                "scenes of 65536 sites and more in (kGridOrderSites, lloyd.h)");
   app.add_flag("--no-energy", no_energy,
                "Ask the exact engine for no second moments (Scene::second_moments), as bluetile relax without --log or -v");
+  app.add_flag("--per-call", per_call,
+               "After each table, every timed call of each row (median over the repeats): wall and CPU ns per site, "
+               "and the kept engine's rebuilds, flips and repaired vertices (the last repeat's)");
   app.add_option("--profile", profile, "Run only this engine (search or kept), one thread, relaxed, for a profiler");
   CLI11_PARSE(app, argc, argv);
 #if !BLUETILE_HAVE_CGAL
@@ -204,6 +220,7 @@ int main(int argc, char** argv) {
         std::size_t threads;
         std::vector<double> times, cpu;
         Run last, checked;  // the last repeat, and the first (the one --check compares)
+        std::vector<std::vector<double>> call_times, call_cpu;  // per call, over the repeats
       };
       std::vector<Row> rows;
       for (const std::string& e : engines) {
@@ -222,6 +239,12 @@ int main(int argc, char** argv) {
           if (r == 0) row.checked = row.last;
           row.times.push_back(row.last.seconds_per_iteration);
           row.cpu.push_back(row.last.cpu_seconds_per_iteration);
+          row.call_times.resize(row.last.calls.size());
+          row.call_cpu.resize(row.last.calls.size());
+          for (std::size_t i = 0; i < row.last.calls.size(); ++i) {
+            row.call_times[i].push_back(row.last.calls[i].seconds);
+            row.call_cpu[i].push_back(row.last.calls[i].cpu);
+          }
         }
       }
       double band = 0.0, search1 = 0.0, band_cpu = 0.0, search1_cpu = 0.0;
@@ -250,6 +273,17 @@ int main(int argc, char** argv) {
         std::printf("| %s | %zu | %.2f | %.0f | %.0f | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", row.name.c_str(),
                     row.threads, 1e3 * m, per * m, per * c, ratio(m, search1).c_str(), ratio(c, search1_cpu).c_str(),
                     ratio(m, band).c_str(), ratio(c, band_cpu).c_str(), share, rebuilds, repaired, flips, bytes);
+      }
+      if (per_call) {
+        for (const Row& row : rows) {
+          std::printf("\n%s, %zu threads, each call (median of the repeats; counts of the last one):\n\n", row.name.c_str(), row.threads);
+          std::printf("| call | wall ns/site | cpu ns/site | rebuilds | flips/site | repaired |\n|---:|---:|---:|---:|---:|---:|\n");
+          for (std::size_t i = 0; i < row.call_times.size(); ++i) {
+            const Run::Call& call = row.last.calls[i];
+            std::printf("| %zu | %.0f | %.0f | %zu | %.4f | %zu |\n", i + 1, per * median(row.call_times[i]), per * median(row.call_cpu[i]),
+                        call.rebuilds, static_cast<double>(call.flips) / static_cast<double>(n), call.repaired);
+          }
+        }
       }
       if (check) {
         for (const Row& row : rows) {

@@ -19,6 +19,7 @@
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/voronoi/delaunay_sweep.h"
 #include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/voronoi/periodic_delaunay.h"
 #include "bluetile/core/torus.h"
 #include "test_support.h"
 
@@ -540,6 +541,42 @@ TEST(ExactTopology, NearDegenerateCoincidentCollinearAndClustered) {
   EXPECT_EQ(run_side_by_side(make_scene(spread), 3).kept, 3u * 2000u);
 }
 
+TEST(ExactTopology, ScenesTheFirstCallCannotTriangulateGiveTheSearchsBits) {
+  // The first call searches every cell for its star and measures the cells only when the scene
+  // turns out not to suit a triangulation: from the cell that shows it on (a circumcircle of a
+  // tenth of a period), and the cells before it afterwards, by the same search. Every wanted cell
+  // must then be the search's own bits, on any thread count (the threads' chunks see it at
+  // different cells): uniform sites around an empty disc (the cells that show it come in the
+  // middle of the buckets' order), three lines, exact twins; a wanted range inside the scene.
+  Rng rng(17);
+  std::vector<Point> hole;  // no site within 0.2 of the centre: an empty circle of a fifth of the torus
+  while (hole.size() < 3000) {
+    const Point p{rng.uniform(), rng.uniform()};
+    if (std::hypot(p.x - 0.5, p.y - 0.5) > 0.2) hole.push_back(p);
+  }
+  std::vector<Point> lines;
+  for (int k = 0; k < 1200; ++k) lines.push_back({(k + 0.25) / 1200.0, 0.2 + 0.3 * (k % 3)});
+  std::vector<Point> twins = uniform_points(2000, 18);
+  for (std::size_t k = 0; k < 4; ++k) twins.push_back(twins[k * 211 + 7]);
+  const std::size_t before = thread_count();
+  for (const std::vector<Point>* sites : {&hole, &lines, &twins}) {
+    Scene scene = make_scene(*sites);
+    scene.wanted_begin = 100;
+    scene.wanted_end = sites->size() - 50;
+    ExactEngine search = searching();
+    const SceneCells expected = search.compute(scene);
+    for (std::size_t threads : {1u, 2u, 7u}) {
+      set_thread_count(threads);
+      ExactEngine engine;
+      const SceneCells cells = engine.compute(scene);
+      EXPECT_EQ(engine.last_topology_stats().kept_cells, 0u) << sites->size() << " sites, " << threads << " threads";
+      EXPECT_EQ(engine.last_topology_stats().rebuilds, 1u);
+      EXPECT_TRUE(test::identical_cells(cells, expected)) << sites->size() << " sites, " << threads << " threads";
+    }
+  }
+  set_thread_count(before);
+}
+
 TEST(ExactTopology, FoldedTrianglesAreRepairedAndManyAreRebuilt) {
   Scene scene = make_scene(relaxed_points(3000, 11));
   ExactEngine engine;
@@ -570,6 +607,87 @@ TEST(ExactTopology, FoldedTrianglesAreRepairedAndManyAreRebuilt) {
   EXPECT_EQ(stats.repaired_vertices, 0u);
   ExactEngine fresh_other;
   EXPECT_TRUE(test::identical_cells(b, fresh_other.compute(other)));
+}
+
+// The stars of a k x k triangular lattice on the unit torus (each square cut along its rising
+// diagonal): vertex i + k j at ((i + 0.5) / k, (j + 0.5) / k), its six neighbours counter-
+// clockwise from the east, with the periods a copy across the border takes.
+void lattice_stars(int k, std::vector<std::uint32_t>& star_start, std::vector<PeriodicDelaunay::StarEntry>& stars) {
+  const int steps[6][2] = {{1, 0}, {1, 1}, {0, 1}, {-1, 0}, {-1, -1}, {0, -1}};
+  star_start = {0};
+  stars.clear();
+  for (int j = 0; j < k; ++j) {
+    for (int i = 0; i < k; ++i) {
+      for (const auto& s : steps) {
+        const int x = i + s[0], y = j + s[1];
+        const int wx = (x + k) % k, wy = (y + k) % k;
+        stars.push_back({static_cast<std::uint32_t>(wx + k * wy), static_cast<std::int8_t>((x - wx) / k),
+                         static_cast<std::int8_t>((y - wy) / k)});
+      }
+      star_start.push_back(static_cast<std::uint32_t>(stars.size()));
+    }
+  }
+}
+
+TEST(ExactTopology, BuildFromStarsLinksTrianglesAndCanonicalCorners) {
+  // PeriodicDelaunay::build finds each corner's triangle through the twin of each star entry (the
+  // vertex in its neighbour's star) and reads each vertex's canonical corner off its star (the
+  // corner before the neighbour of lowest site). Checked here against the definitions: every
+  // neighbour link reciprocal, the corners around each vertex its star's, and the canonical corner
+  // the one a walk around the vertex picks, with sites numbered in a scrambled order.
+  const int k = 8;
+  const std::size_t n = static_cast<std::size_t>(k * k);
+  std::vector<std::uint32_t> star_start;
+  std::vector<PeriodicDelaunay::StarEntry> stars;
+  lattice_stars(k, star_start, stars);
+  std::vector<Point> positions;
+  std::vector<std::uint32_t> sites;
+  for (std::size_t v = 0; v < n; ++v) {
+    positions.push_back({(static_cast<double>(v % k) + 0.5) / k, (static_cast<double>(v / k) + 0.5) / k});
+    sites.push_back(static_cast<std::uint32_t>((37 * v + 11) % n));  // a permutation: 37 is prime to 64
+  }
+  PeriodicDelaunay triangulation;
+  triangulation.reset(Domain{}, positions, sites);
+  ASSERT_TRUE(triangulation.build(star_start, stars));
+  const auto triangles = triangulation.triangles();
+  ASSERT_EQ(triangles.size(), 2 * n);
+  using PD = PeriodicDelaunay;
+  for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t l = triangles[t].neighbour[e];
+      EXPECT_EQ(triangles[PD::triangle_of(l)].neighbour[PD::edge_of(l)], PD::link(t, e)) << "triangle " << t;
+    }
+  }
+  for (std::uint32_t v = 0; v < n; ++v) {
+    // Around the vertex from its canonical corner: the star's neighbours in order (each corner's
+    // previous vertex is the star entry after the corner's), starting after the lowest site.
+    const std::uint32_t start = triangulation.corner_of(v);
+    EXPECT_EQ(triangles[PD::triangle_of(start)].vertex[PD::edge_of(start)], v);
+    std::vector<std::uint32_t> around;
+    std::uint32_t corner = start;
+    do {
+      const PD::Triangle& t = triangles[PD::triangle_of(corner)];
+      around.push_back(t.vertex[PD::previous(PD::edge_of(corner))]);
+      corner = triangulation.next_around(corner);
+    } while (corner != start && around.size() <= 6);
+    ASSERT_EQ(around.size(), 6u) << "vertex " << v;
+    std::uint32_t lowest = 0;
+    for (std::uint32_t w = 1; w < 6; ++w)
+      if (sites[stars[star_start[v] + w].vertex] < sites[stars[star_start[v] + lowest].vertex]) lowest = w;
+    for (std::uint32_t w = 0; w < 6; ++w)
+      EXPECT_EQ(around[w], stars[star_start[v] + (lowest + w) % 6].vertex) << "vertex " << v << ", step " << w;
+  }
+  // Stars that do not fit together are refused: a neighbour's copy in the wrong period, and two
+  // neighbours swapped (the twins are then found, the triangles do not close).
+  std::vector<PeriodicDelaunay::StarEntry> shifted = stars;
+  shifted[star_start[k + 1] + 2].shift_y = 1;
+  triangulation.reset(Domain{}, positions, sites);
+  EXPECT_FALSE(triangulation.build(star_start, shifted));
+  std::vector<PeriodicDelaunay::StarEntry> swapped = stars;
+  std::swap(swapped[star_start[k + 1] + 1], swapped[star_start[k + 1] + 2]);
+  triangulation.reset(Domain{}, positions, sites);
+  EXPECT_FALSE(triangulation.build(star_start, swapped));
+  EXPECT_TRUE(triangulation.empty());
 }
 
 TEST(ExactTopology, LargerRelaxationsAgreeWithTheSearch) {

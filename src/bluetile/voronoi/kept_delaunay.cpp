@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
+#include <memory>
 #include <optional>
 
 #include "bluetile/core/parallel.h"
@@ -64,6 +65,22 @@ bool on_rows_and_columns(std::span<const Point> sites) {
   mark(ys, 2);
   const auto both = static_cast<std::size_t>(std::count(shared.begin(), shared.end(), std::uint8_t{3}));
   return 2 * both >= m;
+}
+
+// Sorts `triangles` (numbers below `count`) and drops repeats. The first calls from random sites
+// flip a tenth of the edges: sorting those lists cost more than marking the triangles in a table
+// and reading it in order, a pass over `count` bytes that few flips would not repay.
+void sort_unique(std::vector<std::uint32_t>& triangles, std::size_t count) {
+  if (triangles.size() * 16 < count) {
+    std::sort(triangles.begin(), triangles.end());
+    triangles.erase(std::unique(triangles.begin(), triangles.end()), triangles.end());
+    return;
+  }
+  std::vector<std::uint8_t> marked(count, 0);
+  for (std::uint32_t t : triangles) marked[t] = 1;
+  triangles.clear();
+  for (std::size_t t = 0; t < count; ++t)
+    if (marked[t]) triangles.push_back(static_cast<std::uint32_t>(t));
 }
 
 // A repair that would remove more than one vertex in this many is a rebuild instead.
@@ -268,8 +285,7 @@ KeptDelaunay::Settled KeptDelaunay::settle(KeptTopologyStats& stats, std::vector
   const bool delaunay = triangulation_.make_delaunay(sweep.suspects, sweep.ties, changed);
   stats.flips += triangulation_.flips();
   if (!delaunay) return Settled::failed;
-  std::sort(changed.begin(), changed.end());
-  changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  sort_unique(changed, triangulation_.triangles().size());
   cells_.recompute(triangulation_, changed, sweep.oversized);
   // Flips keep the area; every circumcircle that reached the limit must have been flipped away.
   const double area = scene_area_;
@@ -294,16 +310,26 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   site_of_vertex_.assign(grid.site_indices().begin(), grid.site_indices().end());
   std::vector<std::uint32_t> vertex_of_site(n);
   std::vector<Point> positions(n);
-  for (std::uint32_t v = 0; v < n; ++v) {
-    vertex_of_site[site_of_vertex_[v]] = v;
-    positions[v] = grid.stored_point(v);
+  auto number = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      vertex_of_site[site_of_vertex_[v]] = static_cast<std::uint32_t>(v);
+      positions[v] = grid.stored_point(v);
+    }
+  };
+  if (parallel) {
+    parallel_for(n, kVertexChunk, number);
+  } else {
+    number(0, n);
   }
-  // Every site's cell by the search (the wanted ones measured), its neighbours as its star.
+  // Every site's cell by the search, its neighbours as its star. The cells are measured only
+  // once the scene is found not to suit a triangulation (hopeless, below; the rest afterwards
+  // when the triangulation fails): otherwise the triangulation measures them.
   const std::size_t chunks = (n + kVertexChunk - 1) / kVertexChunk;
   struct ChunkStars {
     std::vector<StarEntry> entries;
     std::vector<std::uint32_t> sizes;
     std::vector<double> radius_squared;
+    std::size_t measured_from = 0;  // the chunk's cells from this vertex on are measured
     bool coincident = false, unfit = false, coordinates = true;
   };
   std::vector<ChunkStars> chunk_stars(chunks);
@@ -318,19 +344,22 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
     SearchScratch scratch;
     for (std::size_t c = begin; c < end; ++c) {
       ChunkStars& mine = chunk_stars[c];
+      mine.measured_from = std::min(n, (c + 1) * kVertexChunk);
       for (std::size_t v = c * kVertexChunk; v < std::min(n, (c + 1) * kVertexChunk); ++v) {
         const std::uint32_t site = site_of_vertex_[v];
         const Point origin = positions[v];
         mine.coordinates &= coordinate_suits(origin.x) && coordinate_suits(origin.y);
         const bool complete = build_cell(scene, search, site, origin, polygon, scratch);
-        if (site >= scene.wanted_begin && site < scene.wanted_end)
-          cells[site - scene.wanted_begin] = measure_cell(scene, origin, !complete, polygon, weighting);
         mine.radius_squared.push_back(polygon.max_radius_squared());
         const std::size_t before = mine.entries.size();
         // Once some cell is too large for a triangulation (below) the stars are not needed: the
         // search's cells stand, and a scene that stays so costs no more than the search.
         if (!(polygon.max_radius_squared() < limit * limit)) hopeless.store(true, std::memory_order_relaxed);
         if (hopeless.load(std::memory_order_relaxed)) {
+          // Once seen, seen for the rest of this chunk: its cells from here on are measured.
+          mine.measured_from = std::min(mine.measured_from, v);
+          if (site >= scene.wanted_begin && site < scene.wanted_end)
+            cells[site - scene.wanted_begin] = measure_cell(scene, origin, !complete, polygon, weighting);
           mine.sizes.push_back(0);
           continue;
         }
@@ -368,22 +397,51 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
     run(0, chunks);
   }
   bool coincident = false, unfit = false, coordinates = true;
-  std::vector<std::uint32_t> star_start{0};
-  std::vector<StarEntry> stars;
-  std::vector<double> radius_squared;
-  star_start.reserve(n + 1);
-  for (const ChunkStars& c : chunk_stars) {
-    coincident |= c.coincident;
-    unfit |= c.unfit;
-    coordinates &= c.coordinates;
-    stars.insert(stars.end(), c.entries.begin(), c.entries.end());
-    radius_squared.insert(radius_squared.end(), c.radius_squared.begin(), c.radius_squared.end());
-    for (std::uint32_t s : c.sizes) star_start.push_back(star_start.back() + s);
+  std::vector<std::uint32_t> entry_start(chunks + 1, 0);  // where each chunk's stars go
+  for (std::size_t c = 0; c < chunks; ++c) {
+    coincident |= chunk_stars[c].coincident;
+    unfit |= chunk_stars[c].unfit;
+    coordinates &= chunk_stars[c].coordinates;
+    entry_start[c + 1] = entry_start[c] + static_cast<std::uint32_t>(chunk_stars[c].entries.size());
   }
-  chunk_stars.clear();
-  if (coincident || !coordinates || unfit || hopeless.load()) return false;
+  // When the triangulation fails (or does not fit), the search's cells stand: those not measured
+  // in the loop above are searched again (the same bits: the same search from the same sites).
+  auto searched = [&](bool built) {
+    if (built && fits_) return true;
+    std::vector<std::uint32_t> unmeasured;
+    for (std::size_t c = 0; c < chunks; ++c) {
+      for (std::size_t v = c * kVertexChunk; v < chunk_stars[c].measured_from; ++v) {
+        const std::uint32_t site = site_of_vertex_[v];
+        if (site >= scene.wanted_begin && site < scene.wanted_end) unmeasured.push_back(site);
+      }
+    }
+    search_listed_cells(scene, search, weighting, unmeasured, cells, parallel);
+    return built;
+  };
+  if (coincident || !coordinates || unfit || hopeless.load()) return searched(false);
+  // The chunks' stars side by side, on all threads (left uninitialised before: every entry is
+  // written).
+  std::vector<std::uint32_t> star_start(n + 1);
+  star_start[0] = 0;
+  std::unique_ptr<StarEntry[]> stars(new StarEntry[entry_start[chunks]]);
+  auto gather = [&](std::size_t begin, std::size_t end) {
+    for (std::size_t c = begin; c < end; ++c) {
+      std::copy(chunk_stars[c].entries.begin(), chunk_stars[c].entries.end(), stars.get() + entry_start[c]);
+      std::uint32_t at = entry_start[c];
+      std::size_t v = c * kVertexChunk;
+      for (std::uint32_t entries : chunk_stars[c].sizes) star_start[++v] = at += entries;
+      std::vector<StarEntry>().swap(chunk_stars[c].entries);
+    }
+  };
+  if (parallel) {
+    parallel_for(chunks, 1, gather);
+  } else {
+    gather(0, chunks);
+  }
   triangulation_.reset(scene.domain, std::move(positions), site_of_vertex_);
-  if (triangulation_.build(star_start, stars) && settle(stats)) return true;
+  const bool built = triangulation_.build(star_start, std::span<const StarEntry>(stars.get(), entry_start[chunks]));
+  stars.reset();
+  if (built && settle(stats)) return searched(true);
 
   // The stars the clipping gave do not fit (roundings near cocircular sites): every star again
   // with the exact predicates.
@@ -395,7 +453,7 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
     for (std::size_t c = begin; c < end; ++c) {
       std::vector<StarEntry>& mine = exact_chunks[c];
       for (std::size_t v = c * kVertexChunk; v < std::min(n, (c + 1) * kVertexChunk); ++v) {
-        if (!exact.compute(site_of_vertex_[v], radius_squared[v], star)) {
+        if (!exact.compute(site_of_vertex_[v], chunk_stars[c].radius_squared[v - c * kVertexChunk], star)) {
           failed[c] = 1;
           break;
         }
@@ -409,12 +467,12 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   } else {
     run_exact(0, chunks);
   }
-  if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return false;
+  if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return searched(false);
   stats.exact_stars += n;
-  stars.clear();
-  for (const auto& c : exact_chunks) stars.insert(stars.end(), c.begin(), c.end());
+  std::vector<StarEntry> exact_stars;
+  for (const auto& c : exact_chunks) exact_stars.insert(exact_stars.end(), c.begin(), c.end());
   for (std::size_t v = 0; v < n; ++v) star_start[v + 1] += star_start[v];
-  return triangulation_.build(star_start, stars) && settle(stats);
+  return searched(triangulation_.build(star_start, exact_stars) && settle(stats));
 }
 
 bool KeptDelaunay::compute(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,

@@ -88,9 +88,10 @@ class KeptDelaunay {
   enum class Settled { delaunay, folded, failed };
   Settled settle(KeptTopologyStats& stats, std::vector<std::uint32_t>& folded);
   bool settle(KeptTopologyStats& stats);  // true when delaunay
-  // Searches every cell (the wanted ones' results into `cells`) and builds the triangulation
-  // from the cells' stars, then settles it; false when the scene cannot be triangulated (the
-  // search's results then stand).
+  // Searches every cell and builds the triangulation from the cells' stars, then settles it;
+  // false when the scene cannot be triangulated. The search's results go into the wanted
+  // `cells` only when they stand: when it returns false or the triangulation does not fit
+  // (fits_); otherwise the triangulation measures them.
   bool rebuild(const Scene& scene, const Weighting& weighting, std::span<Cell> cells, bool parallel,
                KeptTopologyStats& stats);
 

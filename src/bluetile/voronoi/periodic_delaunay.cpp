@@ -57,74 +57,61 @@ bool PeriodicDelaunay::build(std::span<const std::uint32_t> star_start, std::spa
   // A triangle of the torus has 2 V faces (Euler: V - E + F = 0 and 3 F = 2 E).
   if (star_start[n] != 6 * n) return false;
 
-  // Every star well formed, and the corners whose vertex owns their triangle (the lowest index
-  // of the three): a triangle is written once, by its owner, so triangles are numbered in vertex
-  // order. Corner (v, k) is the triangle (v, s[k], s[k + 1]) of v's star s, numbered
-  // star_start[v] + k.
+  // Every star well formed; each corner's twin, the entry of its vertex in the star of the
+  // corner's neighbour (copies shifted alike: v at -(shift) in the star of s[k]); the corners
+  // whose vertex owns their triangle (the lowest index of the three): a triangle is written once,
+  // by its owner, so triangles are numbered in vertex order. Corner (v, k) is the triangle
+  // (v, s[k], s[k + 1]) of v's star s, numbered star_start[v] + k. And each vertex's canonical
+  // corner (corner_of()): the one whose s[k + 1] has the lowest site, read off the star.
   const std::size_t corners = star_start[n];
   std::vector<std::uint32_t> number(corners + 1, 0);
+  std::vector<std::uint32_t> twin(corners), canonical(n);
   std::vector<std::uint8_t> bad(n, 0);
+  // Where v is in star s (no duplicates there once checked): a scan without an early exit, whose
+  // compare the compiler turns into a select (an exit at a varying place mispredicts).
+  auto position_of = [&](std::span<const StarEntry> s, std::uint32_t v, int sx, int sy) -> long {
+    std::size_t at = s.size();
+    for (std::size_t j = 0; j < s.size(); ++j) at = s[j].vertex == v ? j : at;
+    if (at == s.size() || s[at].shift_x != sx || s[at].shift_y != sy) return -1;
+    return static_cast<long>(at);
+  };
   parallel_for(n, kVertexGrain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v) {
-      const auto s = star(static_cast<std::uint32_t>(v));
+    for (std::size_t vi = begin; vi < end; ++vi) {
+      const auto v = static_cast<std::uint32_t>(vi);
+      const auto s = star(v);
       if (s.size() < 3) {
         bad[v] = 1;
         continue;
       }
+      std::size_t lowest = 0;
       for (std::size_t k = 0; k < s.size(); ++k) {
-        if (s[k].vertex == v || s[k].vertex >= n) bad[v] = 1;
-        for (std::size_t j = 0; j < k; ++j) bad[v] |= s[j].vertex == s[k].vertex;
-        number[star_start[v] + k + 1] = owns(static_cast<std::uint32_t>(v), k, s);
+        const StarEntry& b = s[k];
+        number[star_start[v] + k + 1] = owns(v, k, s);
+        if (b.vertex == v || b.vertex >= n) {
+          bad[v] = 1;
+          break;
+        }
+        for (std::size_t j = 0; j < k; ++j) bad[v] |= s[j].vertex == b.vertex;
+        const long at = position_of(star(b.vertex), v, -b.shift_x, -b.shift_y);
+        if (at < 0) {
+          bad[v] = 1;
+          break;
+        }
+        twin[star_start[v] + k] = star_start[b.vertex] + static_cast<std::uint32_t>(at);
+        if (sites_[b.vertex] < sites_[s[lowest].vertex]) lowest = k;
       }
+      canonical[v] = star_start[v] + static_cast<std::uint32_t>(lowest == 0 ? s.size() - 1 : lowest - 1);
     }
   });
   if (std::find(bad.begin(), bad.end(), 1) != bad.end()) return false;
   for (std::size_t c = 0; c < corners; ++c) number[c + 1] += number[c];
   if (number[corners] != 2 * n) return false;
 
-  // Each corner's triangle in the stars of its other two vertices, with the copies shifted
-  // alike: (v, b, c) is (b, c, v) in b's star (c just before v there) and (c, v, b) in c's star
-  // (b just after v). Its number is its owner's corner's.
-  auto position_of = [&](std::span<const StarEntry> s, std::uint32_t v, int sx, int sy) -> long {
-    for (std::size_t j = 0; j < s.size(); ++j)
-      if (s[j].vertex == v) return s[j].shift_x == sx && s[j].shift_y == sy ? static_cast<long>(j) : -1;
-    return -1;
-  };
+  // Each corner's triangle, found in the stars of its other two vertices through the twins:
+  // (v, b, c) is (b, c, v) in b's star (c just before v there) and (c, v, b) in c's star (b just
+  // after v). Its number is its owner's corner's. The owner writes the triangle, and the corners
+  // whose triangles lie across its edges (turned into triangles below, once every corner has one).
   std::vector<std::uint32_t> triangle_at(corners);  // the triangle of each corner
-  parallel_for(n, kVertexGrain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t vi = begin; vi < end; ++vi) {
-      const auto v = static_cast<std::uint32_t>(vi);
-      const auto s = star(v);
-      for (std::size_t k = 0; k < s.size(); ++k) {
-        const StarEntry& b = s[k];
-        const StarEntry& c = s[k + 1 == s.size() ? 0 : k + 1];
-        const auto sb = star(b.vertex), sc = star(c.vertex);
-        const long at_b = position_of(sb, v, -b.shift_x, -b.shift_y);
-        const long at_c = position_of(sc, v, -c.shift_x, -c.shift_y);
-        if (at_b < 0 || at_c < 0) {
-          bad[v] = 1;
-          continue;
-        }
-        const std::size_t before_v = at_b == 0 ? sb.size() - 1 : static_cast<std::size_t>(at_b - 1);
-        const std::size_t after_v = static_cast<std::size_t>(at_c) + 1 == sc.size() ? 0 : static_cast<std::size_t>(at_c) + 1;
-        const StarEntry& c_in_b = sb[before_v];
-        const StarEntry& b_in_c = sc[after_v];
-        if (c_in_b.vertex != c.vertex || c_in_b.shift_x != c.shift_x - b.shift_x || c_in_b.shift_y != c.shift_y - b.shift_y ||
-            b_in_c.vertex != b.vertex || b_in_c.shift_x != b.shift_x - c.shift_x || b_in_c.shift_y != b.shift_y - c.shift_y) {
-          bad[v] = 1;
-          continue;
-        }
-        const std::uint32_t owner = std::min({v, b.vertex, c.vertex});
-        const std::size_t owner_corner = owner == v          ? star_start[v] + k
-                                         : owner == b.vertex ? star_start[b.vertex] + before_v
-                                                             : star_start[c.vertex] + static_cast<std::size_t>(at_c);
-        triangle_at[star_start[v] + k] = number[owner_corner];
-      }
-    }
-  });
-  if (std::find(bad.begin(), bad.end(), 1) != bad.end()) return false;
-
-  // The triangles, written by their owners, with the numbers of their neighbours.
   triangles_.resize(2 * n);
   std::vector<std::uint32_t> across(3 * triangles_.size());
   parallel_for(n, kVertexGrain, [&](std::size_t begin, std::size_t end) {
@@ -132,11 +119,26 @@ bool PeriodicDelaunay::build(std::span<const std::uint32_t> star_start, std::spa
       const auto v = static_cast<std::uint32_t>(vi);
       const auto s = star(v);
       const std::size_t d = s.size();
+      const std::uint32_t first = star_start[v];
       for (std::size_t k = 0; k < d; ++k) {
-        if (!owns(v, k, s)) continue;
+        const std::size_t k1 = k + 1 == d ? 0 : k + 1;
         const StarEntry& b = s[k];
-        const StarEntry& c = s[k + 1 == d ? 0 : k + 1];
-        const std::uint32_t id = triangle_at[star_start[v] + k];
+        const StarEntry& c = s[k1];
+        const std::uint32_t at_b = twin[first + k], at_c = twin[first + k1];  // v in b's star, in c's
+        const std::uint32_t before_v = at_b == star_start[b.vertex] ? star_start[b.vertex + 1] - 1 : at_b - 1;
+        const std::uint32_t after_v = at_c + 1 == star_start[c.vertex + 1] ? star_start[c.vertex] : at_c + 1;
+        const StarEntry& c_in_b = stars[before_v];
+        const StarEntry& b_in_c = stars[after_v];
+        if (c_in_b.vertex != c.vertex || c_in_b.shift_x != c.shift_x - b.shift_x || c_in_b.shift_y != c.shift_y - b.shift_y ||
+            b_in_c.vertex != b.vertex || b_in_c.shift_x != b.shift_x - c.shift_x || b_in_c.shift_y != b.shift_y - c.shift_y) {
+          bad[v] = 1;
+          continue;
+        }
+        const std::uint32_t owner = std::min({v, b.vertex, c.vertex});
+        const std::uint32_t owner_corner = owner == v ? first + static_cast<std::uint32_t>(k) : owner == b.vertex ? before_v : at_c;
+        const std::uint32_t id = number[owner_corner];
+        triangle_at[first + k] = id;
+        if (owner != v) continue;
         Triangle& t = triangles_[id];
         t.vertex[0] = v;
         t.vertex[1] = b.vertex;
@@ -147,28 +149,29 @@ bool PeriodicDelaunay::build(std::span<const std::uint32_t> star_start, std::spa
         t.shift_x[2] = c.shift_x;
         t.shift_y[2] = c.shift_y;
         // Opposite v: the edge b-c, whose other triangle comes before (b, c, v) around b.
-        const auto sb = star(b.vertex);
-        std::size_t p = 0;
-        while (p < sb.size() && sb[p].vertex != c.vertex) ++p;
-        across[3 * id + 0] = triangle_at[star_start[b.vertex] + (p == 0 ? sb.size() - 1 : p - 1)];
-        across[3 * id + 1] = triangle_at[star_start[v] + (k + 1 == d ? 0 : k + 1)];  // opposite b: edge c-v
-        across[3 * id + 2] = triangle_at[star_start[v] + (k == 0 ? d - 1 : k - 1)];  // opposite c: edge v-b
+        across[3 * id + 0] = before_v == star_start[b.vertex] ? star_start[b.vertex + 1] - 1 : before_v - 1;
+        across[3 * id + 1] = first + static_cast<std::uint32_t>(k1);                   // opposite b: edge c-v
+        across[3 * id + 2] = first + static_cast<std::uint32_t>(k == 0 ? d - 1 : k - 1);  // opposite c: edge v-b
       }
     }
   });
+  if (std::find(bad.begin(), bad.end(), 1) != bad.end()) {
+    triangles_.clear();
+    return false;
+  }
   // Each neighbour as a link: the edge of the neighbour that is not at either end of the shared edge.
   std::vector<std::uint8_t> broken(triangles_.size(), 0);
   parallel_for(triangles_.size(), kTriangleGrain, [&](std::size_t begin, std::size_t end) {
     for (std::size_t t = begin; t < end; ++t) {
       Triangle& tri = triangles_[t];
       for (int k = 0; k < 3; ++k) {
-        const std::uint32_t u = across[3 * t + static_cast<std::size_t>(k)];
+        const std::uint32_t u = triangle_at[across[3 * t + static_cast<std::size_t>(k)]];
         const Triangle& other = triangles_[u];
         const std::uint32_t a = tri.vertex[next(k)], b = tri.vertex[previous(k)];
         int e = -1;
         for (int j = 0; j < 3; ++j)
           if (other.vertex[j] != a && other.vertex[j] != b) e = e < 0 ? j : 3;
-        if (e < 0 || e > 2 || across[3 * u + static_cast<std::size_t>(e)] != t) {
+        if (e < 0 || e > 2 || triangle_at[across[3 * u + static_cast<std::size_t>(e)]] != t) {
           broken[t] = 1;
           e = 0;
         }
@@ -181,12 +184,13 @@ bool PeriodicDelaunay::build(std::span<const std::uint32_t> star_start, std::spa
     return false;
   }
   corners_.resize(n);
-  for (std::uint32_t v = 0; v < n; ++v) {
-    const Triangle& t = triangles_[triangle_at[star_start[v]]];
-    const int k = t.vertex[0] == v ? 0 : t.vertex[1] == v ? 1 : 2;
-    corners_[v] = link(triangle_at[star_start[v]], k);
-  }
-  canonical_corners();
+  parallel_for(n, kVertexGrain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t v = begin; v < end; ++v) {
+      const std::uint32_t t = triangle_at[canonical[v]];
+      const Triangle& tri = triangles_[t];
+      corners_[v] = link(t, tri.vertex[0] == v ? 0 : tri.vertex[1] == v ? 1 : 2);
+    }
+  });
   ties_.assign(triangles_.size(), 0);
   tie_edges_ = 0;
   return true;
@@ -207,13 +211,6 @@ void PeriodicDelaunay::canonical_corner(std::uint32_t vertex) {
     corner = next_around(corner);
   } while (corner != start);
   corners_[vertex] = best;
-}
-
-void PeriodicDelaunay::canonical_corners() {
-  parallel_for(vertex_count(), kVertexGrain, [&](std::size_t begin, std::size_t end) {
-    for (std::size_t v = begin; v < end; ++v)
-      if (corners_[v] != kNoCorner) canonical_corner(static_cast<std::uint32_t>(v));
-  });
 }
 
 void PeriodicDelaunay::wrap(std::uint32_t vertex, int kx, int ky) {

@@ -159,7 +159,6 @@ class PeriodicDelaunay {
                 std::span<const std::int8_t> shift_y) const;
   bool remove_vertex(std::uint32_t vertex, std::vector<std::uint32_t>& rewritten);
   void canonical_corner(std::uint32_t vertex);
-  void canonical_corners();  // every vertex's, on all threads
   bool insert_vertex(std::uint32_t vertex, std::uint32_t hint);
   std::uint32_t take_free_triangle();
 
