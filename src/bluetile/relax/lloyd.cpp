@@ -37,7 +37,7 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   // threads in parts of kCallerPart sites: three chunks of 4096 split 2:1 between two threads
   // (110-125 us at 10^4 sites against 78-85 on the calling thread alone: docs/BENCHMARKS.md,
   // "Fewer passes, the move on one thread"), forty parts evenly, and the sums alone are short
-  // ("Two threads after the SIMD lanes": 41 -> 32 us at 10^4 sites).
+  // ("Two threads after the SIMD lanes": 43-44 -> 32-34 us at 10^4 sites).
   constexpr std::size_t kCallerChunks = 4;
   constexpr std::size_t kCallerPart = 256;
   struct Sums {

@@ -55,12 +55,12 @@ bool all_inside_on_threads(std::span<const Point> sites, Point size) {
   constexpr std::size_t kThreadedSites = 8192;
   const std::size_t parts = (sites.size() + kPart - 1) / kPart;
   if (sites.size() < kThreadedSites || thread_count() < 2) return all_inside(sites, size);
-  std::atomic<bool> inside{true};
+  std::atomic<bool> every{true};
   parallel_for(parts, 1, [&](std::size_t begin, std::size_t end) {
     const std::size_t last = std::min(sites.size(), end * kPart);
-    if (!all_inside(sites.subspan(begin * kPart, last - begin * kPart), size)) inside.store(false, std::memory_order_relaxed);
+    if (!all_inside(sites.subspan(begin * kPart, last - begin * kPart), size)) every.store(false, std::memory_order_relaxed);
   });
-  return inside.load();
+  return every.load();
 }
 
 }  // namespace
