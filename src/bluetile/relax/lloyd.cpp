@@ -33,12 +33,13 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   // sums added in chunk order: the same bits whatever the thread count. A few chunks already at
   // 10^4 sites, where a Lloyd step takes about a millisecond.
   constexpr std::size_t kChunk = 4096;
-  // Up to this many chunks the move runs on the calling thread: the cells come from every thread
-  // (written at their sites' places), so on two threads half of each one's reads were the other
-  // core's lines, and three chunks split 2:1; at 10^4 sites the move took 110-125 us on two
-  // threads against 78-85 us on the calling thread alone (docs/BENCHMARKS.md, "Fewer passes, the
-  // move on one thread").
+  // Up to this many chunks the sums run on the calling thread, the moves themselves on all
+  // threads in parts of kCallerPart sites: three chunks of 4096 split 2:1 between two threads
+  // (110-125 us at 10^4 sites against 78-85 on the calling thread alone: docs/BENCHMARKS.md,
+  // "Fewer passes, the move on one thread"), forty parts evenly, and the sums alone are short
+  // ("Two threads after the SIMD lanes": 43-44 -> 32-34 us at 10^4 sites).
   constexpr std::size_t kCallerChunks = 4;
+  constexpr std::size_t kCallerPart = 256;
   struct Sums {
     double energy = 0.0, displacement = 0.0, largest = 0.0;
   };
@@ -75,7 +76,40 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
       log.max_displacement = sums[0].largest;
       continue;
     }
-    if (chunks <= kCallerChunks) {
+    if (chunks <= kCallerChunks && thread_count() > 1) {
+      // On all threads in even parts, site order, each site's displacement and energy kept; then
+      // the sums on the calling thread, in the same order as the one-thread path.
+      struct Moved {
+        double displacement, energy;
+      };
+      thread_local std::vector<Moved> buffer;  // keeps its capacity: no allocation per call
+      buffer.resize(count);
+      Moved* const moved = buffer.data();  // the calling thread's buffer, written on every thread
+      parallel_for((count + kCallerPart - 1) / kCallerPart, 1, [&](std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin * kCallerPart; i < std::min(count, end * kCallerPart); ++i) {
+          const Cell& cell = cells[k].cells[i];
+          Point& site = scene.sites[scene.wanted_begin + i];
+          const Point d = lloyd_displacement(scene, site, cell);
+          moved[i] = {std::sqrt(d.x * d.x + d.y * d.y), cell.second_moment};
+          site = cell.centroid;
+        }
+      });
+      // The chunks side by side, each in its own order: their chains of additions overlap (one
+      // chunk after the other, the adds' latency bounded the pass: 11 us at 10^4 sites, now 6).
+      // A fixed number of them (the empty ones add nothing), so the sums stay in registers.
+      Sums side[kCallerChunks] = {};
+      for (std::size_t j = 0; j < kChunk; ++j) {
+        for (std::size_t c = 0; c < kCallerChunks; ++c) {
+          const std::size_t i = c * kChunk + j;
+          if (i >= count) break;
+          const Moved m = moved[i];
+          side[c].energy += m.energy;
+          side[c].largest = std::max(side[c].largest, m.displacement);
+          side[c].displacement += m.displacement;
+        }
+      }
+      std::copy(side, side + chunks, sums.begin());
+    } else if (chunks <= kCallerChunks) {
       move(0, chunks);
     } else {
       parallel_for(chunks, 1, move);
