@@ -9,6 +9,8 @@
 #include <memory>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/parallel.h"
+#include "bluetile/core/text.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/raster/raster_engine.h"
 #include "bluetile/voronoi/scene.h"
@@ -107,6 +109,41 @@ TEST_P(EngineRefusals, BrokenScenesAreRefusedWithTheProjectsError) {
     bad.domain.size = size;
     EXPECT_NE(error_of(*engine, bad).find("is not a finite positive size"), std::string::npos) << size.x << " " << size.y;
   }
+}
+
+TEST_P(EngineRefusals, LargeScenesNameTheFirstBadSiteOnAnyThreadCount) {
+  // From 8192 sites the scene check runs on all threads in parts of 256 sites (scene.cpp), two
+  // sites at a time: a bad site in any part, at an even or an odd place, in the last part's odd
+  // tail, must still be found and the first one named, whatever the thread count.
+  const std::size_t before = thread_count();
+  const std::vector<Point> sites = test::uniform_points(20001, 5);
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  for (std::size_t threads : {1, 2, 7}) {
+    set_thread_count(threads);
+    auto engine = GetParam().make();
+    for (std::size_t at : {0, 255, 256, 12345, 20000}) {
+      Scene bad = make_scene(sites);
+      bad.sites[at].y = nan;
+      EXPECT_EQ(error_of(*engine, bad), "scene: site " + std::to_string(at) + " (" + exact_text(bad.sites[at].x) + ", nan) is not finite")
+          << threads << " threads";
+      bad.sites[at].y = 0.5;
+      bad.sites[at].x = inf;
+      bad.sites[at + (at < 20000 ? 1 : -1)].x = -inf;  // a later bad site is not the one named
+      const std::size_t first = std::min(at, at < 20000 ? at + 1 : at - 1);
+      EXPECT_NE(error_of(*engine, bad).find("scene: site " + std::to_string(first) + " ("), std::string::npos) << threads;
+      bad = make_scene(sites);
+      bad.boundary = Boundary::bounded;
+      bad.sites[at].x = 1.0;
+      EXPECT_EQ(error_of(*engine, bad), "scene: site " + std::to_string(at) + " (1, " + exact_text(bad.sites[at].y) +
+                                            ") lies outside the bounded domain 1 x 1")
+          << threads;
+    }
+    // On the torus a site outside is wrapped, not refused: the same cells as the wrapped scene.
+    Scene outside = make_scene(sites);
+    outside.sites[19999].x -= 1.0;
+    EXPECT_TRUE(test::identical_cells(engine->compute(outside), GetParam().make()->compute(make_scene(sites)))) << threads;
+  }
+  set_thread_count(before);
 }
 
 TEST_P(EngineContract, ResultsDoNotDependOnTheCallsBefore) {
