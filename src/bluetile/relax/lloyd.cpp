@@ -40,8 +40,17 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   // ("Two threads after the SIMD lanes": 43-44 -> 32-34 us at 10^4 sites).
   constexpr std::size_t kCallerChunks = 4;
   constexpr std::size_t kCallerPart = 256;
+  // One site's move: its distance moved and its cell's energy.
+  struct Moved {
+    double displacement, energy;
+  };
   struct Sums {
     double energy = 0.0, displacement = 0.0, largest = 0.0;
+    void add(Moved m) {
+      energy += m.energy;
+      largest = std::max(largest, m.displacement);
+      displacement += m.displacement;
+    }
   };
   std::vector<Sums> sums;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
@@ -52,20 +61,16 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
     log.zero_density += cells[k].zero_density_count;
     const std::size_t count = scene.wanted_count(), chunks = (count + kChunk - 1) / kChunk;
     sums.assign(chunks, Sums{});
+    auto step = [&](std::size_t i) {
+      const Cell& cell = cells[k].cells[i];
+      Point& site = scene.sites[scene.wanted_begin + i];
+      const Point d = lloyd_displacement(scene, site, cell);
+      site = cell.centroid;
+      return Moved{std::sqrt(d.x * d.x + d.y * d.y), cell.second_moment};
+    };
     auto move = [&](std::size_t begin, std::size_t end) {
-      for (std::size_t c = begin; c < end; ++c) {
-        Sums& mine = sums[c];
-        for (std::size_t i = c * kChunk; i < std::min(count, (c + 1) * kChunk); ++i) {
-          const Cell& cell = cells[k].cells[i];
-          Point& site = scene.sites[scene.wanted_begin + i];
-          Point d = lloyd_displacement(scene, site, cell);
-          double moved = std::sqrt(d.x * d.x + d.y * d.y);
-          mine.energy += cell.second_moment;
-          mine.largest = std::max(mine.largest, moved);
-          mine.displacement += moved;
-          site = cell.centroid;
-        }
-      }
+      for (std::size_t c = begin; c < end; ++c)
+        for (std::size_t i = c * kChunk; i < std::min(count, (c + 1) * kChunk); ++i) sums[c].add(step(i));
     };
     if (chunks <= 1) {
       // One chunk: the sums run on from the scenes before, as they always did.
@@ -79,20 +84,11 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
     if (chunks <= kCallerChunks && thread_count() > 1) {
       // On all threads in even parts, site order, each site's displacement and energy kept; then
       // the sums on the calling thread, in the same order as the one-thread path.
-      struct Moved {
-        double displacement, energy;
-      };
       thread_local std::vector<Moved> buffer;  // keeps its capacity: no allocation per call
       buffer.resize(count);
       Moved* const moved = buffer.data();  // the calling thread's buffer, written on every thread
       parallel_for((count + kCallerPart - 1) / kCallerPart, 1, [&](std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin * kCallerPart; i < std::min(count, end * kCallerPart); ++i) {
-          const Cell& cell = cells[k].cells[i];
-          Point& site = scene.sites[scene.wanted_begin + i];
-          const Point d = lloyd_displacement(scene, site, cell);
-          moved[i] = {std::sqrt(d.x * d.x + d.y * d.y), cell.second_moment};
-          site = cell.centroid;
-        }
+        for (std::size_t i = begin * kCallerPart; i < std::min(count, end * kCallerPart); ++i) moved[i] = step(i);
       });
       // The chunks side by side, each in its own order: their chains of additions overlap (one
       // chunk after the other, the adds' latency bounded the pass: 11 us at 10^4 sites, now 6).
@@ -102,10 +98,7 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
         for (std::size_t c = 0; c < kCallerChunks; ++c) {
           const std::size_t i = c * kChunk + j;
           if (i >= count) break;
-          const Moved m = moved[i];
-          side[c].energy += m.energy;
-          side[c].largest = std::max(side[c].largest, m.displacement);
-          side[c].displacement += m.displacement;
+          side[c].add(moved[i]);
         }
       }
       std::copy(side, side + chunks, sums.begin());

@@ -36,8 +36,9 @@ class DensityPrefix;
 // every cell is searched (the reference the tests compare with); ExactEngine() turns it off when
 // the environment sets BLUETILE_EXACT_KEEP_TOPOLOGY=0.
 //
-// simd: the triangulation's sweep four triangles at a time where the processor has AVX2 and the
-// environment does not set BLUETILE_SIMD=0; the same bits as one at a time (delaunay_sweep.h).
+// simd: the triangulation's sweep four triangles at a time, and its cells four at a time, where
+// the processor has AVX2 and the environment does not set BLUETILE_SIMD=0; the same bits as one
+// at a time (delaunay_sweep.h).
 struct ExactEngineOptions {
   bool keep_topology = true;
   bool simd = true;

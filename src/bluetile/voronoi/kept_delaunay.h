@@ -47,7 +47,8 @@ class KeptDelaunay {
   // exact range).
   static bool suits(const Scene& scene);
 
-  // `lanes`: the sweep in SIMD lanes where the processor has them (DelaunayCells::sweep).
+  // `lanes`: the sweep and the cell walks in SIMD lanes where the processor has them
+  // (DelaunayCells::sweep, DelaunayCells::measure_four).
   explicit KeptDelaunay(bool lanes = true) : lanes_(lanes) {}
 
   // How many measured cells have each status that SceneCells counts.
