@@ -195,6 +195,37 @@ TEST(Lloyd, LargeScenesRelaxInGridOrderAndComeBackInTheirOwn) {
   for (std::size_t i = 0; i < fixed; ++i) ASSERT_EQ(expected[i], start[i]);
 }
 
+TEST(Lloyd, TheMoveGivesTheSameSitesAndSumsOnAnyThreadCount) {
+  // Two to four chunks of 4096 sites move on all threads and are summed on the calling thread
+  // chunk by chunk in site order; one chunk, and more than four, take other paths. Every path's
+  // sites and log (energy, largest and mean displacement) must be the same bits on 1, 2 and 7
+  // threads. The cells come from one engine call, so only the move differs between the runs.
+  const std::size_t threads_before = thread_count();
+  for (std::size_t n : {3000u, 4097u, 9000u, 16384u, 21000u}) {
+    const Scene start = make_scene(test::uniform_points(n, 31));
+    const SceneCells cells = ExactEngine().compute(start);
+    std::vector<Point> first_sites;
+    LloydIteration first{};
+    for (std::size_t threads : {1u, 2u, 7u}) {
+      set_thread_count(threads);
+      std::vector<Scene> scenes{start};
+      const LloydIteration log = move_to_centroids(scenes, std::span<const SceneCells>(&cells, 1));
+      if (threads == 1) {
+        first_sites = scenes[0].sites;
+        first = log;
+        EXPECT_GT(log.energy, 0.0);
+        EXPECT_GT(log.max_displacement, log.mean_displacement);
+        continue;
+      }
+      EXPECT_EQ(std::memcmp(scenes[0].sites.data(), first_sites.data(), n * sizeof(Point)), 0) << n << " sites, " << threads;
+      EXPECT_EQ(std::memcmp(&log.energy, &first.energy, sizeof(double)), 0) << n << " sites, " << threads;
+      EXPECT_EQ(std::memcmp(&log.max_displacement, &first.max_displacement, sizeof(double)), 0) << n << ", " << threads;
+      EXPECT_EQ(std::memcmp(&log.mean_displacement, &first.mean_displacement, sizeof(double)), 0) << n << ", " << threads;
+    }
+  }
+  set_thread_count(threads_before);
+}
+
 TEST(Lloyd, AnInterruptedRunGivesTheSitesBackInTheirOwnOrder) {
   const std::size_t n = kGridOrderSites;
   const std::vector<Point> start = test::uniform_points(n, 13);
