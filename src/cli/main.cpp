@@ -1,5 +1,6 @@
 // bluetile: blue-noise point sets by Lloyd relaxation (Hiller, Deussen, Keller 2001).
 #include <csignal>
+#include <cstdlib>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -12,6 +13,11 @@
 #include "bluetile/core/parallel.h"
 
 int main(int argc, char** argv) {
+  // OpenImageIO's dependencies load OpenBLAS, which the tool never calls; its initialiser would
+  // start a worker per core beyond the first, with a 128 MiB buffer each on AVX-512 processors.
+  // One thread (unless the user set it): the image commands then fit smaller memory limits
+  // (plugin_address_space_needed, image_file.cpp). Set before any thread starts.
+  setenv("OPENBLAS_NUM_THREADS", "1", 0);
   try {
     // Before any thread starts: every thread then leaves SIGINT, SIGTERM, SIGHUP to the watcher
     // that removes staged outputs (output_file.h).

@@ -53,12 +53,30 @@ struct Plugin {
   std::_Exit(1);
 }
 
+// The worker threads OpenBLAS (loaded by OpenImageIO's dependencies) starts as it loads: one per
+// thread it is told to use (OPENBLAS_NUM_THREADS, GOTO_NUM_THREADS, OMP_NUM_THREADS, the first
+// one set) or per core, the calling thread aside.
+std::uint64_t openblas_workers(std::uint64_t cores) {
+  for (const char* name : {"OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS"}) {
+    const char* value = std::getenv(name);
+    if (value == nullptr) continue;
+    char* end = nullptr;
+    const long threads = std::strtol(value, &end, 10);
+    if (end != value && threads > 0) return std::min<std::uint64_t>(static_cast<std::uint64_t>(threads), cores) - 1;
+  }
+  return cores - 1;
+}
+
 // Address space that loading the plugin takes: OpenImageIO's some 250 libraries, and the thread
-// pools their initialisers start, a stack and a malloc arena per hardware thread. Measured: a
-// stipple of 100 dots needs a 540 MB ulimit -v on 2 cores, 17 MB of it before the plugin loads.
+// pools their initialisers start, a stack and a malloc arena per hardware thread, and a buffer
+// per OpenBLAS worker (128 MiB on AVX-512 processors, less on others). Measured on 2 cores, 17 MB
+// of it before the plugin loads: a stipple of 100 dots needs a 540 MB ulimit -v on an AMD EPYC;
+// on an Intel Xeon with AVX-512, relax --id-image took 616 MB with OpenBLAS's worker, 480 MB
+// without it (OPENBLAS_NUM_THREADS=1, which the tool sets: cli/main.cpp).
 std::uint64_t plugin_address_space_needed() {
   constexpr std::uint64_t kMiB = std::uint64_t{1} << 20;
-  return (448 + 40 * std::uint64_t{std::max(1u, std::thread::hardware_concurrency())}) * kMiB;
+  const std::uint64_t cores = std::max(1u, std::thread::hardware_concurrency());
+  return (448 + 40 * cores + 128 * openblas_workers(cores)) * kMiB;
 }
 
 // Under it, those initialisers fail in ways no caller can catch (an abort, a deadlock in a
