@@ -167,7 +167,7 @@ int main(int argc, char** argv) {
   app.add_flag("--check", check, "After each run, the last sites against a fresh search (differences reported)");
   app.add_flag("--caller-order", caller_order,
                "Keep the sites in the order they were drawn (at random) instead of the grid order relax_lloyd puts "
-               "scenes of 65536 sites and more in (kGridOrderSites, lloyd.h)");
+               "scenes of " + std::to_string(kGridOrderSites) + " sites and more in (kGridOrderSites, lloyd.h)");
   app.add_flag("--no-energy", no_energy,
                "Ask the exact engine for no second moments (Scene::second_moments), as bluetile relax without --log or -v");
   app.add_flag("--per-call", per_call,
@@ -270,7 +270,7 @@ int main(int argc, char** argv) {
           std::snprintf(rebuilds, sizeof rebuilds, "%zu of %d", row.last.rebuilds, timed);
           std::snprintf(repaired, sizeof repaired, "%zu", row.last.repaired);
         }
-        std::printf("| %s | %zu | %.2f | %.0f | %.0f | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", row.name.c_str(),
+        std::printf("| %s | %zu | %.3f | %.0f | %.0f | %s | %s | %s | %s | %s | %s | %s | %s | %s |\n", row.name.c_str(),
                     row.threads, 1e3 * m, per * m, per * c, ratio(m, search1).c_str(), ratio(c, search1_cpu).c_str(),
                     ratio(m, band).c_str(), ratio(c, band_cpu).c_str(), share, rebuilds, repaired, flips, bytes);
       }

@@ -30,14 +30,16 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   std::size_t moving = 0;
   double displacement_sum = 0.0;
   // A scene's sites in chunks of a fixed size (on all threads for a large scene), each chunk's
-  // sums added in chunk order: the same bits whatever the thread count. A few chunks already at
-  // 10^4 sites, where a Lloyd step takes about a millisecond.
-  constexpr std::size_t kChunk = 4096;
+  // sums added in chunk order: the same bits whatever the thread count. Ten chunks at 10^4 sites,
+  // where a Lloyd step takes a third of a millisecond: each thread moves and sums whole chunks of
+  // its own, and no sums are left to the calling thread (chunks of 4096 left it 6 us of them a
+  // step: docs/BENCHMARKS.md, "Two threads at 10^4: smaller move chunks and grid order from 8192
+  // sites").
+  constexpr std::size_t kChunk = 1024;
   // Up to this many chunks the sums run on the calling thread, the moves themselves on all
-  // threads in parts of kCallerPart sites: three chunks of 4096 split 2:1 between two threads
-  // (110-125 us at 10^4 sites against 78-85 on the calling thread alone: docs/BENCHMARKS.md,
-  // "Fewer passes, the move on one thread"), forty parts evenly, and the sums alone are short
-  // ("Two threads after the SIMD lanes": 43-44 -> 32-34 us at 10^4 sites).
+  // threads in parts of kCallerPart sites: three chunks split 2:1 between two threads would
+  // leave one thread idle a third of the move ("Fewer passes, the move on one thread"), and the
+  // sums of a few chunks side by side are short ("Two threads after the SIMD lanes").
   constexpr std::size_t kCallerChunks = 4;
   constexpr std::size_t kCallerPart = 256;
   // One site's move: its distance moved and its cell's energy.

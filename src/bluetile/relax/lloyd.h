@@ -83,9 +83,10 @@ std::vector<std::uint32_t> grid_row_order(std::span<const Point> sites, const Do
 
 // Scenes with at least this many wanted sites are relaxed in grid_row_order. An engine reads each
 // site and writes each cell at its index; in the caller's order (random for random sites) those
-// are cache and TLB misses once the arrays outgrow the caches (docs/BENCHMARKS.md, "Sites in grid
-// order for the relaxation").
-inline constexpr std::size_t kGridOrderSites = std::size_t{1} << 16;
+// are cache and TLB misses once the arrays outgrow the caches, and on two threads each thread
+// reads cells the other one wrote (docs/BENCHMARKS.md, "Sites in grid order for the relaxation",
+// and "Two threads at 10^4: smaller move chunks and grid order from 8192 sites").
+inline constexpr std::size_t kGridOrderSites = std::size_t{1} << 13;
 
 // Relaxes the wanted sites of every scene in place, all scenes in one engine call per
 // iteration. The tolerance applies to the largest displacement over all scenes; the history
