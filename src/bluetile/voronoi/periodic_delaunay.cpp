@@ -10,9 +10,11 @@
 namespace bluetile {
 namespace {
 
-// Chunks of the parallel passes: large enough that a chunk's bookkeeping is noise.
-constexpr std::size_t kVertexGrain = 2048;
-constexpr std::size_t kTriangleGrain = 4096;
+// Chunks of the parallel passes: large enough that a chunk's bookkeeping is noise, small enough
+// that a build of 10^4 sites has twenty of them, not five split 3:2 between two threads
+// (docs/BENCHMARKS.md, "Two threads at 10^4: smaller move chunks and grid order from 8192 sites").
+constexpr std::size_t kVertexGrain = 512;
+constexpr std::size_t kTriangleGrain = 1024;
 
 }  // namespace
 
