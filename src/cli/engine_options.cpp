@@ -45,9 +45,10 @@ std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {
 void note_faster_engine(const CentroidEngine& engine, double site_iterations) {
   const auto* raster = dynamic_cast<const RasterEngine*>(&engine);
   if (raster == nullptr || !raster->cpu_device()) return;
-  // Measured on lavapipe, 2 cores (relax -n 20000 -k 20): about 4 us per cell with the raster
-  // engine, 8-10x less with the exact engine (docs/BENCHMARKS.md, "Which engine to use").
-  constexpr double kRasterSecondsPerCell = 4e-6, kExactSpeedUp = 8.0;
+  // Measured on lavapipe, 2 cores, wall time (relax -k 20 -n 20000, -k 10 -n 100000): 2.1-3.0 us
+  // per cell with the raster engine, 17-21x less with the exact engine since it keeps its
+  // triangulation between iterations (docs/BENCHMARKS.md, "Which engine to use").
+  constexpr double kRasterSecondsPerCell = 2.5e-6, kExactSpeedUp = 16.0;
   constexpr double kWorthSaying = 10.0;  // seconds: shorter runs are not worth a line
   const double raster_s = kRasterSecondsPerCell * site_iterations;
   if (raster_s < kWorthSaying) return;
