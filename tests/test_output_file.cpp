@@ -256,12 +256,14 @@ TEST(OutputFile, ReusedFolderNamesTheFilesThisRunDidNotWrite) {
   dir.write("analysis/.hidden", "mine\n");                     // hidden files and folders are no outputs
   fs::create_directory(dir.file("analysis/sub"));
   EXPECT_EQ(publish(folder + "/", {"a.txt"}),
-            "bluetile: note: " + folder + "/ also holds 2 files this run did not write (from an earlier run?): b.png, c.csv\n");
+            "bluetile: note: " + folder + "/ also holds 2 files this run did not write, left as they are: b.png, c.csv\n");
   EXPECT_EQ(read_text(dir.file("analysis/b.png")), "b.png\n");  // kept
   for (const char* name : {"d", "e", "f", "g"}) dir.write(std::string("analysis/") + name, "\n");
   EXPECT_EQ(publish(folder, {"e"}),
             "bluetile: note: " + folder +
-                " also holds 6 files this run did not write (from an earlier run?): a.txt, b.png, c.csv, d and 2 more\n");
+                " also holds 6 files this run did not write, left as they are: a.txt, b.png, c.csv, d and 2 more\n");
+  EXPECT_EQ(publish(folder, {"a.txt", "b.png", "c.csv", "d", "e", "f"}),
+            "bluetile: note: " + folder + " also holds 1 file this run did not write, left as it is: g\n");
 }
 
 TEST(OutputFile, StreamsAndReportsEveryFailedWrite) {

@@ -709,8 +709,11 @@ void OutputSet::note_files_of_earlier_runs() const {
     std::string list;
     for (std::size_t i = 0; i < others.size() && i < kNamesShown; ++i) list += (i ? ", " : "") + others[i];
     if (others.size() > kNamesShown) list += " and " + std::to_string(others.size() - kNamesShown) + " more";
-    std::fprintf(stderr, "bluetile: note: %s also holds %zu file%s this run did not write (from an earlier run?): %s\n",
-                 user_path.c_str(), others.size(), others.size() == 1 ? "" : "s", list.c_str());
+    // Said as what they are, not guessed at: the files of an earlier run with other options, or
+    // another command's (the demo's relax outputs, beside its analysis).
+    const bool one = others.size() == 1;
+    std::fprintf(stderr, "bluetile: note: %s also holds %zu file%s this run did not write, left as %s: %s\n",
+                 user_path.c_str(), others.size(), one ? "" : "s", one ? "it is" : "they are", list.c_str());
   }
 }
 
