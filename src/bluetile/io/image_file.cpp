@@ -2,21 +2,21 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cinttypes>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <filesystem>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 
 #include <dlfcn.h>
 #include <link.h>
-#include <sys/resource.h>
 #include <unistd.h>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/process_limits.h"
 #include "bluetile/io/oiio_plugin.h"
 
 namespace bluetile {
@@ -82,22 +82,12 @@ std::uint64_t plugin_address_space_needed() {
 // Under it, those initialisers fail in ways no caller can catch (an abort, a deadlock in a
 // logging library's thread pool, a crash): refused before dlopen instead.
 void check_plugin_address_space() {
-  rlimit limit{};
-  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return;
-  std::uint64_t used_kib = 0;
-  if (std::FILE* status = std::fopen("/proc/self/status", "r")) {
-    char line[256];
-    while (std::fgets(line, sizeof line, status))
-      if (std::sscanf(line, "VmSize: %" SCNu64 " kB", &used_kib) == 1) break;
-    std::fclose(status);
-  }
-  const auto allowed = static_cast<std::uint64_t>(limit.rlim_cur);
-  const std::uint64_t used = used_kib * 1024, needed = plugin_address_space_needed();
-  const std::uint64_t left = allowed > used ? allowed - used : 0;
-  if (left >= needed) return;
+  const std::optional<ProcessLimit> limit = address_space_limit();
+  const std::uint64_t needed = plugin_address_space_needed();
+  if (!limit || limit->left() >= needed) return;
   throw Error("cannot load the image plugin " BLUETILE_OIIO_PLUGIN_NAME ": OpenImageIO needs about " +
               std::to_string(needed >> 20) + " MiB of address space to start, but the limit (ulimit -v " +
-              std::to_string(allowed >> 10) + ") leaves " + std::to_string(left >> 20) +
+              std::to_string(limit->limit >> 10) + ") leaves " + std::to_string(limit->left() >> 20) +
               " MiB: out of memory for it; raise the limit");
 }
 
