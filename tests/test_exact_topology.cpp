@@ -690,6 +690,75 @@ TEST(ExactTopology, BuildFromStarsLinksTrianglesAndCanonicalCorners) {
   EXPECT_TRUE(triangulation.empty());
 }
 
+TEST(ExactTopology, FlipsInStripsReachTheDelaunayTriangulation) {
+  // With many suspects make_delaunay flips first inside strips of vertices on all threads (a flip
+  // only where the strip holds all six triangles it touches), then what the strips deferred on
+  // the calling thread. A 64 x 64 lattice triangulated along one diagonal, its sites jittered by up
+  // to a fifth of the spacing (two strips of 32 rows; every edge a suspect): afterwards every edge
+  // passes the in-circle test, the links are reciprocal, every canonical corner is the one a walk
+  // around its vertex picks, some flips were made in the strips and some after them, and 1, 2 and
+  // 7 threads leave the same triangles in the same slots.
+  using PD = PeriodicDelaunay;
+  const int k = 64;
+  const std::size_t n = static_cast<std::size_t>(k * k);
+  std::vector<std::uint32_t> star_start;
+  std::vector<PD::StarEntry> stars;
+  lattice_stars(k, star_start, stars);
+  const std::vector<Point> jitter = uniform_points(n, 31);
+  std::vector<Point> positions;
+  std::vector<std::uint32_t> sites;
+  for (std::size_t v = 0; v < n; ++v) {
+    const Point d = 0.2 * (jitter[v] - Point{0.5, 0.5});
+    positions.push_back({(static_cast<double>(v % k) + 0.5 + d.x) / k, (static_cast<double>(v / k) + 0.5 + d.y) / k});
+    sites.push_back(static_cast<std::uint32_t>((37 * v + 11) % n));
+  }
+  const std::size_t before = thread_count();
+  std::vector<std::vector<std::uint32_t>> layouts;
+  for (std::size_t threads : {1u, 2u, 7u}) {
+    set_thread_count(threads);
+    PD triangulation;
+    triangulation.reset(Domain{}, positions, sites);
+    ASSERT_TRUE(triangulation.build(star_start, stars));
+    std::vector<std::uint32_t> suspects, changed;
+    for (std::uint32_t t = 0; t < 2 * n; ++t)
+      for (int e = 0; e < 3; ++e) suspects.push_back(PD::link(t, e));
+    ASSERT_TRUE(triangulation.make_delaunay(suspects, {}, changed));
+    EXPECT_GT(triangulation.flips(), n / 4) << threads << " threads";
+    EXPECT_GT(triangulation.strip_flips(), triangulation.flips() / 2) << threads << " threads";
+    EXPECT_LT(triangulation.strip_flips(), triangulation.flips()) << threads << " threads";
+    EXPECT_EQ(triangulation.tie_edges(), 0u);
+    const auto triangles = triangulation.triangles();
+    std::vector<std::uint32_t> layout;
+    for (std::uint32_t t = 0; t < triangles.size(); ++t) {
+      for (int e = 0; e < 3; ++e) {
+        const std::uint32_t l = triangles[t].neighbour[e];
+        EXPECT_EQ(triangles[PD::triangle_of(l)].neighbour[PD::edge_of(l)], PD::link(t, e)) << "triangle " << t;
+        EXPECT_LE(triangulation.test_edge(t, e).perturbed, 0) << "triangle " << t << ", edge " << e;
+        layout.push_back(triangles[t].vertex[e]);
+        layout.push_back(l);
+      }
+    }
+    for (std::uint32_t v = 0; v < n; ++v) {
+      const std::uint32_t start = triangulation.corner_of(v);
+      std::uint32_t corner = start, lowest = start;
+      int steps = 0;
+      auto previous_site = [&](std::uint32_t c) {
+        return sites[triangles[PD::triangle_of(c)].vertex[PD::previous(PD::edge_of(c))]];
+      };
+      do {
+        EXPECT_EQ(triangles[PD::triangle_of(corner)].vertex[PD::edge_of(corner)], v);
+        if (previous_site(corner) < previous_site(lowest)) lowest = corner;
+        corner = triangulation.next_around(corner);
+      } while (corner != start && ++steps < 64);
+      EXPECT_EQ(lowest, start) << "vertex " << v;
+    }
+    layouts.push_back(std::move(layout));
+  }
+  set_thread_count(before);
+  EXPECT_EQ(layouts[0], layouts[1]);
+  EXPECT_EQ(layouts[0], layouts[2]);
+}
+
 TEST(ExactTopology, LargerRelaxationsAgreeWithTheSearch) {
   // 10^4 sites from random, every third call compared (the bench's --check runs 10^5 and 10^6).
   Scene scene = make_scene(uniform_points(10000, 13));

@@ -15,6 +15,9 @@ namespace {
 // (docs/BENCHMARKS.md, "Two threads at 10^4: smaller move chunks and grid order from 8192 sites").
 constexpr std::size_t kVertexGrain = 512;
 constexpr std::size_t kTriangleGrain = 1024;
+// Flips split into strips (make_delaunay) only where there are enough of both to share.
+constexpr double kMinStripVertices = 2048;
+constexpr std::size_t kMinStripSuspects = 256;
 
 }  // namespace
 
@@ -255,18 +258,18 @@ PeriodicDelaunay::Test PeriodicDelaunay::test_edge(std::uint32_t triangle, int e
   return r;
 }
 
-void PeriodicDelaunay::set_tie(std::uint32_t triangle, int edge, bool tie) {
+void PeriodicDelaunay::set_tie(std::uint32_t triangle, int edge, bool tie, Tally& tally) {
   const std::uint32_t l = triangles_[triangle].neighbour[edge];
   const auto bit = static_cast<std::uint8_t>(1u << edge), other = static_cast<std::uint8_t>(1u << edge_of(l));
   const bool was = (ties_[triangle] & bit) != 0;
   if (was == tie) return;
-  tie_edges_ = tie ? tie_edges_ + 1 : tie_edges_ - 1;
+  tally.tie_edges += tie ? 1 : -1;
   ties_[triangle] = static_cast<std::uint8_t>(tie ? ties_[triangle] | bit : ties_[triangle] & ~bit);
   std::uint8_t& o = ties_[triangle_of(l)];
   o = static_cast<std::uint8_t>(tie ? o | other : o & ~other);
 }
 
-bool PeriodicDelaunay::flip(std::uint32_t ti, int k, bool walk_corners) {
+bool PeriodicDelaunay::flip(std::uint32_t ti, int k, Tally& tally, bool walk_corners) {
   // t = (a, b, c) with a at corner k; across b-c lies u = (d, c, b) with d at corner e. The
   // quadrilateral a, b, d, c is convex (d lies inside the circle through a, b, c, beyond b-c),
   // so the diagonal a-d replaces b-c: t becomes (a, b, d), u becomes (a, d, c).
@@ -363,51 +366,122 @@ bool PeriodicDelaunay::flip(std::uint32_t ti, int k, bool walk_corners) {
     const auto bit = static_cast<std::uint8_t>(1u << edge_of(l));
     if (o & bit) {
       o = static_cast<std::uint8_t>(o & ~bit);
-      --tie_edges_;
+      --tally.tie_edges;
     }
   };
   for (std::uint32_t l : {n_ab, n_ca, n_bd, n_dc}) clear_side(l);
-  if (ties_[ti] & (1u << k)) --tie_edges_;  // the old diagonal
+  if (ties_[ti] & (1u << k)) --tally.tie_edges;  // the old diagonal
   ties_[ti] = ties_[ui] = 0;
-  ++flips_;
+  ++tally.flips;
   return true;
 }
 
-bool PeriodicDelaunay::make_delaunay(std::span<const std::uint32_t> suspects, std::span<const std::uint32_t> tie_edges,
-                                     std::vector<std::uint32_t>& changed) {
-  flips_ = 0;
-  if (tie_edges_ > 0) {
-    ties_.assign(triangles_.size(), 0);
-    tie_edges_ = 0;
-  }
-  for (std::uint32_t l : tie_edges) set_tie(triangle_of(l), edge_of(l), true);
-  // Lawson's flips reach the (perturbed) Delaunay triangulation from any triangulation in
-  // O(V^2) flips; after a Lloyd step a few per site at most. A cap far above that stops a run
-  // that roundings of an input outside the predicates' range would make endless.
-  const std::size_t cap = 64 * triangles_.size() + 1024;
-  std::vector<std::uint32_t> stack(suspects.rbegin(), suspects.rend());  // the first suspect first
+bool PeriodicDelaunay::flip_until_delaunay(std::vector<std::uint32_t>& stack, const Strip& strip, std::size_t cap,
+                                           Tally& tally, std::vector<std::uint32_t>& changed,
+                                           std::vector<std::uint32_t>& deferred) {
   while (!stack.empty()) {
     const std::uint32_t l = stack.back();
     stack.pop_back();
     const std::uint32_t ti = triangle_of(l);
     const int k = edge_of(l);
-    const Test r = test_edge(ti, k);
-    if (r.perturbed <= 0) {
-      set_tie(ti, k, r.exact == 0);
+    const Triangle& t = triangles_[ti];
+    if (!strip.holds(t) || !strip.holds(triangles_[triangle_of(t.neighbour[k])])) {
+      deferred.push_back(l);
       continue;
     }
-    if (flips_ >= cap || !flip(ti, k)) return false;
+    const Test r = test_edge(ti, k);
+    if (r.perturbed <= 0) {
+      set_tie(ti, k, r.exact == 0, tally);
+      continue;
+    }
+    // A flip rewrites the two triangles and the links and tie marks of the four around them,
+    // and walks around vertices of the two: all of it held by the strip when the four are.
+    if (!strip.whole()) {
+      const Triangle& u = triangles_[triangle_of(t.neighbour[k])];
+      const int e = edge_of(t.neighbour[k]);
+      if (!strip.holds(triangles_[triangle_of(t.neighbour[next(k)])]) ||
+          !strip.holds(triangles_[triangle_of(t.neighbour[previous(k)])]) ||
+          !strip.holds(triangles_[triangle_of(u.neighbour[next(e)])]) ||
+          !strip.holds(triangles_[triangle_of(u.neighbour[previous(e)])])) {
+        deferred.push_back(l);
+        continue;
+      }
+    }
+    if (tally.flips >= cap || !flip(ti, k, tally)) return false;
     const std::uint32_t ui = triangle_of(triangles_[ti].neighbour[1]);
     changed.push_back(ti);
     changed.push_back(ui);
     // The new diagonal passes (the flip made it Delaunay); it is a tie when the old one was.
-    set_tie(ti, 1, r.exact == 0);
+    set_tie(ti, 1, r.exact == 0, tally);
     stack.push_back(link(ui, 1));
     stack.push_back(link(ui, 0));
     stack.push_back(link(ti, 2));
     stack.push_back(link(ti, 0));
   }
   return true;
+}
+
+bool PeriodicDelaunay::make_delaunay(std::span<const std::uint32_t> suspects, std::span<const std::uint32_t> tie_edges,
+                                     std::vector<std::uint32_t>& changed) {
+  flips_ = strip_flips_ = 0;
+  if (tie_edges_ > 0) {
+    ties_.assign(triangles_.size(), 0);
+    tie_edges_ = 0;
+  }
+  Tally tally;
+  for (std::uint32_t l : tie_edges) set_tie(triangle_of(l), edge_of(l), true, tally);
+  // Lawson's flips reach the (perturbed) Delaunay triangulation from any triangulation in
+  // O(V^2) flips; after a Lloyd step a few per site at most. A cap far above that stops a run
+  // that roundings of an input outside the predicates' range would make endless.
+  const std::size_t cap = 64 * triangles_.size() + 1024;
+  auto finish = [&](bool delaunay) {
+    flips_ = tally.flips;
+    tie_edges_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(tie_edges_) + tally.tie_edges);
+    return delaunay;
+  };
+  // Vertices are numbered in rows of the plane, so a range of them is a strip about 32 rows of
+  // sites high: most flips lie inside one, and strips flip at once. The strips depend on the
+  // count only, so the flips' order does too, not on threads. (The Delaunay triangulation reached
+  // is unique whatever the order; the order fixes which slot holds which triangle.)
+  const std::size_t n = vertex_count();
+  const double wanted_size = std::max<double>(kMinStripVertices, 32.0 * std::ceil(std::sqrt(static_cast<double>(n))));
+  const auto strips = std::max<std::size_t>(1, static_cast<std::size_t>(std::ceil(static_cast<double>(n) / wanted_size)));
+  const std::size_t strip_size = (n + strips - 1) / strips;  // strips alike, for the threads' shares
+  std::vector<std::uint32_t> stack;
+  if (strips >= 2 && suspects.size() >= kMinStripSuspects) {
+    struct StripRun {
+      std::vector<std::uint32_t> stack, changed, deferred;
+      Tally tally;
+      bool ok = true;
+    };
+    std::vector<StripRun> runs(strips);
+    // Each suspect to the strip of its triangle's first vertex (a strip the triangle has no
+    // vertex in could not even read it).
+    for (auto it = suspects.rbegin(); it != suspects.rend(); ++it)
+      runs[triangles_[triangle_of(*it)].vertex[0] / strip_size].stack.push_back(*it);
+    parallel_for(strips, 1, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) {
+        StripRun& run = runs[i];
+        const Strip strip{static_cast<std::uint32_t>(i * strip_size),
+                          static_cast<std::uint32_t>(std::min(n, (i + 1) * strip_size))};
+        run.ok = flip_until_delaunay(run.stack, strip, cap, run.tally, run.changed, run.deferred);
+      }
+    });
+    // What the strips left, on this thread, the first strip's first.
+    for (const StripRun& run : runs) {
+      if (!run.ok) return finish(false);
+      tally.flips += run.tally.flips;
+      strip_flips_ += run.tally.flips;
+      tally.tie_edges += run.tally.tie_edges;
+      changed.insert(changed.end(), run.changed.begin(), run.changed.end());
+      stack.insert(stack.end(), run.deferred.begin(), run.deferred.end());
+    }
+    std::reverse(stack.begin(), stack.end());
+  } else {
+    stack.assign(suspects.rbegin(), suspects.rend());  // the first suspect first
+  }
+  std::vector<std::uint32_t> none;
+  return finish(flip_until_delaunay(stack, Strip{}, cap, tally, changed, none));
 }
 
 bool PeriodicDelaunay::valid_at(const Triangle& t, std::span<const Point> positions, std::span<const std::int8_t> shift_x,
@@ -492,7 +566,10 @@ bool PeriodicDelaunay::remove_vertex(std::uint32_t vertex, std::vector<std::uint
       if (!short_edge(before, after) || !short_edge(v, after)) continue;
       if (orientation(before, at, after) <= 0 || orientation(v, before, after) <= 0) continue;
       const std::uint32_t other = triangle_of(tri.neighbour[next(jv)]);
-      if (!flip(t, next(jv), true)) return false;
+      Tally tally;
+      if (!flip(t, next(jv), tally, true)) return false;
+      flips_ += tally.flips;
+      tie_edges_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(tie_edges_) + tally.tie_edges);
       rewritten.push_back(t);
       rewritten.push_back(other);
       flipped = true;

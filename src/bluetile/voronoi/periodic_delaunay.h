@@ -123,10 +123,14 @@ class PeriodicDelaunay {
   // other edge passes strictly). Adds the triangles it rewrote to `changed`. Precondition: every
   // triangle valid (counter-clockwise, edges below a quarter period). Returns false when a flip
   // would make an edge of a quarter period or more or the flips do not end (roundings of an input
-  // the predicates cannot hold): the triangulation is then unusable. Flips in a fixed order.
+  // the predicates cannot hold): the triangulation is then unusable. Flips in a fixed order,
+  // the same for any thread count: with many suspects, first inside strips of vertices on all
+  // threads (Strip), then what the strips left on the calling thread.
   bool make_delaunay(std::span<const std::uint32_t> suspects, std::span<const std::uint32_t> tie_edges,
                      std::vector<std::uint32_t>& changed);
   std::size_t flips() const { return flips_; }
+  // Of those, the flips made inside strips (on all threads), for tests.
+  std::size_t strip_flips() const { return strip_flips_; }
   // The perturbed and exact in-circle signs of edge `edge` of triangle `t`: positive when the
   // vertex across it lies inside t's circumcircle (the edge must flip).
   struct Test {
@@ -147,11 +151,33 @@ class PeriodicDelaunay {
   // The shift that takes the frame of the triangle across edge `edge` of `t` into t's frame.
   void frame_offset(const Triangle& t, int edge, const Triangle& across, int across_edge, int& dx, int& dy) const;
   bool short_edge(const PeriodicPoint& a, const PeriodicPoint& b) const;
+  // What flips and tie marks change, counted apart so that strips can flip at once.
+  struct Tally {
+    std::size_t flips = 0;
+    std::ptrdiff_t tie_edges = 0;
+  };
   // Flips the edge; the four vertices' canonical corners follow from the ones they had (which
   // must be canonical for the result to be), or with `walk_corners` from a walk around each
   // (the repair's removals, where some are not yet).
-  bool flip(std::uint32_t triangle, int edge, bool walk_corners = false);
-  void set_tie(std::uint32_t triangle, int edge, bool tie);
+  bool flip(std::uint32_t triangle, int edge, Tally& tally, bool walk_corners = false);
+  void set_tie(std::uint32_t triangle, int edge, bool tie, Tally& tally);
+  // Vertices [begin, end) of a strip (rows of the plane, as vertices are numbered); the whole
+  // triangulation when begin == end. A strip writes only triangles whose three vertices it holds
+  // (and those vertices' corners), and reads only triangles with a vertex of its own: strips never
+  // touch what another writes, so they flip at once without locks.
+  struct Strip {
+    std::uint32_t begin = 0, end = 0;
+    bool whole() const { return begin == end; }
+    bool holds(const Triangle& t) const {
+      return whole() || (in(t.vertex[0]) && in(t.vertex[1]) && in(t.vertex[2]));
+    }
+    bool in(std::uint32_t vertex) const { return vertex >= begin && vertex < end; }
+  };
+  // Lawson's flips from the links on `stack` (the last first) until it is empty. Inside a strip,
+  // an edge whose test or flip would touch a triangle the strip does not hold goes to `deferred`
+  // instead. False when a flip fails or the flips pass `cap`.
+  bool flip_until_delaunay(std::vector<std::uint32_t>& stack, const Strip& strip, std::size_t cap, Tally& tally,
+                           std::vector<std::uint32_t>& changed, std::vector<std::uint32_t>& deferred);
   void normalise(Triangle& t) const;
   // Whether t is valid (counter-clockwise, short edges) with its vertices at `positions`, vertex
   // w's copies shifted by shift[w] periods more.
@@ -173,6 +199,7 @@ class PeriodicDelaunay {
   std::vector<std::uint32_t> free_;  // triangle slots freed by removals, taken by insertions
   std::size_t tie_edges_ = 0;
   std::size_t flips_ = 0;
+  std::size_t strip_flips_ = 0;
 };
 
 }  // namespace bluetile
