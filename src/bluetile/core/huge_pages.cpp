@@ -2,6 +2,8 @@
 
 #include <cstdint>
 
+#include "bluetile/core/parallel.h"
+
 #if defined(__linux__)
 #include <sys/mman.h>
 #endif
@@ -20,6 +22,16 @@ void advise_huge_pages(void* data, std::size_t bytes) {
   (void)data;
   (void)bytes;
 #endif
+}
+
+void touch_pages(void* data, std::size_t bytes) {
+  // One byte per small page: a huge page is mapped (and zeroed) whole by its first touch.
+  constexpr std::size_t kPage = 4096, kGrain = 512;  // 2 MiB of pages per chunk
+  auto* bytes_at = static_cast<volatile unsigned char*>(data);
+  const std::size_t pages = (bytes + kPage - 1) / kPage;
+  parallel_for(pages, kGrain, [&](std::size_t begin, std::size_t end) {
+    for (std::size_t p = begin; p < end; ++p) bytes_at[p * kPage] = 0;
+  });
 }
 
 }  // namespace bluetile

@@ -15,6 +15,11 @@ namespace bluetile {
 // touched get them at once (the kernel may merge the others later), so call it on fresh memory.
 void advise_huge_pages(void* data, std::size_t bytes);
 
+// Touches [data, data + bytes) once per page on all threads, so that mapping and zeroing fresh
+// memory (the kernel's work at a first touch) is shared instead of falling on the thread that
+// fills the array first (at 10^7 sites a tenth of the exact engine's first call).
+void touch_pages(void* data, std::size_t bytes);
+
 // Arrays below two huge pages are left alone: the advice could cover at most one page of them.
 inline constexpr std::size_t kHugePageArray = std::size_t{4} << 20;
 
@@ -29,6 +34,7 @@ void assign_on_huge_pages(std::vector<T>& v, std::size_t n, const T& value) {
   std::vector<T>().swap(v);
   v.reserve(n);
   advise_huge_pages(v.data(), n * sizeof(T));
+  touch_pages(v.data(), n * sizeof(T));
   v.assign(n, value);
 }
 

@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "bluetile/core/default_init.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/voronoi/cell_search.h"
 #include "bluetile/voronoi/predicates.h"
@@ -339,7 +340,7 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   const Point size = scene.domain.size;
   // Vertices in the grid's bucket order: neighbours in the plane are near in memory.
   site_of_vertex_.assign(grid.site_indices().begin(), grid.site_indices().end());
-  std::vector<std::uint32_t> vertex_of_site(n);
+  const auto vertex_of_site = default_init_array<std::uint32_t>(n);  // every entry written below, on all threads
   std::vector<Point> positions(n);
   auto number = [&](std::size_t begin, std::size_t end) {
     for (std::size_t v = begin; v < end; ++v) {
@@ -452,7 +453,7 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   if (coincident || !coordinates || unfit || hopeless.load()) return searched(false);
   // The chunks' stars side by side, on all threads (left uninitialised before: every entry is
   // written).
-  std::vector<std::uint32_t> star_start(n + 1);
+  std::vector<std::uint32_t, DefaultInitAllocator<std::uint32_t>> star_start(n + 1);
   star_start[0] = 0;
   std::unique_ptr<StarEntry[]> stars(new StarEntry[entry_start[chunks]]);
   auto gather = [&](std::size_t begin, std::size_t end) {
@@ -479,7 +480,7 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   std::vector<std::vector<StarEntry>> exact_chunks(chunks);
   std::vector<std::uint8_t> failed(chunks, 0);
   auto run_exact = [&](std::size_t begin, std::size_t end) {
-    ExactStar exact(scene, grid, vertex_of_site);
+    ExactStar exact(scene, grid, std::span<const std::uint32_t>(vertex_of_site.get(), n));
     std::vector<StarEntry> star;
     for (std::size_t c = begin; c < end; ++c) {
       std::vector<StarEntry>& mine = exact_chunks[c];

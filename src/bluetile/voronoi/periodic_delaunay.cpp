@@ -69,8 +69,12 @@ bool PeriodicDelaunay::build(std::span<const std::uint32_t> star_start, std::spa
   // (v, s[k], s[k + 1]) of v's star s, numbered star_start[v] + k. And each vertex's canonical
   // corner (corner_of()): the one whose s[k + 1] has the lowest site, read off the star.
   const std::size_t corners = star_start[n];
-  std::vector<std::uint32_t> number(corners + 1, 0);
-  std::vector<std::uint32_t> twin(corners), canonical(n);
+  // The large arrays are written whole by the passes below before they are read (where a star
+  // is bad, the build stops first): their pages are first touched on all threads.
+  const auto number = default_init_array<std::uint32_t>(corners + 1);
+  number[0] = 0;
+  const auto twin = default_init_array<std::uint32_t>(corners);
+  const auto canonical = default_init_array<std::uint32_t>(n);
   std::vector<std::uint8_t> bad(n, 0);
   // Where v is in star s (no duplicates there once checked): a scan without an early exit, whose
   // compare the compiler turns into a select (an exit at a varying place mispredicts).
@@ -116,9 +120,9 @@ bool PeriodicDelaunay::build(std::span<const std::uint32_t> star_start, std::spa
   // (v, b, c) is (b, c, v) in b's star (c just before v there) and (c, v, b) in c's star (b just
   // after v). Its number is its owner's corner's. The owner writes the triangle, and the corners
   // whose triangles lie across its edges (turned into triangles below, once every corner has one).
-  std::vector<std::uint32_t> triangle_at(corners);  // the triangle of each corner
+  const auto triangle_at = default_init_array<std::uint32_t>(corners);  // the triangle of each corner
   triangles_.resize(2 * n);
-  std::vector<std::uint32_t> across(3 * triangles_.size());
+  const auto across = default_init_array<std::uint32_t>(3 * triangles_.size());
   parallel_for(n, kVertexGrain, [&](std::size_t begin, std::size_t end) {
     for (std::size_t vi = begin; vi < end; ++vi) {
       const auto v = static_cast<std::uint32_t>(vi);

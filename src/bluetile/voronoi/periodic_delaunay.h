@@ -25,6 +25,7 @@
 #include <span>
 #include <vector>
 
+#include "bluetile/core/default_init.h"
 #include "bluetile/core/torus.h"
 #include "bluetile/voronoi/predicates.h"
 
@@ -193,8 +194,8 @@ class PeriodicDelaunay {
   Domain domain_;
   std::vector<Point> positions_;
   std::vector<std::uint32_t> sites_;
-  std::vector<Triangle> triangles_;
-  std::vector<std::uint32_t> corners_;
+  std::vector<Triangle, DefaultInitAllocator<Triangle>> triangles_;  // build() writes every triangle on all threads
+  std::vector<std::uint32_t, DefaultInitAllocator<std::uint32_t>> corners_;  // build() writes every corner on all threads
   std::vector<std::uint8_t> ties_;
   std::vector<std::uint32_t> free_;  // triangle slots freed by removals, taken by insertions
   std::size_t tie_edges_ = 0;
