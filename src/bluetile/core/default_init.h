@@ -3,6 +3,7 @@
 // threads, instead of by a value-initialising fill on the calling thread first.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 #include <new>
 #include <utility>

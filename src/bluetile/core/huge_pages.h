@@ -17,7 +17,8 @@ void advise_huge_pages(void* data, std::size_t bytes);
 
 // Touches [data, data + bytes) once per page on all threads, so that mapping and zeroing fresh
 // memory (the kernel's work at a first touch) is shared instead of falling on the thread that
-// fills the array first (at 10^7 sites a tenth of the exact engine's first call).
+// fills the array first (the exact engine's 560 MB of cells at 10^7 sites: docs/BENCHMARKS.md,
+// "The first call's fresh memory").
 void touch_pages(void* data, std::size_t bytes);
 
 // Arrays below two huge pages are left alone: the advice could cover at most one page of them.

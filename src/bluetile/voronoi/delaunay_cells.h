@@ -46,7 +46,8 @@ class DelaunayCells {
   Sweep sweep(const PeriodicDelaunay& triangulation, bool lanes = true);
 
   // Circumcentres of the triangles in `triangles` again (after flips); adds those whose
-  // circumcircle reaches the radius limit to `oversized`.
+  // circumcircle reaches the radius limit to `oversized`, in list order. On all threads when the
+  // list is long, so no triangle may appear twice.
   void recompute(const PeriodicDelaunay& triangulation, std::span<const std::uint32_t> triangles,
                  std::vector<std::uint32_t>& oversized);
 
