@@ -243,11 +243,7 @@ void DelaunayCells::recompute(const PeriodicDelaunay& triangulation, std::span<c
       }
     }
   };
-  if (chunks > 1) {
-    parallel_for(chunks, 1, run);
-  } else {
-    run(0, chunks);
-  }
+  parallel_for(chunks, 1, run);  // one chunk runs on the calling thread
   for (const auto& f : found) oversized.insert(oversized.end(), f.begin(), f.end());
 }
 

@@ -455,7 +455,7 @@ bool KeptDelaunay::rebuild(const Scene& scene, const Weighting& weighting, std::
   // written).
   std::vector<std::uint32_t, DefaultInitAllocator<std::uint32_t>> star_start(n + 1);
   star_start[0] = 0;
-  std::unique_ptr<StarEntry[]> stars(new StarEntry[entry_start[chunks]]);
+  auto stars = default_init_array<StarEntry>(entry_start[chunks]);
   auto gather = [&](std::size_t begin, std::size_t end) {
     for (std::size_t c = begin; c < end; ++c) {
       std::copy(chunk_stars[c].entries.begin(), chunk_stars[c].entries.end(), stars.get() + entry_start[c]);

@@ -262,6 +262,11 @@ PeriodicDelaunay::Test PeriodicDelaunay::test_edge(std::uint32_t triangle, int e
   return r;
 }
 
+void PeriodicDelaunay::add(const Tally& tally) {
+  flips_ += tally.flips;
+  tie_edges_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(tie_edges_) + tally.tie_edges);
+}
+
 void PeriodicDelaunay::set_tie(std::uint32_t triangle, int edge, bool tie, Tally& tally) {
   const std::uint32_t l = triangles_[triangle].neighbour[edge];
   const auto bit = static_cast<std::uint8_t>(1u << edge), other = static_cast<std::uint8_t>(1u << edge_of(l));
@@ -389,7 +394,9 @@ bool PeriodicDelaunay::flip_until_delaunay(std::vector<std::uint32_t>& stack, co
     const std::uint32_t ti = triangle_of(l);
     const int k = edge_of(l);
     const Triangle& t = triangles_[ti];
-    if (!strip.holds(t) || !strip.holds(triangles_[triangle_of(t.neighbour[k])])) {
+    const std::uint32_t across = t.neighbour[k];
+    const Triangle& u = triangles_[triangle_of(across)];
+    if (!strip.holds(t) || !strip.holds(u)) {
       deferred.push_back(l);
       continue;
     }
@@ -401,8 +408,7 @@ bool PeriodicDelaunay::flip_until_delaunay(std::vector<std::uint32_t>& stack, co
     // A flip rewrites the two triangles and the links and tie marks of the four around them,
     // and walks around vertices of the two: all of it held by the strip when the four are.
     if (!strip.whole()) {
-      const Triangle& u = triangles_[triangle_of(t.neighbour[k])];
-      const int e = edge_of(t.neighbour[k]);
+      const int e = edge_of(across);
       if (!strip.holds(triangles_[triangle_of(t.neighbour[next(k)])]) ||
           !strip.holds(triangles_[triangle_of(t.neighbour[previous(k)])]) ||
           !strip.holds(triangles_[triangle_of(u.neighbour[next(e)])]) ||
@@ -439,8 +445,7 @@ bool PeriodicDelaunay::make_delaunay(std::span<const std::uint32_t> suspects, st
   // that roundings of an input outside the predicates' range would make endless.
   const std::size_t cap = 64 * triangles_.size() + 1024;
   auto finish = [&](bool delaunay) {
-    flips_ = tally.flips;
-    tie_edges_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(tie_edges_) + tally.tie_edges);
+    add(tally);
     return delaunay;
   };
   // Vertices are numbered in rows of the plane, so a range of them is a strip about 32 rows of
@@ -572,8 +577,7 @@ bool PeriodicDelaunay::remove_vertex(std::uint32_t vertex, std::vector<std::uint
       const std::uint32_t other = triangle_of(tri.neighbour[next(jv)]);
       Tally tally;
       if (!flip(t, next(jv), tally, true)) return false;
-      flips_ += tally.flips;
-      tie_edges_ = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(tie_edges_) + tally.tie_edges);
+      add(tally);
       rewritten.push_back(t);
       rewritten.push_back(other);
       flipped = true;

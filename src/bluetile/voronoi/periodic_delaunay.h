@@ -161,6 +161,8 @@ class PeriodicDelaunay {
   // must be canonical for the result to be), or with `walk_corners` from a walk around each
   // (the repair's removals, where some are not yet).
   bool flip(std::uint32_t triangle, int edge, Tally& tally, bool walk_corners = false);
+  // Adds what a tally counted to flips() and tie_edges().
+  void add(const Tally& tally);
   void set_tie(std::uint32_t triangle, int edge, bool tie, Tally& tally);
   // Vertices [begin, end) of a strip (rows of the plane, as vertices are numbered); the whole
   // triangulation when begin == end. A strip writes only triangles whose three vertices it holds
