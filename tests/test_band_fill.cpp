@@ -11,6 +11,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/relax/band_fill.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/relax/wang_relax.h"
@@ -268,6 +269,29 @@ TEST(BandFill, CommandLineFillOrdersAreTheLibrarys) {
   const test::CommandResult bad = run_bluetile({"wang", "--points", "8", "--rank-order", "fil", "-o", tiles});
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_NE(bad.err.find("fill"), std::string::npos) << bad.err;
+}
+
+// The fill order relaxes nothing, so `progressive` opens no Vulkan device for it (a machine
+// without one can fill), and builds a batch's sets in parallel: each the set its seed gives alone.
+TEST(BandFill, CommandLineFillOpensNoDeviceAndBuildsSetsAsAlone) {
+  TempDir dir;
+  const auto fill = [&](const std::string& name, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"progressive", "--count", "1", "--add", "1", "--levels", "40", "--rank-order", "fill",
+                                     "-o", dir.file(name)};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const test::CommandResult r = run_bluetile(args);
+    EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    return test::read_text(dir.file(name));
+  };
+  const std::string batch = fill("batch.txt", {"--sets", "3", "--seed", "4", "--device", "no-such-device"});
+  EXPECT_EQ(batch, fill("batch-exact.txt", {"--sets", "3", "--seed", "4", "--engine", "exact", "--threads", "1"}));
+  fill("alone.txt", {"--seed", "6"});
+  const std::vector<PointSet> sets = read_point_table(dir.file("batch.txt"));
+  ASSERT_EQ(sets.size(), 3u);
+  const PointSet alone = read_point_file(dir.file("alone.txt"));
+  EXPECT_EQ(sets[2].points, alone.points);  // set 2 of seed 4 is seed 6's set
+  EXPECT_EQ(sets[2].levels, alone.levels);
+  EXPECT_NE(sets[1].points, alone.points);
 }
 
 }  // namespace

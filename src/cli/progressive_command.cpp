@@ -99,9 +99,11 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     std::fprintf(stderr, "bluetile: note: the fill order visits about %.2g grid places, about %s on one thread (it grows "
                  "as N log N in the points of a set)\n", fill.places_visited, duration_words(fill_seconds).c_str());
 
-  auto engine = make_engine(o.engine);
+  // The fill order runs no engine: it opens no Vulkan device (none need exist), and its sets are
+  // built in parallel as the exact engine's are.
+  std::unique_ptr<CentroidEngine> engine = filled ? std::make_unique<ExactEngine>() : make_engine(o.engine);
   if (!filled) note_faster_engine(*engine, total * o.iterations);
-  if (sets.size() > 1 && o.engine.engine == "exact") {
+  if (sets.size() > 1 && (filled || o.engine.engine == "exact")) {
     // Set k of a batch is the set --seed S+k gives alone (wrapping past 2^64 - 1); the exact
     // engine is cheap to make, so the sets are built in parallel, one engine per worker.
     options.seed = o.seed;
