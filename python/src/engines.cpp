@@ -223,7 +223,12 @@ nb::tuple progressive(std::optional<AnyArray> base, std::optional<AnyArray> base
   options.rank_order = bluetile::parse_rank_order(rank_order);
   {
     nb::gil_scoped_release release;
-    set = bluetile::add_levels(*make_engine(choice), std::move(set), options);
+    // The fill order relaxes nothing: no engine of the choice is made for it (no Vulkan device
+    // is opened), as the tool's --rank-order fill.
+    const bool filled = options.rank_order == bluetile::ProgressiveOrder::fill;
+    std::unique_ptr<bluetile::CentroidEngine> engine =
+        filled ? std::make_unique<bluetile::ExactEngine>() : make_engine(choice);
+    set = bluetile::add_levels(*engine, std::move(set), options);
   }
   const std::size_t n = set.points.size();
   std::vector<std::int32_t> level(set.levels.begin(), set.levels.end());
