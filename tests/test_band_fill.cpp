@@ -271,6 +271,24 @@ TEST(BandFill, CommandLineFillOrdersAreTheLibrarys) {
   EXPECT_NE(bad.err.find("fill"), std::string::npos) << bad.err;
 }
 
+// A count past the grid's limit (8192 places a side, about 1.2e6 points at 8 places per spacing)
+// is refused before any work, the largest count named: by the cost estimate `progressive` reads
+// first, so no note of the hours it would take comes before it. (`wang` stops at 10^6 points per
+// tile before that.)
+TEST(BandFill, CountsPastTheGridAreRefusedBeforeAnyWork) {
+  EXPECT_GT(band_fill_cost(0, 1200000, 1, FillOptions{}).places_visited, 0.0);
+  EXPECT_THROW(band_fill_cost(0, 1220000, 1, FillOptions{}), Error);
+  EXPECT_THROW(band_fill_cost(1000000, 220000, 8, FillOptions{}), Error);  // the points before count
+  EXPECT_THROW(band_fill_torus({}, 1220000, FillOptions{}), Error);
+  TempDir dir;
+  const test::CommandResult r = run_bluetile({"progressive", "--count", "5000000", "--levels", "1", "--rank-order", "fill",
+                                              "-o", dir.file("big.txt")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: band fill: 5000000 points per tile or set need a grid of 16648 places a side, more than "
+                   "8192 (at most about 1.21e+06 points at 8 places per spacing)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("big.txt")));
+}
+
 // The fill order relaxes nothing, so `progressive` opens no Vulkan device for it (a machine
 // without one can fill), and builds a batch's sets in parallel: each the set its seed gives alone.
 TEST(BandFill, CommandLineFillOpensNoDeviceAndBuildsSetsAsAlone) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cstdint>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -54,8 +55,19 @@ class BandKernel {
 };
 
 // Places a side of each tile's grid: cells_per_spacing per hexagonal spacing of the final count.
-double grid_side(std::size_t total, int cells_per_spacing) {
-  return std::ceil(cells_per_spacing / hexagonal_spacing(static_cast<double>(total)));
+// Throws Error past kMaxGrid, naming the largest count the grid allows.
+std::size_t grid_side(std::size_t total, int cells_per_spacing) {
+  const double side = std::ceil(cells_per_spacing / hexagonal_spacing(static_cast<double>(total)));
+  if (side > static_cast<double>(kMaxGrid)) {
+    // hexagonal_spacing(N) = sqrt(2 / (sqrt(3) N)) = cells_per_spacing / kMaxGrid at the limit.
+    const double limit = 2.0 / std::sqrt(3.0) * std::pow(static_cast<double>(kMaxGrid) / cells_per_spacing, 2.0);
+    char most[32];
+    std::snprintf(most, sizeof most, "%.3g", limit);
+    throw Error("band fill: " + std::to_string(total) + " points per tile or set need a grid of " +
+                std::to_string(static_cast<long long>(side)) + " places a side, more than " + std::to_string(kMaxGrid) +
+                " (at most about " + most + " points at " + std::to_string(cells_per_spacing) + " places per spacing)");
+  }
+  return static_cast<std::size_t>(side);
 }
 
 // A point changes the grid only within its kernel's reach, so the choice of the next place keeps a
@@ -144,10 +156,7 @@ class Filler {
     const std::size_t count = tiles.size();
     existing_ = points_[0].size();
     total_ = existing_ + add;
-    side_ = static_cast<std::size_t>(grid_side(total_, options.cells_per_spacing));
-    if (side_ > kMaxGrid)
-      throw Error("band fill: " + std::to_string(total_) + " points per tile need a grid of " + std::to_string(side_) +
-                  " cells a side, more than " + std::to_string(kMaxGrid));
+    side_ = grid_side(total_, options.cells_per_spacing);
     cell_ = 1.0 / static_cast<double>(side_);
     block_side_ = (side_ + kBlockSide - 1) / kBlockSide;
     grids_.resize(count);
@@ -431,7 +440,7 @@ FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles
   FillCost cost;
   if (add == 0) return cost;
   const std::size_t total = existing + add;
-  const double side = grid_side(total, options.cells_per_spacing);
+  const double side = static_cast<double>(grid_side(total, options.cells_per_spacing));
   const double places = side * side;
   const double blocks = std::ceil(side / kBlockSide) * std::ceil(side / kBlockSide);
   cost.bytes = static_cast<double>(tiles) * (places * static_cast<double>(sizeof(Point) + sizeof(double) + sizeof(float)) +

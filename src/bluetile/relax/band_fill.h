@@ -73,6 +73,7 @@ struct FillCost {
   double bytes = 0.0;
   double places_visited = 0.0;
 };
+// Throws Error, as band_fill would, where the grid of existing + add points exceeds its limit.
 FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles, const FillOptions& options);
 inline constexpr double kFillSecondsPerPlace = 6e-9;
 
