@@ -479,9 +479,8 @@ bool PeriodicDelaunay::make_delaunay(std::span<const std::uint32_t> suspects, st
     // What the strips left, on this thread, the first strip's first.
     for (const StripRun& run : runs) {
       if (!run.ok) return finish(false);
-      tally.flips += run.tally.flips;
+      tally += run.tally;
       strip_flips_ += run.tally.flips;
-      tally.tie_edges += run.tally.tie_edges;
       changed.insert(changed.end(), run.changed.begin(), run.changed.end());
       stack.insert(stack.end(), run.deferred.begin(), run.deferred.end());
     }

@@ -156,6 +156,11 @@ class PeriodicDelaunay {
   struct Tally {
     std::size_t flips = 0;
     std::ptrdiff_t tie_edges = 0;
+    Tally& operator+=(const Tally& other) {
+      flips += other.flips;
+      tie_edges += other.tie_edges;
+      return *this;
+    }
   };
   // Flips the edge; the four vertices' canonical corners follow from the ones they had (which
   // must be canonical for the result to be), or with `walk_corners` from a walk around each
