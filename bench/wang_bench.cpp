@@ -387,7 +387,7 @@ int main(int argc, char** argv) {
   Options o;
   CLI::App app{"bluetile_wang_bench: build time and quality of Wang-tile sample sets"};
   app.add_option("mode", o.mode, "quality | time | levels")->check(CLI::IsMember({"quality", "time", "levels"}));
-  app.add_option("--set", o.kinds, "Tile set kinds")->check(CLI::IsMember({"wang8", "wang16", "corner16"}));
+  app.add_option("--set", o.kinds, "Tile set kinds")->check(CLI::IsMember({"wang8", "wang16", "corner16", "corner81"}));
   app.add_option("--points", o.points, "Points per tile (level 0)");
   app.add_option("--strategy", o.strategies, "Strategies")->check(CLI::IsMember({"exact", "instances", "rounds"}));
   app.add_option("--period", o.periods, "Torus tiling sizes M for the plane metrics");

@@ -14,32 +14,39 @@ namespace bluetile {
 namespace {
 
 // Independent of TileRules::fits_*: the shared edge or corner colours compared slot by slot.
+bool corner_kind(TileSetKind kind) { return kind == TileSetKind::corner16 || kind == TileSetKind::corner81; }
 bool colours_fit_east(TileSetKind kind, const TileColours& w, const TileColours& e) {
-  if (kind == TileSetKind::corner16) return w[1] == e[0] && w[2] == e[3];  // NE = NW, SE = SW
+  if (corner_kind(kind)) return w[1] == e[0] && w[2] == e[3];  // NE = NW, SE = SW
   return w[1] == e[3];                                                     // E = W
 }
 bool colours_fit_north(TileSetKind kind, const TileColours& s, const TileColours& n) {
-  if (kind == TileSetKind::corner16) return s[0] == n[3] && s[1] == n[2];  // NW = SW, NE = SE
+  if (corner_kind(kind)) return s[0] == n[3] && s[1] == n[2];  // NW = SW, NE = SE
   return s[0] == n[2];                                                     // N = S
 }
 
 // How many admissible w x h blocks each kind has, counted by its free colours: wang8 one bit
 // per cell plus the bits of the row above and the column to the left; wang16 one bit per edge;
-// corner16 one bit per lattice point.
+// corner16 one bit per lattice point; corner81 one of 3 colours per lattice point.
 std::size_t expected_blocks(TileSetKind kind, int w, int h) {
   int bits = 0;
   switch (kind) {
     case TileSetKind::wang8: bits = w * h + w + h; break;
     case TileSetKind::wang16: bits = w * (h + 1) + (w + 1) * h; break;
     case TileSetKind::corner16: bits = (w + 1) * (h + 1); break;
+    case TileSetKind::corner81: {
+      std::size_t blocks = 1;
+      for (int p = 0; p < (w + 1) * (h + 1); ++p) blocks *= 3;
+      return blocks;
+    }
   }
   return std::size_t{1} << bits;
 }
 
 TEST(TileSet, KindNamesRoundTrip) {
-  ASSERT_EQ(tile_set_kinds().size(), 3u);
+  ASSERT_EQ(tile_set_kinds().size(), 4u);
   for (TileSetKind kind : tile_set_kinds()) EXPECT_EQ(parse_tile_set_kind(tile_set_kind_name(kind)), kind);
   EXPECT_FALSE(parse_tile_set_kind("wang13").has_value());
+  EXPECT_EQ(tile_set_kind_list(), "wang8, wang16, corner16, corner81");
 }
 
 TEST(TileSet, EveryTileIsDistinctAndNumberedByItsColours) {
@@ -54,6 +61,9 @@ TEST(TileSet, EveryTileIsDistinctAndNumberedByItsColours) {
   EXPECT_EQ(TileRules(TileSetKind::wang8).tile_count(), 8);
   EXPECT_EQ(TileRules(TileSetKind::wang16).tile_count(), 16);
   EXPECT_EQ(TileRules(TileSetKind::corner16).tile_count(), 16);
+  EXPECT_EQ(TileRules(TileSetKind::corner81).tile_count(), 81);
+  EXPECT_EQ(TileRules(TileSetKind::corner81).colour_count(), 3);
+  EXPECT_EQ(TileRules(TileSetKind::corner81).colours(27 * 2 + 9 * 0 + 3 * 1 + 2), (TileColours{2, 0, 1, 2}));
   EXPECT_EQ(TileRules(TileSetKind::wang8).tile_with({0, 1, 0, 0}), -1);  // S != E: not in the set
 }
 
@@ -71,8 +81,9 @@ TEST(TileSet, Wang8HasTwoTilesPerNorthWestPairDifferingInSouthAndEast) {
 }
 
 TEST(TileSet, AdmissibleNeighboursPerEdge) {
-  // wang8: 4 per edge (the paper); wang16: 8; corner16: 4 (two corners shared).
-  std::map<TileSetKind, int> expected{{TileSetKind::wang8, 4}, {TileSetKind::wang16, 8}, {TileSetKind::corner16, 4}};
+  // wang8: 4 per edge (the paper); wang16: 8; corner16: 4 (two corners shared); corner81: 3 x 3.
+  std::map<TileSetKind, int> expected{
+      {TileSetKind::wang8, 4}, {TileSetKind::wang16, 8}, {TileSetKind::corner16, 4}, {TileSetKind::corner81, 9}};
   for (TileSetKind kind : tile_set_kinds()) {
     TileRules rules(kind);
     for (int a = 0; a < rules.tile_count(); ++a) {
@@ -98,8 +109,9 @@ TEST(TileSet, BlockEnumerationCountsAndValidity) {
     TileSetKind kind;
     int w, h;
   };
-  // 2 x 2 for all (256, 4096, 512); 3 x 3 where it stays small (wang8 2^15, corner16 2^16).
+  // 2 x 2 for all (256, 4096, 512, 3^9); 3 x 3 where it stays small (wang8 2^15, corner16 2^16).
   std::vector<Case> cases{{TileSetKind::wang8, 2, 2},   {TileSetKind::wang16, 2, 2}, {TileSetKind::corner16, 2, 2},
+                          {TileSetKind::corner81, 2, 2}, {TileSetKind::corner81, 3, 1},
                           {TileSetKind::wang8, 3, 3},   {TileSetKind::corner16, 3, 3}, {TileSetKind::wang16, 3, 1},
                           {TileSetKind::wang8, 1, 1}};
   for (const Case& c : cases) {
@@ -173,6 +185,10 @@ TEST(TileSet, HashedTilingsArePinned) {
     got.push_back(wang8.tile_at(i, 3, 42)), got.push_back(wang16.tile_at(i, 3, 42)),
         got.push_back(corner16.tile_at(i, 3, 42));
   EXPECT_EQ(got, (std::vector<int>{7, 9, 9, 3, 12, 4, 3, 15, 15, 1, 3, 2}));
+  TileRules corner81(TileSetKind::corner81);
+  std::vector<int> got81;
+  for (std::int64_t i : {0, 1, -1, 1000000}) got81.push_back(corner81.tile_at(i, 3, 42));
+  EXPECT_EQ(got81, (std::vector<int>{29, 18, 44, 6}));
 }
 
 // Pearson's chi-square of observed counts against equal expected counts.
@@ -187,9 +203,11 @@ double chi_square_uniform(const std::vector<double>& counts) {
 
 TEST(TileSet, HashedAndScanlineTilingsAreUniformOverTilesAndPairs) {
   // Both constructions make every tile and every admissible horizontal pair equally likely
-  // (independent uniform colour bits). Bounds: the chi-square 99.9 % quantiles for 7, 15 and 31
-  // (wang8 pairs), 63 (corner16 pairs) and 127 (wang16 pairs) degrees of freedom.
-  std::map<int, double> quantile{{7, 24.32}, {15, 37.70}, {31, 61.10}, {63, 103.4}, {127, 181.99}};
+  // (independent uniform colours). Bounds: the chi-square 99.9 % quantiles for 7, 15 and 31
+  // (wang8 pairs), 63 (corner16 pairs), 127 (wang16 pairs), 80 (corner81 tiles) and 728
+  // (corner81 pairs) degrees of freedom (the last two by the Wilson-Hilferty approximation).
+  std::map<int, double> quantile{{7, 24.32},  {15, 37.70},  {31, 61.10},
+                                 {63, 103.4}, {127, 181.99}, {80, 124.8}, {728, 851.6}};
   const int side = 160;
   for (TileSetKind kind : tile_set_kinds()) {
     TileRules rules(kind);
@@ -265,6 +283,9 @@ TEST(TileSet, FilesRoundTripBitForBit) {
   }
   EXPECT_NE(test::read_text(dir.file("corner16.txt")).find("# tile 5 corners 0 1 0 1\n"), std::string::npos);
   EXPECT_NE(test::read_text(dir.file("wang8.txt")).find("# tile 5 1 1 1 0\n"), std::string::npos);
+  const std::string corner81 = test::read_text(dir.file("corner81.txt"));
+  EXPECT_NE(corner81.find("# set corner81 colours 3\n"), std::string::npos);
+  EXPECT_NE(corner81.find("# tile 59 corners 2 0 1 2\n"), std::string::npos);
 }
 
 std::string parse_error(const std::string& text) {
@@ -298,7 +319,7 @@ TEST(TileSet, MalformedFilesNameLineAndValue) {
   EXPECT_EQ(parse_error("0.5 0.5 0 0\n"), "t.txt:1: not a tile-set file: the first line must be '# bluetile tiles 1'");
   EXPECT_EQ(parse_error("# bluetile tiles 2\n"), "t.txt:1: tile-set file version '2' is not supported (this reads version 1)");
   EXPECT_EQ(parse_error("# bluetile tiles 1\n# set wang13 colours 2\n"),
-            "t.txt:2: unknown tile-set kind 'wang13' (known: wang8, wang16, corner16)");
+            "t.txt:2: unknown tile-set kind 'wang13' (known: wang8, wang16, corner16, corner81)");
   EXPECT_EQ(parse_error("# bluetile tiles 1\n# set wang8 colours 3\n"), "t.txt:2: wang8 has 2 colours, the file says 3");
   EXPECT_EQ(parse_error("# bluetile tiles 1\n# tile 0 0 0 0 0\n"), "t.txt:2: tile before the '# set KIND colours C' line");
   EXPECT_EQ(parse_error("# bluetile tiles 1\n# set wang8 colours 2\n0.5 0.5 0 0\n"),
@@ -307,7 +328,7 @@ TEST(TileSet, MalformedFilesNameLineAndValue) {
   // Tile 3 of wang8 is N=0, W=1, S=E=1.
   EXPECT_EQ(parse_error(wang8_file("# tile 3 0 0 1 1\n0.5 0.5 0 0\n")),
             "t.txt:9: tile 3 of wang8 has colours 0 1 1 1, the file says 0 0 1 1");
-  EXPECT_EQ(parse_error(wang8_file("# tile 3 0 1 2 1\n")), "t.txt:9: colour must be 0 or 1, got '2'");
+  EXPECT_EQ(parse_error(wang8_file("# tile 3 0 1 2 1\n")), "t.txt:9: colour must be an integer in 0..1, got '2'");
   EXPECT_EQ(parse_error(wang8_file("# tile 8 0 1 1 1\n")), "t.txt:9: tile id must be an integer in 0..7, got '8'");
   EXPECT_EQ(parse_error(wang8_file("# tile 2 0 1 1 0\n")), "t.txt:9: tile 2 again (first on line 7)");
   EXPECT_EQ(parse_error(wang8_file("")), "t.txt:17: tile 3 is missing");

@@ -372,13 +372,18 @@ TEST(WangOptions, EveryFieldIsCheckedByItsNameAndRange) {
   o = {};
   o.points = 0;
   EXPECT_THROW(relax_wang_tiles(engine, o), Error);
-  EXPECT_EQ(parse_wang_strategy("rounds"), WangStrategy::rounds);
+  EXPECT_EQ(parse_wang_strategy("rounds", TileSetKind::wang8), WangStrategy::rounds);
+  // auto: exact, but instances for corner81, whose exact configurations are too many at small n.
+  EXPECT_EQ(parse_wang_strategy("auto", TileSetKind::wang8), WangStrategy::exact);
+  EXPECT_EQ(parse_wang_strategy("auto", TileSetKind::corner16), WangStrategy::exact);
+  EXPECT_EQ(parse_wang_strategy("auto", TileSetKind::corner81), WangStrategy::instances);
+  EXPECT_EQ(parse_wang_strategy("exact", TileSetKind::corner81), WangStrategy::exact);
   EXPECT_EQ(parse_wang_rank_order("voids"), RankOrder::voids);
   try {
-    parse_wang_strategy("fast");
+    parse_wang_strategy("fast", TileSetKind::wang8);
     ADD_FAILURE() << "accepted";
   } catch (const Error& e) {
-    EXPECT_STREQ(e.what(), "strategy: expected one of 'exact', 'instances', 'rounds', got 'fast'");
+    EXPECT_STREQ(e.what(), "strategy: expected one of 'auto', 'exact', 'instances', 'rounds', got 'fast'");
   }
 }
 

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <tuple>
 #include <utility>
 
@@ -265,6 +266,40 @@ TEST(WangLattice, CoherenceOfIdenticalTilesIsTheTileCount) {
   // Two points per tile half a period apart along x cancel at odd mx, add at even mx.
   const TilePoints pairs(8, std::vector<Point>{{0.1, 0.5}, {0.6, 0.5}});
   EXPECT_NEAR(lattice_coherence(pairs).low, 64.0 * 4.0 / 16.0, 1e-12);
+}
+
+TEST(WangLattice, MoreTilesLowerTheTileLatticePeakAsTheirCountsPredict) {
+  // Tiles of independent uniform points (white noise, E |F_t(m)|^2 = n at m != 0): a lattice
+  // frequency of an M x M tiling sums the tiles with their cell counts c_t, so its expected
+  // periodogram is sum_t c_t^2 / M^2: about M^2 / T + 1, 33 for wang8 and 4.2 for corner81 at
+  // M = 16. The measured mean over the lattice frequencies below sqrt(N), over 12 tilings each
+  // with fresh tiles (a few tiles dominate one plane: single planes of wang8 gave 0.76-1.32 of
+  // the prediction), must follow the counts.
+  constexpr int kPeriod = 16, kPlanes = 12;
+  constexpr std::size_t kPoints = 64;
+  std::map<TileSetKind, double> mean_peak;
+  for (TileSetKind kind : {TileSetKind::wang8, TileSetKind::corner16, TileSetKind::corner81}) {
+    double measured = 0.0, predicted = 0.0;
+    for (std::uint64_t seed = 1; seed <= kPlanes; ++seed) {
+      TileSet set = empty_tile_set(kind);
+      for (std::size_t t = 0; t < set.tiles.size(); ++t) {
+        Tile& tile = set.tiles[t];
+        tile.points = test::uniform_points(kPoints, 1000 * seed + t);
+        tile.levels.assign(kPoints, 0);
+        for (std::size_t k = 0; k < kPoints; ++k) tile.ranks.push_back(static_cast<std::uint32_t>(k));
+      }
+      const TiledPlane plane = torus_tiling(set, kPeriod, seed);
+      std::vector<double> cells(set.tiles.size(), 0.0);
+      for (int t : plane.cell_tiles) cells[static_cast<std::size_t>(t)] += 1.0;
+      for (double c : cells) predicted += c * c / (kPeriod * kPeriod) / kPlanes;
+      measured += measure_tiling(plane.points, kPeriod, static_cast<int>(set.tiles.size())).lattice_peak / kPlanes;
+    }
+    EXPECT_NEAR(measured / predicted, 1.0, 0.2) << tile_set_kind_name(kind) << ": " << measured << " against " << predicted;
+    mean_peak[kind] = measured;
+  }
+  EXPECT_GT(mean_peak[TileSetKind::wang8], 25.0);
+  EXPECT_LT(mean_peak[TileSetKind::corner81], 5.5);
+  EXPECT_LT(mean_peak[TileSetKind::corner81] * 5.0, mean_peak[TileSetKind::wang8]);
 }
 
 TEST(WangLattice, ObjectiveAndMetricShareTheBandsAtTheirEdges) {
@@ -564,6 +599,30 @@ TEST(WangSets, BadOptionsAreErrors) {
   WangLevelOptions level;
   level.add = 3;
   EXPECT_THROW(add_wang_level(engine, set, level), Error);
+}
+
+TEST(WangCommand, Corner81TakesTheInstancesStrategyUnlessAsked) {
+  // Its exact configurations are too many at small counts: auto (the default) picks instances,
+  // and the file's command says so; an explicit exact is obeyed and refused with the reason.
+  test::TempDir dir;
+  const std::string tiles = dir.file("c81.tiles");
+  test::CommandResult made = test::run_bluetile({"wang", "--set", "corner81", "--points", "4", "--iterations", "2",
+                                                  "--warm", "1", "--levels", "2", "--output", tiles});
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  TileSet set = read_tile_set(tiles);
+  EXPECT_EQ(set.kind, TileSetKind::corner81);
+  ASSERT_EQ(set.tiles.size(), 81u);
+  EXPECT_EQ(set.tiles[80].points.size(), 8u);
+  EXPECT_NE(set.header[0].find("--strategy instances --period 16"), std::string::npos) << set.header[0];
+  EXPECT_NE(test::read_text(tiles).find("# set corner81 colours 3\n"), std::string::npos);
+  test::CommandResult checked = test::run_bluetile({"wang-check", tiles, "--period", "4"});
+  ASSERT_EQ(checked.exit_code, 0) << checked.err;
+  EXPECT_NE(checked.out.find("19683 admissible 2x2 blocks"), std::string::npos) << checked.out;
+  test::CommandResult exact = test::run_bluetile({"wang", "--set", "corner81", "--points", "4", "--iterations", "1",
+                                                   "--strategy", "exact", "--output", dir.file("never.tiles")});
+  EXPECT_NE(exact.exit_code, 0);
+  EXPECT_NE(exact.err.find("use more points per tile or the instances strategy"), std::string::npos) << exact.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("never.tiles")));
 }
 
 TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {

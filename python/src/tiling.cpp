@@ -48,7 +48,7 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
                        double seam_spacing, double level_seam_spacing, const std::string& rank_order, double void_sigma,
                        std::uint64_t seed, const std::string& engine) {
   const auto kind = bluetile::parse_tile_set_kind(set);
-  if (!kind) throw nb::value_error(("set: expected one of 'wang8', 'wang16', 'corner16', got '" + set + "'").c_str());
+  if (!kind) throw nb::value_error(("set: expected one of " + bluetile::tile_set_kind_list() + ", got '" + set + "'").c_str());
   // Counts are checked here only to fit the library's types; their ranges are the library's.
   check_whole("points", points, 1, static_cast<long long>(bluetile::kMaxWangPoints));
   EngineChoice choice;
@@ -63,7 +63,7 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
   w.seed = seed;
   w.level.iterations = iterations;
   w.level.warm_iterations = warm;
-  w.level.strategy = bluetile::parse_wang_strategy(strategy);
+  w.level.strategy = bluetile::parse_wang_strategy(strategy, *kind);
   w.level.period = period;
   w.level.edge_margin = margin;
   w.level.refine = {.lattice_steps_per_iteration = lattice_steps_per_iteration,
@@ -82,7 +82,8 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
     bluetile::TileSet tiles = bluetile::relax_wang_tiles(*e, w);
     tiles.header.push_back("made by: pybluetile.wang_tiles(set='" + set + "', points=" + std::to_string(points) +
                            ", iterations=" + std::to_string(iterations) + ", warm=" + std::to_string(warm) +
-                           ", levels=" + std::to_string(levels) + ", strategy='" + strategy +
+                           ", levels=" + std::to_string(levels) + ", strategy='" +
+                           std::string(bluetile::wang_strategy_name(w.level.strategy)) +
                            "', lattice_steps=" + std::to_string(lattice_steps) +
                            ", lattice_steps_per_iteration=" + std::to_string(lattice_steps_per_iteration) + ", seam_steps=" + std::to_string(seam_steps) + ", rank_order='" + rank_order + "', seed=" + std::to_string(seed) + ", engine='" + engine + "')");
     text = bluetile::format_tile_set(tiles);
@@ -167,11 +168,11 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
 void bind_tiling(nb::module_& m) {
   m.def("wang_tiles", &wang_tiles,
         nb::sig("def wang_tiles(set: str = 'wang8', *, points: int = 52, iterations: int = 100, warm: int = 10, "
-                "levels: int = 1, ratio: float = 2.0, strategy: str = 'exact', period: int = 16, margin: float = 0.0, "
+                "levels: int = 1, ratio: float = 2.0, strategy: str = 'auto', period: int = 16, margin: float = 0.0, "
                 "lattice_steps: int = 5, lattice_steps_per_iteration: int = 3, lattice_step: float = 0.005, seam_steps: int = 20, seam_spacing: float = 0.8, level_seam_spacing: float = 0.65, "
                 "rank_order: str = 'fill', void_sigma: float = 0.5, seed: int = 1, engine: str = 'exact') -> str"),
         "set"_a = "wang8", nb::kw_only(), "points"_a = 52, "iterations"_a = 100, "warm"_a = 10, "levels"_a = 1,
-        "ratio"_a = 2.0, "strategy"_a = "exact", "period"_a = 16, "margin"_a = 0.0, "lattice_steps"_a = 5, "lattice_steps_per_iteration"_a = 3, "lattice_step"_a = 0.005, "seam_steps"_a = 20,
+        "ratio"_a = 2.0, "strategy"_a = "auto", "period"_a = 16, "margin"_a = 0.0, "lattice_steps"_a = 5, "lattice_steps_per_iteration"_a = 3, "lattice_step"_a = 0.005, "seam_steps"_a = 20,
         "seam_spacing"_a = 0.8, "level_seam_spacing"_a = 0.65, "rank_order"_a = "fill", "void_sigma"_a = 0.5,
         "seed"_a = 1, "engine"_a = "exact",
         R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same

@@ -239,10 +239,12 @@ void validate(const WangOptions& options) {
   check_real_field("void_sigma", l.void_sigma, kMinVoidSigma, kMaxVoidSigma, " hexagonal spacings");
 }
 
-WangStrategy parse_wang_strategy(const std::string& name) {
+WangStrategy parse_wang_strategy(const std::string& name, TileSetKind kind) {
+  if (name == "auto") return kind == TileSetKind::corner81 ? WangStrategy::instances : WangStrategy::exact;
   return parse_named<WangStrategy>(
       "strategy", name,
-      {{"exact", WangStrategy::exact}, {"instances", WangStrategy::instances}, {"rounds", WangStrategy::rounds}});
+      {{"auto", WangStrategy::exact}, {"exact", WangStrategy::exact}, {"instances", WangStrategy::instances},
+       {"rounds", WangStrategy::rounds}});
 }
 
 RankOrder parse_wang_rank_order(const std::string& name) {

@@ -125,7 +125,9 @@ void validate(const WangOptions& options);
 
 // Names of the strategies and rank orders as the front ends spell them; the parsers throw Error
 // naming the field, the value and the list.
-WangStrategy parse_wang_strategy(const std::string& name);
+// "auto" is exact, but instances for corner81: its exact configurations number in the hundreds of
+// thousands for a point near a corner of a tile of fewer than about 200 points.
+WangStrategy parse_wang_strategy(const std::string& name, TileSetKind kind);
 RankOrder parse_wang_rank_order(const std::string& name);
 const char* wang_rank_order_name(RankOrder order);
 

@@ -9,7 +9,8 @@
 namespace bluetile {
 namespace {
 
-constexpr std::array<TileSetKind, 3> kKinds{TileSetKind::wang8, TileSetKind::wang16, TileSetKind::corner16};
+constexpr std::array<TileSetKind, 4> kKinds{TileSetKind::wang8, TileSetKind::wang16, TileSetKind::corner16,
+                                            TileSetKind::corner81};
 
 // Edge and corner slots in TileColours.
 constexpr int kNorth = 0, kEast = 1, kSouth = 2, kWest = 3;
@@ -19,7 +20,7 @@ constexpr int kNorthWest = 0, kNorthEast = 1, kSouthEast = 2, kSouthWest = 3;
 constexpr std::uint64_t kCellBit = 1;        // wang8: the bit of a cell
 constexpr std::uint64_t kHorizontalEdge = 2;  // wang16: the edge below cell (i, j)
 constexpr std::uint64_t kVerticalEdge = 3;    // wang16: the edge left of cell (i, j)
-constexpr std::uint64_t kLatticePoint = 4;    // corner16: the lower-left corner of cell (i, j)
+constexpr std::uint64_t kLatticePoint = 4;    // corner16, corner81: the lower-left corner of cell (i, j)
 
 std::int64_t floor_mod(std::int64_t a, std::int64_t m) {
   std::int64_t r = a % m;
@@ -33,6 +34,7 @@ std::string_view tile_set_kind_name(TileSetKind kind) {
     case TileSetKind::wang8: return "wang8";
     case TileSetKind::wang16: return "wang16";
     case TileSetKind::corner16: return "corner16";
+    case TileSetKind::corner81: return "corner81";
   }
   return "unknown";
 }
@@ -44,6 +46,12 @@ std::optional<TileSetKind> parse_tile_set_kind(std::string_view name) {
 }
 
 std::span<const TileSetKind> tile_set_kinds() { return kKinds; }
+
+std::string tile_set_kind_list() {
+  std::string list;
+  for (TileSetKind kind : kKinds) list += (list.empty() ? "" : ", ") + std::string(tile_set_kind_name(kind));
+  return list;
+}
 
 TileRules::TileRules(TileSetKind kind) : kind_(kind) {
   switch (kind) {
@@ -61,8 +69,16 @@ TileRules::TileRules(TileSetKind kind) : kind_(kind) {
         colours_.push_back({static_cast<std::uint8_t>((id >> 3) & 1), static_cast<std::uint8_t>((id >> 2) & 1),
                             static_cast<std::uint8_t>((id >> 1) & 1), static_cast<std::uint8_t>(id & 1)});
       break;
+    case TileSetKind::corner81:
+      // Corner slots NW NE SE SW: id's base-3 digits, most significant first.
+      for (int id = 0; id < 81; ++id)
+        colours_.push_back({static_cast<std::uint8_t>(id / 27 % 3), static_cast<std::uint8_t>(id / 9 % 3),
+                            static_cast<std::uint8_t>(id / 3 % 3), static_cast<std::uint8_t>(id % 3)});
+      break;
   }
 }
+
+int TileRules::colour_count() const { return kind_ == TileSetKind::corner81 ? 3 : 2; }
 
 int TileRules::tile_with(const TileColours& colours) const {
   for (int id = 0; id < tile_count(); ++id)
@@ -84,10 +100,18 @@ bool TileRules::fits_north(int south, int north) const {
   return a[kNorth] == b[kSouth];
 }
 
-int TileRules::bit(std::int64_t i, std::int64_t j, std::uint64_t seed, std::uint64_t stream) {
+std::uint64_t TileRules::hash(std::int64_t i, std::int64_t j, std::uint64_t seed, std::uint64_t stream) {
   std::uint64_t h = mix64(seed ^ (static_cast<std::uint64_t>(i) * 0x9E3779B97F4A7C15ull));
-  h = mix64(h ^ (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full) ^ (stream << 56));
-  return static_cast<int>(h >> 63);
+  return mix64(h ^ (static_cast<std::uint64_t>(j) * 0xC2B2AE3D27D4EB4Full) ^ (stream << 56));
+}
+
+int TileRules::bit(std::int64_t i, std::int64_t j, std::uint64_t seed, std::uint64_t stream) {
+  return static_cast<int>(hash(i, j, seed, stream) >> 63);
+}
+
+int TileRules::trit(std::int64_t i, std::int64_t j, std::uint64_t seed, std::uint64_t stream) {
+  // The top 32 bits scaled to [0, 3): uniform to within 2^-32.
+  return static_cast<int>(((hash(i, j, seed, stream) >> 32) * 3) >> 32);
 }
 
 int TileRules::tile_from_bits(std::int64_t i, std::int64_t j, std::uint64_t seed, std::int64_t period) const {
@@ -95,6 +119,10 @@ int TileRules::tile_from_bits(std::int64_t i, std::int64_t j, std::uint64_t seed
   auto at = [&](std::int64_t x, std::int64_t y, std::uint64_t stream) {
     if (period > 0) x = floor_mod(x, period), y = floor_mod(y, period);
     return bit(x, y, seed, stream);
+  };
+  auto colour_at = [&](std::int64_t x, std::int64_t y) {
+    if (period > 0) x = floor_mod(x, period), y = floor_mod(y, period);
+    return trit(x, y, seed, kLatticePoint);
   };
   switch (kind_) {
     case TileSetKind::wang8: {
@@ -110,6 +138,10 @@ int TileRules::tile_from_bits(std::int64_t i, std::int64_t j, std::uint64_t seed
       int nw = at(i, j + 1, kLatticePoint), ne = at(i + 1, j + 1, kLatticePoint);
       int se = at(i + 1, j, kLatticePoint), sw = at(i, j, kLatticePoint);
       return 8 * nw + 4 * ne + 2 * se + sw;
+    }
+    case TileSetKind::corner81: {
+      int nw = colour_at(i, j + 1), ne = colour_at(i + 1, j + 1), se = colour_at(i + 1, j), sw = colour_at(i, j);
+      return 27 * nw + 9 * ne + 3 * se + sw;
     }
   }
   return 0;

@@ -6,7 +6,7 @@
 // Edge tiles carry colours (N, E, S, W); neighbours must agree along the shared edge:
 // tile(i,j).E == tile(i+1,j).W and tile(i,j).N == tile(i,j+1).S. Corner tiles carry colours
 // (NW, NE, SE, SW) on their corners; the four tiles around a lattice point agree on its colour.
-// Every kind here has 2 colours.
+// Every kind has 2 colours but corner81, which has 3.
 //
 // The three kinds and how a tiling is drawn (all O(1) per cell from hashed bits, so any window
 // of the plane, at any distance from the origin, gives the same tiles):
@@ -19,6 +19,10 @@
 //    bit. 8 admissible neighbours per edge.
 //  - corner16: every combination of 2 corner colours; each lattice point's colour is a hashed
 //    bit. The diagonal neighbours are constrained too (no corner problem).
+//  - corner81: every combination of 3 corner colours; each lattice point's colour is hashed to
+//    0, 1 or 2. An M x M tiling holds about M^2 / 81 copies of each tile instead of M^2 / 8, so the
+//    repetition that shows at the tile lattice's frequencies is about 10 times weaker than wang8's
+//    (docs/RESULTS.md, "More tiles: corner81"). 9 admissible neighbours per edge.
 #pragma once
 
 #include <array>
@@ -35,11 +39,13 @@
 
 namespace bluetile {
 
-enum class TileSetKind : std::uint8_t { wang8, wang16, corner16 };
+enum class TileSetKind : std::uint8_t { wang8, wang16, corner16, corner81 };
 
-// "wang8", "wang16", "corner16": the names `--set` takes and tile-set files use.
+// "wang8", "wang16", "corner16", "corner81": the names `--set` takes and tile-set files use.
 std::string_view tile_set_kind_name(TileSetKind kind);
 std::optional<TileSetKind> parse_tile_set_kind(std::string_view name);
+// "wang8, wang16, corner16, corner81", for messages that list the known kinds.
+std::string tile_set_kind_list();
 // All kinds, for option help and tests.
 std::span<const TileSetKind> tile_set_kinds();
 
@@ -48,15 +54,16 @@ using TileColours = std::array<std::uint8_t, 4>;
 
 // The combinatorics of one kind: the tiles, which may sit next to which, and seeded tilings.
 // Tiles are numbered 0 .. tile_count()-1 (a tile's id): for wang8 id = 4 N + 2 W + S (S == E),
-// for wang16 id = 8 N + 4 E + 2 S + W, for corner16 id = 8 NW + 4 NE + 2 SE + SW.
+// for wang16 id = 8 N + 4 E + 2 S + W, for corner16 id = 8 NW + 4 NE + 2 SE + SW, for corner81
+// id = 27 NW + 9 NE + 3 SE + SW.
 class TileRules {
  public:
   explicit TileRules(TileSetKind kind);
 
   TileSetKind kind() const { return kind_; }
-  bool corner_coloured() const { return kind_ == TileSetKind::corner16; }
+  bool corner_coloured() const { return kind_ == TileSetKind::corner16 || kind_ == TileSetKind::corner81; }
   int tile_count() const { return static_cast<int>(colours_.size()); }
-  int colour_count() const { return 2; }
+  int colour_count() const;
   const TileColours& colours(int tile) const { return colours_[static_cast<std::size_t>(tile)]; }
   // The id of the tile with these colours, or -1 when the set has no such tile.
   int tile_with(const TileColours& colours) const;
@@ -80,12 +87,15 @@ class TileRules {
 
   // Calls visit(tiles) for every admissible block of width x height tiles (tiles[row * width +
   // column], row 0 at the bottom), in a fixed order. 2 x 2: 256 blocks for wang8, 4096 for
-  // wang16 and 512 for corner16.
+  // wang16, 512 for corner16 and 19683 for corner81.
   void for_each_block(int width, int height, const std::function<void(std::span<const int>)>& visit) const;
 
  private:
   // The hashed bit `stream` of cell or lattice point (i, j): the tiling's only randomness.
+  static std::uint64_t hash(std::int64_t i, std::int64_t j, std::uint64_t seed, std::uint64_t stream);
   static int bit(std::int64_t i, std::int64_t j, std::uint64_t seed, std::uint64_t stream);
+  // The hashed colour 0, 1 or 2 of lattice point (i, j), for three-colour sets.
+  static int trit(std::int64_t i, std::int64_t j, std::uint64_t seed, std::uint64_t stream);
   int tile_from_bits(std::int64_t i, std::int64_t j, std::uint64_t seed, std::int64_t period) const;
 
   TileSetKind kind_;

@@ -165,7 +165,7 @@ TileSet parse_tile_set(const std::string& text, const std::string& name) {
         if (rules) fail("a second set line");
         if (words.size() != 4 || words[2] != "colours") fail("expected '# set KIND colours C', got " + quoted(line));
         auto kind = parse_tile_set_kind(words[1]);
-        if (!kind) fail("unknown tile-set kind " + quoted(words[1]) + " (known: wang8, wang16, corner16)");
+        if (!kind) fail("unknown tile-set kind " + quoted(words[1]) + " (known: " + tile_set_kind_list() + ")");
         long long colours = 0;
         if (!parse_int(words[3], colours)) fail("colour count must be an integer, got " + quoted(words[3]));
         set.kind = *kind;
@@ -193,7 +193,8 @@ TileSet parse_tile_set(const std::string& text, const std::string& name) {
         for (std::size_t c = 0; c < 4; ++c) {
           long long value = 0;
           if (!parse_int(words[first_colour + c], value) || value < 0 || value >= rules->colour_count())
-            fail("colour must be 0 or 1, got " + quoted(words[first_colour + c]));
+            fail("colour must be an integer in 0.." + std::to_string(rules->colour_count() - 1) + ", got " +
+                 quoted(words[first_colour + c]));
           colours[c] = static_cast<std::uint8_t>(value);
         }
         if (colours != rules->colours(static_cast<int>(id)))
