@@ -328,6 +328,15 @@ def test_wang_tiles_match_the_tool(tool, tmp_path):
     assert tile_set_body(fill) == tile_set_body(out.read_text())
     with pytest.raises(ValueError, match="rank_order"):
         bt.wang_tiles("wang8", points=8, rank_order="random")
+    # corner81: the default strategy is instances for it, as the tool's, and the same bits.
+    tool("wang", "--set", "corner81", "--points", 4, "--iterations", 2, "--warm", 1, "--levels", 2, "--seed", 3,
+         "--output", out)
+    corner = bt.wang_tiles("corner81", points=4, iterations=2, warm=1, levels=2, seed=3)
+    assert tile_set_body(corner) == tile_set_body(out.read_text())
+    assert "strategy='instances'" in corner
+    assert len(bt.tile_set(corner)["tiles"]) == 81
+    with pytest.raises(ValueError, match="wang8, wang16, corner16, corner81"):
+        bt.wang_tiles("corner64", points=4)
 
 
 def test_tile_matches_the_tool(tool, tmp_path):
