@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -64,6 +66,13 @@ TEST(AnalyzeOutputs, SvgHoldsThePointsAndCurvesAndThePdfHasOnePage) {
   auto points = parse_file(dir.file("g/points.svg"));
   ASSERT_TRUE(points);
   EXPECT_EQ(points->find_all("circle").size(), 100u);
+  // The same input gives the same bytes: cairo's clock-time creation date is left out.
+  const std::string first = test::read_text(dir.file("g.pdf"));
+  EXPECT_EQ(first.find("/CreationDate"), std::string::npos);
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // PDF dates count seconds
+  r = test::run_bluetile({"analyze", "-i", grid, "-o", dir.file("g2"), "--summary", dir.file("g2.pdf")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(first == test::read_text(dir.file("g2.pdf")));
   auto pdfinfo = test::run_command("pdfinfo '" + dir.file("g.pdf") + "'");
   if (pdfinfo.exit_code == 127) GTEST_SKIP() << "pdfinfo (poppler-utils) is not installed; ./setup.sh installs it";
   EXPECT_EQ(pdfinfo.exit_code, 0) << pdfinfo.err;

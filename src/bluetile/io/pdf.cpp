@@ -68,7 +68,7 @@ std::string valid_utf8(std::string_view text) {
   X(cairo_set_line_cap) X(cairo_set_line_join) X(cairo_select_font_face) X(cairo_set_font_size)                    \
   X(cairo_text_extents) X(cairo_show_text) X(cairo_image_surface_create) X(cairo_image_surface_get_data)           \
   X(cairo_image_surface_get_stride) X(cairo_set_source_surface) X(cairo_get_source) X(cairo_pattern_set_filter)    \
-  X(cairo_paint) X(cairo_show_page)
+  X(cairo_paint) X(cairo_show_page) X(cairo_pdf_surface_set_metadata)
 
 struct Cairo {
 #define BLUETILE_CAIRO_MEMBER(name) decltype(&::name) name = nullptr;
@@ -273,6 +273,9 @@ void write_pdf(const SvgDocument& document, OutputFile& out) {
   out.write([&](OutputStream& stream) {
     PdfSink sink{&stream, nullptr};
     cairo_surface_t* surface = c.cairo_pdf_surface_create_for_stream(write_to_sink, &sink, width_pt, height_pt);
+    // cairo stamps the clock's time as the creation date unless told one: an empty date leaves
+    // it out, so the same input gives the same bytes.
+    c.cairo_pdf_surface_set_metadata(surface, CAIRO_PDF_METADATA_CREATE_DATE, "");
     cairo_t* cr = c.cairo_create(surface);
     std::string failure;
     try {
