@@ -74,6 +74,36 @@ TEST(FormatsCli, EveryFormatHoldsTheSamePoints) {
   EXPECT_NE(header.find("// bluetile relax: 6 sets of 16 points"), std::string::npos) << header.substr(0, 200);
 }
 
+TEST(FormatsCli, StandardInputIsRecognisedByContentLikeAFile) {
+  // -i - reads NumPy and point-table bytes as a file of any name would be read: by their magic.
+  TempDir dir;
+  ok({"relax", "-n", "12", "--sets", "2", "-k", "2", "--engine", "exact", "-o", dir.file("t.npy")});
+  ok({"relax", "-n", "12", "--sets", "2", "-k", "2", "--engine", "exact", "-o", dir.file("t.bpt")});
+  ok({"relax", "-n", "12", "--sets", "2", "-k", "2", "--engine", "exact", "-o", dir.file("t.txt")});
+  ok({"centroids", "--engine", "exact", "-i", dir.file("t.txt"), "-o", dir.file("from-file.txt")});
+  // The first line names the input; the rest are the centroids.
+  auto body = [](const std::string& text) { return text.substr(text.find('\n')); };
+  const std::string expected = body(read_text(dir.file("from-file.txt")));
+  // stdin from the file inside the inner shell (run_command gives the outer one /dev/null).
+  auto from_stdin = [&](const std::string& command, const std::string& input) {
+    return test::run_command("sh -c '\"$0\" " + command + " < \"$1\"' '" BLUETILE_BINARY "' '" + input + "'");
+  };
+  for (const char* name : {"t.npy", "t.bpt", "t.txt"}) {
+    const std::string out = dir.file(std::string("centroids-") + name + ".txt");
+    auto r = from_stdin("centroids --engine exact -i - -o " + out, dir.file(name));
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+    EXPECT_EQ(body(read_text(out)), expected) << name;
+    r = from_stdin("analyze -i - -o " + dir.file(std::string("a-") + name) + " --no-discrepancy --average", dir.file(name));
+    EXPECT_EQ(r.exit_code, 0) << name << ": " << r.err << r.out;
+  }
+  // Damaged bytes on stdin are named as stdin.
+  const std::string truncated = dir.write("cut.npy", read_text(dir.file("t.npy")).substr(0, 100));
+  auto r = from_stdin("centroids --engine exact -i - -o " + dir.file("never.txt"), truncated);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err.rfind("bluetile: stdin: ", 0), 0u) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("never.txt")));
+}
+
 TEST(FormatsCli, UnknownExtensionsAreRefusedBeforeAnyWork) {
   TempDir dir;
   auto r = run_bluetile({"relax", "-n", "10", "--engine", "exact", "-o", dir.file("points.png")});

@@ -627,21 +627,22 @@ std::vector<PointSet> same_columns(std::vector<PointSet> sets, const std::string
 
 std::vector<PointSet> read_text_table(const std::string& path) { return same_columns(read_point_sets(path), path); }
 
+// Standard input, a FIFO or a device is read once: its first bytes, looked at to tell the
+// format, cannot be read again (a second open would wait for another writer).
+std::vector<PointSet> parse_stream_table(const std::string& bytes, const std::string& name, const ReadOptions& options) {
+  std::string_view head(bytes);
+  if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(bytes, name, options);
+  if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(bytes, name, options);
+  return same_columns(parse_point_sets(bytes, name, options), name);
+}
+
 }  // namespace
 
 std::vector<PointSet> read_point_table(const std::string& path) {
-  if (path == "-") return read_text_table(path);
-  if (is_rps_path(path)) return {read_rps_file(path)};
+  if (path != "-" && is_rps_path(path)) return {read_rps_file(path)};
   struct stat status {};
-  if (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)) {
-    // A FIFO or device is read once: its first bytes, looked at to tell the format, cannot be
-    // read again by a second open (which would wait for another writer).
-    const std::string bytes = read_input(path);
-    std::string_view head(bytes);
-    if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(bytes, path);
-    if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(bytes, path);
-    return same_columns(parse_point_sets(bytes, path), path);
-  }
+  if (path == "-" || (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)))
+    return parse_stream_table(read_input(path), input_name(path), {});
   char start[sizeof kBinaryMagic] = {};
   {
     std::ifstream in(path, std::ios::binary);
@@ -733,6 +734,7 @@ std::vector<PointSet> read_points_by_extension(const std::string& path, const Re
   else if (extension == ".bpt") sets = parse_binary_table(read_input(path), input_name(path), options);
   else if (extension == ".csv") sets = parse_csv_points(read_input(path), input_name(path), options);
   else if (extension == ".rps") sets = {read_rps_file(path, options)};
+  else if (path == "-") sets = parse_stream_table(read_input(path), input_name(path), options);  // by content
   else sets = read_point_sets(path, options);
   return same_columns(std::move(sets), path);
 }
