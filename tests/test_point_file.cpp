@@ -4,6 +4,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/text.h"
 #include "test_support.h"
 
 namespace bluetile {
@@ -129,6 +130,32 @@ TEST(PointFile, MissingFileIsAnError) {
   } catch (const Error& e) {
     EXPECT_EQ(std::string(e.what()), dir.path() + ": is a folder");
   }
+}
+
+TEST(PointFile, CommentsCannotAddLines) {
+  // A header holding a line break (a file name, a Python comment) stays one comment line: no
+  // point, no code line in a C header, and a // comment never continues onto the next line.
+  EXPECT_EQ(comment_line("input nl\n0.25 0.75\r\x1b[31m\ttab"), "input nl\\n0.25 0.75\\r\\x1b[31m\ttab");
+  EXPECT_EQ(comment_line("back\\"), "back\\");
+  EXPECT_EQ(comment_line("back\\", true), "back\\x5c");
+  EXPECT_EQ(comment_line("caf\xc3\xa9 \x7f"), "caf\xc3\xa9 \\x7f");  // UTF-8 kept, DEL escaped
+  test::TempDir dir;
+  PointSet set;
+  set.points = {{0.1, 0.2}, {0.6, 0.7}};
+  write_point_file(dir.file("p.txt"), set, {"made from nl\n0.25 0.75"});
+  EXPECT_EQ(read_point_file(dir.file("p.txt")).points.size(), 2u);
+  EXPECT_EQ(test::read_text(dir.file("p.txt")).rfind("# made from nl\\n0.25 0.75\n", 0), 0u);
+  EXPECT_EQ(format_points(set, {"a\nb"}).rfind("# a\\nb\n0.1", 0), 0u);
+
+  // The tool copies the input's name into its header.
+  const std::string odd = dir.write("nl\n0.25 0.75", "0.1 0.2\n0.6 0.7\n");
+  auto r = test::run_bluetile({"relax", "-i", odd, "--iterations", "0", "--engine", "exact", "-o", dir.file("o.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_point_file(dir.file("o.txt")).points.size(), 2u);
+  r = test::run_bluetile({"relax", "-i", odd, "--iterations", "0", "--engine", "exact", "-o", dir.file("o.h")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string header = test::read_text(dir.file("o.h"));
+  EXPECT_NE(header.find("input " + dir.file("nl") + "\\n0.25 0.75\n"), std::string::npos) << header.substr(0, 300);
 }
 
 TEST(PointFile, RoundTripsEveryBit) {

@@ -7,6 +7,11 @@ function releases the GIL while it computes; bad input raises ``pybluetile.Error
 ``ValueError`` naming the argument.
 """
 
+# NumPy first: nanobind would import it lazily on the first array returned, and an interrupt
+# (Ctrl-C) caught during a first long call then surfaces from that import as a TypeError
+# instead of KeyboardInterrupt.
+import numpy  # noqa: F401
+
 from ._core import (
     Error,
     analyze,

@@ -1,6 +1,9 @@
 """pybluetile against the bluetile tool (bit for bit, same seeds), NumPy as an independent
 reader and writer of .npy, bad input, and the GIL released while the library works."""
 import json
+import signal
+import subprocess
+import sys
 import threading
 import time
 
@@ -209,6 +212,15 @@ def test_tables_round_trip_and_numpy_reads_them(tmp_path):
         bt.save_table(path, sets)
         back = bt.load_table(path)
         assert len(back) == 5 and all(np.array_equal(back[k], sets[k]) for k in range(5)), name
+    # Writing leaves the signals to Python: none blocked (they were, for good, after a first
+    # write, so Ctrl-C ended the interpreter and every process it started could not be stopped).
+    assert signal.pthread_sigmask(signal.SIG_BLOCK, []) == set()
+    # A comment holding a line break stays a comment: no point added, no code in a C header.
+    bt.save_table(str(tmp_path / "c.txt"), sets[0], comment=["hello\n0.25 0.75"])
+    assert bt.load_table(str(tmp_path / "c.txt"))[0].shape == (64, 2)
+    bt.save_table(str(tmp_path / "c.h"), sets[0], comment=["a\nint evil;", "ends in \\"])
+    assert "\nint evil;" not in (tmp_path / "c.h").read_text()
+    assert "// ends in \\x5c\n" in (tmp_path / "c.h").read_text()
     # Files NumPy writes, in any order and byte order, read back exactly.
     np.save(tmp_path / "f.npy", np.asfortranarray(sets))
     np.save(tmp_path / "b.npy", sets.astype(">f8"))
@@ -386,3 +398,24 @@ def test_tile_follows_a_density_map():
         bt.tile((0, 0, -1, 1))
     with pytest.raises(bt.Error, match="more than tiles"):
         bt.tile((0, 0, 1, 1), tile_size=1.0, density=1e9)
+
+
+def test_an_interrupt_during_the_first_call_is_keyboard_interrupt(tmp_path):
+    # A fresh interpreter, as a script's first call: Ctrl-C during the long call arrives as
+    # KeyboardInterrupt when the call returns (it was a TypeError from nanobind's lazy NumPy
+    # import before pybluetile imported NumPy itself).
+    script = tmp_path / "first_call.py"
+    script.write_text(
+        "import pybluetile as bt\n"
+        "print('ready', flush=True)\n"
+        "try:\n"
+        "    bt.progressive(count=2500, levels=3, ratio=2, rank_order='fill')\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n")
+    child = subprocess.Popen([sys.executable, str(script)], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                             preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
+    assert child.stdout.readline() == "ready\n"
+    time.sleep(0.2)
+    child.send_signal(signal.SIGINT)
+    out, err = child.communicate(timeout=120)
+    assert out == "interrupted\n", (child.returncode, err)

@@ -14,6 +14,7 @@
 #include <sys/mount.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "bluetile/io/image_file.h"
@@ -400,6 +401,34 @@ TEST(Outputs, InterruptsRemoveStagedFiles) {
     EXPECT_EQ(r.signal, signal_number) << r.err;
     EXPECT_EQ(entries(dir.path()), Names{"pipe|"});
   }
+}
+
+TEST(Outputs, SignalsThatWereIgnoredStayIgnored) {
+  // A script's background job (`cmd &`) inherits SIGINT ignored, and nohup SIGHUP: the watcher
+  // took them over and a Ctrl-C meant for the script's foreground ended the job. Held mid-write
+  // as above; SIGINT and SIGHUP change nothing, SIGTERM (not ignored) still ends it cleanly.
+  TempDir dir;
+  ASSERT_EQ(mkfifo(dir.file("pipe").c_str(), 0600), 0);
+  Invocation ignoring{relax({"-n", "20000", "-k", "1", "--log", dir.file("log.csv"), "-o", dir.file("pipe")})};
+  ignoring.wrapper = {"/bin/sh", "-c", "trap '' INT HUP; exec \"$0\" \"$@\""};
+  Child child(ignoring);
+  int fd = open(dir.file("pipe").c_str(), O_RDONLY | O_NONBLOCK);
+  ASSERT_GE(fd, 0);
+  ASSERT_TRUE(wait_until([&] {
+    int queued = 0;
+    return ioctl(fd, FIONREAD, &queued) == 0 && queued >= 4096 && entries(dir.path()).size() > 1;
+  }));
+  kill(child.pid(), SIGINT);
+  kill(child.pid(), SIGHUP);
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  siginfo_t ended{};  // WNOWAIT: looked at, left for child.wait() to collect
+  ASSERT_EQ(waitid(P_PID, static_cast<id_t>(child.pid()), &ended, WEXITED | WNOHANG | WNOWAIT), 0);
+  EXPECT_EQ(ended.si_pid, 0) << "a signal it inherited as ignored ended it (signal " << ended.si_status << ")";
+  kill(child.pid(), SIGTERM);
+  Outcome r = child.wait();
+  close(fd);
+  EXPECT_EQ(r.signal, SIGTERM) << r.err;
+  EXPECT_EQ(entries(dir.path()), Names{"pipe|"});
 }
 
 TEST(Outputs, ImageMessagesNameTheUsersPath) {

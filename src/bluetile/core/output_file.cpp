@@ -72,12 +72,16 @@ void unregister_staging_locked(const std::string& folder) {
   }
 }
 
+// SIGINT, SIGTERM and SIGHUP, but those the process inherited as ignored (a background job of a
+// script ignores SIGINT, nohup SIGHUP): they stay ignored.
 sigset_t cleanup_signals() {
   sigset_t set;
   sigemptyset(&set);
-  sigaddset(&set, SIGINT);
-  sigaddset(&set, SIGTERM);
-  sigaddset(&set, SIGHUP);
+  for (int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+    struct sigaction current {};
+    if (sigaction(signal_number, nullptr, &current) == 0 && current.sa_handler == SIG_IGN) continue;
+    sigaddset(&set, signal_number);
+  }
   return set;
 }
 
@@ -399,7 +403,7 @@ struct OutputSet::Folder {
   std::vector<OutputFile*> files;
 };
 
-OutputSet::OutputSet() { install_interrupt_cleanup(); }
+OutputSet::OutputSet() = default;
 
 OutputSet::~OutputSet() {
   if (!published_) discard();

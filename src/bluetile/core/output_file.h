@@ -37,11 +37,14 @@
 // write ...") names the visible regular files it holds besides them, which may be outputs of an
 // earlier run with other options.
 //
-// Interrupts: install_interrupt_cleanup() (called by OutputSet, and first thing by the tool's
-// main) blocks SIGINT, SIGTERM and SIGHUP in the calling thread (threads started later inherit
-// that) and hands them to a watcher thread, which removes every staged file and folder and then
-// ends the process by the same signal. Call it before starting threads. Only SIGKILL, a crash or
-// a power loss can leave a hidden ".bluetile-PID-K" folder behind.
+// Interrupts: install_interrupt_cleanup(), called first thing by the tool's main, blocks SIGINT,
+// SIGTERM and SIGHUP (those the process does not ignore) in the calling thread (threads started
+// later inherit that) and hands them to a watcher thread, which removes every staged file and
+// folder and then ends the process by the same signal. Call it before starting threads. Then only
+// SIGKILL, a crash or a power loss can leave a hidden ".bluetile-PID-K" folder behind. The
+// library never calls it itself: signals belong to the program that embeds it (Python turns
+// Ctrl-C into KeyboardInterrupt, and a blocked mask would pass to every process it starts), so
+// there a signal that ends the process can leave a staging folder, as SIGKILL can.
 #pragma once
 
 #include <cstdint>
@@ -167,7 +170,8 @@ class OutputSet {
 void write_output(const std::string& path, const OutputWriter& writer, OutputOptions options = {});
 void write_output(const std::string& path, std::string_view text, OutputOptions options = {});
 
-// See the header comment; idempotent. Throws Error if the watcher thread cannot start.
+// See the header comment; for a program's main, not for a library; idempotent. Throws Error if
+// the watcher thread cannot start.
 void install_interrupt_cleanup();
 
 }  // namespace bluetile

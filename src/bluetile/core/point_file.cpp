@@ -8,6 +8,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/input_file.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -335,7 +336,7 @@ std::vector<PointSet> read_point_sets(const std::string& path, const ReadOptions
 void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header) {
   for (const auto& line : header) {
     out.write("# ");
-    out.write(line);
+    out.write(comment_line(line));
     out.put('\n');
   }
   // %.17g: 17 significant digits make every double round-trip.
@@ -350,7 +351,7 @@ void write_points(OutputStream& out, const PointSet& set, const std::vector<std:
 
 std::string format_points(const PointSet& set, const std::vector<std::string>& header) {
   std::string text;
-  for (const auto& line : header) text += "# " + line + "\n";
+  for (const auto& line : header) text += "# " + comment_line(line) + "\n";
   char buffer[96];
   for (std::size_t i = 0; i < set.points.size(); ++i) {
     int n = set.has_levels() ? std::snprintf(buffer, sizeof buffer, "%.17g %.17g %d\n", set.points[i].x, set.points[i].y,

@@ -169,7 +169,7 @@ void float_literal(float f, char* text, std::size_t size) {
 void write_header(ChunkedWriter& out, const TableView& table, std::size_t rows, const TableWriteOptions& options,
                   const std::string& path) {
   const std::string name = checked_table_name(path, options.name);
-  for (const std::string& line : options.comment) out.write("// " + line + "\n");
+  for (const std::string& line : options.comment) out.write("// " + comment_line(line, true) + "\n");
   out.write("// " + std::to_string(table.sets) + " set(s) of " + std::to_string(rows) + " points, columns " +
             table.column_names + "; coordinates on the unit torus, in [0, 1).\n");
   out.write("#pragma once\n\n");

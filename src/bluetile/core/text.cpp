@@ -32,4 +32,22 @@ std::string lower_case(std::string s) {
   return s;
 }
 
+std::string comment_line(std::string_view text, bool c_comment) {
+  std::string line;
+  line.reserve(text.size());
+  for (char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\n') line += "\\n";
+    else if (c == '\r') line += "\\r";
+    else if ((byte < 0x20 && c != '\t') || byte == 0x7F || (c_comment && c == '\\')) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", byte);
+      line += escaped;
+    } else {
+      line += c;
+    }
+  }
+  return line;
+}
+
 }  // namespace bluetile

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 
 namespace bluetile {
 
@@ -17,5 +18,11 @@ std::string fixed_text(double v, int decimals);
 
 // `s` in ASCII lower case (file extensions, device names).
 std::string lower_case(std::string s);
+
+// `text` made safe as the rest of one comment line of an output file: line breaks and other
+// control characters (tabs excepted) become \n, \r or \xNN, so that a file name or comment
+// holding them cannot add a line (a point, or code in a C header). `c_comment`: backslashes become
+// \x5c too, since a // comment that ends in one continues on the next line.
+std::string comment_line(std::string_view text, bool c_comment = false);
 
 }  // namespace bluetile

@@ -12,6 +12,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/input_file.h"
 #include "bluetile/core/output_file.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -271,7 +272,7 @@ std::string format_tile_set(const TileSet& set) {
   TileRules rules(set.kind);
   std::string text(kVersionLine);
   text += '\n';
-  for (const std::string& line : set.header) text += line.empty() ? "#\n" : "# " + line + "\n";
+  for (const std::string& line : set.header) text += line.empty() ? "#\n" : "# " + comment_line(line) + "\n";
   text += "# set " + std::string(tile_set_kind_name(set.kind)) + " colours " + std::to_string(rules.colour_count()) + "\n";
   char buffer[128];
   for (std::size_t id = 0; id < set.tiles.size(); ++id) {

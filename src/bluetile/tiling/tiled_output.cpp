@@ -12,6 +12,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -148,7 +149,7 @@ StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const 
   const ColumnValues values{tiler, window, format};
   if (!format.binary) {
     std::string header;
-    for (const std::string& line : format.header) header += "# " + line + "\n";
+    for (const std::string& line : format.header) header += "# " + comment_line(line) + "\n";
     out.write(header);
     times.bytes += header.size();
   }
