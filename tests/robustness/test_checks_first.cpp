@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <thread>
 
@@ -276,6 +277,50 @@ TEST(ChecksFirst, AFifoInputWithoutAWriterIsSaidAndThenRead) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "bluetile: " + fifo + ": waiting for a writer to open this FIFO\n");
   EXPECT_NE(read_text(dir.file("o.txt")).find("3 points, 1 iterations"), std::string::npos);
+}
+
+TEST(ChecksFirst, AnImageThroughAFifoIsReadOnceAsAFileWouldBe) {
+  // A density map or stipple image given as a FIFO (or a process substitution's pipe) hung for
+  // ever without a word: the image library opens an image twice and probes it by reading. Now it
+  // is read once, with the waiting note, and gives the points the same image as a file gives.
+  TempDir dir;
+  Outcome made = run({"tile", "--region", "0", "0", "1", "1", "--density", "200", "--image-size", "48", "-o",
+                      dir.file("map.png")});
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string image = read_text(dir.file("map.png"));
+  const std::string fifo = dir.file("pipe.png");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::thread writer([&] {
+    std::this_thread::sleep_for(std::chrono::seconds(8));  // as above: the note first
+    std::ofstream out(fifo, std::ios::binary);
+    out << image;
+  });
+  const std::vector<std::string> tile = {"tile", "--region", "0", "0", "2", "1", "--count", "300", "--density-map"};
+  std::vector<std::string> through_fifo = tile;
+  through_fifo.insert(through_fifo.end(), {fifo, "-o", dir.file("fifo.txt")});
+  Outcome r = run_or_kill({through_fifo});
+  const int release = open(fifo.c_str(), O_RDONLY | O_NONBLOCK);
+  writer.join();
+  if (release >= 0) close(release);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "bluetile: " + fifo + ": waiting for a writer to open this FIFO\n");
+  std::vector<std::string> from_file = tile;
+  from_file.insert(from_file.end(), {dir.file("map.png"), "-o", dir.file("file.txt")});
+  ASSERT_EQ(run(from_file).exit_code, 0);
+  auto points = [](const std::string& text) { return text.substr(text.find("\n0") + 1); };  // after the header
+  EXPECT_EQ(points(read_text(dir.file("fifo.txt"))), points(read_text(dir.file("file.txt"))));
+  EXPECT_GT(points(read_text(dir.file("file.txt"))).size(), 1000u);
+  // A FIFO of no image is refused by the image's name, and no temporary copy stays.
+  std::thread junk([&] {
+    std::ofstream out(fifo, std::ios::binary);
+    out << "not an image\n";
+  });
+  r = run_or_kill({{"stipple", "--image", fifo, "-n", "10", "-k", "1", "-o", dir.file("s.txt")}});
+  junk.join();
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("bluetile: " + fifo + ": cannot read image: ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.find("bluetile-image-"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("s.txt")));
 }
 
 // A long raster job on a CPU device says, before it starts, how long it should

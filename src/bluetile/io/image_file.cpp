@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <filesystem>
 #include <memory>
@@ -13,9 +15,11 @@
 
 #include <dlfcn.h>
 #include <link.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/input_file.h"
 #include "bluetile/core/process_limits.h"
 #include "bluetile/io/oiio_plugin.h"
 
@@ -263,14 +267,54 @@ void write_image_file(const std::string& path, int width, int height, int channe
   outputs.publish();
 }
 
-ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
+namespace {
+
+// A regular file holding `bytes`, named like `like` (its extension tells OpenImageIO the format),
+// removed with the object.
+class TemporaryCopy {
+ public:
+  TemporaryCopy(const std::string& bytes, const std::string& like) {
+    const std::string extension = std::filesystem::path(like).extension().string();
+    std::string pattern = (std::filesystem::temp_directory_path() / "bluetile-image-XXXXXX").string() + extension;
+    const int fd = mkstemps(pattern.data(), static_cast<int>(extension.size()));
+    if (fd < 0) throw Error(like + ": cannot copy the image to a temporary file: " + std::strerror(errno));
+    path_ = pattern;
+    std::size_t written = 0;
+    while (written < bytes.size()) {
+      const ssize_t n = ::write(fd, bytes.data() + written, bytes.size() - written);
+      if (n < 0 && errno == EINTR) continue;
+      if (n <= 0) {
+        const int e = errno;
+        ::close(fd);
+        std::remove(path_.c_str());
+        throw Error(like + ": cannot copy the image to " + path_ + ": " + std::strerror(e));
+      }
+      written += static_cast<std::size_t>(n);
+    }
+    ::close(fd);
+  }
+  ~TemporaryCopy() { std::remove(path_.c_str()); }
+  TemporaryCopy(const TemporaryCopy&) = delete;
+  TemporaryCopy& operator=(const TemporaryCopy&) = delete;
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+};
+
+// The image at `file`, named `path` in messages.
+ImageFile read_regular_image(const std::string& file, const std::string& path, std::uint64_t max_pixels) {
   const Plugin& p = plugin();
   ImageFile image;
   char error[512];
+  auto named = [&](std::string text) {  // the plugin's messages quote the file it opened
+    for (std::size_t at; file != path && (at = text.find(file)) != std::string::npos;) text.replace(at, file.size(), path);
+    return text;
+  };
   // The header first: a file that claims more pixels than allowed is refused before any buffer
   // for them is allocated (a few bytes of PNG header can claim 2^62 samples).
-  if (p.info(path.c_str(), &image.width, &image.height, &image.channels, error, sizeof error) != 0)
-    throw Error(path + ": cannot read image: " + error);
+  if (p.info(file.c_str(), &image.width, &image.height, &image.channels, error, sizeof error) != 0)
+    throw Error(path + ": cannot read image: " + named(error));
   if (image.width <= 0 || image.height <= 0 || image.channels <= 0)
     throw Error(path + ": cannot read image: it is empty (" + std::to_string(image.width) + " x " +
                 std::to_string(image.height) + " pixels, " + std::to_string(image.channels) + " channels)");
@@ -280,8 +324,8 @@ ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
                 std::to_string(image.height) + " pixels, more than " + std::to_string(max_pixels) + ")");
   float* values = nullptr;
   int is_float = 0;
-  if (p.read(path.c_str(), &image.width, &image.height, &image.channels, &is_float, &values, error, sizeof error) != 0)
-    throw Error(path + ": cannot read image: " + error);
+  if (p.read(file.c_str(), &image.width, &image.height, &image.channels, &is_float, &values, error, sizeof error) != 0)
+    throw Error(path + ": cannot read image: " + named(error));
   std::unique_ptr<float, decltype(&std::free)> owned(values, &std::free);
   // The file may have changed between the two opens.
   if (static_cast<std::uint64_t>(image.width) * static_cast<std::uint64_t>(image.height) > max_pixels)
@@ -291,6 +335,21 @@ ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
   image.values.assign(values, values + static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height) *
                                            static_cast<std::size_t>(image.channels));
   return image;
+}
+
+}  // namespace
+
+ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
+  // OpenImageIO opens an image twice (its header, then its pixels) and reads a little to probe
+  // its format: a FIFO or pipe (a process substitution's /dev/fd/N) would be empty the second
+  // time, or wait for a writer gone, without a word. Such an input is read once (read_input says
+  // when it waits for a writer) into a regular temporary copy.
+  struct stat status {};
+  if (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)) {
+    const TemporaryCopy copy(read_input(path), path);
+    return read_regular_image(copy.path(), path, max_pixels);
+  }
+  return read_regular_image(path, path, max_pixels);
 }
 
 }  // namespace bluetile
