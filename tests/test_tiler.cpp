@@ -383,9 +383,22 @@ TEST(Tiler, MapFitsPlaceTheMapByHand) {
   const std::vector<float> texels(6, 1.0f);
   const Thinning t = Thinning::from_fitted_map(3, 2, texels, region, MapFit::contain, 0.5);
   EXPECT_EQ(t.fraction_at({32.0, 37.5}), 0.5);
-  EXPECT_EQ(t.fraction_at({32.0, contain.y1 + 64.0 / 3.0 / 2.0 + 1e-9}), 0.0);  // half a texel beyond the edge
   EXPECT_EQ(t.fraction_at({32.0, 0.5}), 0.0);
-  EXPECT_DOUBLE_EQ(t.fraction_at({32.0, contain.y1}), 0.25);  // halfway down the bilinear step
+  // The map's rectangle is half-open and its edge texels reach its edge: a uniform map fills it
+  // exactly (a bilinear step used to take the density to zero over a texel across the edge).
+  EXPECT_EQ(t.fraction_at({32.0, std::nextafter(contain.y1, 0.0)}), 0.5);
+  EXPECT_EQ(t.fraction_at({32.0, contain.y1}), 0.0);
+  EXPECT_EQ(t.fraction_at({32.0, contain.y0}), 0.5);
+  EXPECT_EQ(t.fraction_at({32.0, std::nextafter(contain.y0, 0.0)}), 0.0);
+  // Bounds of boxes across the edge, beside the map and inside it.
+  const auto across = t.fraction_bounds({10.0, contain.y1 - 1.0, 20.0, contain.y1 + 1.0});
+  EXPECT_EQ(across.min, 0.0);
+  EXPECT_EQ(across.max, 0.5);
+  const auto beside = t.fraction_bounds({10.0, contain.y1, 20.0, 75.0});
+  EXPECT_EQ(beside.max, 0.0);
+  const auto inside = t.fraction_bounds({10.0, 30.0, 20.0, 40.0});
+  EXPECT_EQ(inside.min, 0.5);
+  EXPECT_EQ(inside.max, 0.5);
 }
 
 }  // namespace

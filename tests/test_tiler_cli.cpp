@@ -2,6 +2,7 @@
 // images, drawings, and bad input.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -172,8 +173,8 @@ TEST(TileCommand, FitKeepsTheMapsAspectOnARegionOfAnother) {
     EXPECT_NEAR(s.sd_x, c.spread_x, 0.02 * c.spread_x) << c.fit;
     EXPECT_NEAR(s.sd_y, c.spread_y, 0.02 * c.spread_y) << c.fit;
   }
-  // contain by default; a uniform map then fills exactly its square, [0.5, 1.5] in x (the bilinear
-  // step takes half a texel, 1/16, each side of the edge), nothing beside it.
+  // contain by default; a uniform map then fills exactly its square, [0.5, 1.5) in x, nothing
+  // beside it (a bilinear step took half a texel, 1/16, each side of the edge).
   write_image_file(dir.file("white.png"), 8, 8, 1, std::vector<std::uint8_t>(64, 255));
   auto r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--density-map", dir.file("white.png"), "--transfer",
                          "linear", "--max-density", "4000", "-o", dir.file("white.txt")});
@@ -182,10 +183,22 @@ TEST(TileCommand, FitKeepsTheMapsAspectOnARegionOfAnother) {
   EXPECT_NE(text.find("(fit contain)"), std::string::npos);
   const Spread s = spread_of(data_rows(text));
   EXPECT_NEAR(static_cast<double>(s.count), 4000.0, 3.0 * std::sqrt(4000.0));
-  EXPECT_GE(s.min_x, 0.5 - 1.0 / 16.0);
+  EXPECT_GE(s.min_x, 0.5);
   EXPECT_LT(s.min_x, 0.5 + 0.02);
-  EXPECT_LE(s.max_x, 1.5 + 1.0 / 16.0);
+  EXPECT_LT(s.max_x, 1.5);
   EXPECT_GT(s.max_x, 1.5 - 0.02);
+  // A one-texel map is a uniform square too, not a tent over the room beside it.
+  write_image_file(dir.file("one.png"), 1, 1, 1, std::vector<std::uint8_t>(1, 128));
+  r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--density-map", dir.file("one.png"), "--count", "2000",
+                    "-o", dir.file("one.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<std::vector<double>> one = data_rows(read_text(dir.file("one.txt")));
+  const Spread o = spread_of(one);
+  EXPECT_GE(o.min_x, 0.5);
+  EXPECT_LT(o.max_x, 1.5);
+  EXPECT_NEAR(static_cast<double>(o.count), 2000.0, 3.0 * std::sqrt(2000.0));
+  const auto left = std::count_if(one.begin(), one.end(), [](const std::vector<double>& row) { return row[0] < 1.0; });
+  EXPECT_NEAR(static_cast<double>(left), 0.5 * static_cast<double>(o.count), 3.0 * std::sqrt(0.25 * static_cast<double>(o.count)));
   // Refused: an unknown fit, and a fit without a map.
   r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--density-map", dir.file("white.png"), "--fit", "fill",
                     "-o", dir.file("bad.txt")});

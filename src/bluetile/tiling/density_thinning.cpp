@@ -61,19 +61,10 @@ Thinning Thinning::from_fitted_map(int width, int height, std::span<const float>
   const Window rectangle = fit_map_rectangle(window, width, height, fit);
   const bool pad_x = fit == MapFit::contain && (rectangle.x0 > window.x0 || rectangle.x1 < window.x1);
   const bool pad_y = fit == MapFit::contain && (rectangle.y0 > window.y0 || rectangle.y1 < window.y1);
-  Thinning unpadded = from_map(width, height, texels, rectangle, max_fraction);  // checks the map as given
-  if (!pad_x && !pad_y) return unpadded;
-  // One zero texel beyond each padded side, the rectangle grown by one texel there.
-  const int border_x = pad_x ? 1 : 0, border_y = pad_y ? 1 : 0;
-  const int padded_width = width + 2 * border_x, padded_height = height + 2 * border_y;
-  std::vector<float> padded(static_cast<std::size_t>(padded_width) * static_cast<std::size_t>(padded_height), 0.0f);
-  for (int r = 0; r < height; ++r)
-    std::copy_n(texels.begin() + static_cast<std::ptrdiff_t>(r) * width, width,
-                padded.begin() + static_cast<std::ptrdiff_t>(r + border_y) * padded_width + border_x);
-  const double texel_x = rectangle.width() / width, texel_y = rectangle.height() / height;
-  const Window grown{rectangle.x0 - border_x * texel_x, rectangle.y0 - border_y * texel_y,
-                     rectangle.x1 + border_x * texel_x, rectangle.y1 + border_y * texel_y};
-  return from_map(padded_width, padded_height, padded, grown, max_fraction);
+  Thinning t = from_map(width, height, texels, rectangle, max_fraction);
+  if (pad_x) t.support_.x0 = rectangle.x0, t.support_.x1 = rectangle.x1;
+  if (pad_y) t.support_.y0 = rectangle.y0, t.support_.y1 = rectangle.y1;
+  return t;
 }
 
 Thinning Thinning::uniform(double fraction) {
@@ -125,6 +116,7 @@ Thinning::Map Thinning::map() const {
   m.offset_x = -rectangle_.x0 * m.scale_x - 0.5;
   m.scale_y = height_ / rectangle_.height();
   m.offset_y = -rectangle_.y0 * m.scale_y - 0.5;
+  m.support = support_;
   return m;
 }
 
@@ -135,6 +127,10 @@ double Thinning::fraction_at(Point p) const {
 
 Thinning::Bounds Thinning::fraction_bounds(const Window& box) const {
   if (constant()) return {fraction_, fraction_};
+  // The closed box against the half-open support: outside it f is 0.
+  const Window& s = support_;
+  if (box.x1 < s.x0 || box.x0 >= s.x1 || box.y1 < s.y0 || box.y0 >= s.y1) return {0.0, 0.0};
+  const bool inside = box.x0 >= s.x0 && box.x1 < s.x1 && box.y0 >= s.y0 && box.y1 < s.y1;
   Map m = map();
   // Bilinear values between texel columns c and c+1 stay between those texels: take every column
   // from the one left of the box's left edge to the one right of its right edge (clamped).
@@ -153,7 +149,7 @@ Thinning::Bounds Thinning::fraction_bounds(const Window& box) const {
     const float* row = grid_.data() + static_cast<std::ptrdiff_t>(r) * width_;
     for (int c = c0; c <= c1; ++c) smallest = std::min(smallest, row[c]), largest = std::max(largest, row[c]);
   }
-  return {smallest, largest};
+  return {inside ? smallest : 0.0, largest};
 }
 
 double Thinning::dither(std::int64_t i, std::int64_t j, std::uint64_t seed) {

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -60,8 +61,10 @@ class Thinning {
                            double max_fraction);
 
   // The map placed on `window` by `fit` (fit_map_rectangle). contain leaves no points beside the
-  // map: the grid gains a border of zero texels on the sides with room, so the density falls to
-  // zero over the half texel each side of the map's edge (the bilinear step) and is zero beyond.
+  // map: on the sides with room the fraction is zero from the map's edge on (the rectangle is
+  // half-open, [x0, x1) x [y0, y1)), and inside it the map's own, edge texels continued to the
+  // edge, so a uniform map fills exactly its rectangle. (It fell to zero over a bilinear step of
+  // a texel across the edge, half a texel beside the map: all of a 1 x 1 map's room.)
   static Thinning from_fitted_map(int width, int height, std::span<const float> texels, const Window& window,
                                   MapFit fit, double max_fraction);
 
@@ -84,6 +87,7 @@ class Thinning {
     int width = 0, height = 0;
     double scale_x = 0.0, offset_x = 0.0, scale_y = 0.0, offset_y = 0.0;
     const float* values = nullptr;
+    Window support;  // f is zero outside (contain's room beside the map); infinite otherwise
   };
   Map map() const;
   double fraction() const { return fraction_; }
@@ -95,11 +99,14 @@ class Thinning {
   int width_ = 0, height_ = 0;
   std::vector<float> grid_;      // texels scaled to fractions
   Window rectangle_;
+  Window support_{-std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(),
+                  std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
 };
 
 // f at plane point p of a map thinning, as Thinning::fraction_at computes it (inline for the
 // generator's loop).
 inline double sample_map(const Thinning::Map& m, Point p) {
+  if (!m.support.contains(p)) return 0.0;
   double tx = p.x * m.scale_x + m.offset_x;
   double ty = p.y * m.scale_y + m.offset_y;
   // Clamp to the outer texel centres (edge continued); the last column pairs with itself.
