@@ -66,21 +66,34 @@ TEST(DensityMap, TransferDecodesInvertsAndRaisesToGamma) {
   EXPECT_EQ(grid.at(1, 0), 1.0f);
 }
 
-TEST(DensityMap, LuminanceOfColourAndAlphaIgnored) {
+TEST(DensityMap, LuminanceOfColourLaidOnWhitePaper) {
+  // Samples associated with alpha (as OpenImageIO reads them): each gains 1 - alpha, the white
+  // showing through. Transparent pixels were black before (zero samples), the densest ink under
+  // --invert.
   ImageFile rgba;
-  rgba.width = 3;
+  rgba.width = 4;
   rgba.height = 1;
   rgba.channels = 4;
-  rgba.values = {1, 0, 0, 0.5f, 0, 1, 0, 0, 0, 0, 1, 1};
+  rgba.values = {0.5f, 0, 0, 0.5f, 0, 0, 0, 0, 0, 0, 1, 1, 0, 1, 0, 1};
   DensityTransfer linear;
   linear.curve = TransferCurve::linear;
   DensityGrid grid = density_from_image(rgba, linear, "c");
-  EXPECT_FLOAT_EQ(grid.at(0, 0), 0.2126f);
-  EXPECT_FLOAT_EQ(grid.at(1, 0), 0.7152f);
-  EXPECT_FLOAT_EQ(grid.at(2, 0), 0.0722f);
-  ImageFile grey_alpha = grey_image(1, 1, {0.75f, 0.0f});
+  EXPECT_FLOAT_EQ(grid.at(0, 0), 0.2126f + 0.5f * (0.7152f + 0.0722f));  // half-transparent red: (1, 0.5, 0.5)
+  EXPECT_FLOAT_EQ(grid.at(1, 0), 1.0f);                                  // transparent: white
+  EXPECT_FLOAT_EQ(grid.at(2, 0), 0.0722f);                               // opaque blue
+  EXPECT_FLOAT_EQ(grid.at(3, 0), 0.7152f);                               // opaque green
+  ImageFile grey_alpha = grey_image(3, 1, {0.75f, 1.0f, 0.0f, 0.0f, 0.25f, 0.5f});
   grey_alpha.channels = 2;
-  EXPECT_EQ(density_from_image(grey_alpha, linear, "ga").at(0, 0), 0.75f);
+  DensityGrid ga = density_from_image(grey_alpha, linear, "ga");
+  EXPECT_EQ(ga.at(0, 0), 0.75f);
+  EXPECT_EQ(ga.at(1, 0), 1.0f);
+  EXPECT_EQ(ga.at(2, 0), 0.75f);
+  DensityTransfer inverted = linear;
+  inverted.invert = true;
+  EXPECT_EQ(density_from_image(grey_alpha, inverted, "ga").at(1, 0), 0.0f);  // no ink where transparent
+  grey_alpha.values[3] = 1.5f;
+  EXPECT_EQ(error_of([&] { density_from_image(grey_alpha, linear, "ga.exr"); }),
+            "ga.exr: pixel (1, 0) (column, row from the top) has alpha 1.5: alpha must lie in [0, 1]");
 }
 
 TEST(DensityMap, BadSamplesNameTheirPixel) {
@@ -138,6 +151,13 @@ TEST(DensityMap, FilesOfEveryDepthReadBack) {
   // RGB: luminance.
   write_image_file(dir.file("rgb.png"), 1, 1, 3, {0.0f, 1.0f, 0.0f}, SampleFormat::uint8);
   EXPECT_FLOAT_EQ(load_density_map(dir.file("rgb.png"), linear).at(0, 0), 0.7152f);
+  // RGBA through the file: a transparent pixel is paper, an opaque black one ink.
+  write_image_file(dir.file("rgba.png"), 2, 1, 4, {0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 0.0f, 1.0f}, SampleFormat::uint8);
+  DensityTransfer ink = linear;
+  ink.invert = true;
+  const DensityGrid logo = load_density_map(dir.file("rgba.png"), ink);
+  EXPECT_EQ(logo.at(0, 0), 0.0f);
+  EXPECT_EQ(logo.at(1, 0), 1.0f);
 }
 
 TEST(DensityMap, BadFilesGiveOneClearError) {

@@ -42,6 +42,8 @@ DensityGrid density_from_image(const ImageFile& image, const DensityTransfer& tr
                            (transfer.curve == TransferCurve::automatic && !image.floating_point);
   const std::size_t channels = static_cast<std::size_t>(image.channels);
   const std::size_t colour_channels = channels >= 3 ? 3 : 1;
+  // Grey + alpha, or RGBA: the last channel is alpha.
+  const bool has_alpha = channels == 2 || channels == 4;
 
   DensityGrid grid(image.width, image.height);
   bool any_positive = false;
@@ -51,13 +53,20 @@ DensityGrid density_from_image(const ImageFile& image, const DensityTransfer& tr
       const float* sample =
           image.values.data() + (static_cast<std::size_t>(r) * static_cast<std::size_t>(image.width) +
                                  static_cast<std::size_t>(column)) * channels;
+      double paper = 0.0;  // the white showing through: 1 - alpha
+      if (has_alpha) {
+        const double alpha = sample[channels - 1];
+        if (!(alpha >= 0.0 && alpha <= 1.0))
+          throw Error(name + ": " + pixel_name(column, r) + " has alpha " + number(alpha) + ": alpha must lie in [0, 1]");
+        paper = 1.0 - alpha;
+      }
       double linear[3];
       for (std::size_t c = 0; c < colour_channels; ++c) {
         const double v = sample[c];
         if (!std::isfinite(v) || v < 0.0)
           throw Error(name + ": " + pixel_name(column, r) + " channel " + std::to_string(c) + " is " + number(v) +
                       ": density samples must be finite and non-negative");
-        linear[c] = decode_srgb ? srgb_to_linear(v) : v;
+        linear[c] = decode_srgb ? srgb_to_linear(v + paper) : v + paper;
       }
       double density = colour_channels == 3 ? 0.2126 * linear[0] + 0.7152 * linear[1] + 0.0722 * linear[2] : linear[0];
       if (transfer.invert) {

@@ -5,8 +5,11 @@
 //      `automatic` decodes integer samples (PNG, 8/16-bit TIFF: sRGB by convention) and keeps
 //      float samples (EXR: linear by convention) as they are;
 //   2. luminance Y = 0.2126 R + 0.7152 G + 0.0722 B (Rec. 709, the sRGB primaries) for three
-//      or more channels; the first channel of a grey image; alpha (channel 2 of grey + alpha,
-//      channel 4 of RGBA) is ignored;
+//      or more channels; the first channel of a grey image; an image with alpha (channel 2 of
+//      grey + alpha, channel 4 of RGBA) is first laid on white paper, as a viewer shows it:
+//      each sample (associated with alpha, as OpenImageIO reads it) gains 1 - alpha before
+//      decoding, so a transparent pixel is white, not the black its zero samples would be
+//      (under --invert, stipple's default, that made the background the densest ink);
 //   3. `invert`: density 1 - Y, for maps where dark means dense (Y must then lie in [0, 1]);
 //   4. `gamma`: density^gamma (1 keeps it).
 // Orientation: the image's row 0 is the top of the picture and the plane's y is up, so image
