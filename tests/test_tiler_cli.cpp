@@ -123,6 +123,19 @@ TEST(TileCommand, NormalizedWindowIsAPointFileOnTheUnitSquare) {
     EXPECT_LT(row[1], 1.0);
   }
   EXPECT_NE(text.find("# tile grid "), std::string::npos);
+  EXPECT_NE(text.find("(normalized onto the unit square)"), std::string::npos);
+  // Square to rounding is square: 0.4 - 0.1 and 0.5 - 0.2 differ in their last bit.
+  r = run_bluetile({"tile", "--region", "0.1", "0.2", "0.4", "0.5", "--density", "500", "--normalize", "-o",
+                    dir.file("rounded.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const auto& row : data_rows(read_text(dir.file("rounded.txt")))) {
+    EXPECT_GE(row[1], 0.0);
+    EXPECT_LT(row[1], 1.0);
+  }
+  r = run_bluetile({"tile", "--region", "0", "0", "1", "1.000001", "--density", "500", "--normalize", "-o",
+                    dir.file("oblong.txt")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --normalize maps a square region onto the unit square; this region is 1 x 1.000001\n");
 }
 
 // Centroid and spread of a tile point file's points (first two columns).

@@ -2,6 +2,7 @@
 // (Hiller, Deussen, Keller 2001, section 3), at a uniform density or following a density map
 // (thinning by rank, tiling/density_thinning.h). Point files and SVG drawings are streamed; a PDF
 // of dots and a render are made whole, then written.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -154,7 +155,7 @@ std::vector<std::string> header_lines(const TileOptions& o, const Plan& plan, co
   lines.push_back("bluetile tile: tiles " + plan.tiles_name + " (" +
                   std::string(tile_set_kind_name(plan.tiler->tile_set().kind)) + "), seed " + std::to_string(o.seed) +
                   ", tile size " + exact_text(plan.tiler->tile_size()) + ", region " + exact_text(w.x0) + " " + exact_text(w.y0) +
-                  " " + exact_text(w.x1) + " " + exact_text(w.y1) + (o.normalize ? " (normalized by its width)" : ""));
+                  " " + exact_text(w.x1) + " " + exact_text(w.y1) + (o.normalize ? " (normalized onto the unit square)" : ""));
   if (!o.density_map.empty())
     lines.push_back("density map " + o.density_map + " (fit " + o.fit + "), max density " +
                     exact_text(plan.max_density) + " points per unit area");
@@ -204,9 +205,12 @@ void run_tile(const TileOptions& o, const CLI::App& command) {
   std::vector<OutputFile*> files;
   for (const std::string& path : o.outputs)
     files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputFormat::points_text}));
-  if (o.normalize && o.region[2] - o.region[0] != o.region[3] - o.region[1])
-    throw Error("--normalize maps a square region onto the unit square; this region is " +
-                exact_text(o.region[2] - o.region[0]) + " x " + exact_text(o.region[3] - o.region[1]));
+  // Square to rounding (0.4 - 0.1 and 0.5 - 0.2 differ in the last bit), as fit_map_rectangle
+  // takes a map of the region's aspect.
+  const double width = o.region[2] - o.region[0], height = o.region[3] - o.region[1];
+  if (o.normalize && std::abs(width - height) > 1e-12 * std::max(std::abs(width), std::abs(height)))
+    throw Error("--normalize maps a square region onto the unit square; this region is " + shortest_text(width) +
+                " x " + shortest_text(height));
   check_render_height(o, files);
   Plan plan = make_plan(o);
   check_run_size(plan, files, o.image_size, render_height(o, o.image_size));

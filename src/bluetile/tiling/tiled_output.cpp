@@ -55,7 +55,8 @@ struct ColumnValues {
   const TiledFormat& format;
 
   bool integer(TiledColumn c) const { return c != TiledColumn::x && c != TiledColumn::y; }
-  double coordinate(double v, double origin) const { return format.normalize ? (v - origin) / window.width() : v; }
+  // normalize: each axis over its own side (a square region, to rounding: tile --normalize).
+  double coordinate(double v, double origin, double side) const { return format.normalize ? (v - origin) / side : v; }
   long long integer_value(TiledColumn c, const Chunk::Cell& cell, std::uint32_t rank) const {
     switch (c) {
       case TiledColumn::i: return cell.i;
@@ -79,8 +80,8 @@ void format_text(const Chunk& chunk, std::size_t begin, std::size_t end, const C
       if (c > 0) *at++ = ' ';
       TiledColumn column = columns[c];
       if (column == TiledColumn::x || column == TiledColumn::y) {
-        double v = column == TiledColumn::x ? values.coordinate(chunk.positions[k].x, values.window.x0)
-                                            : values.coordinate(chunk.positions[k].y, values.window.y0);
+        double v = column == TiledColumn::x ? values.coordinate(chunk.positions[k].x, values.window.x0, values.window.width())
+                                            : values.coordinate(chunk.positions[k].y, values.window.y0, values.window.height());
         // %.17g, as point files are written (std::to_chars with a precision is printf's %g).
         at = std::to_chars(at, line + sizeof line, v, std::chars_format::general, 17).ptr;
       } else {
@@ -101,8 +102,8 @@ void format_binary(const Chunk& chunk, std::size_t begin, std::size_t end, const
   for (std::size_t k = begin; k < end; ++k) {
     const Chunk::Cell& cell = chunk.cell_of(k);
     for (TiledColumn column : columns) {
-      double v = column == TiledColumn::x   ? values.coordinate(chunk.positions[k].x, values.window.x0)
-                 : column == TiledColumn::y ? values.coordinate(chunk.positions[k].y, values.window.y0)
+      double v = column == TiledColumn::x   ? values.coordinate(chunk.positions[k].x, values.window.x0, values.window.width())
+                 : column == TiledColumn::y ? values.coordinate(chunk.positions[k].y, values.window.y0, values.window.height())
                                             : static_cast<double>(values.integer_value(column, cell, chunk.ranks[k]));
       std::memcpy(at, &v, sizeof v);
       at += sizeof v;
@@ -210,18 +211,18 @@ StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const 
 }
 
 std::string tile_grid_comment(const Tiler& tiler, const Window& window, bool normalize) {
-  double s = tiler.tile_size();
-  double ox = 0.0, oy = 0.0;
+  const double s = tiler.tile_size();
+  double ox = 0.0, oy = 0.0, sx = s, sy = s;
   if (normalize) {
-    // Cell edges at k S; in the file's coordinates (k S - x0) / width. The origin is taken as
-    // the first edge at or left of the window, so its value stays small.
-    double w = window.width();
+    // Cell edges at k S; in the file's coordinates (k S - x0) / width, (k S - y0) / height. The
+    // origin is taken as the first edge at or left of the window, so its value stays small.
+    const double w = window.width(), h = window.height();
     ox = (std::floor(window.x0 / s) * s - window.x0) / w;
-    oy = (std::floor(window.y0 / s) * s - window.y0) / w;
-    s /= w;
+    oy = (std::floor(window.y0 / s) * s - window.y0) / h;
+    sx = s / w, sy = s / h;
   }
   char text[160];
-  std::snprintf(text, sizeof text, "%s %.17g %.17g %.17g %.17g", kTileGridPrefix, ox, oy, s, s);
+  std::snprintf(text, sizeof text, "%s %.17g %.17g %.17g %.17g", kTileGridPrefix, ox, oy, sx, sy);
   return text;
 }
 
