@@ -5,6 +5,7 @@
 #include <exception>
 #include <memory>
 #include <new>
+#include <string_view>
 #include <system_error>
 
 #include "cli/app.h"
@@ -26,7 +27,16 @@ int main(int argc, char** argv) {
     // with staged outputs removed, instead of signals that end the process on the spot.
     std::signal(SIGPIPE, SIG_IGN);
     std::signal(SIGXFSZ, SIG_IGN);
-    bluetile::thread_count();  // refuses a malformed BLUETILE_THREADS before any work
+    // A malformed BLUETILE_THREADS is refused before any work, unless it is not used: --help and
+    // --version do no work, and an explicit --threads wins over it.
+    bool uses_environment = true;
+    for (int k = 1; k < argc; ++k) {
+      const std::string_view word = argv[k];
+      if (word == "-h" || word == "--help" || word == "--version" || word == "--threads" ||
+          word.rfind("--threads=", 0) == 0)
+        uses_environment = false;
+    }
+    if (uses_environment) bluetile::thread_count();
   } catch (const bluetile::Error& e) {
     std::fprintf(stderr, "bluetile: %s\n", e.what());
     return 1;

@@ -113,6 +113,19 @@ TEST(Inputs, EnvironmentIsCheckedNotIgnored) {
   expect_failure(run(r), "BLUETILE_THREADS='0': expected an integer from 1 to 1024");
   r.environment = {{"BLUETILE_THREADS", "2"}};
   EXPECT_EQ(run(r).exit_code, 0);
+  // ...but only where it is used: --help and --version work whatever it holds, an explicit
+  // --threads wins over it, and empty is unset (it stopped every command, --help included).
+  for (const std::vector<std::string>& unused :
+       {std::vector<std::string>{"--help"}, {"--version"}, {"relax", "--help"},
+        {"relax", "-n", "10", "-k", "1", "--engine", "exact", "--threads", "2", "-o", dir.file("t.txt")},
+        {"relax", "-n", "10", "-k", "1", "--engine", "exact", "--threads=1", "-o", dir.file("t1.txt")}}) {
+    Invocation bad{unused};
+    bad.environment = {{"BLUETILE_THREADS", "x"}};
+    const Outcome o = run(bad);
+    EXPECT_EQ(o.exit_code, 0) << unused[0] << ": " << o.err;
+  }
+  r.environment = {{"BLUETILE_THREADS", ""}};
+  EXPECT_EQ(run(r).exit_code, 0);
   // ...and a garbage Vulkan driver manifest was "out of memory".
   dir.write("icd.json", "garbage{");
   Invocation raster{{"relax", "-n", "10", "-k", "1", "--engine", "raster", "-o", dir.file("r.txt")}};
@@ -122,7 +135,7 @@ TEST(Inputs, EnvironmentIsCheckedNotIgnored) {
   EXPECT_NE(o.err.find("malformed driver manifest"), std::string::npos) << o.err;
   EXPECT_NE(o.err.find(dir.file("icd.json")), std::string::npos) << o.err;
   EXPECT_EQ(o.err.find("--resolution"), std::string::npos) << o.err;
-  EXPECT_EQ(entries(dir.path()), (Names{"icd.json", "o.txt"}));
+  EXPECT_EQ(entries(dir.path()), (Names{"icd.json", "o.txt", "t.txt", "t1.txt"}));
 }
 
 }  // namespace

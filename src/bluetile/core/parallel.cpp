@@ -31,7 +31,8 @@ std::size_t hardware_threads() {
 }
 
 std::size_t default_thread_count() {
-  if (const char* env = std::getenv("BLUETILE_THREADS")) {
+  // Empty counts as unset, as for OMP_NUM_THREADS.
+  if (const char* env = std::getenv("BLUETILE_THREADS"); env && *env) {
     std::string_view text(env);
     std::size_t n = 0;
     auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), n);

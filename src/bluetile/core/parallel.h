@@ -11,8 +11,8 @@
 namespace bluetile {
 
 // Number of threads used by parallel_for, at least 1. Default: the hardware's core count,
-// or BLUETILE_THREADS from the environment when set (an integer from 1 to 1024; anything else
-// throws Error naming it). Both are read at the first call that needs them and kept for the
+// or BLUETILE_THREADS from the environment when set and not empty (an integer from 1 to 1024;
+// anything else throws Error naming it). Both are read at the first call that needs them and kept for the
 // process; set_thread_count changes the count at any time.
 std::size_t thread_count();
 void set_thread_count(std::size_t count);
