@@ -14,6 +14,10 @@ void bind_sampling(nb::module_& m) {
   m.def(
       "random_points",
       [](std::size_t count, std::uint64_t seed, std::uint64_t set) {
+        // The tool's limit on a point set (relax --count): past it a bare MemoryError, or swap.
+        constexpr std::size_t kMaxPoints = 100'000'000;
+        if (count > kMaxPoints)
+          throw nb::value_error(("count: expected 0 to " + std::to_string(kMaxPoints) + ", got " + std::to_string(count)).c_str());
         std::vector<bluetile::Point> points;
         {
           nb::gil_scoped_release release;

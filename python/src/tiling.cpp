@@ -135,6 +135,7 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
   {
     nb::gil_scoped_release release;
     const bluetile::TilingPlan plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request);
+    bluetile::check_tiling_size(plan, "region", "tile_size");  // as the tool: refused, not a MemoryError
     points = plan.tiler->tiled_points(plan.window, plan.thinning.get());
   }
   const std::size_t n = points.size();

@@ -55,3 +55,16 @@ def test_bad_values_are_refused_naming_the_argument(name, argument, kind):
             assert kind == "int", (name, argument, value)  # unsigned or narrower C++ integer
         else:
             pytest.fail(f"{name}({argument}={value!r}) was accepted")
+
+
+def test_sizes_past_the_tools_limits_are_refused_not_a_memory_error():
+    # The tool refuses these before any work; the module ran out of memory (std::bad_alloc) or
+    # swapped instead.
+    with pytest.raises(bt.Error, match=r"^region 0 0 1000000 1000000 holds about 100000000000000 points \(100 per "
+                                       r"unit area\), more than the limit of 100000000 points"):
+        bt.tile((0.0, 0.0, 1e6, 1e6), density=100)
+    with pytest.raises(bt.Error, match=r"more than the limit of 100000000 tiles: use a larger tile_size"):
+        bt.tile((0.0, 0.0, 2e4, 2e4), tile_size=1, density=1e-6)
+    with pytest.raises(ValueError, match=r"^count: expected 0 to 100000000, got 1000000000000$"):
+        bt.random_points(10**12)
+    assert bt.random_points(0).shape == (0, 2)

@@ -96,25 +96,12 @@ std::string rounded(double v) {
   return text;
 }
 
-std::string region_text(const Window& w) {
-  return exact_text(w.x0) + " " + exact_text(w.y0) + " " + exact_text(w.x1) + " " + exact_text(w.y1);
-}
-
 // The run's size, known before any point is made (cells x points x thinning): refused past the
 // limits the other commands keep, instead of filling a disk or running for hours.
 void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files, int width_pixels,
                     double height_pixels) {
-  const CellRange range = plan.tiler->cells(plan.window);  // first: refuses windows off the plane's range
+  check_tiling_size(plan, "--region", "--tile-size");
   const double points = plan.window.area() * plan.mean_density;
-  if (!(points <= static_cast<double>(kMaxCount)))
-    throw Error("--region " + region_text(plan.window) + " holds about " + rounded(points) + " points (" +
-                exact_text(plan.mean_density) + " per unit area), more than the limit of " + std::to_string(kMaxCount) +
-                " points: use a smaller region or a lower density");
-  const double cells = static_cast<double>(range.columns()) * static_cast<double>(range.rows());
-  if (!(cells <= static_cast<double>(kMaxCount)))
-    throw Error("--region " + region_text(plan.window) + " spans about " + rounded(cells) + " tiles of size " +
-                exact_text(plan.tiler->tile_size()) + ", more than the limit of " + std::to_string(kMaxCount) +
-                " tiles: use a larger --tile-size or a smaller region");
   for (const OutputFile* file : files) {
     const OutputFormat kind = output_kind(file->path());
     if (kind == OutputFormat::pdf)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "bluetile/core/error.h"
@@ -23,6 +24,13 @@ double mean_fraction_over(const DensityGrid& grid, const Window& window, MapFit 
       sum += probe.fraction_at({window.x0 + (i + 0.5) / kMeanSamplesPerSide * window.width(),
                                 window.y0 + (j + 0.5) / kMeanSamplesPerSide * window.height()});
   return sum / (static_cast<double>(kMeanSamplesPerSide) * kMeanSamplesPerSide);
+}
+
+// A count, whole up to 10^18 and in scientific notation beyond (where its digits are noise).
+std::string rounded(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, v < 1e18 ? "%.0f" : "%.3g", v);
+  return text;
 }
 
 void check_amount(const char* field, double v) {
@@ -93,6 +101,23 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
     plan.thinning = std::make_unique<Thinning>(Thinning::uniform(fraction));
   }
   return plan;
+}
+
+void check_tiling_size(const TilingPlan& plan, const std::string& region, const std::string& tile_size) {
+  const Window& w = plan.window;
+  const std::string name = region + " " + exact_text(w.x0) + " " + exact_text(w.y0) + " " + exact_text(w.x1) + " " +
+                           exact_text(w.y1);
+  const CellRange range = plan.tiler->cells(w);  // first: refuses windows off the plane's range
+  const double points = w.area() * plan.mean_density;
+  if (!(points <= kMaxTiledPoints))
+    throw Error(name + " holds about " + rounded(points) + " points (" + exact_text(plan.mean_density) +
+                " per unit area), more than the limit of " + rounded(kMaxTiledPoints) +
+                " points: use a smaller region or a lower density");
+  const double cells = static_cast<double>(range.columns()) * static_cast<double>(range.rows());
+  if (!(cells <= kMaxTiledPoints))
+    throw Error(name + " spans about " + rounded(cells) + " tiles of size " + exact_text(plan.tiler->tile_size()) +
+                ", more than the limit of " + rounded(kMaxTiledPoints) +
+                " tiles: use a larger " + tile_size + " or a smaller region");
 }
 
 }  // namespace bluetile

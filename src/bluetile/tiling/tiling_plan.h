@@ -43,4 +43,14 @@ struct TilingPlan {
 // cannot hold.
 TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request);
 
+// The most points, or cells, one window may hold: the other commands' limit on a point set, past
+// which a run fills a disk or memory, or runs for hours, instead of being refused.
+inline constexpr double kMaxTiledPoints = 1e8;
+
+// Refuses, before any point is made, a window that holds more than kMaxTiledPoints points (area x
+// mean density) or cells, or lies off the plane's range (Tiler::cells): Error naming `region`, the
+// option or argument that gave the window ("--region 0 0 1e6 1e6 holds about 1e14 points ..."),
+// and `tile_size`, the one that sets the tile size, where a larger one would help.
+void check_tiling_size(const TilingPlan& plan, const std::string& region, const std::string& tile_size);
+
 }  // namespace bluetile
