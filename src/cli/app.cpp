@@ -1,11 +1,31 @@
 #include "cli/app.h"
 
 #include "cli/commands.h"
+#include "cli/file_options.h"
+#include "cli/numeric_options.h"
 
 namespace bluetile::cli {
+namespace {
+
+// The tool's app takes its options' records with it (file_options.h, numeric_options.h): they are
+// keyed by option, and a stale record matched another app's option at a reused address in the
+// tests, which build several apps in one process (a test then failed or passed by the order).
+class ToolApp final : public CLI::App {
+ public:
+  using CLI::App::App;
+  ~ToolApp() override {
+    forget_file_options(*this);
+    forget_numeric_options(*this);
+  }
+  ToolApp(const ToolApp&) = delete;
+  ToolApp& operator=(const ToolApp&) = delete;
+};
+
+}  // namespace
 
 std::unique_ptr<CLI::App> make_app() {
-  auto app = std::make_unique<CLI::App>("bluetile: blue-noise sample points by Lloyd relaxation on the unit torus");
+  std::unique_ptr<CLI::App> app =
+      std::make_unique<ToolApp>("bluetile: blue-noise sample points by Lloyd relaxation on the unit torus");
   app->require_subcommand(1);
   app->set_version_flag("--version", "bluetile 0.1.0");
   add_relax_command(*app);

@@ -33,6 +33,11 @@ const FileOption* find_file_option(const CLI::Option* option) {
   return it == file_registry().end() ? nullptr : &it->second;
 }
 
+void forget_file_options(const CLI::App& app) {
+  for (const CLI::Option* option : app.get_options()) file_registry().erase(option);
+  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) forget_file_options(*command);
+}
+
 CLI::Option* add_input_option(CLI::App* command, const std::string& names, std::string& target, InputKind kind,
                               const std::string& help) {
   return record(command->add_option(names, target, help),

@@ -51,6 +51,10 @@ struct FileOption {
 // The record of `option` when one of the helpers below added it, else null.
 const FileOption* find_file_option(const CLI::Option* option);
 
+// Drops the records of every option of `app` and its subcommands: the registry is keyed by
+// option, and a later app's options may reuse the addresses (make_app's app calls it as it goes).
+void forget_file_options(const CLI::App& app);
+
 // An option (or a positional, named without dashes) that names a file the command reads; "-" is
 // standard input where the command's reader takes it.
 CLI::Option* add_input_option(CLI::App* command, const std::string& names, std::string& target, InputKind kind,

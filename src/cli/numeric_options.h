@@ -77,9 +77,11 @@ struct NumericOption {
 };
 
 // The record of `option` when it was added by add_integer_option or add_real_option (or the
-// seed and thread helpers), else null. The latest record wins for an address reused.
+// seed and thread helpers), else null.
 const NumericOption* find_numeric_option(const CLI::Option* option);
 void register_numeric_option(const CLI::Option* option, NumericOption record);
+// Drops the records of every option of `app` and its subcommands, as forget_file_options does.
+void forget_numeric_options(const CLI::App& app);
 
 // The name the messages use: the last of `names` ("-n,--count" -> "--count").
 std::string message_name(const std::string& names);
