@@ -22,8 +22,9 @@ void check_spectrum_options(int size, double bin_width) {
     throw nb::value_error(("bin_width: expected a positive number, got " + std::to_string(bin_width)).c_str());
 }
 
+// Refused outside [0, 1), as `bluetile analyze` refuses them.
 PointSets analysed_sets(const AnyArray& points) {
-  PointSets input = point_sets(points, "points");
+  PointSets input = point_sets(points, "points", false);
   if (input.sets[0].size() < 2) throw nb::value_error("points: analysis needs at least 2 points per set");
   return input;
 }
@@ -112,7 +113,8 @@ void bind_analysis(nb::module_& m) {
       "discrepancy"_a = true,
       R"(Statistics of a point set on the unit torus, as ``bluetile analyze`` writes them to stats.json.
 
-``points``: shape (N, 2), or (K, N, 2) for the mean over K sets (``--average``). Returns a dict
+``points``: shape (N, 2), or (K, N, 2) for the mean over K sets (``--average``), coordinates in
+[0, 1) as the tool asks (``points % 1.0`` wraps others; so for every analysis function). Returns a dict
 with stats.json's keys and numbers (one serializer in the library makes both): n, sets,
 boundary, nn_min, nn_max, nn_mean, nn_x1000, nn_relative, hexagonal_spacing, rho,
 average_min_distance, nn_min_lowest/highest (K > 1), mean_centroid_distance[_relative] unless
@@ -170,7 +172,7 @@ anisotropy_db (10 log10 of variance / power^2; white noise about 0 dB) and count
   m.def(
       "nearest_neighbour_distances",
       [](const AnyArray& points) {
-        PointSets input = point_sets(points, "points");
+        PointSets input = point_sets(points, "points", false);
         if (input.batched) throw nb::value_error("points: expected shape (N, 2)");
         std::vector<double> d;
         {

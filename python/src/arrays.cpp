@@ -33,7 +33,7 @@ std::string dtype_name(nb::dlpack::dtype dtype) {
   return kind + std::to_string(dtype.bits);
 }
 
-PointSets point_sets(const AnyArray& array, const char* name) {
+PointSets point_sets(const AnyArray& array, const char* name, bool wrap) {
   const bool is_double = array.dtype() == nb::dtype<double>();
   if (!is_double && array.dtype() != nb::dtype<float>())
     throw nb::type_error((std::string(name) + ": expected float64 (or float32) values, got " +
@@ -67,6 +67,15 @@ PointSets point_sets(const AnyArray& array, const char* name) {
           throw nb::value_error((std::string(name) + "[" + where + "]: not a finite number '" + value + "'").c_str());
         }
       }
+      for (std::size_t c = 0; c < 2 && !wrap; ++c)
+        if (!(xy[c] >= 0.0 && xy[c] < 1.0)) {
+          char value[32];
+          std::snprintf(value, sizeof value, "%.17g", xy[c]);
+          std::string where = result.batched ? std::to_string(k) + ", " + std::to_string(i) : std::to_string(i);
+          throw nb::value_error((std::string(name) + "[" + where + "]: " + (c == 0 ? "x" : "y") + " = " + value +
+                                 " is outside [0, 1) (" + name + " % 1.0 wraps them onto the torus)")
+                                    .c_str());
+        }
       points[i] = bluetile::wrap_point({xy[0], xy[1]}, bluetile::Domain{});
     }
   }

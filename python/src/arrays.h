@@ -27,9 +27,10 @@ struct PointSets {
 };
 
 // float64 or float32 values, shape (N, 2) or (K, N, 2) with N >= 1, every value finite;
-// coordinates outside [0, 1) are wrapped onto the torus, as point files are. Throws TypeError
-// (dtype) or ValueError (shape, values) naming `name`.
-PointSets point_sets(const AnyArray& array, const char* name);
+// coordinates outside [0, 1) are wrapped onto the torus, as `relax` wraps point files, or, with
+// `wrap` false, refused, as `analyze` refuses them (wrapping (1, 1) onto (0, 0) would measure a
+// pair that is not there). Throws TypeError (dtype) or ValueError (shape, values) naming `name`.
+PointSets point_sets(const AnyArray& array, const char* name, bool wrap = true);
 
 // Whole numbers (any integer dtype) of shape (N,), each in [0, max].
 std::vector<int> levels_array(const AnyArray& array, std::size_t count, const char* name, int max);

@@ -68,3 +68,14 @@ def test_sizes_past_the_tools_limits_are_refused_not_a_memory_error():
     with pytest.raises(ValueError, match=r"^count: expected 0 to 100000000, got 1000000000000$"):
         bt.random_points(10**12)
     assert bt.random_points(0).shape == (0, 2)
+
+
+def test_analysis_refuses_points_outside_the_torus_as_the_tool_does():
+    # (1, 1) was wrapped onto (0, 0) without a word: rho 0 from a pair that is not there.
+    points = np.array([[0.0, 0.0], [1.0, 1.0], [0.5, 0.5]])
+    for function in (bt.analyze, bt.periodogram, bt.radial_power, bt.nearest_neighbour_distances):
+        with pytest.raises(ValueError, match=r"^points\[1\]: x = 1 is outside \[0, 1\) \(points % 1.0 wraps them"):
+            function(points)
+    assert bt.analyze(points % 1.0, psa_measures=False, discrepancy=False)["rho"] == 0.0  # wrapped by the caller
+    # relax and centroids wrap, as the tool wraps point files it relaxes.
+    bt.centroids(np.array([[1.25, 0.5], [0.5, 0.5]]), engine="exact")
