@@ -1,8 +1,11 @@
 // bluetile: blue-noise point sets by Lloyd relaxation (Hiller, Deussen, Keller 2001).
+#include <cerrno>
 #include <csignal>
 #include <cstdlib>
 #include <cstdio>
+#include <cstring>
 #include <exception>
+#include <iostream>
 #include <memory>
 #include <new>
 #include <string_view>
@@ -12,6 +15,23 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/parallel.h"
+
+namespace {
+
+// What a command printed on standard output (reports, help) is still buffered: a full disk or a
+// closed pipe there was ignored and the run exited 0 with its report lost. Flushed and checked
+// here, so that `analyze ... > /dev/full` fails as `-o /dev/full` does.
+int checked_standard_output(int code) {
+  std::cout.flush();
+  const bool failed = !std::cout.good() || std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
+  if (failed && code == 0) {
+    std::fprintf(stderr, "bluetile: standard output: cannot write: %s\n", std::strerror(errno));
+    return 1;
+  }
+  return code;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   // OpenImageIO's dependencies load OpenBLAS, which the tool never calls; its initialiser would
@@ -47,11 +67,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
+    return checked_standard_output(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
+    return checked_standard_output(app.exit(e));
   } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
+    return checked_standard_output(app.exit(e));
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "bluetile: %s (see --help)\n", e.what());
     return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
@@ -74,5 +94,5 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "bluetile: internal error: %s\n", e.what());
     return 1;
   }
-  return 0;
+  return checked_standard_output(0);
 }

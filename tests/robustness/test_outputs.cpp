@@ -78,6 +78,10 @@ TEST(Outputs, DeviceNodesAreWrittenNotReplaced) {
   r = run(relax({"-o", dir.file("out.txt"), "--log", dir.file("myfull")}));
   expect_failure(r, dir.file("myfull") + ": cannot write: No space left on device");
   EXPECT_EQ(entries(dir.path()), (Names{"myfull%", "mynull%"}));  // out.txt not published either
+  // A report on standard output, the same.
+  Invocation report{{"--version"}};
+  report.wrapper = {"/bin/sh", "-c", "f=\"$0\"; exec \"$@\" > \"$f\"", dir.file("myfull")};
+  expect_failure(run(report), "standard output: cannot write: No space left on device");
 }
 
 TEST(Outputs, FifoGetsTheBytesAndStaysAFifo) {
@@ -197,6 +201,19 @@ TEST(Outputs, StandardOutput) {
     EXPECT_EQ(piped.exit_code, 0) << piped.err;
     EXPECT_EQ(piped.out, read_text(dir.file("tiles.txt")));
     EXPECT_EQ(piped.err, file.out);  // the check, on stderr instead
+  }
+  {
+    // A report on standard output that cannot be written was lost with exit status 0 (here
+    // stdout closed; the device test above has a full one).
+    TempDir dir;
+    Invocation closed{{"wang", "-n", "4", "-k", "1", "--warm", "0", "--check", "-o", dir.file("tiles.txt")}};
+    closed.wrapper = {"/bin/sh", "-c", "exec \"$0\" \"$@\" >&-"};
+    const Outcome lost = run(closed);
+    EXPECT_EQ(lost.exit_code, 1) << lost.err;
+    EXPECT_EQ(lost.err.rfind("bluetile: standard output: cannot write: ", 0), 0u) << lost.err;
+    Invocation help{{"--help"}};
+    help.wrapper = closed.wrapper;
+    EXPECT_EQ(run(help).exit_code, 1);
   }
   Outcome r = run({"centroids", "-i", "-", "-o", "-", "--engine", "exact"});
   expect_failure(r, "stdin: no points");
