@@ -2,6 +2,9 @@
 #include <nanobind/nanobind.h>
 #include <nanobind/stl/string.h>
 
+#include <exception>
+#include <string_view>
+
 #include "bindings.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
@@ -13,7 +16,22 @@ NB_MODULE(_core, m) {
   m.doc() = "Blue-noise sample points by Lloyd relaxation on the unit torus (Hiller, Deussen, Keller 2001).";
   // The library's one error type, with its message unchanged (the tool prints the same text
   // after "bluetile: "). A ValueError, since it reports bad input or an unusable environment.
-  nb::exception<bluetile::Error>(m, "Error", PyExc_ValueError);
+  static nb::exception<bluetile::Error> error_type(m, "Error", PyExc_ValueError);
+  // A message quoting bytes of a file that are not UTF-8 ("not a number '\xff\xfe0.1'") made an
+  // Error with no message at all: decoded with U+FFFD for such bytes instead. Registered after
+  // nanobind's own translator for the type, so tried first.
+  nb::register_exception_translator(
+      [](const std::exception_ptr& thrown, void* type) {
+        try {
+          std::rethrow_exception(thrown);
+        } catch (const bluetile::Error& e) {
+          const std::string_view text = e.what();
+          PyObject* message = PyUnicode_DecodeUTF8(text.data(), static_cast<Py_ssize_t>(text.size()), "replace");
+          PyErr_SetObject(static_cast<PyObject*>(type), message);
+          Py_XDECREF(message);
+        }
+      },
+      error_type.ptr());
 
   m.def("thread_count", &bluetile::thread_count,
         "Threads the library uses (default: the cores, or BLUETILE_THREADS). Results do not depend on it.");

@@ -79,3 +79,12 @@ def test_analysis_refuses_points_outside_the_torus_as_the_tool_does():
     assert bt.analyze(points % 1.0, psa_measures=False, discrepancy=False)["rho"] == 0.0  # wrapped by the caller
     # relax and centroids wrap, as the tool wraps point files it relaxes.
     bt.centroids(np.array([[1.25, 0.5], [0.5, 0.5]]), engine="exact")
+
+
+def test_messages_quoting_bytes_that_are_not_utf8_keep_their_text(tmp_path):
+    # The Error had no message at all: its text quoted the file's bytes \xff\xfe.
+    path = tmp_path / "b.txt"
+    path.write_bytes(b"\xff\xfe0.1 0.2\n")
+    with pytest.raises(bt.Error) as caught:
+        bt.load_table(str(path))
+    assert str(caught.value) == f"{path}:1: not a number '\ufffd\ufffd0.1'"
