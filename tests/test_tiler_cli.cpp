@@ -416,6 +416,8 @@ TEST(TileCommand, BadInputFailsWithOneLineAndWritesNothing) {
       {{"--region", "0", "2", "1", "2"}, "Y1 must be greater than Y0"},
       {{"--region", "0", "0", "1"}, "region"},
       {{"--region", "0", "0", "1", "1", "--density", "0"}, "--density 0: out of range; expected a finite number > 0"},
+      {{"--region", "0", "0", "2", "1", "--dot-radius", "1e20"},
+       "--dot-radius 1e+20: expected at most the region's larger side, 2"},
       {{"--region", "0", "0", "1", "1", "--density", "-5"}, "--density -5: out of range; expected a finite number > 0"},
       {{"--region", "0", "0", "1", "1", "--tile-size", "0"}, "--tile-size 0: out of range; expected a finite number > 0"},
       {{"--region", "0", "0", "1", "1", "--density-map", garbage, "--max-density", "0"}, "--max-density 0: out of range; expected a finite number > 0"},

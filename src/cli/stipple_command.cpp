@@ -169,7 +169,8 @@ void add_stipple_command(CLI::App& app) {
   add_output_option(cmd, "--png", o->png, {.formats = kImageFormats},
                     "Render the drawing as an image (.png .tif .tiff .jpg .jpeg .exr .bmp)");
   add_integer_option(cmd, "--png-width", o->png_width, 16, 32768, "Width of the --png render in pixels");
-  add_real_option(cmd, "--dot-radius", o->dot_radius, {0.0, kInfinity, true, false},
+  // At most the domain's side: a huge one hung the PDF writer or came out as r="0" in SVG.
+  add_real_option(cmd, "--dot-radius", o->dot_radius, {0.0, 1.0, true, false},
                   "Dot radius in domain units (default: dots just touch where the image is darkest)")
       ->default_str("");
   add_output_option(cmd, "--log", o->log, kCsvLog, "Write a CSV log of energy and displacement per iteration");

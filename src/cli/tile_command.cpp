@@ -198,6 +198,11 @@ void run_tile(const TileOptions& o, const CLI::App& command) {
   if (o.normalize && std::abs(width - height) > 1e-12 * std::max(std::abs(width), std::abs(height)))
     throw Error("--normalize maps a square region onto the unit square; this region is " + shortest_text(width) +
                 " x " + shortest_text(height));
+  // A dot wider than the region draws nothing useful, and a huge one hung the PDF writer (1e20)
+  // or came out as r="0" in SVG (1e100).
+  if (o.dot_radius > std::max(width, height))
+    throw Error("--dot-radius " + shortest_text(o.dot_radius) + ": expected at most the region's larger side, " +
+                shortest_text(std::max(width, height)));
   check_render_height(o, files);
   Plan plan = make_plan(o);
   check_run_size(plan, files, o.image_size, render_height(o, o.image_size));
