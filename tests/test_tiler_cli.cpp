@@ -196,7 +196,7 @@ TEST(TileCommand, FitKeepsTheMapsAspectOnARegionOfAnother) {
                          "linear", "--max-density", "4000", "-o", dir.file("white.txt")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string text = read_text(dir.file("white.txt"));
-  EXPECT_NE(text.find("(fit contain)"), std::string::npos);
+  EXPECT_NE(text.find("(fit contain, transfer linear, no invert, gamma 1)"), std::string::npos) << text.substr(0, 300);
   const Spread s = spread_of(data_rows(text));
   EXPECT_NEAR(static_cast<double>(s.count), 4000.0, 3.0 * std::sqrt(4000.0));
   EXPECT_GE(s.min_x, 0.5);

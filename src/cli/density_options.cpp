@@ -1,6 +1,7 @@
 #include "cli/density_options.h"
 
 #include "cli/numeric_options.h"
+#include "bluetile/core/text.h"
 #include "bluetile/relax/lloyd.h"
 
 namespace bluetile::cli {
@@ -34,6 +35,11 @@ DensityTransfer density_transfer(const DensityMapOptions& options) {
   t.invert = options.invert;
   t.gamma = options.gamma;
   return t;
+}
+
+std::string transfer_text(const DensityMapOptions& options) {
+  return "transfer " + options.transfer + (options.invert ? ", invert" : ", no invert") + ", gamma " +
+         shortest_text(options.gamma);
 }
 
 }  // namespace bluetile::cli

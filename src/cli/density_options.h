@@ -30,4 +30,8 @@ void add_weight_exponent_option(CLI::App* command, double& exponent);
 // The transfer the options name.
 DensityTransfer density_transfer(const DensityMapOptions& options);
 
+// The options as output headers record them, so that a file says how its map was read:
+// "transfer auto, invert, gamma 1".
+std::string transfer_text(const DensityMapOptions& options);
+
 }  // namespace bluetile::cli

@@ -144,8 +144,8 @@ std::vector<std::string> header_lines(const TileOptions& o, const Plan& plan, co
                   ", tile size " + exact_text(plan.tiler->tile_size()) + ", region " + exact_text(w.x0) + " " + exact_text(w.y0) +
                   " " + exact_text(w.x1) + " " + exact_text(w.y1) + (o.normalize ? " (normalized onto the unit square)" : ""));
   if (!o.density_map.empty())
-    lines.push_back("density map " + o.density_map + " (fit " + o.fit + "), max density " +
-                    exact_text(plan.max_density) + " points per unit area");
+    lines.push_back("density map " + o.density_map + " (fit " + o.fit + ", " + transfer_text(o.transfer) +
+                    "), max density " + exact_text(plan.max_density) + " points per unit area");
   else
     lines.push_back("density " + exact_text(plan.max_density) + " points per unit area");
   lines.push_back("columns " + tiled_column_names(format.columns));
