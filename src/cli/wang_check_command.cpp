@@ -14,6 +14,7 @@
 #include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
+#include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/drawing/figures.h"
@@ -51,9 +52,11 @@ struct CheckOptions {
   bool untiled = false;
   int untiled_iterations = 80;
   int image_size = 800;
+  int threads = 0;
 };
 
 void run_check(const CheckOptions& o, const CLI::App& command) {
+  if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   // Every output is declared, and so checked, before any work; they appear together at the end.
   OutputSet outputs;
   add_declared_inputs(outputs, command);
@@ -221,6 +224,7 @@ void add_wang_check_command(CLI::App& app) {
   add_integer_option(check, "--untiled-iterations", c->untiled_iterations, 0, 100000,
                      "Iterations of the untiled reference");
   add_integer_option(check, "--image-size", c->image_size, 64, 8192, "Side of points.png in pixels");
+  add_threads_option(check, c->threads);
   check->callback([c, check] { run_check(*c, *check); });
 }
 

@@ -62,7 +62,7 @@ TEST(Options, OutOfRangeNanAndInfinityAreRefused) {
       {{"wang", "--seam-spacing", "nan", "-o", out},
        "--seam-spacing nan: not a finite number; expected a number from 0.01 to 2 (see --help)"},
       {{"stipple", "--tolerance", "nan"}, "--tolerance nan: not a finite number; expected a finite number >= 0 (see --help)"},
-      {{"stipple", "--dot-radius", "nan"}, "--dot-radius nan: not a finite number; expected a finite number > 0 (see --help)"},
+      {{"stipple", "--dot-radius", "nan"}, "--dot-radius nan: not a finite number; expected a number above 0 and at most 1 (see --help)"},
       {{"relax", "-n", "10", "--weight-exponent", "nan", "-o", out},
        "--weight-exponent nan: not a finite number; expected a number from 0 to 8 (see --help)"},
       {{"relax", "-n", "10", "--gamma", "inf", "-o", out},
