@@ -125,8 +125,9 @@ void validate(const WangOptions& options);
 
 // Names of the strategies and rank orders as the front ends spell them; the parsers throw Error
 // naming the field, the value and the list.
-// "auto" is exact, but instances for corner81: its exact configurations number in the hundreds of
-// thousands for a point near a corner of a tile of fewer than about 200 points.
+// "auto" is exact, but instances for corner81: with 9 tiles fitting each edge and 27 each corner,
+// a point near a corner of a tile of fewer than about 200 points meets more neighbour
+// configurations than the exact strategy's limit (65536).
 WangStrategy parse_wang_strategy(const std::string& name, TileSetKind kind);
 RankOrder parse_wang_rank_order(const std::string& name);
 const char* wang_rank_order_name(RankOrder order);
