@@ -19,6 +19,7 @@
 #include "bluetile/analysis/summary_record.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/voronoi/exact_engine.h"
@@ -466,6 +467,18 @@ TEST(AnalyzeCommand, BadInputFailsCleanlyAndWritesNothing) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("missing.txt"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+  // An RDF range beyond half the torus was cut to it without a word (0, 8 and 100 all gave 2.08
+  // spacings for 20 points); the default (0: psa's 8) is still cut, as documented.
+  PointSet random;
+  random.points = test::uniform_points(20, 4);
+  const std::string twenty = dir.write("twenty.txt", format_points(random));
+  r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf"), "--rdf-range", "8", "--no-discrepancy"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --rdf-range 8: at most 2.08 hexagonal spacings for 20 points (half the square; beyond it "
+                   "a torus annulus overlaps itself)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("rdf")));
+  r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf"), "--rdf-range", "2", "--no-discrepancy"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
 }
 
 TEST(AnalyzeCommand, RefusesUpFrontWithTheEstimate) {

@@ -147,6 +147,15 @@ TEST(RadialDistribution, HandCountedPairsAndErrors) {
   EXPECT_THROW(radial_distribution(std::vector<Point>{{0.5, 0.5}}), Error);
   o.range = -1.0;
   EXPECT_THROW(radial_distribution(two, o), Error);
+  // Beyond half the torus a range asked for is refused (it was cut to the half without a word);
+  // the default, psa's 8 spacings, is cut for small sets (2 points: half the torus is 0.66 spacings).
+  o = {};
+  o.range = 0.8;
+  EXPECT_EQ(test::error_of([&] { radial_distribution(two, o); }),
+            "RDF range 0.8 hexagonal spacings is more than half the domain's shorter side, 0.66 spacings for 2 "
+            "points (where a torus annulus starts to overlap itself)");
+  o.range = 0.0;
+  EXPECT_NEAR(radial_distribution(two, o).range(), 0.5, 1e-12);
 }
 
 TEST(RadialDistribution, BitIdenticalWhateverTheThreadCount) {

@@ -33,6 +33,7 @@
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
+#include "bluetile/core/text.h"
 #include "bluetile/tiling/tiled_output.h"
 #include "bluetile/drawing/figures.h"
 #include "bluetile/io/pdf.h"
@@ -699,6 +700,17 @@ void check_budget(const AnalyzeOptions& o, const AnalyzeInputs& in) {
     for (std::size_t k : in.prefixes) jobs.push_back({k, in.total_sets, o.size});
   } else {
     jobs.push_back({inputs[0][0].points.size(), in.total_sets, o.size});
+  }
+  // An RDF range asked for beyond half the square is refused here, for the smallest set analysed,
+  // rather than by the analysis after the other measures (radial_distribution refuses it too).
+  if (o.rdf_range > 0.0) {
+    std::size_t fewest = jobs.front().count;
+    for (const AnalysisJob& job : jobs) fewest = std::min(fewest, job.count);
+    const double limit = 0.5 / hexagonal_spacing(static_cast<double>(fewest));
+    if (o.rdf_range > limit * (1.0 + 1e-12))
+      throw Error("--rdf-range " + number_text(o.rdf_range) + ": at most " + fixed_text(limit, 2) +
+                  " hexagonal spacings for " + std::to_string(fewest) +
+                  " points (half the square; beyond it a torus annulus overlaps itself)");
   }
   if (in.boundary == Boundary::periodic) check_analysis_budget(jobs, !o.no_psa_measures, o.time_limit_minutes, !o.no_discrepancy);
   else check_analysis_budget(jobs, false, o.time_limit_minutes, !o.no_discrepancy);

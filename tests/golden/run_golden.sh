@@ -88,7 +88,7 @@ outputs() {
   run analyze_levels analyze -i progressive.txt -o analyze_levels --by-level --axis integer --image-size 96
   run analyze_ranks analyze -i progressive_voids.txt -o analyze_ranks --by-rank 1/4 3/8 1/2 1/1 --image-size 96
   run analyze_compare analyze -i relax.txt -i dart.txt -o analyze_compare --compare --label relaxed --label dart \
-    --rdf-range 4 --rdf-bins 40 --size 32 --bin-width 2 --image-size 64 --no-centroids --title golden
+    --rdf-range 3 --rdf-bins 40 --size 32 --bin-width 2 --image-size 64 --no-centroids --title golden
   run analyze_average analyze -i relax_sets.txt -o analyze_average --average --no-psa-measures --image-size 64
   run - analyze -i dart.txt -o analyze_pdf --summary analyze_pdf/summary.pdf --image-size 64
   rm -f analyze_pdf/summary.pdf

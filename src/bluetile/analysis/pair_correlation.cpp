@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/text.h"
 #include "bluetile/voronoi/site_grid.h"
 
 namespace bluetile {
@@ -22,6 +24,13 @@ constexpr std::size_t kMinBins = 32, kMaxBins = 1000;
 // afterwards, so the floating-point sums do not depend on the thread count.
 constexpr std::size_t kBlockPoints = 1024;
 constexpr std::size_t kMaxBlocks = 64;
+
+// A range as given, in up to 15 digits ("100", "0.8").
+std::string number_text(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", v);
+  return text;
+}
 
 }  // namespace
 
@@ -43,7 +52,12 @@ RadialDistribution radial_distribution(std::span<const Point> points, const RdfO
   rdf.area = domain.area();
   rdf.hexagonal_spacing = hexagonal_spacing(static_cast<double>(n), rdf.area);
   const double wanted = (options.range > 0.0 ? options.range : kDefaultRangeSpacings) * rdf.hexagonal_spacing;
-  const double range = std::min(wanted, 0.5 * std::min(width, height));
+  const double half = 0.5 * std::min(width, height);
+  if (options.range > 0.0 && wanted > half * (1.0 + 1e-12))
+    throw Error("RDF range " + number_text(options.range) + " hexagonal spacings is more than half the domain's " +
+                "shorter side, " + fixed_text(half / rdf.hexagonal_spacing, 2) + " spacings for " + std::to_string(n) +
+                " points (where a torus annulus starts to overlap itself)");
+  const double range = std::min(wanted, half);
   const std::size_t bins = options.bins > 0 ? options.bins : std::clamp(n / kPointsPerBin, kMinBins, kMaxBins);
   if (bins > 1000000) throw Error("too many RDF bins (at most 1000000)");
   rdf.bin_width = range / static_cast<double>(bins);

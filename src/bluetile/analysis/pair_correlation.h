@@ -28,8 +28,9 @@ namespace bluetile {
 
 struct RdfOptions {
   Boundary boundary = Boundary::periodic;
-  // Largest distance, in hexagonal spacings; 0 picks psa's 8. Capped at half the domain's
-  // shorter side (beyond it a torus annulus overlaps itself; the edge correction explodes).
+  // Largest distance, in hexagonal spacings; 0 picks psa's 8, capped at half the domain's
+  // shorter side (beyond it a torus annulus overlaps itself; the edge correction explodes). A
+  // range asked for beyond that half is refused, not cut (it was cut without a word).
   double range = 0.0;
   // Histogram bins; 0 picks psa's N / 8, clamped to [32, 1000] (finer bins for larger sets,
   // whose histograms are less noisy).
