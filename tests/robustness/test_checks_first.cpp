@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include <fcntl.h>
@@ -278,6 +279,26 @@ TEST(ChecksFirst, AFifoInputWithoutAWriterIsSaidAndThenRead) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "bluetile: " + fifo + ": waiting for a writer to open this FIFO\n");
   EXPECT_NE(read_text(dir.file("o.txt")).find("3 points, 1 iterations"), std::string::npos);
+}
+
+TEST(ChecksFirst, AFifoOutputWithoutAReaderIsSaidAndThenWritten) {
+  // The output side of the test above: an output FIFO nobody reads held the run without a word.
+  TempDir dir;
+  const std::string fifo = dir.file("out");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  std::string received;
+  std::thread reader([&] {
+    std::this_thread::sleep_for(std::chrono::seconds(8));  // as above: the note first
+    std::ifstream in(fifo);
+    received.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  });
+  Outcome r = run_or_kill({{"dart", "-n", "10", "-o", fifo}});
+  const int release = open(fifo.c_str(), O_WRONLY | O_NONBLOCK);  // a reader still waiting for a writer
+  reader.join();
+  if (release >= 0) close(release);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "bluetile: " + fifo + ": waiting for a reader to open this FIFO\n");
+  EXPECT_NE(received.find("# bluetile dart"), std::string::npos) << received;
 }
 
 TEST(ChecksFirst, AnImageThroughAFifoIsReadOnceAsAFileWouldBe) {

@@ -25,11 +25,15 @@ constexpr std::size_t kChunkSize = 1 << 16;
 
 std::string name_of(const std::string& path) { return path == "-" ? "stdin" : path; }
 
-// Opening a FIFO waits until something opens it for writing, however long. A second into the
-// wait, one line on stderr says what the run waits for, instead of a silent hang.
 int open_input(const std::string& path) {
   struct stat status {};
   if (stat(path.c_str(), &status) != 0 || !S_ISFIFO(status.st_mode)) return ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  return open_fifo_saying_so(path, O_RDONLY | O_CLOEXEC, "a writer");
+}
+
+}  // namespace
+
+int open_fifo_saying_so(const std::string& path, int flags, const char* partner) {
   std::mutex mutex;
   std::condition_variable opened_signal;
   bool opened = false;
@@ -38,12 +42,12 @@ int open_input(const std::string& path) {
     notice = std::thread([&] {
       std::unique_lock<std::mutex> lock(mutex);
       if (!opened_signal.wait_for(lock, std::chrono::seconds(1), [&] { return opened; }))
-        std::fprintf(stderr, "bluetile: %s: waiting for a writer to open this FIFO\n", path.c_str());
+        std::fprintf(stderr, "bluetile: %s: waiting for %s to open this FIFO\n", path.c_str(), partner);
     });
   } catch (const std::system_error&) {
     // No thread to spare: open without the notice.
   }
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  const int fd = ::open(path.c_str(), flags);
   const int saved = errno;
   {
     std::lock_guard<std::mutex> lock(mutex);
@@ -54,8 +58,6 @@ int open_input(const std::string& path) {
   errno = saved;
   return fd;
 }
-
-}  // namespace
 
 void for_each_chunk(const std::string& path, const std::function<void(std::string_view)>& consume) {
   const std::string name = name_of(path);

@@ -18,4 +18,10 @@ void for_each_chunk(const std::string& path, const std::function<void(std::strin
 // bytes") when it does not fit.
 std::string read_input(const std::string& path);
 
+// Opens the FIFO at `path` with `flags`. The open waits until `partner` ("a writer" for an input,
+// "a reader" for an output) opens the other end, however long: a second into the wait, one line
+// on stderr says so ("bluetile: PATH: waiting for a writer to open this FIFO") instead of a
+// silent hang. Returns what open() returns, errno kept.
+int open_fifo_saying_so(const std::string& path, int flags, const char* partner);
+
 }  // namespace bluetile

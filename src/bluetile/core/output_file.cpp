@@ -23,6 +23,7 @@
 #include <unistd.h>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/input_file.h"
 
 namespace bluetile {
 namespace fs = std::filesystem;
@@ -539,7 +540,10 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
       return direct(fd, &st);
     }
     case Resolved::Type::special: {
-      int fd = ::open(r.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+      struct stat target {};
+      const bool fifo = stat(r.path.c_str(), &target) == 0 && S_ISFIFO(target.st_mode);
+      int fd = fifo ? open_fifo_saying_so(r.path, O_WRONLY | O_NOCTTY | O_CLOEXEC, "a reader")
+                    : ::open(r.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
       if (fd < 0) fail(path, "cannot write", errno);
       struct stat st {};
       fstat(fd, &st);
