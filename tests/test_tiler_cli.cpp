@@ -418,6 +418,11 @@ TEST(TileCommand, BadInputFailsWithOneLineAndWritesNothing) {
       {{"--region", "0", "0", "1", "1", "--density", "0"}, "--density 0: out of range; expected a finite number > 0"},
       {{"--region", "0", "0", "2", "1", "--dot-radius", "1e20"},
        "--dot-radius 1e+20: expected at most the region's larger side, 2"},
+      // Extremes that ended in the library's inner messages ("thinning fraction must lie in (0, 1],
+      // got 0", "tile size must be positive and finite, got inf").
+      {{"--region", "0", "0", "10", "10", "--tile-size", "1e-170", "--density", "1"},
+       "density 1 is too low for tiles of size 9.9999999999999998e-171"},
+      {{"--region", "0", "0", "10", "10", "--density", "4e-324"}, "is too low to set a tile size from"},
       {{"--region", "0", "0", "1", "1", "--density", "-5"}, "--density -5: out of range; expected a finite number > 0"},
       {{"--region", "0", "0", "1", "1", "--tile-size", "0"}, "--tile-size 0: out of range; expected a finite number > 0"},
       {{"--region", "0", "0", "1", "1", "--density-map", garbage, "--max-density", "0"}, "--max-density 0: out of range; expected a finite number > 0"},

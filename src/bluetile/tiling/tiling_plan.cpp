@@ -83,6 +83,9 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
     target = count / (w.area() * mean / largest);
   }
   if (tile_size == 0.0) tile_size = target > 0.0 ? std::sqrt(points_per_tile / target) : 1.0;
+  if (!std::isfinite(tile_size))
+    throw Error("density " + exact_text(target) + " is too low to set a tile size from (" + exact_text(points_per_tile) +
+                " points per tile would need tiles of size " + exact_text(tile_size) + "): give a higher density");
   plan.tiler = std::make_unique<Tiler>(std::move(set), request.seed, tile_size);
   const double full = plan.tiler->full_density();
   if (target == 0.0) target = full;
@@ -92,6 +95,9 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
                 exact_text(full) + " points per unit area): use a smaller tile size or leave it out");
   // Within rounding of the full density: every point, no thinning.
   const double fraction = target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
+  if (!(fraction > 0.0))
+    throw Error("density " + exact_text(target) + " is too low for tiles of size " + exact_text(tile_size) + " (" +
+                exact_text(full) + " points per unit area): no point would be kept; use a larger tile size");
   plan.max_density = target;
   plan.mean_density = target * mean / largest;
   if (map) {
