@@ -223,6 +223,21 @@ TEST(TileCommand, FitKeepsTheMapsAspectOnARegionOfAnother) {
   r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--fit", "cover", "-o", dir.file("bad.txt")});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "bluetile: --fit cover places a --density-map: give one\n");
+  // So do the transfer options (they were ignored without a word), in tile and in relax.
+  for (const char* option : {"--invert", "--no-invert", "--gamma", "--transfer"}) {
+    std::vector<std::string> args = {"tile", "--region", "0", "0", "2", "1", option};
+    if (std::string(option) == "--gamma") args.push_back("2");
+    if (std::string(option) == "--transfer") args.push_back("linear");
+    args.insert(args.end(), {"-o", dir.file("bad.txt")});
+    r = run_bluetile(args);
+    EXPECT_EQ(r.exit_code, 1) << option;
+    EXPECT_EQ(r.err, "bluetile: " + std::string(option) + " shapes a --density-map: give one\n");
+    args[0] = "relax";
+    args.erase(args.begin() + 1, args.begin() + 6);  // no --region
+    args.insert(args.begin() + 1, {"-n", "10", "-k", "1", "--engine", "exact"});
+    r = run_bluetile(args);
+    EXPECT_EQ(r.err, "bluetile: " + std::string(option) + " shapes a --density-map: give one\n") << option;
+  }
   EXPECT_FALSE(std::filesystem::exists(dir.file("bad.txt")));
 }
 

@@ -1,6 +1,7 @@
 #include "cli/density_options.h"
 
 #include "cli/numeric_options.h"
+#include "bluetile/core/error.h"
 #include "bluetile/core/text.h"
 #include "bluetile/relax/lloyd.h"
 
@@ -40,6 +41,16 @@ DensityTransfer density_transfer(const DensityMapOptions& options) {
 std::string transfer_text(const DensityMapOptions& options) {
   return "transfer " + options.transfer + (options.invert ? ", invert" : ", no invert") + ", gamma " +
          shortest_text(options.gamma);
+}
+
+void refuse_transfer_without_map(const CLI::App& command, bool has_map) {
+  if (has_map) return;
+  for (const char* name : {"--transfer", "--invert", "--gamma"})
+    if (command.count(name) > 0) {
+      // --no-invert is the same option as --invert: name the one given.
+      const std::string given = std::string(name) == "--invert" && !command.get_option(name)->as<bool>() ? "--no-invert" : name;
+      throw Error(given + " shapes a --density-map: give one");
+    }
 }
 
 }  // namespace bluetile::cli

@@ -161,6 +161,7 @@ void add_relax_command(CLI::App& app) {
   add_engine_options(cmd, o->engine);
   cmd->callback([o, cmd] {
     if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");
+    refuse_transfer_without_map(*cmd, !o->density_map.empty());
     // Both engines weight cells and bound domains, the raster one only on its host per-pixel
     // path, measured 5x slower than the exact engine on stipples (docs/BENCHMARKS.md): exact is
     // the default there.

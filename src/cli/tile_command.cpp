@@ -289,6 +289,7 @@ void add_tile_command(CLI::App& app) {
   cmd->add_flag("-v,--verbose", o->verbose, "Print counts and the time split (generate, format, write) on stderr");
   cmd->callback([o, fit, cmd] {
     if (fit->count() > 0 && o->density_map.empty()) throw Error("--fit " + o->fit + " places a --density-map: give one");
+    refuse_transfer_without_map(*cmd, !o->density_map.empty());
     run_tile(*o, *cmd);
   });
 }
