@@ -479,6 +479,9 @@ TEST(AnalyzeCommand, BadInputFailsCleanlyAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("rdf")));
   r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf"), "--rdf-range", "2", "--no-discrepancy"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  // An odd --size is named with its value (it said only "--size must be an even number >= 2").
+  r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("odd"), "--size", "7"});
+  EXPECT_EQ(r.err, "bluetile: --size 7: expected 0 (from N) or an even number from 2 to 65536\n");
 }
 
 TEST(AnalyzeCommand, RefusesUpFrontWithTheEstimate) {

@@ -70,6 +70,14 @@ TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 zero\n"), "pts.txt:1: not a number 'zero'");
   EXPECT_EQ(parse_error("0.1 0.2x\n"), "pts.txt:1: not a number '0.2x'");
   EXPECT_EQ(parse_error("1e999 0.2\n"), "pts.txt:1: coordinate out of range '1e999'");
+  EXPECT_EQ(parse_error("-1e999 0.2\n"), "pts.txt:1: coordinate out of range '-1e999'");
+  EXPECT_EQ(parse_error("+-0.2 0.2\n"), "pts.txt:1: not a number '+-0.2'");
+  EXPECT_EQ(parse_error("++0.2 0.2\n"), "pts.txt:1: not a number '++0.2'");
+  EXPECT_EQ(parse_error("+ 0.2\n"), "pts.txt:1: not a number '+'");
+  // A leading '+' (C, Python and NumPy write it) and a number too small for a double (0, as C's
+  // strtod reads it) were refused as "not a number" and "out of range".
+  EXPECT_EQ(parse_points("+0.25 0.5\n1e-330 +.75\n", "pts.txt").points,
+            (std::vector<Point>{{0.25, 0.5}, {0.0, 0.75}}));
   EXPECT_EQ(parse_error("0.1 0.2\n0.5\n"), "pts.txt:2: expected 'x y' or 'x y level', got '0.5'");
   EXPECT_EQ(parse_error("0.1 0.2 0 7\n"), "pts.txt:1: expected 'x y' or 'x y level', got 4 columns: '0.1 0.2 0 7'");
   EXPECT_EQ(parse_error("0.1 0.2 0\n0.3 0.4\n"), "pts.txt:2: level column missing (earlier lines have one)");

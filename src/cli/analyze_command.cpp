@@ -573,8 +573,10 @@ void check_options(const AnalyzeOptions& o) {
   const bool by_rank = !o.by_rank.empty();
   if ((o.average ? 1 : 0) + (o.compare ? 1 : 0) + (o.by_level ? 1 : 0) + (by_rank ? 1 : 0) > 1)
     throw Error("choose one of --average, --compare, --by-level and --by-rank");
-  if (o.size != 0 && (o.size < 2 || o.size % 2 != 0)) throw Error("--size must be an even number >= 2");
-  if (!(o.bin_width > 0.0) || !std::isfinite(o.bin_width)) throw Error("--bin-width must be positive");
+  if (o.size != 0 && (o.size < 2 || o.size % 2 != 0))
+    throw Error("--size " + std::to_string(o.size) + ": expected 0 (from N) or an even number from 2 to 65536");
+  if (!(o.bin_width > 0.0) || !std::isfinite(o.bin_width))
+    throw Error("--bin-width " + number_text(o.bin_width) + ": expected a positive number");
   if (!(o.rdf_range >= 0.0) || !std::isfinite(o.rdf_range)) throw Error("--rdf-range must be a positive number of hexagonal spacings");
   if (!o.labels.empty() && o.labels.size() != o.inputs.size())
     throw Error("--label needs one label per input (" + std::to_string(o.inputs.size()) + ")");

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <memory>
 #include <new>
@@ -73,9 +74,18 @@ class LineError {
 
 double parse_coordinate(std::string_view token, const LineError& fail) {
   double value = 0.0;
-  auto [end, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
-  if (end != token.data() + token.size() || ec == std::errc::invalid_argument) fail("not a number " + quote(token));
-  if (ec == std::errc::result_out_of_range) fail("coordinate out of range " + quote(token));
+  // A leading '+', as C, Python and NumPy write and read it (from_chars takes only '-').
+  std::string_view digits = token;
+  if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+') digits.remove_prefix(1);
+  auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+  if (end != digits.data() + digits.size() || ec == std::errc::invalid_argument) fail("not a number " + quote(token));
+  if (ec == std::errc::result_out_of_range) {
+    // Out of range both ways: a number too small for a double (1e-330) is 0, one too large is an
+    // error. strtod tells them apart (the tool keeps the C locale's decimal point).
+    const double nearest = std::strtod(std::string(digits).c_str(), nullptr);
+    if (!(std::abs(nearest) < 1.0)) fail("coordinate out of range " + quote(token));
+    value = nearest;
+  }
   if (!std::isfinite(value)) fail("not a finite number " + quote(token));
   return value == 0.0 ? 0.0 : value;  // "-0" is the torus's 0, written back as "0"
 }
