@@ -97,7 +97,7 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
   }
   const std::size_t n = input.sets[0].size();
   if (fixed < 0 || static_cast<std::size_t>(fixed) > n)
-    throw nb::value_error(("fixed: " + std::to_string(fixed) + " is more than the " + std::to_string(n) + " points").c_str());
+    throw nb::value_error(("fixed: expected 0 to " + std::to_string(n) + " (the points), got " + std::to_string(fixed)).c_str());
 
   bluetile::LloydResult result;
   std::vector<bluetile::Scene> scenes;

@@ -88,3 +88,10 @@ def test_messages_quoting_bytes_that_are_not_utf8_keep_their_text(tmp_path):
     with pytest.raises(bt.Error) as caught:
         bt.load_table(str(path))
     assert str(caught.value) == f"{path}:1: not a number '\ufffd\ufffd0.1'"
+
+
+def test_fixed_out_of_range_names_the_range():
+    # A negative count said "fixed: -1 is more than the 5 points".
+    for fixed in (-1, 6):
+        with pytest.raises(ValueError, match=rf"^fixed: expected 0 to 5 \(the points\), got {fixed}$"):
+            bt.relax(count=5, iterations=1, fixed=fixed, engine="exact")
