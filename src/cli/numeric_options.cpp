@@ -21,23 +21,6 @@ std::string to_string(WholeNumber v) { return (v.negative ? "-" : "") + std::to_
 
 }  // namespace
 
-std::string number_text(double v) {
-  if (std::isinf(v)) return v > 0 ? "infinity" : "-infinity";
-  char buffer[32];
-  if (v == std::floor(v) && std::fabs(v) < 1e15) {
-    std::snprintf(buffer, sizeof buffer, "%.0f", v);
-    return buffer;
-  }
-  std::snprintf(buffer, sizeof buffer, "%.17g", v);
-  // The shortest form that reads back the same (0.999999 rather than 0.99999900000000003).
-  for (int digits = 1; digits < 17; ++digits) {
-    char shorter[32];
-    std::snprintf(shorter, sizeof shorter, "%.*g", digits, v);
-    if (std::strtod(shorter, nullptr) == v) return shorter;
-  }
-  return buffer;
-}
-
 std::string real_range(RealRange r) {
   const bool has_min = std::isfinite(r.min), has_max = std::isfinite(r.max);
   if (has_min && has_max) {

@@ -15,6 +15,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bluetile/core/text.h"  // number_text, which the messages here use
+
 namespace bluetile::cli {
 
 // Limits shared by the subcommands. Beyond them a value is almost surely a typo, and would need
@@ -61,10 +63,6 @@ std::string check_real(std::string_view text, RealRange range, double& value);
 
 // The range in words: "a number from 0 to 0.25", "a finite number > 0".
 std::string real_range(RealRange range);
-
-// A number as the messages and the help write it: the shortest text that reads back the same,
-// "infinity" for an infinite bound.
-std::string number_text(double v);
 
 // The record of a numeric option, kept so that tests can find every numeric option of every
 // command (tests/robustness/test_options.cpp) and try bad values on it.

@@ -89,12 +89,6 @@ Plan make_plan(const TileOptions& o) {
   return plan;
 }
 
-// A count, whole up to 10^18 and in scientific notation beyond (where its digits are noise).
-std::string rounded(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, v < 1e18 ? "%.0f" : "%.3g", v);
-  return text;
-}
 
 // The run's size, known before any point is made (cells x points x thinning): refused past the
 // limits the other commands keep, instead of filling a disk or running for hours.
@@ -105,10 +99,10 @@ void check_run_size(const Plan& plan, const std::vector<OutputFile*>& files, int
   for (const OutputFile* file : files) {
     const OutputFormat kind = output_kind(file->path());
     if (kind == OutputFormat::pdf)
-      check_memory(points * kPdfBytesPerDot, file->path() + ": a PDF of about " + rounded(points) + " dots");
+      check_memory(points * kPdfBytesPerDot, file->path() + ": a PDF of about " + count_text(points) + " dots");
     if (kind == OutputFormat::image)
       check_memory(static_cast<double>(width_pixels) * height_pixels * kCanvasBytesPerPixel,
-                   file->path() + ": a render of " + std::to_string(width_pixels) + " x " + rounded(height_pixels) +
+                   file->path() + ": a render of " + std::to_string(width_pixels) + " x " + count_text(height_pixels) +
                        " pixels");
   }
 }
@@ -132,7 +126,7 @@ void check_render_height(const TileOptions& o, const std::vector<OutputFile*>& f
   if (!(pixels <= kMaxCanvasSide))
     throw Error("--image-size " + std::to_string(o.image_size) + ": a render of the region " + exact_text(o.region[0]) +
                 " " + exact_text(o.region[1]) + " " + exact_text(o.region[2]) + " " + exact_text(o.region[3]) + " would be " +
-                rounded(pixels) + " pixels tall, more than the limit of " + std::to_string(kMaxCanvasSide) +
+                count_text(pixels) + " pixels tall, more than the limit of " + std::to_string(kMaxCanvasSide) +
                 ": use a smaller --image-size or a wider region");
 }
 

@@ -25,13 +25,6 @@ constexpr std::size_t kMinBins = 32, kMaxBins = 1000;
 constexpr std::size_t kBlockPoints = 1024;
 constexpr std::size_t kMaxBlocks = 64;
 
-// A range as given, in up to 15 digits ("100", "0.8").
-std::string number_text(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.15g", v);
-  return text;
-}
-
 }  // namespace
 
 RadialDistribution radial_distribution(std::span<const Point> points, const RdfOptions& options, const Domain& domain) {

@@ -1,6 +1,7 @@
 #include "bluetile/core/text.h"
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 
@@ -19,6 +20,22 @@ std::string shortest_text(double v) {
     if (std::strtod(buffer, nullptr) == v) return buffer;
   }
   return exact_text(v);  // NaN, and doubles that need all 17 digits
+}
+
+std::string number_text(double v) {
+  if (std::isinf(v)) return v > 0 ? "infinity" : "-infinity";
+  if (v == std::floor(v) && std::fabs(v) < 1e15) {
+    char buffer[32];
+    std::snprintf(buffer, sizeof buffer, "%.0f", v);
+    return buffer;
+  }
+  return shortest_text(v);
+}
+
+std::string count_text(double v) {
+  char text[40];
+  std::snprintf(text, sizeof text, v < 1e18 ? "%.0f" : "%.3g", v);
+  return text;
 }
 
 std::string fixed_text(double v, int decimals) {

@@ -13,6 +13,14 @@ std::string exact_text(double v);
 // 0.10000000000000001), for messages that quote a range or a value.
 std::string shortest_text(double v);
 
+// A number as messages and help write it: whole numbers below 10^15 in full ("100", not
+// "1e+02"), "infinity" and "-infinity", else shortest_text.
+std::string number_text(double v);
+
+// A count, whole up to 10^18 and in scientific notation beyond, where its digits are noise
+// ("100000000000000", "1.23e+20").
+std::string count_text(double v);
+
 // `v` with `decimals` digits after the point ("%.*f"), for tables meant for reading.
 std::string fixed_text(double v, int decimals);
 

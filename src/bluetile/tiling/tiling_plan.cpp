@@ -26,13 +26,6 @@ double mean_fraction_over(const DensityGrid& grid, const Window& window, MapFit 
   return sum / (static_cast<double>(kMeanSamplesPerSide) * kMeanSamplesPerSide);
 }
 
-// A count, whole up to 10^18 and in scientific notation beyond (where its digits are noise).
-std::string rounded(double v) {
-  char text[40];
-  std::snprintf(text, sizeof text, v < 1e18 ? "%.0f" : "%.3g", v);
-  return text;
-}
-
 void check_amount(const char* field, double v) {
   if (!(v >= 0.0) || !std::isfinite(v))
     throw Error(std::string(field) + ": expected a finite number >= 0 (0: not given), got " + exact_text(v));
@@ -116,13 +109,13 @@ void check_tiling_size(const TilingPlan& plan, const std::string& region, const 
   const CellRange range = plan.tiler->cells(w);  // first: refuses windows off the plane's range
   const double points = w.area() * plan.mean_density;
   if (!(points <= kMaxTiledPoints))
-    throw Error(name + " holds about " + rounded(points) + " points (" + exact_text(plan.mean_density) +
-                " per unit area), more than the limit of " + rounded(kMaxTiledPoints) +
+    throw Error(name + " holds about " + count_text(points) + " points (" + exact_text(plan.mean_density) +
+                " per unit area), more than the limit of " + count_text(kMaxTiledPoints) +
                 " points: use a smaller region or a lower density");
   const double cells = static_cast<double>(range.columns()) * static_cast<double>(range.rows());
   if (!(cells <= kMaxTiledPoints))
-    throw Error(name + " spans about " + rounded(cells) + " tiles of size " + exact_text(plan.tiler->tile_size()) +
-                ", more than the limit of " + rounded(kMaxTiledPoints) +
+    throw Error(name + " spans about " + count_text(cells) + " tiles of size " + exact_text(plan.tiler->tile_size()) +
+                ", more than the limit of " + count_text(kMaxTiledPoints) +
                 " tiles: use a larger " + tile_size + " or a smaller region");
 }
 
