@@ -13,12 +13,18 @@ namespace {
 class ToolApp final : public CLI::App {
  public:
   using CLI::App::App;
-  ~ToolApp() override {
-    forget_file_options(*this);
-    forget_numeric_options(*this);
-  }
+  ~ToolApp() override { forget_records(*this); }
   ToolApp(const ToolApp&) = delete;
   ToolApp& operator=(const ToolApp&) = delete;
+
+ private:
+  static void forget_records(const CLI::App& app) {
+    for (const CLI::Option* option : app.get_options()) {
+      forget_file_option(option);
+      forget_numeric_option(option);
+    }
+    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) forget_records(*command);
+  }
 };
 
 }  // namespace

@@ -33,10 +33,7 @@ const FileOption* find_file_option(const CLI::Option* option) {
   return it == file_registry().end() ? nullptr : &it->second;
 }
 
-void forget_file_options(const CLI::App& app) {
-  for (const CLI::Option* option : app.get_options()) file_registry().erase(option);
-  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) forget_file_options(*command);
-}
+void forget_file_option(const CLI::Option* option) { file_registry().erase(option); }
 
 CLI::Option* add_input_option(CLI::App* command, const std::string& names, std::string& target, InputKind kind,
                               const std::string& help) {

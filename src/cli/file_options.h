@@ -51,9 +51,9 @@ struct FileOption {
 // The record of `option` when one of the helpers below added it, else null.
 const FileOption* find_file_option(const CLI::Option* option);
 
-// Drops the records of every option of `app` and its subcommands: the registry is keyed by
-// option, and a later app's options may reuse the addresses (make_app's app calls it as it goes).
-void forget_file_options(const CLI::App& app);
+// Drops the record of `option`: the registry is keyed by option, and a later app's options may
+// reuse the address (make_app's app calls it for each of its options as it goes).
+void forget_file_option(const CLI::Option* option);
 
 // An option (or a positional, named without dashes) that names a file the command reads; "-" is
 // standard input where the command's reader takes it.

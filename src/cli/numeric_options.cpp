@@ -141,11 +141,7 @@ void register_numeric_option(const CLI::Option* option, NumericOption record) {
   numeric_registry().insert_or_assign(option, std::move(record));
 }
 
-void forget_numeric_options(const CLI::App& app) {
-  for (const CLI::Option* option : app.get_options()) numeric_registry().erase(option);
-  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
-    forget_numeric_options(*command);
-}
+void forget_numeric_option(const CLI::Option* option) { numeric_registry().erase(option); }
 
 std::string message_name(const std::string& names) { return CLI::detail::split(names, ',').back(); }
 

@@ -78,8 +78,8 @@ struct NumericOption {
 // seed and thread helpers), else null.
 const NumericOption* find_numeric_option(const CLI::Option* option);
 void register_numeric_option(const CLI::Option* option, NumericOption record);
-// Drops the records of every option of `app` and its subcommands, as forget_file_options does.
-void forget_numeric_options(const CLI::App& app);
+// Drops the record of `option`, as forget_file_option does.
+void forget_numeric_option(const CLI::Option* option);
 
 // The name the messages use: the last of `names` ("-n,--count" -> "--count").
 std::string message_name(const std::string& names);

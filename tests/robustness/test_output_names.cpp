@@ -5,12 +5,14 @@
 
 #include <cstring>
 #include <filesystem>
+#include <memory>
 #include <set>
 #include <sstream>
 
 #include "bluetile/io/image_file.h"
 #include "cli/app.h"
 #include "cli/file_options.h"
+#include "cli/numeric_options.h"
 #include "robustness_support.h"
 #include "test_support.h"
 
@@ -106,6 +108,24 @@ std::vector<OutputCase> output_cases(const TempDir& dir) {
 // Every output option whose format its extension picks (as the command declares it:
 // cli/file_options.h) is tested above; folders and outputs of one format (CSV logs, psa's text)
 // are not chosen by name.
+TEST(OutputNames, AnAppTakesItsOptionRecordsWithIt) {
+  // The records are keyed by option: a destroyed app's stayed, and matched another app's options
+  // at reused addresses (the next test failed or passed by the order the tests ran in). The
+  // pointers below are only compared as keys once their app is gone.
+  const CLI::Option* output = nullptr;
+  const CLI::Option* count = nullptr;
+  {
+    std::unique_ptr<CLI::App> app = cli::make_app();
+    CLI::App* relax = app->get_subcommand("relax");
+    output = relax->get_option("--output");
+    count = relax->get_option("--count");
+    ASSERT_NE(cli::find_file_option(output), nullptr);
+    ASSERT_NE(cli::find_numeric_option(count), nullptr);
+  }
+  EXPECT_EQ(cli::find_file_option(output), nullptr);
+  EXPECT_EQ(cli::find_numeric_option(count), nullptr);
+}
+
 TEST(OutputNames, EveryOutputOptionOfEveryCommandIsCovered) {
   TempDir dir;
   std::set<std::string> covered;
