@@ -641,6 +641,15 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
 
   test::CommandResult checked = test::run_bluetile({"wang-check", tiles, "--period", "4", "--output", dir.file("check")});
   ASSERT_EQ(checked.exit_code, 0) << checked.err;
+  // --threads, as the other commands take it: the same report and stats.json on 1 and 2 threads.
+  for (const char* threads : {"1", "2"}) {
+    test::CommandResult t = test::run_bluetile(
+        {"wang-check", tiles, "--period", "4", "--threads", threads, "--output", dir.file(std::string("t") + threads)});
+    ASSERT_EQ(t.exit_code, 0) << t.err;
+    EXPECT_EQ(t.out, checked.out) << threads;
+    EXPECT_EQ(test::read_text(dir.file(std::string("t") + threads + "/stats.json")),
+              test::read_text(dir.file("check/stats.json")));
+  }
   EXPECT_NE(checked.out.find("levels 0-1"), std::string::npos) << checked.out;
   EXPECT_NE(checked.out.find("prefix sweep (4x4 torus tiling)"), std::string::npos) << checked.out;
   // The sweep: 1/16 .. 1 of the 16 points per tile and the boundary 8, each plane measured once,
