@@ -50,6 +50,10 @@ PointSets point_sets(const AnyArray& array, const char* name, bool wrap) {
   const std::int64_t set_stride = result.batched ? array.stride(0) : 0;
   const std::int64_t row_stride = array.stride(ndim - 2), column_stride = array.stride(ndim - 1);
   result.sets.resize(sets);
+  // "points[3]" or, batched, "points[1, 3]": the element a message names.
+  auto element_name = [&](std::size_t k, std::size_t i) {
+    return std::string(name) + "[" + (result.batched ? std::to_string(k) + ", " : "") + std::to_string(i) + "]";
+  };
   for (std::size_t k = 0; k < sets; ++k) {
     std::vector<bluetile::Point>& points = result.sets[k];
     points.resize(count);
@@ -63,17 +67,15 @@ PointSets point_sets(const AnyArray& array, const char* name, bool wrap) {
         if (!std::isfinite(xy[c])) {
           char value[32];
           std::snprintf(value, sizeof value, "%g", xy[c]);
-          std::string where = result.batched ? std::to_string(k) + ", " + std::to_string(i) : std::to_string(i);
-          throw nb::value_error((std::string(name) + "[" + where + "]: not a finite number '" + value + "'").c_str());
+          throw nb::value_error((element_name(k, i) + ": not a finite number '" + value + "'").c_str());
         }
       }
       for (std::size_t c = 0; c < 2 && !wrap; ++c)
         if (!(xy[c] >= 0.0 && xy[c] < 1.0)) {
           char value[32];
           std::snprintf(value, sizeof value, "%.17g", xy[c]);
-          std::string where = result.batched ? std::to_string(k) + ", " + std::to_string(i) : std::to_string(i);
-          throw nb::value_error((std::string(name) + "[" + where + "]: " + (c == 0 ? "x" : "y") + " = " + value +
-                                 " is outside [0, 1) (" + name + " % 1.0 wraps them onto the torus)")
+          throw nb::value_error((element_name(k, i) + ": " + (c == 0 ? "x" : "y") + " = " + value + " is outside [0, 1) (" +
+                                 name + " % 1.0 wraps them onto the torus)")
                                     .c_str());
         }
       points[i] = bluetile::wrap_point({xy[0], xy[1]}, bluetile::Domain{});
