@@ -18,6 +18,10 @@
 
 namespace {
 
+// The status of a pipeline's writer ended by SIGPIPE (128 + 13), which the tool ignores so that
+// staged outputs are removed first; quiet, as `seq 1000000 | head` is.
+constexpr int kReaderGoneStatus = 128 + SIGPIPE;
+
 // What a command printed on standard output (reports, help) is still buffered: a full disk or a
 // closed pipe there was ignored and the run exited 0 with its report lost. Flushed and checked
 // here, so that `analyze ... > /dev/full` fails as `-o /dev/full` does.
@@ -25,6 +29,7 @@ int checked_standard_output(int code) {
   std::cout.flush();
   const bool failed = !std::cout.good() || std::fflush(stdout) != 0 || std::ferror(stdout) != 0;
   if (failed && code == 0) {
+    if (errno == EPIPE) return kReaderGoneStatus;
     std::fprintf(stderr, "bluetile: standard output: cannot write: %s\n", std::strerror(errno));
     return 1;
   }
@@ -43,8 +48,9 @@ int main(int argc, char** argv) {
     // Before any thread starts: every thread then leaves SIGINT, SIGTERM, SIGHUP to the watcher
     // that removes staged outputs (output_file.h).
     bluetile::install_interrupt_cleanup();
-    // A closed pipe on "-o -" and a file-size limit (ulimit -f) are then write errors, reported,
-    // with staged outputs removed, instead of signals that end the process on the spot.
+    // A closed pipe on "-o -" and a file-size limit (ulimit -f) are then write errors, with
+    // staged outputs removed, instead of signals that end the process on the spot; the first
+    // ends the run quietly (kReaderGoneStatus), the second is reported.
     std::signal(SIGPIPE, SIG_IGN);
     std::signal(SIGXFSZ, SIG_IGN);
     // A malformed BLUETILE_THREADS is refused before any work, unless it is not used: --help and
@@ -72,6 +78,8 @@ int main(int argc, char** argv) {
     return checked_standard_output(app.exit(e));
   } catch (const CLI::CallForVersion& e) {
     return checked_standard_output(app.exit(e));
+  } catch (const bluetile::ReaderGone&) {
+    return kReaderGoneStatus;
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "bluetile: %s (see --help)\n", e.what());
     return e.get_exit_code() != 0 ? e.get_exit_code() : 2;

@@ -215,6 +215,19 @@ TEST(Outputs, StandardOutput) {
     help.wrapper = closed.wrapper;
     EXPECT_EQ(run(help).exit_code, 1);
   }
+  {
+    // A reader that stops early (`relax -o - | head`) got "bluetile: -: cannot write: Broken
+    // pipe" and status 1; a pipeline's writer stops quietly, with the status of SIGPIPE. 800 KB
+    // of points: far more than the pipe holds, so the write after head has gone always fails.
+    TempDir dir;
+    Invocation piped{relax({"-n", "20000", "-k", "1", "--log", dir.file("log.csv"), "-o", "-"})};
+    piped.wrapper = {"/bin/sh", "-c",
+                     "{ \"$0\" \"$@\"; echo \"status $?\" >&2; } | head -c 100 > '" + dir.file("head.txt") + "'"};
+    const Outcome r = run(piped);
+    EXPECT_EQ(r.err, "status 141\n");
+    EXPECT_EQ(read_text(dir.file("head.txt")), reference_output({"-n", "20000", "-k", "1"}).substr(0, 100));
+    EXPECT_EQ(entries(dir.path()), Names{"head.txt"});  // the log was discarded with the run
+  }
   Outcome r = run({"centroids", "-i", "-", "-o", "-", "--engine", "exact"});
   expect_failure(r, "stdin: no points");
   TempDir dir;

@@ -12,4 +12,13 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// A write to a pipe or FIFO whose reader has gone (EPIPE), as in `bluetile relax -o - | head`.
+// A pipeline's writer is expected to stop quietly there: the command line exits 141 without a
+// message (the status a shell reports for a writer ended by SIGPIPE). Staged outputs are still
+// discarded.
+class ReaderGone : public Error {
+ public:
+  using Error::Error;
+};
+
 }  // namespace bluetile

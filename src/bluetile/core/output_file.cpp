@@ -37,6 +37,7 @@ constexpr int kMaxLinks = 40;
 std::string reason(int err) { return std::strerror(err); }
 
 [[noreturn]] void fail(const std::string& path, const std::string& what, int err) {
+  if (err == EPIPE) throw ReaderGone(path + ": " + what + ": " + reason(err));
   throw Error(path + ": " + what + ": " + reason(err));
 }
 
