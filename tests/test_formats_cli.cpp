@@ -114,6 +114,25 @@ TEST(FormatsCli, UnknownExtensionsAreRefusedBeforeAnyWork) {
   EXPECT_TRUE(dir.list().empty());
 }
 
+TEST(FormatsCli, OptionsOfAnotherFormatAreRefusedBeforeAnyWork) {
+  // --float32 on a text file and --name on anything but a header were ignored without a word.
+  TempDir dir;
+  auto r = run_bluetile({"relax", "-n", "10", "--engine", "exact", "-o", dir.file("p.txt"), "--float32"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --float32: --output '" + dir.file("p.txt") +
+                       "' is text; 4-byte floats are for npy and binary outputs\n");
+  r = run_bluetile({"dart", "-n", "10", "--sets", "2", "-o", dir.file("p{}.npy"), "--name", "table"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: --name 'table': --output '" + dir.file("p0.npy") +
+                       "' is npy; the array name is for header outputs (.h, .hpp)\n");
+  r = run_bluetile({"dart", "-n", "10", "-o", dir.file("p.h"), "--float32"});
+  EXPECT_EQ(r.err, "bluetile: --float32: --output '" + dir.file("p.h") +
+                       "' is header; 4-byte floats are for npy and binary outputs\n");
+  EXPECT_TRUE(dir.list().empty());
+  ok({"dart", "-n", "10", "-o", dir.file("p.bpt"), "--float32"});
+  ok({"dart", "-n", "10", "-o", dir.file("p.h"), "--name", "table"});
+}
+
 TEST(FormatsCli, EveryBraceInAnOutputNameIsTheSetIndex) {
   TempDir dir;
   ok({"dart", "-n", "20", "--sets", "11", "-o", dir.file("{}-of-11_{}.npy")});

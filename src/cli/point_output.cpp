@@ -15,6 +15,17 @@ TableFormat format_of(const std::string& path, const PointOutputOptions& options
   return table_format_of(output_format("--output", path, kPointTableFormats, "or say --format"));
 }
 
+// --float32 and --name change only some formats; given for another, they would be ignored without
+// a word, so they are refused before any work.
+void check_format_options(const std::string& path, TableFormat format, const PointOutputOptions& options) {
+  const std::string is = "--output '" + path + "' is " + std::string(table_format_name(format));
+  if (options.float32 && format != TableFormat::npy && format != TableFormat::binary)
+    throw Error("--float32: " + is + "; 4-byte floats are for npy and binary outputs");
+  if (!options.name.empty() && format != TableFormat::header)
+    throw Error("--name '" + options.name + "': " + is + "; the array name is for header outputs (.h, .hpp)");
+  if (format == TableFormat::header) checked_table_name(path, options.name);
+}
+
 // One set of a table, as its own table.
 TableView single_set(const TableView& table, std::size_t set) {
   TableView one = table;
@@ -56,13 +67,13 @@ PointOutput::PointOutput(OutputSet& outputs, const PointOutputOptions& options, 
     for (std::size_t k = 0; k < sets; ++k) {
       const std::string path = set_file_name(options.output, k, sets);
       // An unknown extension, or a header's array name that is no C name, is refused before any work.
-      if (format_of(path, options) == TableFormat::header) checked_table_name(path, options.name);
+      check_format_options(path, format_of(path, options), options);
       files_.push_back(&outputs.add(path));
     }
     return;
   }
   TableFormat format = format_of(options.output, options);
-  if (format == TableFormat::header) checked_table_name(options.output, options.name);
+  check_format_options(options.output, format, options);
   if (format == TableFormat::text && sets > 1 && options.output.find('#') != std::string::npos)
     throw Error("--output '" + options.output + "': file names with '#' cannot hold several sets");
   files_.push_back(&outputs.add(options.output, {.allow_stdout = true}));
