@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <limits>
 
 #include "bluetile/core/error.h"
@@ -174,6 +175,13 @@ TEST(DensityMap, BadFilesGiveOneClearError) {
             0u);
   std::string empty = dir.write("empty.png", "");
   EXPECT_EQ(error_of([&] { load_density_map(empty, DensityTransfer{}); }).rfind(empty + ": cannot read image", 0), 0u);
+  // A PNM cut short gave "unknown OpenImageIO error", and a folder "could not find a format reader".
+  std::string cut = dir.write("cut.pgm", "P5\n100 100\n255\n abc");
+  EXPECT_EQ(error_of([&] { load_density_map(cut, DensityTransfer{}); }),
+            cut + ": cannot read image: its pixels could not be read: the file is cut short or damaged");
+  std::filesystem::create_directory(dir.file("folder.png"));
+  EXPECT_EQ(error_of([&] { load_density_map(dir.file("folder.png"), DensityTransfer{}); }),
+            dir.file("folder.png") + ": is a folder, not an image");
 }
 
 // PNG's chunk checksum (ISO 3309 CRC-32, as the PNG specification defines it), for headers

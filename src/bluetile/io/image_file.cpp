@@ -345,7 +345,10 @@ ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
   // time, or wait for a writer gone, without a word. Such an input is read once (read_input says
   // when it waits for a writer) into a regular temporary copy.
   struct stat status {};
-  if (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)) {
+  const bool found = stat(path.c_str(), &status) == 0;
+  // OpenImageIO would say it knows no format for a folder's name.
+  if (found && S_ISDIR(status.st_mode)) throw Error(path + ": is a folder, not an image");
+  if (found && !S_ISREG(status.st_mode)) {
     const TemporaryCopy copy(read_input(path), path);
     return read_regular_image(copy.path(), path, max_pixels);
   }

@@ -42,9 +42,11 @@ std::string one_line(const std::string& text) {
   return joined;
 }
 
-int fail(const std::string& message, char* error, size_t error_size) {
+// `silent`: what to say when OpenImageIO and the image libraries said nothing.
+int fail(const std::string& message, char* error, size_t error_size,
+         const char* silent = "unknown OpenImageIO error") {
   const std::string line = one_line(message);
-  std::snprintf(error, error_size, "%s", line.empty() ? "unknown OpenImageIO error" : line.c_str());
+  std::snprintf(error, error_size, "%s", line.empty() ? silent : line.c_str());
   return 1;
 }
 
@@ -189,7 +191,9 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const c
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data)) {
     std::free(data);
     const std::string why = in->geterror();
-    return fail(why + "\n" + capture.finish(), error, error_size);
+    // A PNM cut short fails here without a word from OpenImageIO.
+    return fail(why + "\n" + capture.finish(), error, error_size,
+                "its pixels could not be read: the file is cut short or damaged");
   }
   *width = spec.width;
   *height = spec.height;
