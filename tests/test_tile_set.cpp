@@ -316,6 +316,8 @@ std::string wang8_file(const std::string& tile3 = "# tile 3 0 1 1 1\n0.5 0.5 0 0
 TEST(TileSet, MalformedFilesNameLineAndValue) {
   EXPECT_EQ(parse_error(wang8_file()), "");
   EXPECT_EQ(parse_error("\xEF\xBB\xBF" + wang8_file()), "");  // byte-order mark accepted
+  // Spaces an editor leaves at the end of the first line made the file "not a tile-set file".
+  EXPECT_EQ(parse_error("# bluetile tiles 1  \t" + wang8_file().substr(18)), "");
   EXPECT_EQ(parse_error("0.5 0.5 0 0\n"), "t.txt:1: not a tile-set file: the first line must be '# bluetile tiles 1'");
   EXPECT_EQ(parse_error("# bluetile tiles 2\n"), "t.txt:1: tile-set file version '2' is not supported (this reads version 1)");
   EXPECT_EQ(parse_error("# bluetile tiles 1\n# set wang13 colours 2\n"),

@@ -147,11 +147,12 @@ TileSet parse_tile_set(const std::string& text, const std::string& name) {
     if (line.find('\0') != std::string_view::npos) fail("binary data (NUL byte): not a tile-set file");
     if (number == 1) {
       if (line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // a UTF-8 byte-order mark
+      // Compared word by word: spaces an editor left at the end (or doubled) change nothing.
       auto tokens = split_whitespace(line);
-      if (tokens.size() == 4 && tokens[0] == "#" && tokens[1] == "bluetile" && tokens[2] == "tiles" &&
-          tokens[3] != "1")
+      const bool version_line = tokens.size() == 4 && tokens[0] == "#" && tokens[1] == "bluetile" && tokens[2] == "tiles";
+      if (version_line && tokens[3] != "1")
         fail("tile-set file version " + quoted(tokens[3]) + " is not supported (this reads version 1)");
-      if (line != kVersionLine) fail("not a tile-set file: the first line must be '" + std::string(kVersionLine) + "'");
+      if (!version_line) fail("not a tile-set file: the first line must be '" + std::string(kVersionLine) + "'");
       continue;
     }
     auto tokens = split_whitespace(line);
