@@ -110,6 +110,22 @@ TEST(TileCommand, SameOutputWhateverTheThreadsAndTheDestination) {
   EXPECT_NEAR(static_cast<double>(rows.size()), 300.0 * 36.0, 300.0);
 }
 
+TEST(TileCommand, VerboseSaysSomethingOfEveryOutput) {
+  // -v reported the point files only: a drawing or render beside them went unmentioned.
+  TempDir dir;
+  auto r = run_bluetile({"tile", "--region", "0", "0", "2", "2", "--density", "300", "-v", "-o", dir.file("a.txt"), "-o",
+                         dir.file("b.svg"), "-o", dir.file("c.png"), "--image-size", "64"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream lines(r.err);
+  std::vector<std::string> said;
+  for (std::string line; std::getline(lines, line);) said.push_back(line);
+  ASSERT_EQ(said.size(), 3u) << r.err;
+  EXPECT_EQ(said[0].rfind("bluetile tile: " + dir.file("a.txt") + ": ", 0), 0u) << said[0];
+  EXPECT_NE(said[0].find(" points, "), std::string::npos) << said[0];
+  EXPECT_EQ(said[1].rfind("bluetile tile: " + dir.file("b.svg") + ": drawn in ", 0), 0u) << said[1];
+  EXPECT_EQ(said[2].rfind("bluetile tile: " + dir.file("c.png") + ": drawn in ", 0), 0u) << said[2];
+}
+
 TEST(TileCommand, NormalizedWindowIsAPointFileOnTheUnitSquare) {
   TempDir dir;
   auto r = run_bluetile({"tile", "--region", "1000000", "-1000001", "1000004", "-999997", "--density", "64",

@@ -3,6 +3,7 @@
 // (thinning by rank, tiling/density_thinning.h). Point files and SVG drawings are streamed; a PDF
 // of dots and a render are made whole, then written.
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -206,12 +207,15 @@ void run_tile(const TileOptions& o, const CLI::App& command) {
   dots.radius = o.dot_radius > 0.0 ? o.dot_radius : default_dot_radius(plan.max_density);
   dots.follow_density = o.dots_follow_density;
   for (OutputFile* file : files) {
+    const auto started = std::chrono::steady_clock::now();
+    bool drawn = true;  // a drawing or render, whose time -v reports here
     switch (output_kind(file->path())) {
       case OutputFormat::points_text:
       case OutputFormat::raw_columns: {
         TiledFormat f = format;
         f.binary = output_kind(file->path()) == OutputFormat::raw_columns;
         write_points(*file, plan, f, o.verbose);
+        drawn = false;
         break;
       }
       case OutputFormat::svg:
@@ -226,6 +230,9 @@ void run_tile(const TileOptions& o, const CLI::App& command) {
       default:
         throw Error("internal: tile cannot write " + file->path());
     }
+    if (o.verbose && drawn)
+      std::fprintf(stderr, "bluetile tile: %s: drawn in %.3f s\n", file->path().c_str(),
+                   std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   }
   outputs.publish();
 }
@@ -280,7 +287,8 @@ void add_tile_command(CLI::App& app) {
                 "Dot area proportional to the local density (radius r sqrt(density / max density))");
   add_integer_option(cmd, "--image-size", o->image_size, 16, 16384, "Width of .png renders in pixels");
   add_threads_option(cmd, o->threads);
-  cmd->add_flag("-v,--verbose", o->verbose, "Print counts and the time split (generate, format, write) on stderr");
+  cmd->add_flag("-v,--verbose", o->verbose, "On stderr: for each point file its counts and time split (generate, format, write), for each "
+                "drawing or render its time");
   cmd->callback([o, fit, cmd] {
     if (fit->count() > 0 && o->density_map.empty()) throw Error("--fit " + o->fit + " places a --density-map: give one");
     refuse_transfer_without_map(*cmd, !o->density_map.empty());
