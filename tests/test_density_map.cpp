@@ -184,30 +184,6 @@ TEST(DensityMap, BadFilesGiveOneClearError) {
             dir.file("folder.png") + ": is a folder, not an image");
 }
 
-// PNG's chunk checksum (ISO 3309 CRC-32, as the PNG specification defines it), for headers
-// patched by hand below.
-std::uint32_t png_crc(const std::string& bytes) {
-  std::uint32_t crc = 0xFFFFFFFFu;
-  for (unsigned char byte : bytes) {
-    crc ^= byte;
-    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-  }
-  return crc ^ 0xFFFFFFFFu;
-}
-
-// `png` with the IHDR chunk's width and height replaced (and its checksum fixed): the header
-// claims a size the data does not have.
-std::string with_png_size(std::string png, std::uint32_t width, std::uint32_t height) {
-  auto put = [&](std::size_t at, std::uint32_t v) {
-    for (int i = 0; i < 4; ++i) png[at + static_cast<std::size_t>(i)] = static_cast<char>((v >> (24 - 8 * i)) & 0xFF);
-  };
-  // Signature (8), IHDR length (4), "IHDR" at 12, width at 16, height at 20, 5 more bytes, CRC at 29.
-  put(16, width);
-  put(20, height);
-  put(29, png_crc(png.substr(12, 17)));
-  return png;
-}
-
 TEST(DensityMap, DamagedPngsGiveOneLineAndPrintNothingElse) {
   test::TempDir dir;
   std::vector<float> values(64 * 64);
@@ -216,8 +192,8 @@ TEST(DensityMap, DamagedPngsGiveOneLineAndPrintNothingElse) {
   const std::string good = test::read_text(dir.file("good.png"));
   ASSERT_EQ(good.substr(12, 4), "IHDR");
   const std::string truncated = dir.write("truncated.png", good.substr(0, good.size() / 2));
-  const std::string zero = dir.write("zero.png", with_png_size(good, 0, 0));
-  const std::string huge = dir.write("huge.png", with_png_size(good, 60000, 60000));
+  const std::string zero = dir.write("zero.png", test::with_png_size(good, 0, 0));
+  const std::string huge = dir.write("huge.png", test::with_png_size(good, 60000, 60000));
   for (const std::string& path : {truncated, zero, huge}) {
     testing::internal::CaptureStderr();
     const std::string message = error_of([&] { load_density_map(path, DensityTransfer{}); });

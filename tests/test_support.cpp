@@ -90,4 +90,30 @@ bool identical_cells(const SceneCells& a, const SceneCells& b) {
   return true;
 }
 
+namespace {
+
+// PNG's chunk checksum (ISO 3309 CRC-32, as the PNG specification defines it), for headers
+// patched by hand.
+std::uint32_t png_crc(const std::string& bytes) {
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (unsigned char byte : bytes) {
+    crc ^= byte;
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return crc ^ 0xFFFFFFFFu;
+}
+
+}  // namespace
+
+std::string with_png_size(std::string png, std::uint32_t width, std::uint32_t height) {
+  auto put = [&](std::size_t at, std::uint32_t v) {
+    for (int i = 0; i < 4; ++i) png[at + static_cast<std::size_t>(i)] = static_cast<char>((v >> (24 - 8 * i)) & 0xFF);
+  };
+  // Signature (8), IHDR length (4), "IHDR" at 12, width at 16, height at 20, 5 more bytes, CRC at 29.
+  put(16, width);
+  put(20, height);
+  put(29, png_crc(png.substr(12, 17)));
+  return png;
+}
+
 }  // namespace bluetile::test

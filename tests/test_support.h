@@ -1,6 +1,7 @@
 // Helpers shared by the test files: temporary folders and running the bluetile binary.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -49,5 +50,9 @@ std::vector<Point> uniform_points(std::size_t count, std::uint64_t seed);
 // True when every field of every cell is the same bits (fields compared one by one: memcmp of
 // the cells would also compare padding bytes).
 bool identical_cells(const SceneCells& a, const SceneCells& b);
+
+// `png` (a PNG file's bytes) with the IHDR chunk's width and height replaced and its checksum
+// fixed: a header that claims a size the data does not have.
+std::string with_png_size(std::string png, std::uint32_t width, std::uint32_t height);
 
 }  // namespace bluetile::test

@@ -202,6 +202,23 @@ TEST(ChecksFirst, TooLittleMemoryForTheImagePluginOrThreadsIsSaid) {
   EXPECT_EQ(entries(dir.path()), Names{"map.png"});
 }
 
+TEST(ChecksFirst, AnImageTooLargeForTheMemoryLimitSaysWhatItNeeds) {
+  // A PNG whose header claims 40000 x 40000 pixels, under ulimit -v 4 GB: "out of memory for
+  // 1600000000 samples", which left the user to work out why.
+  if (sanitized()) GTEST_SKIP() << "the address sanitizer reserves terabytes of address space: ulimit -v cannot apply";
+  TempDir dir;
+  write_image_file(dir.file("small.png"), 2, 2, 1, std::vector<std::uint8_t>(4, 100));
+  dir.write("huge.png", test::with_png_size(read_text(dir.file("small.png")), 40000, 40000));
+  Invocation limited{{"stipple", "--image", dir.file("huge.png"), "-n", "10", "-o", dir.file("s.txt")}};
+  limited.address_space_bytes = 4000000L << 10;
+  Outcome r = run_or_kill(limited);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err, "bluetile: " + dir.file("huge.png") +
+                       ": cannot read image: out of memory: its 40000 x 40000 pixels of 1 channel(s) need 6.0 GiB as "
+                       "4-byte samples\n");
+  EXPECT_EQ(entries(dir.path()), (Names{"huge.png", "small.png"}));
+}
+
 TEST(ChecksFirst, HeaderArrayNamesAreCheckedBeforeTheWork) {
   // A C keyword was accepted as the array name, and a name that is no C name
   // was found only when the header was written, after the relaxation.

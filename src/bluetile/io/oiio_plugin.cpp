@@ -187,7 +187,13 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const c
                 error, error_size);
   size_t count = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) * static_cast<size_t>(spec.nchannels);
   auto* data = static_cast<float*>(std::malloc(count * sizeof(float)));
-  if (!data) return fail("out of memory for " + std::to_string(count) + " samples", error, error_size);
+  if (!data) {
+    char gib[32];
+    std::snprintf(gib, sizeof gib, "%.1f", static_cast<double>(count) * sizeof(float) / (1024.0 * 1024.0 * 1024.0));
+    return fail("out of memory: its " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels of " +
+                    std::to_string(spec.nchannels) + " channel(s) need " + gib + " GiB as 4-byte samples",
+                error, error_size);
+  }
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data)) {
     std::free(data);
     const std::string why = in->geterror();
