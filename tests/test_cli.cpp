@@ -22,7 +22,16 @@ TEST(Cli, HelpOnEverySubcommand) {
     EXPECT_EQ(r.out.find("--output") != std::string::npos, sub != "devices") << sub;
   }
   EXPECT_NE(run_bluetile({}).exit_code, 0);
-  EXPECT_NE(run_bluetile({"frobnicate"}).exit_code, 0);
+  // An unknown command was "A subcommand is required", and with --help after it the main help
+  // and status 0.
+  for (auto arguments : {std::vector<std::string>{"frobnicate"}, std::vector<std::string>{"compare", "--help"}}) {
+    auto r = run_bluetile(arguments);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "bluetile: unknown command '" + arguments[0] +
+                         "' (commands: relax, centroids, analyze, dart, progressive, devices, wang, wang-check, tile, "
+                         "stipple; see --help)\n");
+    EXPECT_EQ(r.out, "");
+  }
 }
 
 TEST(Cli, RelaxIsDeterministicAcrossThreadCounts) {

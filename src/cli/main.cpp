@@ -8,6 +8,7 @@
 #include <iostream>
 #include <memory>
 #include <new>
+#include <string>
 #include <string_view>
 #include <system_error>
 
@@ -70,6 +71,20 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<CLI::App> made = bluetile::cli::make_app();
   CLI::App& app = *made;
+  // CLI11 takes an unknown first word for a stray argument and asks for a subcommand (or, with
+  // --help after it, prints the main help and exits 0): name the word and the commands instead.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::string commands;
+    bool known = false;
+    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
+      commands += (commands.empty() ? "" : ", ") + command->get_name();
+      known = known || command->check_name(argv[1]);
+    }
+    if (!known) {
+      std::fprintf(stderr, "bluetile: unknown command '%s' (commands: %s; see --help)\n", argv[1], commands.c_str());
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
