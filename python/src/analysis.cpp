@@ -4,6 +4,7 @@
 
 #include <nanobind/stl/string.h>
 
+#include "arguments.h"
 #include "arrays.h"
 #include "bindings.h"
 #include "bluetile/analysis/summary.h"
@@ -15,16 +16,24 @@ using namespace nb::literals;
 
 namespace {
 
-void check_spectrum_options(int size, double bin_width) {
-  if (size != 0 && (size < 2 || size % 2 != 0))
-    throw nb::value_error(("size: expected 0 (from N) or an even number >= 2, got " + std::to_string(size)).c_str());
+// The periodogram's size F, as `bluetile analyze --size`: 0 or even, at most 65536 (F x F
+// doubles: past that a bare MemoryError).
+int spectrum_size(const Whole& size_arg) {
+  constexpr int kMaxSize = 65536;
+  const std::string range = "0 (from N) or an even number 2 to " + std::to_string(kMaxSize);
+  const int size = whole<int>(size_arg, "size", 0, kMaxSize, range);
+  if (size % 2 != 0) throw nb::value_error(("size: expected " + range + ", got " + std::to_string(size)).c_str());
+  return size;
+}
+
+void check_bin_width(double bin_width) {
   if (!(bin_width > 0.0) || !std::isfinite(bin_width))
     throw nb::value_error(("bin_width: expected a positive number, got " + std::to_string(bin_width)).c_str());
 }
 
 // Refused outside [0, 1), as `bluetile analyze` refuses them.
-PointSets analysed_sets(const AnyArray& points) {
-  PointSets input = point_sets(points, "points", false);
+PointSets analysed_sets(const ArrayArg& points) {
+  PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", false);
   if (input.sets[0].size() < 2) throw nb::value_error("points: analysis needs at least 2 points per set");
   return input;
 }
@@ -91,8 +100,10 @@ nb::dict summary_dict(bluetile::Summary&& s) {
 void bind_analysis(nb::module_& m) {
   m.def(
       "analyze",
-      [](const AnyArray& points, int size, double bin_width, bool centroids, bool psa_measures, bool discrepancy) {
-        check_spectrum_options(size, bin_width);
+      [](const ArrayArg& points, const Whole& size_arg, double bin_width, bool centroids, bool psa_measures,
+         bool discrepancy) {
+        const int size = spectrum_size(size_arg);
+        check_bin_width(bin_width);
         PointSets input = analysed_sets(points);
         bluetile::SummaryOptions options;
         options.size = size;
@@ -107,7 +118,7 @@ void bind_analysis(nb::module_& m) {
         }
         return summary_dict(std::move(summary));
       },
-      nb::sig("def analyze(points: NDArray[numpy.float64], *, size: int = 0, bin_width: float = 1.0, centroids: bool = True, "
+      nb::sig("def analyze(points: numpy.typing.ArrayLike, *, size: int = 0, bin_width: float = 1.0, centroids: bool = True, "
               "psa_measures: bool = True, discrepancy: bool = True) -> dict[str, typing.Any]"),
       "points"_a, nb::kw_only(), "size"_a = 0, "bin_width"_a = 1.0, "centroids"_a = true, "psa_measures"_a = true,
       "discrepancy"_a = true,
@@ -128,8 +139,8 @@ bin_width: the annulus width.)");
 
   m.def(
       "periodogram",
-      [](const AnyArray& points, int size) {
-        check_spectrum_options(size, 1.0);
+      [](const ArrayArg& points, const Whole& size_arg) {
+        const int size = spectrum_size(size_arg);
         PointSets input = analysed_sets(points);
         if (input.batched) throw nb::value_error("points: expected shape (N, 2); analyze averages several sets");
         const int f = size ? size : bluetile::default_periodogram_size(input.sets[0].size());
@@ -148,8 +159,9 @@ White noise gives about 1; P(0) = N. size: F, even (0: 2 floor(5 sqrt(N))).)");
 
   m.def(
       "radial_power",
-      [](const AnyArray& points, int size, double bin_width) {
-        check_spectrum_options(size, bin_width);
+      [](const ArrayArg& points, const Whole& size_arg, double bin_width) {
+        const int size = spectrum_size(size_arg);
+        check_bin_width(bin_width);
         PointSets input = analysed_sets(points);
         std::vector<bluetile::Annulus> radial;
         {
@@ -163,7 +175,7 @@ White noise gives about 1; P(0) = N. size: F, even (0: 2 floor(5 sqrt(N))).)");
         }
         return radial_dict(radial);
       },
-      nb::sig("def radial_power(points: NDArray[numpy.float64], size: int = 0, bin_width: float = 1.0) -> dict[str, NDArray]"),
+      nb::sig("def radial_power(points: numpy.typing.ArrayLike, size: int = 0, bin_width: float = 1.0) -> dict[str, NDArray]"),
       "points"_a, "size"_a = 0, "bin_width"_a = 1.0,
       R"(Radial power and anisotropy per annulus (psa's conventions), of one set or the mean
 periodogram of K sets: a dict of arrays frequency (the annulus' inner radius), power,
@@ -171,8 +183,8 @@ anisotropy_db (10 log10 of variance / power^2; white noise about 0 dB) and count
 
   m.def(
       "nearest_neighbour_distances",
-      [](const AnyArray& points) {
-        PointSets input = point_sets(points, "points", false);
+      [](const ArrayArg& points) {
+        PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", false);
         if (input.batched) throw nb::value_error("points: expected shape (N, 2)");
         std::vector<double> d;
         {
@@ -182,7 +194,8 @@ anisotropy_db (10 log10 of variance / power^2; white noise about 0 dB) and count
         const std::size_t n = d.size();
         return to_numpy(std::move(d), {n});
       },
-      "points"_a, "Distance of every point to its nearest neighbour on the unit torus, shape (N,).");
+      "points"_a, R"(Distance of every point to its nearest neighbour on the unit torus, shape (N,): periodic
+images count, so a lone point's nearest neighbour is its own copy one period away (distance 1).)");
 }
 
 }  // namespace pybluetile

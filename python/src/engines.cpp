@@ -23,11 +23,9 @@ using namespace nb::literals;
 
 namespace {
 
-void check_range(const char* name, long long value, long long low, long long high) {
-  if (value < low || value > high)
-    throw nb::value_error((std::string(name) + ": expected " + std::to_string(low) + " to " + std::to_string(high) +
-                           ", got " + std::to_string(value)).c_str());
-}
+// The tool's limits (relax --count, --sets, --iterations).
+constexpr long long kMaxCount = 100'000'000, kMaxSets = 10'000'000;
+constexpr int kMaxIterations = 100'000'000;
 
 void check_non_negative(const char* name, double value) {
   if (!(value >= 0.0) || !std::isfinite(value))
@@ -62,31 +60,35 @@ std::string default_engine(const std::optional<std::string>& engine, bool weight
   return engine ? *engine : weighted_or_bounded ? "exact" : "raster";
 }
 
-nb::object relax(std::optional<AnyArray> points, long long count, long long sets, int iterations, std::uint64_t seed,
-                 long long fixed, double tolerance, std::optional<AnyArray> density_map, double weight_exponent,
-                 bool bounded, const std::optional<std::string>& engine, int resolution, const std::string& coverage,
+nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, const Whole& sets_arg,
+                 const Whole& iterations_arg, const Whole& seed_arg, const Whole& fixed_arg, double tolerance,
+                 std::optional<ArrayArg> density_map, double weight_exponent, bool bounded,
+                 const std::optional<std::string>& engine, const Whole& resolution, const std::string& coverage,
                  const std::string& cone, const std::string& device, const std::string& pixel_work, bool history) {
-  EngineChoice choice{default_engine(engine, density_map.has_value() || bounded), resolution, coverage, cone, device,
-                      pixel_work};
+  EngineChoice choice{default_engine(engine, density_map.has_value() || bounded), resolution_arg(resolution),
+                      coverage, cone, device, pixel_work};
   check_engine_choice(choice);
-  check_range("iterations", iterations, 0, 100000000);
+  const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
+  const std::uint64_t seed = seed_value(seed_arg);
+  // 0: not given (points are); "sets" 0: one set of shape (N, 2).
+  const long long count = whole<long long>(count_arg, "count", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
+  const long long sets = whole<long long>(sets_arg, "sets", 0, kMaxSets);
   check_non_negative("tolerance", tolerance);
   bluetile::check_weight_exponent(weight_exponent, "weight_exponent");
   // The map is stretched over the unit square, as `relax --density-map` stretches it; random
   // starts follow it and the cells are weighted so that the relaxed set keeps following it.
   std::shared_ptr<const bluetile::DensityGrid> density, weight;
   if (density_map) {
-    density = std::make_shared<bluetile::DensityGrid>(density_grid(*density_map, "density_map"));
+    density = std::make_shared<bluetile::DensityGrid>(
+        density_grid(array_arg(*density_map, "density_map", ArrayKind::density), "density_map"));
     weight = std::make_shared<bluetile::DensityGrid>(bluetile::weight_for_point_density(*density, weight_exponent));
   }
-  if (points.has_value() == (count != 0)) throw nb::value_error("give either points or count");
-  if (sets != 0 && points) throw nb::value_error("sets: only with count (an array of shape (K, N, 2) has its sets)");
+  if (points_arg.has_value() == (count != 0)) throw nb::value_error("give either points or count");
+  if (sets != 0 && points_arg) throw nb::value_error("sets: only with count (an array of shape (K, N, 2) has its sets)");
   PointSets input;
-  if (points) {
-    input = point_sets(*points, "points");
+  if (points_arg) {
+    input = point_sets(array_arg(*points_arg, "points", ArrayKind::points), "points");
   } else {
-    check_range("count", count, 1, 100000000);
-    check_range("sets", sets, 0, 10000000);
     input.batched = sets != 0;
     for (long long k = 0; k < std::max(sets, 1LL); ++k) {
       const auto n = static_cast<std::size_t>(count);
@@ -96,8 +98,7 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
     }
   }
   const std::size_t n = input.sets[0].size();
-  if (fixed < 0 || static_cast<std::size_t>(fixed) > n)
-    throw nb::value_error(("fixed: expected 0 to " + std::to_string(n) + " (the points), got " + std::to_string(fixed)).c_str());
+  const auto fixed = whole<std::size_t>(fixed_arg, "fixed", 0, n, "0 to " + std::to_string(n) + " (the points)");
 
   bluetile::LloydResult result;
   std::vector<bluetile::Scene> scenes;
@@ -105,7 +106,7 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
     nb::gil_scoped_release release;
     for (auto& set : input.sets) {
       bluetile::Scene scene = bluetile::make_scene(std::move(set));
-      scene.wanted_begin = static_cast<std::size_t>(fixed);
+      scene.wanted_begin = fixed;
       scene.boundary = bounded ? bluetile::Boundary::bounded : bluetile::Boundary::periodic;
       scene.density = weight;
       scenes.push_back(std::move(scene));
@@ -124,20 +125,20 @@ nb::object relax(std::optional<AnyArray> points, long long count, long long sets
   return nb::make_tuple(array, history_dict(result.history));
 }
 
-nb::object stipple(const AnyArray& density_map, long long count, int iterations, std::uint64_t seed, double tolerance,
-                   bool periodic, double weight_exponent, const std::string& engine, int resolution,
-                   const std::string& coverage, const std::string& cone, const std::string& device,
-                   const std::string& pixel_work, bool info) {
-  EngineChoice choice{engine, resolution, coverage, cone, device, pixel_work};
+nb::object stipple(const ArrayArg& density_map, const Whole& count, const Whole& iterations_arg, const Whole& seed,
+                   double tolerance, bool periodic, double weight_exponent, const std::string& engine,
+                   const Whole& resolution, const std::string& coverage, const std::string& cone,
+                   const std::string& device, const std::string& pixel_work, bool info) {
+  EngineChoice choice{engine, resolution_arg(resolution), coverage, cone, device, pixel_work};
   check_engine_choice(choice);
-  check_range("count", count, 1, 100000000);
-  check_range("iterations", iterations, 0, 100000000);
+  bluetile::StippleStart start;
+  start.count = whole<std::size_t>(count, "count", 1, kMaxCount);
+  const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
   check_non_negative("tolerance", tolerance);
   bluetile::check_weight_exponent(weight_exponent, "weight_exponent");
-  const bluetile::DensityGrid map = density_grid(density_map, "density_map");
-  bluetile::StippleStart start;
-  start.count = static_cast<std::size_t>(count);
-  start.seed = seed;
+  const bluetile::DensityGrid map =
+      density_grid(array_arg(density_map, "density_map", ArrayKind::density), "density_map");
+  start.seed = seed_value(seed);
   start.periodic = periodic;
   start.weight_exponent = weight_exponent;
   bluetile::Scene scene;
@@ -160,11 +161,12 @@ nb::object stipple(const AnyArray& density_map, long long count, int iterations,
   return nb::make_tuple(points, d);
 }
 
-nb::tuple centroids(const AnyArray& points, const std::string& engine, int resolution, const std::string& coverage,
-                    const std::string& cone, const std::string& device, const std::string& pixel_work) {
-  EngineChoice choice{engine, resolution, coverage, cone, device, pixel_work};
+nb::tuple centroids(const ArrayArg& points, const std::string& engine, const Whole& resolution,
+                    const std::string& coverage, const std::string& cone, const std::string& device,
+                    const std::string& pixel_work) {
+  EngineChoice choice{engine, resolution_arg(resolution), coverage, cone, device, pixel_work};
   check_engine_choice(choice);
-  PointSets input = point_sets(points, "points");
+  PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points");
   std::vector<bluetile::SceneCells> cells(input.sets.size());
   {
     nb::gil_scoped_release release;
@@ -185,29 +187,32 @@ nb::tuple centroids(const AnyArray& points, const std::string& engine, int resol
   return nb::make_tuple(to_numpy(std::move(centre), {n, 2}), to_numpy(std::move(area), {n}));
 }
 
-nb::tuple progressive(std::optional<AnyArray> base, std::optional<AnyArray> base_levels, long long count, long long add,
-                      double ratio, int levels, int iterations, double tolerance, std::uint64_t seed,
-                      const std::string& placement, const std::string& rank_order, const std::string& engine,
-                      int resolution, const std::string& coverage, const std::string& cone, const std::string& device,
-                      const std::string& pixel_work) {
-  EngineChoice choice{engine, resolution, coverage, cone, device, pixel_work};
+nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base_levels, const Whole& count_arg,
+                      const Whole& add_arg, double ratio, const Whole& levels_arg, const Whole& iterations_arg,
+                      double tolerance, const Whole& seed, const std::string& placement, const std::string& rank_order,
+                      const std::string& engine, const Whole& resolution, const std::string& coverage,
+                      const std::string& cone, const std::string& device, const std::string& pixel_work) {
+  EngineChoice choice{engine, resolution_arg(resolution), coverage, cone, device, pixel_work};
   check_engine_choice(choice);
-  check_range("iterations", iterations, 0, 100000000);
-  check_range("levels", levels, 0, 64);
+  const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
+  const int levels = whole<int>(levels_arg, "levels", 0, 64);
+  // 0: not given.
+  const long long count = whole<long long>(count_arg, "count", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
+  const long long add = whole<long long>(add_arg, "add", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
   check_non_negative("tolerance", tolerance);
   check_non_negative("ratio", ratio);
   if (placement != "gaps" && placement != "random")
     throw nb::value_error(("placement: expected one of 'gaps', 'random', got '" + placement + "'").c_str());
   if (base.has_value() == (count != 0)) throw nb::value_error("give either base or count");
   if (add != 0 && ratio != 0.0) throw nb::value_error("give add or ratio, not both");
-  if (count) check_range("count", count, 1, 100000000);
-  if (add) check_range("add", add, 1, 100000000);
   bluetile::PointSet set;
   if (base) {
-    PointSets input = point_sets(*base, "base");
+    PointSets input = point_sets(array_arg(*base, "base", ArrayKind::points), "base");
     if (input.batched) throw nb::value_error("base: expected shape (N, 2): one set");
     set.points = std::move(input.sets[0]);
-    if (base_levels) set.levels = levels_array(*base_levels, set.points.size(), "base_levels", bluetile::kMaxTableLevel);
+    if (base_levels)
+      set.levels = levels_array(array_arg(*base_levels, "base_levels", ArrayKind::levels), set.points.size(),
+                                "base_levels", bluetile::kMaxTableLevel);
   } else if (base_levels) {
     throw nb::value_error("base_levels: only with base");
   }
@@ -218,7 +223,7 @@ nb::tuple progressive(std::optional<AnyArray> base, std::optional<AnyArray> base
   options.levels = levels;
   options.iterations = iterations;
   options.tolerance = tolerance;
-  options.seed = seed;
+  options.seed = seed_value(seed);
   options.placement = placement == "random" ? bluetile::Placement::random : bluetile::Placement::gaps;
   options.rank_order = bluetile::parse_rank_order(rank_order);
   {
@@ -239,8 +244,8 @@ nb::tuple progressive(std::optional<AnyArray> base, std::optional<AnyArray> base
 
 void bind_engines(nb::module_& m) {
   m.def("relax", &relax,
-        nb::sig("def relax(points: NDArray[numpy.float64] | None = None, *, count: int = 0, sets: int = 0, iterations: int = 80, "
-                "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, density_map: NDArray[numpy.floating] | None = None, "
+        nb::sig("def relax(points: numpy.typing.ArrayLike | None = None, *, count: int = 0, sets: int = 0, iterations: int = 80, "
+                "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, density_map: numpy.typing.ArrayLike | None = None, "
                 "weight_exponent: float = 2.0, bounded: bool = False, engine: str | None = None, resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
                 "history: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, NDArray]]"),
         "points"_a = nb::none(), nb::kw_only(), "count"_a = 0, "sets"_a = 0, "iterations"_a = 80,
@@ -269,7 +274,7 @@ With ``history=True`` returns (points, history) where history holds one array pe
 The same seed gives the same bits as the tool. Releases the GIL while it runs.)");
 
   m.def("stipple", &stipple,
-        nb::sig("def stipple(density_map: NDArray[numpy.floating], *, count: int, iterations: int = 50, seed: int = 1, "
+        nb::sig("def stipple(density_map: numpy.typing.ArrayLike, *, count: int, iterations: int = 50, seed: int = 1, "
                 "tolerance: float = 0.0, periodic: bool = False, weight_exponent: float = 2.0, engine: str = 'exact', "
                 "resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
                 "info: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, float | int]]"),
@@ -287,7 +292,7 @@ points bit for bit. With ``info=True`` returns (points, dict of width, height, d
 that just touch where the map is densest, the tool's default) and iterations).)");
 
   m.def("centroids", &centroids,
-        nb::sig("def centroids(points: NDArray[numpy.float64], *, engine: str = 'raster', resolution: int = 0, "
+        nb::sig("def centroids(points: numpy.typing.ArrayLike, *, engine: str = 'raster', resolution: int = 0, "
                 "coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
                 "-> tuple[NDArray[numpy.float64], NDArray[numpy.float64]]"),
         "points"_a, nb::kw_only(), "engine"_a = "raster", "resolution"_a = 0,
@@ -299,7 +304,7 @@ Returns (centroids, areas): shapes (N, 2) and (N,) for points of shape (N, 2), o
 0 and its own position as centroid.)");
 
   m.def("progressive", &progressive,
-        nb::sig("def progressive(base: NDArray[numpy.float64] | None = None, base_levels: NDArray[numpy.integer] | None = None, *, "
+        nb::sig("def progressive(base: numpy.typing.ArrayLike | None = None, base_levels: numpy.typing.ArrayLike | None = None, *, "
                 "count: int = 0, add: int = 0, ratio: float = 0.0, levels: int = 0, iterations: int = 80, "
                 "tolerance: float = 0.0, seed: int = 1, placement: str = 'gaps', rank_order: str = 'voids', engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
                 "-> tuple[NDArray[numpy.float64], NDArray[numpy.int32]]"),

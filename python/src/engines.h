@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "arguments.h"
 #include "bluetile/voronoi/engine.h"
 #include "bluetile/raster/engine_choice.h"
 
@@ -17,5 +18,13 @@ using bluetile::EngineChoice;
 // Checks the choice before any work.
 inline void check_engine_choice(const EngineChoice& choice) { bluetile::validate(choice); }
 using bluetile::make_engine;
+
+// resolution: 0 (from N) or the library's range, which the choice's check names; one past an
+// int is refused here in the same words.
+inline int resolution_arg(const Whole& resolution) {
+  return whole<int>(resolution, "resolution", 0, bluetile::kMaxResolution,
+                    "0 (from N) or " + std::to_string(bluetile::kMinResolution) + " to " +
+                        std::to_string(bluetile::kMaxResolution));
+}
 
 }  // namespace pybluetile

@@ -5,6 +5,7 @@
 #include <exception>
 #include <string_view>
 
+#include "arguments.h"
 #include "bindings.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
@@ -37,9 +38,8 @@ NB_MODULE(_core, m) {
         "Threads the library uses (default: the cores, or BLUETILE_THREADS). Results do not depend on it.");
   m.def(
       "set_thread_count",
-      [](std::size_t count) {
-        if (count < 1 || count > 1024) throw nb::value_error("count: expected 1 to 1024 threads");
-        bluetile::set_thread_count(count);
+      [](const pybluetile::Whole& count) {
+        bluetile::set_thread_count(pybluetile::whole<std::size_t>(count, "count", 1, 1024, "1 to 1024 threads"));
       },
       "count"_a, "Sets the threads the library uses from now on (like --threads); results do not depend on it.");
 

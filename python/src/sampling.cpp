@@ -1,6 +1,7 @@
 // random_points and dart: point sets that need no engine.
 #include <nanobind/stl/string.h>
 
+#include "arguments.h"
 #include "arrays.h"
 #include "bindings.h"
 #include "bluetile/core/rng.h"
@@ -13,11 +14,11 @@ using namespace nb::literals;
 void bind_sampling(nb::module_& m) {
   m.def(
       "random_points",
-      [](std::size_t count, std::uint64_t seed, std::uint64_t set) {
+      [](const Whole& count_arg, const Whole& seed_arg, const Whole& set_arg) {
         // The tool's limit on a point set (relax --count): past it a bare MemoryError, or swap.
         constexpr std::size_t kMaxPoints = 100'000'000;
-        if (count > kMaxPoints)
-          throw nb::value_error(("count: expected 0 to " + std::to_string(kMaxPoints) + ", got " + std::to_string(count)).c_str());
+        const auto count = whole<std::size_t>(count_arg, "count", 0, kMaxPoints);
+        const std::uint64_t seed = seed_value(seed_arg), set = seed_value(set_arg, "set");
         std::vector<bluetile::Point> points;
         {
           nb::gil_scoped_release release;
@@ -31,11 +32,12 @@ of ``bluetile relax --count N --seed S``, bit for bit.)");
 
   m.def(
       "dart",
-      [](std::size_t count, std::uint64_t seed, std::size_t max_failures, double shrink, double start, bool info) {
+      [](const Whole& count, const Whole& seed, const Whole& max_failures, double shrink, double start, bool info) {
         bluetile::DartOptions o;
-        o.count = count;
-        o.seed = seed;
-        o.max_failures = max_failures;
+        // The library's ranges, checked here so that a value past 64 bits gets the same message.
+        o.count = whole<std::size_t>(count, "count", 1, bluetile::kMaxDartCount);
+        o.seed = seed_value(seed);
+        o.max_failures = whole<std::size_t>(max_failures, "max_failures", 1, bluetile::kMaxDartFailures);
         o.shrink = shrink;
         o.start = start;
         bluetile::validate(o);  // before the GIL is released: a bad value raises at once
@@ -60,7 +62,8 @@ of ``bluetile relax --count N --seed S``, bit for bit.)");
       R"(Dart throwing with radius reduction on the unit torus, as ``bluetile dart``: shape (count, 2).
 
 A candidate is kept when no kept point is closer than the radius, which starts at ``start``
-hexagonal spacings and shrinks by ``shrink`` after ``max_failures`` rejections in a row. With
+hexagonal spacings and shrinks by ``shrink`` after ``max_failures`` rejections in a row (1 to 10^9,
+as ``--max-failures``: past that a run would not end in any time worth waiting for). With
 ``info=True`` returns (points, dict of initial_radius, final_radius, trials, reductions).)");
 }
 

@@ -6,6 +6,7 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/vector.h>
 
+#include "arguments.h"
 #include "arrays.h"
 #include "bindings.h"
 #include "bluetile/core/error.h"
@@ -18,18 +19,49 @@ using namespace nb::literals;
 
 namespace {
 
-void save_table(const std::string& path, const AnyArray& points, std::optional<AnyArray> levels,
+constexpr bluetile::TableFormat kFormats[] = {bluetile::TableFormat::text, bluetile::TableFormat::npy,
+                                               bluetile::TableFormat::binary, bluetile::TableFormat::header};
+
+// The library's table_format_for, with messages that name the argument `format` where the
+// library's name the tool's --format.
+bluetile::TableFormat table_format(const std::string& path, const std::string& format) {
+  std::string names;
+  for (bluetile::TableFormat f : kFormats) {
+    const std::string_view name = bluetile::table_format_name(f);
+    if (!format.empty() && format == name) return f;
+    names += (names.empty() ? "'" : ", '") + std::string(name) + "'";
+  }
+  if (!format.empty()) throw bluetile::Error("format: expected one of " + names + ", got '" + format + "'");
+  try {
+    return bluetile::table_format_for(path);
+  } catch (const bluetile::Error&) {
+    // An extension that names no format: the same list as the library's message, from its table.
+    std::string known;
+    for (bluetile::TableFormat f : kFormats) {
+      std::string extensions;
+      for (std::string_view e : bluetile::table_format_extensions(f))
+        if (!e.empty()) extensions += (extensions.empty() ? "" : " ") + std::string(e);
+      known += (known.empty() ? "" : ", ") + extensions + ": " + std::string(bluetile::table_format_name(f));
+    }
+    throw bluetile::Error(path + ": unknown extension '" + bluetile::file_extension(path) + "' (" + known +
+                          "; or pass format=)");
+  }
+}
+
+void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<ArrayArg> levels,
                 const std::string& format, bool float32, const std::string& name,
                 const std::vector<std::string>& comment) {
-  PointSets input = point_sets(points, "points");
+  const std::string path = path_text(path_arg, "path");
+  PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points");
   std::vector<bluetile::PointSet> sets;
   for (auto& s : input.sets) sets.push_back({std::move(s), {}});
   if (levels) {
     if (input.batched) throw nb::value_error("levels: only with points of shape (N, 2)");
-    sets[0].levels = levels_array(*levels, sets[0].points.size(), "levels", bluetile::kMaxTableLevel);
+    sets[0].levels = levels_array(array_arg(*levels, "levels", ArrayKind::levels), sets[0].points.size(), "levels",
+                                  bluetile::kMaxTableLevel);
   }
+  const bluetile::TableFormat f = table_format(path, format);
   nb::gil_scoped_release release;
-  const bluetile::TableFormat f = bluetile::table_format_for(path, format);
   bluetile::TableWriteOptions options;
   options.float32 = float32;
   options.name = name;
@@ -39,7 +71,8 @@ void save_table(const std::string& path, const AnyArray& points, std::optional<A
   });
 }
 
-nb::list load_table(const std::string& path, bool levels) {
+nb::list load_table(const PathArg& path_arg, bool levels) {
+  const std::string path = path_text(path_arg, "path");
   std::vector<bluetile::PointSet> sets;
   {
     nb::gil_scoped_release release;
@@ -74,7 +107,7 @@ array of a header (default from the file name); ``comment``: lines at the top (t
 The file appears whole or not at all.)");
 
   m.def("load_table", &load_table,
-        nb::sig("def load_table(path: str, *, levels: bool = False) "
+        nb::sig("def load_table(path: str | os.PathLike[str], *, levels: bool = False) "
                 "-> list[NDArray[numpy.float64]] | list[tuple[NDArray[numpy.float64], NDArray[numpy.int32] | None]]"),
         "path"_a, nb::kw_only(), "levels"_a = false,
         R"(Reads every set of a point file (text, with '#' lines between sets), an .npy file or a

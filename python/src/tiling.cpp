@@ -9,6 +9,7 @@
 #include <nanobind/stl/string.h>
 #include <nanobind/stl/tuple.h>
 
+#include "arguments.h"
 #include "arrays.h"
 #include "bindings.h"
 #include "engines.h"
@@ -27,37 +28,60 @@ using namespace nb::literals;
 
 namespace {
 
-// The text of a file starts with its version line; anything else names a file.
+// The text of a file starts with its version line; any other str names a file, as an
+// os.PathLike does.
 constexpr std::string_view kTileSetMagic = "# bluetile tiles";
 
-bluetile::TileSet load_tile_set(const std::optional<std::string>& tiles) {
-  if (!tiles) return bluetile::default_tile_set();
-  if (tiles->starts_with(kTileSetMagic)) return bluetile::parse_tile_set(*tiles, "tiles");
-  return bluetile::read_tile_set(*tiles);
+struct TileSource {
+  std::optional<std::string> text, path;  // neither: the set built into the library
+};
+
+TileSource tile_source(const std::optional<PathArg>& tiles) {
+  if (!tiles) return {};
+  if (PyUnicode_Check(tiles->ptr())) {
+    Py_ssize_t size = 0;
+    const char* utf8 = PyUnicode_AsUTF8AndSize(tiles->ptr(), &size);
+    if (!utf8)
+      PyErr_Clear();  // not a file's text (a lone surrogate of an undecodable name): a path
+    else if (std::string_view(utf8, static_cast<std::size_t>(size)).starts_with(kTileSetMagic))
+      return {std::string(utf8, static_cast<std::size_t>(size)), {}};
+  }
+  return {{}, path_text(*tiles, "tiles")};
 }
 
-void check_whole(const char* name, long long value, long long low, long long high) {
-  if (value < low || value > high)
-    throw nb::value_error((std::string(name) + ": expected " + std::to_string(low) + " to " + std::to_string(high) +
-                           ", got " + std::to_string(value)).c_str());
+bluetile::TileSet load_tile_set(const TileSource& tiles) {
+  if (tiles.text) return bluetile::parse_tile_set(*tiles.text, "tiles");
+  if (tiles.path) return bluetile::read_tile_set(*tiles.path);
+  return bluetile::default_tile_set();
 }
 
-std::string wang_tiles(const std::string& set, long long points, int iterations, int warm, int levels, double ratio,
-                       const std::string& strategy, int period, double margin, int lattice_steps,
-                       int lattice_steps_per_iteration, double lattice_step, int seam_steps,
+std::string wang_tiles(const std::string& set, const Whole& points_arg, const Whole& iterations_arg,
+                       const Whole& warm_arg, const Whole& levels_arg, double ratio, const std::string& strategy,
+                       const Whole& period_arg, double margin, const Whole& lattice_steps_arg,
+                       const Whole& lattice_steps_per_iteration_arg, double lattice_step, const Whole& seam_steps_arg,
                        double seam_spacing, double level_seam_spacing, const std::string& rank_order, double void_sigma,
-                       std::uint64_t seed, const std::string& engine) {
+                       const Whole& seed_arg, const std::string& engine) {
   const auto kind = bluetile::parse_tile_set_kind(set);
   if (!kind) throw nb::value_error(("set: expected one of " + bluetile::tile_set_kind_list() + ", got '" + set + "'").c_str());
-  // Counts are checked here only to fit the library's types; their ranges are the library's.
-  check_whole("points", points, 1, static_cast<long long>(bluetile::kMaxWangPoints));
+  // The library's ranges (bluetile::validate(WangOptions) checks them again), here so that a
+  // value past the library's types gets the same message.
+  const auto points = whole<std::size_t>(points_arg, "points", 1, bluetile::kMaxWangPoints);
+  const int iterations = whole<int>(iterations_arg, "iterations", 0, bluetile::kMaxWangIterations);
+  const int warm = whole<int>(warm_arg, "warm", 0, bluetile::kMaxWangIterations);
+  const int levels = whole<int>(levels_arg, "levels", 1, bluetile::kMaxWangLevels);
+  const int period = whole<int>(period_arg, "period", bluetile::kMinWangPeriod, bluetile::kMaxWangPeriod);
+  const int lattice_steps = whole<int>(lattice_steps_arg, "lattice_steps", 0, bluetile::kMaxLatticeSteps);
+  const int lattice_steps_per_iteration = whole<int>(lattice_steps_per_iteration_arg, "lattice_steps_per_iteration", 0,
+                                                     bluetile::kMaxLatticeStepsPerIteration);
+  const int seam_steps = whole<int>(seam_steps_arg, "seam_steps", 0, bluetile::kMaxSeamSteps);
+  const std::uint64_t seed = seed_value(seed_arg);
   EngineChoice choice;
   choice.engine = engine;
   check_engine_choice(choice);
 
   bluetile::WangOptions w;
   w.kind = *kind;
-  w.points = static_cast<std::size_t>(points);
+  w.points = points;
   w.levels = levels;
   w.ratio = ratio;
   w.seed = seed;
@@ -91,8 +115,8 @@ std::string wang_tiles(const std::string& set, long long points, int iterations,
   return text;
 }
 
-nb::dict tile_set(const std::optional<std::string>& tiles) {
-  const bluetile::TileSet set = load_tile_set(tiles);
+nb::dict tile_set(const std::optional<PathArg>& tiles) {
+  const bluetile::TileSet set = load_tile_set(tile_source(tiles));
   nb::list list;
   for (std::size_t id = 0; id < set.tiles.size(); ++id) {
     const bluetile::Tile& t = set.tiles[id];
@@ -114,9 +138,10 @@ nb::dict tile_set(const std::optional<std::string>& tiles) {
   return out;
 }
 
-nb::object tile(std::tuple<double, double, double, double> region, const std::optional<std::string>& tiles,
-                double tile_size, double density, std::uint64_t seed, std::optional<AnyArray> density_map,
+nb::object tile(std::tuple<double, double, double, double> region, const std::optional<PathArg>& tiles_arg,
+                double tile_size, double density, const Whole& seed, std::optional<ArrayArg> density_map,
                 double max_density, double count, const std::string& fit, bool columns) {
+  const TileSource tiles = tile_source(tiles_arg);
   // The request as `bluetile tile` reads it (tiling/tiling_plan.h); bad values raise
   // pybluetile.Error (a ValueError) naming them.
   const auto [x0, y0, x1, y1] = region;
@@ -126,10 +151,10 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
   request.density = density;
   request.max_density = max_density;
   request.count = count;
-  request.seed = seed;
+  request.seed = seed_value(seed);
   request.fit = bluetile::parse_map_fit(fit);
   std::optional<bluetile::DensityGrid> map;
-  if (density_map) map = density_grid(*density_map, "density_map");
+  if (density_map) map = density_grid(array_arg(*density_map, "density_map", ArrayKind::density), "density_map");
 
   std::vector<bluetile::TiledPoint> points;
   {
@@ -180,15 +205,15 @@ void bind_tiling(nb::module_& m) {
 points bit for bit), returned as the text of its tile-set file: write it to a file for
 ``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``.)");
 
-  m.def("tile_set", &tile_set, nb::sig("def tile_set(tiles: str | None = None) -> dict[str, object]"),
+  m.def("tile_set", &tile_set, nb::sig("def tile_set(tiles: str | os.PathLike[str] | None = None) -> dict[str, object]"),
         "tiles"_a = nb::none(),
         R"(A tile set's tiles as arrays: {'kind': str, 'tiles': [{'id', 'colours' (N, E, S, W, or the
 corners NW, NE, SE, SW), 'points' (n, 2) tile-local, 'levels' (n,), 'ranks' (n,)}]}. ``tiles``:
-the text of a tile-set file, a path to one, or None for the set built into the library.)");
+the text of a tile-set file, a path to one (str or os.PathLike), or None for the set built into the library.)");
 
   m.def("tile", &tile,
-        nb::sig("def tile(region: tuple[float, float, float, float], *, tiles: str | None = None, tile_size: float = 0, "
-                "density: float = 0, seed: int = 1, density_map: NDArray[numpy.floating] | None = None, "
+        nb::sig("def tile(region: tuple[float, float, float, float], *, tiles: str | os.PathLike[str] | None = None, tile_size: float = 0, "
+                "density: float = 0, seed: int = 1, density_map: numpy.typing.ArrayLike | None = None, "
                 "max_density: float = 0, count: float = 0, fit: str = 'contain', columns: bool = False) -> "
                 "NDArray[numpy.float64] | "
                 "dict[str, NDArray]"),

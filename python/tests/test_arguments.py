@@ -1,7 +1,8 @@
 """Every numeric argument of every function: a bad value raises a ValueError naming the argument
-(or, for a negative count where the binding takes an unsigned integer, nanobind's TypeError),
-before any work. The arguments are read from the functions' own signatures, so a new one is
-covered without a new test."""
+(a value that is not an integer where one is asked for, a TypeError naming it), before any work.
+The arguments are read from the functions' own signatures, so a new one is covered without a new
+test. Paths and arrays: os.PathLike paths and sequences of numbers are taken, anything else is
+refused by name."""
 import math
 import re
 
@@ -21,9 +22,12 @@ CALLS = {
     "tile": (((0.0, 0.0, 1.0, 1.0),), {}),
     "analyze": ((np.random.default_rng(1).random((20, 2)),), {"psa_measures": False, "discrepancy": False}),
     "centroids": ((np.random.default_rng(2).random((20, 2)),), {"engine": "exact"}),
+    "random_points": ((5,), {}),
+    "periodogram": ((np.random.default_rng(3).random((20, 2)),), {}),
+    "radial_power": ((np.random.default_rng(4).random((20, 2)),), {}),
 }
-# Values valid for an argument although they are bad for most: any unsigned 64-bit seed.
-ALSO_VALID = {"seed": {10**15}}
+# Values valid for an argument although they are bad for most: any unsigned 64-bit seed or set.
+ALSO_VALID = {"seed": {10**15, 2**63 + 1}, "set": {10**15, 2**63 + 1}}
 
 
 def numeric_arguments(function):
@@ -43,7 +47,9 @@ def test_the_table_covers_every_function_with_numeric_arguments():
 @pytest.mark.parametrize("name,argument,kind", CASES)
 def test_bad_values_are_refused_naming_the_argument(name, argument, kind):
     args, kwargs = CALLS[name]
-    bad = [math.nan, math.inf, -math.inf, -1.0] if kind == "float" else [-1, 10**15]
+    # -1 and 2**64 were nanobind's TypeError listing the signature, where the binding took an
+    # unsigned or narrower C++ integer; 2**63 + 1 named another value (2**62) in the message.
+    bad = [math.nan, math.inf, -math.inf, -1.0] if kind == "float" else [-1, 10**15, 2**63 + 1, 2**64, -2**70]
     for value in bad:
         if value in ALSO_VALID.get(argument, set()):
             continue
@@ -51,10 +57,13 @@ def test_bad_values_are_refused_naming_the_argument(name, argument, kind):
             getattr(bt, name)(*args, **{**kwargs, argument: value})
         except ValueError as e:
             assert argument in str(e) or argument.replace("_", " ") in str(e), (name, argument, value, str(e))
-        except TypeError:
-            assert kind == "int", (name, argument, value)  # unsigned or narrower C++ integer
+            if kind == "int":
+                assert str(e).startswith(f"{argument}: expected ") and str(e).endswith(f", got {value}"), str(e)
         else:
             pytest.fail(f"{name}({argument}={value!r}) was accepted")
+    if kind == "int":
+        with pytest.raises(TypeError, match=rf"^{argument}: expected an integer, got float$"):
+            getattr(bt, name)(*args, **{**kwargs, argument: 2.5})
 
 
 def test_sizes_past_the_tools_limits_are_refused_not_a_memory_error():
@@ -95,3 +104,116 @@ def test_fixed_out_of_range_names_the_range():
     for fixed in (-1, 6):
         with pytest.raises(ValueError, match=rf"^fixed: expected 0 to 5 \(the points\), got {fixed}$"):
             bt.relax(count=5, iterations=1, fixed=fixed, engine="exact")
+
+
+def test_seeds_take_the_tools_range(tool, tmp_path):
+    # A negative seed was nanobind's TypeError listing the signature; the tool refuses it too.
+    cli = tool("relax", "--count", 5, "--iterations", 0, "--seed", -1, "--output", tmp_path / "p.txt", check=False)
+    assert cli.returncode != 0 and "expected an integer from 0 to 18446744073709551615" in cli.stderr
+    for value in (-1, 2**64):
+        with pytest.raises(ValueError, match=rf"^seed: expected 0 to 18446744073709551615, got {value}$"):
+            bt.relax(count=5, iterations=0, seed=value, engine="exact")
+        with pytest.raises(ValueError, match=rf"^seed: expected 0 to 18446744073709551615, got {value}$"):
+            bt.random_points(5, seed=value)
+    with pytest.raises(ValueError, match=r"^set: expected 0 to 18446744073709551615, got -1$"):
+        bt.random_points(5, set=-1)
+    # The largest is the tool's largest, the same points; NumPy's integers are integers.
+    tool("relax", "--count", 5, "--iterations", 0, "--seed", 2**64 - 1, "--engine", "exact",
+         "--output", tmp_path / "p.txt")
+    top = bt.random_points(5, seed=2**64 - 1)
+    assert np.array_equal(top, np.loadtxt(tmp_path / "p.txt", comments="#"))
+    assert np.array_equal(bt.random_points(np.int64(5), seed=np.uint64(2**64 - 1)), top)
+
+
+def test_counts_out_of_range_name_their_value():
+    # Each was nanobind's TypeError listing the signature, or named another value.
+    with pytest.raises(ValueError, match=r"^count: expected 1 to 1024 threads, got -1$"):
+        bt.set_thread_count(-1)
+    with pytest.raises(ValueError, match=r"^levels: expected 1 to 32, got -1$"):
+        bt.wang_tiles(points=4, levels=-1)
+    with pytest.raises(ValueError, match=r"^count: expected 1 to 100000000, got -1$"):
+        bt.dart(-1)
+    with pytest.raises(ValueError, match=r"^size: expected 0 \(from N\) or an even number 2 to 65536, got 1000000$"):
+        bt.periodogram(np.random.default_rng(1).random((10, 2)), size=10**6)  # 8 TB: a MemoryError before
+    with pytest.raises(TypeError, match=r"^count: expected an integer, got float$"):
+        bt.random_points(10.0)
+
+
+def test_dart_max_failures_is_refused_past_the_tools_limit():
+    # Past 10^9 rejections in a row a run would not end (the library's limit, as --max-failures);
+    # past 2**63 the message named 4611686018427387904 instead of the value given.
+    for value in (0, 10**9 + 1, 2**62, 2**63, 2**64 - 1, 2**64):
+        with pytest.raises(ValueError, match=rf"^max_failures: expected 1 to 1000000000, got {value}$"):
+            bt.dart(10, max_failures=value)
+    assert bt.dart(10, max_failures=1).shape == (10, 2)
+
+
+def test_paths_may_be_os_pathlike(tmp_path):
+    # A pathlib.Path (tmp_path is one) was nanobind's TypeError listing the signature ("incompatible
+    # function arguments").
+    points = bt.random_points(16, seed=2)
+    bt.save_table(tmp_path / "p.npy", points)
+    (back,) = bt.load_table(tmp_path / "p.npy")
+    assert np.array_equal(back, points)
+    (back,) = bt.load_table(bytes(tmp_path / "p.npy"))
+    assert np.array_equal(back, points)
+    text = bt.wang_tiles(**CALLS["wang_tiles"][1])
+    (tmp_path / "set.tiles").write_text(text)
+    assert np.array_equal(bt.tile_set(tmp_path / "set.tiles")["tiles"][3]["points"], bt.tile_set(text)["tiles"][3]["points"])
+    assert np.array_equal(bt.tile((0.0, 0.0, 2.0, 2.0), tiles=tmp_path / "set.tiles", tile_size=1.0),
+                          bt.tile((0.0, 0.0, 2.0, 2.0), tiles=text, tile_size=1.0))
+    with pytest.raises(TypeError, match=r"^path: expected a str or os.PathLike path, got int$"):
+        bt.load_table(3)
+    with pytest.raises(TypeError, match=r"^tiles: expected a str or os.PathLike path, got list$"):
+        bt.tile_set([text])
+    with pytest.raises(ValueError, match=r"^path: embedded null character$"):
+        bt.save_table(str(tmp_path / "a\0b.npy"), points)
+
+
+def test_sequences_of_numbers_are_arrays():
+    # A list was nanobind's TypeError listing the signature: now read as NumPy reads it.
+    points = bt.random_points(12, seed=3)
+    assert np.array_equal(bt.relax(points.tolist(), iterations=2, engine="exact"),
+                          bt.relax(points, iterations=2, engine="exact"))
+    assert np.array_equal(bt.relax([[0, 0], [0.5, 0.5]], iterations=0, engine="exact"), [[0, 0], [0.5, 0.5]])
+    assert np.array_equal(bt.centroids(tuple(map(tuple, points)), engine="exact")[1], bt.centroids(points, engine="exact")[1])
+    assert np.array_equal(bt.nearest_neighbour_distances(points.tolist()), bt.nearest_neighbour_distances(points))
+    density = [[1, 0.5], [0.25, 1]]
+    assert np.array_equal(bt.stipple(density, count=10, iterations=1), bt.stipple(np.array(density), count=10, iterations=1))
+    base, levels = bt.progressive(count=6, levels=2, iterations=1, engine="exact")
+    more, _ = bt.progressive(base.tolist(), levels.tolist(), add=3, iterations=1, engine="exact")
+    assert np.array_equal(more, bt.progressive(base, levels, add=3, iterations=1, engine="exact")[0])
+
+
+def test_what_is_not_an_array_is_refused_by_name(tmp_path):
+    expected = r"points: expected an array of shape \(N, 2\) or \(K, N, 2\), or a sequence of \[x, y\] pairs"
+    with pytest.raises(TypeError, match=rf"^{expected}, got str$"):
+        bt.relax("0.5 0.5", engine="exact")
+    with pytest.raises(ValueError, match=rf"^{expected}; NumPy cannot read this list as numbers \(.*inhomogeneous"):
+        bt.analyze([[0.1, 0.2], [0.3]])
+    with pytest.raises(ValueError, match=r"^points: expected shape \(N, 2\) or \(K, N, 2\) with N >= 1, got \(2,\)$"):
+        bt.centroids([0.5, 0.5], engine="exact")
+    with pytest.raises(TypeError, match=r"^points: expected float64 \(or float32\) values, got object"):
+        bt.centroids(np.array([[0.5, 0.5]], dtype=object), engine="exact")
+    with pytest.raises(TypeError, match=r"^levels: expected an array of whole numbers of shape \(N,\), or a sequence of "
+                                        r"them, got int$"):
+        bt.save_table(tmp_path / "l.npy", bt.random_points(4), levels=-1)
+    with pytest.raises(TypeError, match=r"^levels: expected integer values, got float64$"):
+        bt.save_table(tmp_path / "l.npy", bt.random_points(4), levels=[0.5, 1, 1, 1])
+    with pytest.raises(TypeError, match=r"^density_map: expected a 2-D array of densities \(rows, columns\), or a sequence "
+                                        r"of rows, got float$"):
+        bt.relax(count=5, density_map=1.0)
+
+
+def test_save_table_names_its_format_argument(tmp_path):
+    # Both messages named the tool's --format, which a Python caller never passed.
+    points = bt.random_points(4)
+    with pytest.raises(bt.Error, match=r"^format: expected one of 'text', 'npy', 'binary', 'header', got 'png'$"):
+        bt.save_table(tmp_path / "t.npy", points, format="png")
+    with pytest.raises(bt.Error) as caught:
+        bt.save_table(tmp_path / "t.png", points)
+    assert str(caught.value) == (f"{tmp_path / 't.png'}: unknown extension '.png' (.txt .dat .pts: text, .npy: npy, "
+                                 ".bpt: binary, .h .hpp: header; or pass format=)")
+    assert not (tmp_path / "t.png").exists()
+    bt.save_table(tmp_path / "t.png", points, format="npy")
+    assert np.array_equal(np.load(tmp_path / "t.png")[0], points)
