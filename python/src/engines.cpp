@@ -33,7 +33,7 @@ void check_non_negative(const char* name, double value) {
 }
 
 nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {
-  std::vector<std::int64_t> iteration, coincident, fallbacks;
+  std::vector<std::int64_t> iteration, coincident, fallbacks, zero_density;
   std::vector<double> energy, max_displacement, mean_displacement;
   for (const auto& it : history) {
     iteration.push_back(it.iteration);
@@ -42,6 +42,7 @@ nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {
     mean_displacement.push_back(it.mean_displacement);
     coincident.push_back(static_cast<std::int64_t>(it.coincident));
     fallbacks.push_back(static_cast<std::int64_t>(it.fallbacks));
+    zero_density.push_back(static_cast<std::int64_t>(it.zero_density));
   }
   const std::size_t n = history.size();
   nb::dict d;
@@ -51,6 +52,7 @@ nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {
   d["mean_displacement"] = to_numpy(std::move(mean_displacement), {n});
   d["coincident"] = to_numpy(std::move(coincident), {n});
   d["fallbacks"] = to_numpy(std::move(fallbacks), {n});
+  d["zero_density"] = to_numpy(std::move(zero_density), {n});
   return d;
 }
 
@@ -270,7 +272,8 @@ tool's default: raster, or exact with a density map or bounded cells. resolution
 coverage ("area" | "point"), cone ("quad" | "fan"), device and pixel_work ("auto" | "device" |
 "host": where the per-pixel work runs, as ``--pixel-work``; the same bits) set the raster engine.
 With ``history=True`` returns (points, history) where history holds one array per column of
-``--log``: iteration, energy, max_displacement, mean_displacement, coincident, fallbacks.
+``--log``: iteration, energy, max_displacement, mean_displacement, coincident, fallbacks and
+zero_density (sites whose cell has no density, left in place).
 The same seed gives the same bits as the tool. Releases the GIL while it runs.)");
 
   m.def("stipple", &stipple,

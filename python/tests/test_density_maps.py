@@ -58,6 +58,22 @@ def test_relax_with_a_density_map_matches_the_tool(tool, tmp_path):
     assert np.mean(grey[row, column] == 1) > 0.97
 
 
+def test_history_counts_the_sites_without_density_as_the_log(tool, tmp_path):
+    # Uniform starts on a map that is 0 outside a disc and a band: the sites whose cells have no
+    # density stay put, counted in the log's zero_density column (the history had no such key).
+    grey = sample_map()
+    write_grey_png(tmp_path / "map.png", grey * 255)
+    start = bt.random_points(200, seed=5)
+    np.savetxt(tmp_path / "start.txt", start, fmt="%.17g")
+    tool("relax", "--input", tmp_path / "start.txt", "--density-map", tmp_path / "map.png", "--transfer", "linear",
+         "--no-invert", "--iterations", 3, "--output", tmp_path / "out.txt", "--log", tmp_path / "log.csv")
+    log = np.loadtxt(tmp_path / "log.csv", delimiter=",", skiprows=1)
+    points, history = bt.relax(start, iterations=3, density_map=grey.astype(np.float64), history=True)
+    assert np.array_equal(points, load_points(tmp_path / "out.txt"))
+    assert np.array_equal(history["zero_density"], log[:, 6]) and history["zero_density"].min() > 10
+    assert history["zero_density"].dtype == history["coincident"].dtype
+
+
 def test_stipple_matches_the_tool(tool, tmp_path):
     grey = sample_map()
     write_grey_png(tmp_path / "map.png", grey * 255)

@@ -40,7 +40,11 @@ def test_history_matches_the_log(tool, tmp_path):
     log = np.loadtxt(tmp_path / "log.csv", delimiter=",", skiprows=1)
     points, history = bt.relax(count=100, iterations=6, seed=2, engine="exact", history=True)
     assert np.array_equal(points, load_text(tmp_path / "p.txt"))
-    columns = ("iteration", "energy", "max_displacement", "mean_displacement", "coincident", "fallbacks")
+    # Every column of the log (zero_density was missing) and no other.
+    columns = ("iteration", "energy", "max_displacement", "mean_displacement", "coincident", "fallbacks",
+               "zero_density")
+    assert tuple((tmp_path / "log.csv").read_text().splitlines()[0].split(",")) == columns
+    assert set(history) == set(columns)
     for c, name in enumerate(columns):
         assert np.array_equal(history[name], log[:, c]), name
 
