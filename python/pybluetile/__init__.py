@@ -33,6 +33,23 @@ from ._core import (
     wang_tiles,
 )
 
+import copyreg as _copyreg
+
+from . import _core
+
+
+def _reduce_function(function):
+    """Pickles this module's functions by name, as Python's own built-in functions are pickled,
+    so that they can be sent to other processes (multiprocessing, concurrent.futures, Dask's
+    process scheduler); nanobind's function type has no pickling of its own. Functions of other
+    nanobind modules (the type is shared) are refused as before."""
+    if getattr(function, "__module__", None) == _core.__name__ and getattr(_core, function.__name__, None) is function:
+        return function.__name__  # a global of function.__module__
+    return function.__reduce_ex__(4)
+
+
+_copyreg.pickle(type(_core.relax), _reduce_function)
+
 __version__ = "0.1.0"
 
 __all__ = [

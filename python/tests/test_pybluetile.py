@@ -1,6 +1,7 @@
 """pybluetile against the bluetile tool (bit for bit, same seeds), NumPy as an independent
 reader and writer of .npy, bad input, and the GIL released while the library works."""
 import json
+import pickle
 import signal
 import subprocess
 import sys
@@ -281,6 +282,33 @@ def test_bad_input_raises_clear_exceptions(tool, tmp_path):
         bt.load_table(str(damaged))
     assert cli.stderr.strip() == "bluetile: " + str(error.value)
     assert isinstance(error.value, ValueError)
+
+
+def test_a_lone_points_nearest_neighbour_is_its_own_copy():
+    # Periodic images count (analysis/nearest_neighbour.h): one point is one period from itself.
+    assert bt.nearest_neighbour_distances(np.array([[0.25, 0.75]])).tolist() == [1.0]
+    assert bt.nearest_neighbour_distances([[0.25, 0.75], [0.25, 0.25]]).tolist() == [0.5, 0.5]
+    # The statistics of analyze need two.
+    with pytest.raises(ValueError, match=r"^points: analysis needs at least 2 points per set$"):
+        bt.analyze(np.array([[0.25, 0.75]]))
+
+
+def test_functions_and_results_pickle():
+    # The functions pickled as "cannot pickle nanobind.nb_func objects", so that they could not be
+    # sent to another process; now by name, as Python's built-in functions.
+    for protocol in range(pickle.HIGHEST_PROTOCOL + 1):
+        assert pickle.loads(pickle.dumps(bt.relax, protocol=protocol)) is bt.relax
+    from concurrent.futures import ProcessPoolExecutor
+    with ProcessPoolExecutor(max_workers=1) as pool:
+        assert all(np.array_equal(got, bt.random_points(n, seed=4))
+                   for n, got in zip((3, 5), pool.map(bt.random_points, (3, 5), (4, 4))))
+    # Results are plain dicts, tuples, lists and arrays.
+    points, history = bt.relax(count=10, iterations=2, engine="exact", history=True)
+    back_points, back_history = pickle.loads(pickle.dumps((points, history)))
+    assert np.array_equal(back_points, points) and set(back_history) == set(history)
+    window = bt.tile((0.0, 0.0, 1.0, 1.0), density=20, columns=True)
+    assert np.array_equal(pickle.loads(pickle.dumps(window))["rank"], window["rank"])
+    assert str(pickle.loads(pickle.dumps(bt.Error("a message")))) == "a message"
 
 
 def test_the_gil_is_released_while_relaxing():
