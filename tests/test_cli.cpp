@@ -166,5 +166,43 @@ TEST(Cli, BadOptionsFailWithAMessage) {
   EXPECT_EQ(dir.list(), std::vector<std::string>{});
 }
 
+TEST(Cli, OptionsARunWouldNotUseAreRefused) {
+  // Raster settings on the exact engine, and relaxation or engine options with the fill order,
+  // were accepted and changed nothing (an absent device included).
+  TempDir dir;
+  const std::string out = dir.file("o.txt");
+  const std::string raster_setting = ": a raster engine setting, and this run uses the exact engine";
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"relax", "-n", "64", "--engine", "exact", "--device", "7", "-o", out}, "--device 7" + raster_setting + ";"},
+      {{"relax", "-n", "64", "--bounded", "--pixel-work", "device", "-o", out},
+       "--pixel-work device" + raster_setting + ", the default with --bounded; --engine raster uses it"},
+      {{"centroids", "-i", BLUETILE_TEST_DATA "/ranks_square.txt", "--engine", "exact", "--coverage", "point", "-o", out},
+       "--coverage point" + raster_setting},
+      {{"progressive", "-n", "64", "--levels", "2", "--engine", "exact", "--resolution", "100", "-o", out},
+       "--resolution 100" + raster_setting},
+      {{"wang", "-n", "4", "-k", "1", "--cone", "fan", "-o", out}, "--cone fan" + raster_setting + ", the default for wang"},
+      {{"progressive", "-n", "64", "--levels", "3", "--rank-order", "fill", "-k", "5", "-o", out},
+       "--iterations 5: --rank-order fill relaxes nothing and runs no engine"},
+      {{"progressive", "-n", "64", "--levels", "3", "--rank-order", "fill", "--placement", "random", "-o", out},
+       "--placement random: --rank-order fill"},
+      {{"progressive", "-n", "64", "--levels", "3", "--rank-order", "fill", "--device", "7", "-o", out},
+       "--device 7: --rank-order fill"},
+  };
+  for (const auto& c : cases) {
+    auto r = run_bluetile(c.args);
+    EXPECT_EQ(r.exit_code, 1) << c.args[0] << ": " << r.err;
+    EXPECT_EQ(r.err.rfind("bluetile: " + c.message, 0), 0u) << r.err;
+  }
+  EXPECT_EQ(dir.list(), std::vector<std::string>{});
+  // An ID image is drawn by a raster engine made from them: taken with the exact engine.
+  auto r = run_bluetile({"relax", "-n", "64", "-k", "1", "--engine", "exact", "--resolution", "64", "--id-image",
+                         dir.file("id.png"), "-o", out});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 }  // namespace
 }  // namespace bluetile

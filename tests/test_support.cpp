@@ -51,8 +51,8 @@ std::string read_text(const std::string& path) {
   return s.str();
 }
 
-CommandResult run_bluetile(const std::vector<std::string>& arguments) {
-  std::string command = "'" BLUETILE_BINARY "'";
+CommandResult run_bluetile(const std::vector<std::string>& arguments, const std::string& environment) {
+  std::string command = environment + " '" BLUETILE_BINARY "'";
   for (const auto& a : arguments) {
     std::string quoted;
     for (char c : a) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);

@@ -33,8 +33,9 @@ struct CommandResult {
   std::string err;  // stderr
 };
 
-// Runs the bluetile binary with `arguments` (shell-quoted here), stdin from /dev/null.
-CommandResult run_bluetile(const std::vector<std::string>& arguments);
+// Runs the bluetile binary with `arguments` (shell-quoted here), stdin from /dev/null;
+// `environment`: NAME=value words before it (quote the values yourself).
+CommandResult run_bluetile(const std::vector<std::string>& arguments, const std::string& environment = "");
 
 // Runs a shell command line (quote its words yourself), stdin from /dev/null; exit code 127
 // when the shell cannot find the program.

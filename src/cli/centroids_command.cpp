@@ -62,7 +62,10 @@ void add_centroids_command(CLI::App& app) {
       ->required();
   add_point_output_options(cmd, o->output, "Output table of cx cy area");
   add_engine_options(cmd, o->engine);
-  cmd->callback([o, cmd] { run_centroids(*o, *cmd); });
+  cmd->callback([o, cmd] {
+    refuse_unused_raster_options(*cmd, o->engine, "");
+    run_centroids(*o, *cmd);
+  });
 }
 
 }  // namespace bluetile::cli

@@ -37,6 +37,17 @@ void add_engine_options(CLI::App* command, EngineOptions& options) {
   add_threads_option(command, options.threads);
 }
 
+void refuse_unused_raster_options(const CLI::App& command, const EngineOptions& options, const std::string& why_exact,
+                                  bool id_image) {
+  if (options.engine != "exact" || id_image) return;
+  for (const char* name : {"--resolution", "--coverage", "--cone", "--device", "--pixel-work"}) {
+    if (command.count(name) == 0) continue;
+    const CLI::Option* option = command.get_option(name);
+    throw Error(std::string(name) + " " + option->as<std::string>() + ": a raster engine setting, and this run uses the exact engine" +
+                why_exact + "; --engine raster uses it");
+  }
+}
+
 std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {
   if (options.threads > 0) set_thread_count(static_cast<std::size_t>(options.threads));
   return bluetile::make_engine(static_cast<const EngineChoice&>(options));

@@ -19,6 +19,13 @@ struct EngineOptions : EngineChoice {
 
 void add_engine_options(CLI::App* command, EngineOptions& options);
 
+// The raster engine's settings (--resolution, --coverage, --cone, --device, --pixel-work) change
+// nothing on the exact engine: given for a run on it, they are refused before any work, with
+// `why_exact` after the name of the engine (", the default with --bounded", or "" when --engine
+// said so). `id_image`: the run draws an ID image, with a raster engine made from them.
+void refuse_unused_raster_options(const CLI::App& command, const EngineOptions& options, const std::string& why_exact,
+                                  bool id_image = false);
+
 // The engine the options ask for; throws Error when it cannot be had.
 std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options);
 

@@ -15,6 +15,7 @@
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
+#include "bluetile/core/text.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/voronoi/exact_engine.h"
 
@@ -142,8 +143,10 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
                                             : std::to_string(sets.size()) + " sets of " +
                                                   std::to_string(sets[0].points.size()) + " points";
   const std::string method = filled ? (o.input.empty() ? "every point filled, no relaxation" : "every new point filled, no relaxation")
-                                    : std::to_string(o.iterations) + " iterations per level, engine " +
-                                          std::string(engine->name()) + ", placement " + o.placement;
+                                    : (o.tolerance > 0.0 ? "at most " : "") + std::to_string(o.iterations) +
+                                          " iterations per level" +
+                                          (o.tolerance > 0.0 ? " (tolerance " + shortest_text(o.tolerance) + ")" : "") +
+                                          ", engine " + std::string(engine->name()) + ", placement " + o.placement;
   const std::vector<std::string> header = {
       "bluetile progressive: " + what + " in " + std::to_string(target_levels) + (target_levels == 1 ? " level " : " levels ") +
           how + ", " + method + ", rank order " + rank_order_name(options.rank_order),
@@ -162,7 +165,8 @@ void add_progressive_command(CLI::App& app) {
                                  "Base points, kept bit for bit: text (each '#'-separated set gets its own levels), .npy "
                                  "or .bpt ('-': standard input)");
   auto* count = add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount,
-                                   "Build from scratch: level 0 has N relaxed random points");
+                                   "Build from scratch: level 0 has N points (relaxed random points; with --rank-order "
+                                   "voids the first N of a stage of at least 64, see there)");
   input->excludes(count);
   auto* add = add_integer_option(cmd, "-a,--add", o->add, 1LL, kMaxCount, "Points each new level adds (default with --count: N)");
   // Above 10^8 every level would pass the point limit at once.
@@ -183,7 +187,7 @@ void add_progressive_command(CLI::App& app) {
                   "points ranked by voids: every prefix well spread, not only the level boundaries) or placement "
                   "(each level relaxed alone, its points as placed: the paper's order) or fill (no relaxation: every "
                   "point placed in the deepest void of the band-limited density of the points before it, so every "
-                  "prefix is about as even as every other; the engine options are then unused)")
+                  "prefix is about as even as every other; it takes no iteration, placement or engine options)")
       ->check(CLI::IsMember({"placement", "voids", "fill"}))
       ->capture_default_str();
   add_integer_option(cmd, "--sets", o->sets, 1LL, 10000000LL,
@@ -193,6 +197,18 @@ void add_progressive_command(CLI::App& app) {
   add_engine_options(cmd, o->engine);
   cmd->callback([o, cmd] {
     if (o->input.empty() && o->count == 0) throw CLI::RequiredError("--input or --count");
+    if (o->rank_order == "fill") {
+      // The fill order relaxes nothing and runs no engine: these would change nothing.
+      for (const char* name : {"--iterations", "--tolerance", "--placement", "--engine", "--resolution", "--coverage",
+                               "--cone", "--device", "--pixel-work"}) {
+        if (cmd->count(name) == 0) continue;
+        throw Error(std::string(name) + " " + cmd->get_option(name)->as<std::string>() +
+                    ": --rank-order fill relaxes nothing and runs no engine; this is for the orders that relax "
+                    "(voids, placement)");
+      }
+    } else {
+      refuse_unused_raster_options(*cmd, o->engine, "");
+    }
     run_progressive(*o, *cmd);
   });
 }

@@ -159,13 +159,20 @@ void add_relax_command(CLI::App& app) {
   add_density_transfer_options(cmd, o->transfer);
   add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
+  cmd->get_option("--engine")->description(
+      "Centroid engine: raster (Vulkan) or exact (CPU); exact is the default with --density-map or --bounded");
   cmd->callback([o, cmd] {
     if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");
     refuse_transfer_without_map(*cmd, !o->density_map.empty());
     // Both engines weight cells and bound domains, the raster one only on its host per-pixel
     // path, measured 5x slower than the exact engine on stipples (docs/BENCHMARKS.md): exact is
     // the default there.
-    if (cmd->count("--engine") == 0 && (!o->density_map.empty() || o->bounded)) o->engine.engine = "exact";
+    std::string why_exact;
+    if (cmd->count("--engine") == 0 && (!o->density_map.empty() || o->bounded)) {
+      o->engine.engine = "exact";
+      why_exact = o->bounded ? ", the default with --bounded" : ", the default with --density-map";
+    }
+    refuse_unused_raster_options(*cmd, o->engine, why_exact, !o->id_image.empty());
     run_relax(*o, *cmd);
   });
 }

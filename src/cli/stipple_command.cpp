@@ -180,7 +180,10 @@ void add_stipple_command(CLI::App& app) {
   add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
   add_stipple_drawing_options(cmd, o->drawing);
-  cmd->callback([o, cmd] { run_stipple(*o, *cmd); });
+  cmd->callback([o, cmd] {
+    refuse_unused_raster_options(*cmd, o->engine, cmd->count("--engine") ? "" : ", the default for stipple");
+    run_stipple(*o, *cmd);
+  });
 }
 
 }  // namespace bluetile::cli

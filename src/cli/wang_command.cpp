@@ -230,7 +230,10 @@ void add_wang_command(CLI::App& app) {
   // (docs/RESULTS.md, Wang tiles).
   o->engine.engine = "exact";
   add_engine_options(cmd, o->engine);
-  cmd->callback([o] { run_wang(*o); });
+  cmd->callback([o, cmd] {
+    refuse_unused_raster_options(*cmd, o->engine, cmd->count("--engine") ? "" : ", the default for wang");
+    run_wang(*o);
+  });
 }
 
 }  // namespace bluetile::cli
