@@ -61,6 +61,12 @@ void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<A
                                   bluetile::kMaxTableLevel);
   }
   const bluetile::TableFormat f = table_format(path, format);
+  // As the tool's --float32 and --name: refused where they would change nothing.
+  const std::string is = path + " is " + std::string(bluetile::table_format_name(f));
+  if (float32 && f != bluetile::TableFormat::npy && f != bluetile::TableFormat::binary)
+    throw bluetile::Error("float32: " + is + "; 4-byte floats are for npy and binary tables");
+  if (!name.empty() && f != bluetile::TableFormat::header)
+    throw bluetile::Error("name: " + is + "; the array name is for C headers (.h, .hpp)");
   nb::gil_scoped_release release;
   bluetile::TableWriteOptions options;
   options.float32 = float32;

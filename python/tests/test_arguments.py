@@ -217,3 +217,15 @@ def test_save_table_names_its_format_argument(tmp_path):
     assert not (tmp_path / "t.png").exists()
     bt.save_table(tmp_path / "t.png", points, format="npy")
     assert np.array_equal(np.load(tmp_path / "t.png")[0], points)
+
+
+def test_save_table_refuses_options_its_format_ignores(tmp_path):
+    # float32 for a text table and name for anything but a C header were ignored without a word.
+    points = bt.random_points(4)
+    with pytest.raises(bt.Error, match=r"^float32: .*t\.txt is text; 4-byte floats are for npy and binary tables$"):
+        bt.save_table(tmp_path / "t.txt", points, float32=True)
+    with pytest.raises(bt.Error, match=r"^name: .*t\.npy is npy; the array name is for C headers \(\.h, \.hpp\)$"):
+        bt.save_table(tmp_path / "t.npy", points, name="table")
+    assert list(tmp_path.iterdir()) == []
+    bt.save_table(tmp_path / "t.bpt", points, float32=True)
+    bt.save_table(tmp_path / "t.h", points, name="table")
