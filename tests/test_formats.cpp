@@ -269,7 +269,7 @@ TEST(Formats, DamagedBinaryFilesGiveClearErrors) {
   EXPECT_EQ(binary_error(binary_by_hand(4, 2, 1, 2, {0.1, INFINITY, 0.3, 0.4})),
             "d.bpt: set 0, point 0: not a finite number 'inf'");
   EXPECT_EQ(binary_error(binary_by_hand(8, 3, 1, 1, {0.1, 0.2, 1.5})),
-            "d.bpt: set 0, point 0: level must be a whole number in [0, 1000000], got '1.5'");
+            "d.bpt: set 0, point 0: level must be a whole number in [0, 1000000], got '1.5' (a point file's third column is the level; a table such as centroids' cx cy area is no point file)");
   // Coordinates outside [0, 1) wrap onto the torus, as in point files.
   auto wrapped = parse_binary_table(binary_by_hand(8, 2, 1, 1, {-0.25, 1.5}), "w.bpt");
   EXPECT_EQ(wrapped[0].points[0], Point(0.75, 0.5));

@@ -82,8 +82,8 @@ TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2 0 7\n"), "pts.txt:1: expected 'x y' or 'x y level', got 4 columns: '0.1 0.2 0 7'");
   EXPECT_EQ(parse_error("0.1 0.2 0\n0.3 0.4\n"), "pts.txt:2: level column missing (earlier lines have one)");
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 0.4 1\n"), "pts.txt:2: level column appears here but not on earlier lines");
-  EXPECT_EQ(parse_error("0.1 0.2 -1\n"), "pts.txt:1: level must be an integer from 0 to 1000000, got '-1'");
-  EXPECT_EQ(parse_error("0.1 0.2 1.5\n"), "pts.txt:1: level must be an integer from 0 to 1000000, got '1.5'");
+  EXPECT_EQ(parse_error("0.1 0.2 -1\n"), "pts.txt:1: level must be an integer from 0 to 1000000, got '-1' (a point file's third column is the level; a table such as centroids' cx cy area is no point file)");
+  EXPECT_EQ(parse_error("0.1 0.2 1.5\n"), "pts.txt:1: level must be an integer from 0 to 1000000, got '1.5' (a point file's third column is the level; a table such as centroids' cx cy area is no point file)");
   EXPECT_EQ(parse_error("# c\n3\n0.1 0.2\n0.3 0.4\n"), "pts.txt:2: count line says 3 points but 2 follow");
   EXPECT_EQ(parse_error("-2\n"), "pts.txt:1: negative point count '-2'");
   EXPECT_EQ(parse_error(std::string("0.1 0.2\n\0\n", 10)), "pts.txt:2: binary data (NUL byte): not a point file");

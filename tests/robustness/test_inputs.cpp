@@ -99,7 +99,7 @@ TEST(Inputs, ProgressiveLevelsStayReadable) {
   }
   dir.write("over.txt", "0.1 0.1 1000001\n");
   r = run({"relax", "-i", dir.file("over.txt"), "--engine", "exact", "-o", dir.file("o.txt")});
-  expect_failure(r, dir.file("over.txt") + ":1: level must be an integer from 0 to 1000000, got '1000001'");
+  expect_failure(r, dir.file("over.txt") + ":1: level must be an integer from 0 to 1000000, got '1000001' (a point file's third column is the level; a table such as centroids' cx cy area is no point file)");
   EXPECT_EQ(entries(dir.path()), (Names{"empty.txt", "over.txt", "top.txt"}));
 }
 

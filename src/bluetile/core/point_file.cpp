@@ -129,7 +129,8 @@ class SetParser {
     if (has_level) {
       long long level = 0;
       if (!parse_integer(tokens.kept[2], level) || level < 0 || level > kMaxLevel)
-        fail("level must be an integer from 0 to " + std::to_string(kMaxLevel) + ", got " + quote(tokens.kept[2]));
+        fail("level must be an integer from 0 to " + std::to_string(kMaxLevel) + ", got " + quote(tokens.kept[2]) +
+             std::string(kThirdColumnIsTheLevel));
       set_.levels.push_back(static_cast<int>(level));
     }
     int outside = -1;

@@ -59,6 +59,10 @@ std::string read_range_text(int axis, const ReadOptions& options);
 
 // The largest level a point file may hold: writers must not go beyond what readers accept.
 inline constexpr int kMaxLevel = 1000000;
+// Said after a bad level: a three-column table of another kind (centroids' cx cy area) is the
+// usual cause.
+inline constexpr std::string_view kThirdColumnIsTheLevel =
+    " (a point file's third column is the level; a table such as centroids' cx cy area is no point file)";
 
 // The name used in messages for a path: "stdin" for "-", else the path.
 std::string input_name(const std::string& path);

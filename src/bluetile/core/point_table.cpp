@@ -229,7 +229,7 @@ class SetBuilder {
     if (column == 2) {
       if (value < 0 || value > kMaxTableLevel || value != std::floor(value))
         throw Error(where() + "level must be a whole number in [0, " + std::to_string(kMaxTableLevel) + "], got '" +
-                    format_value(value) + "'");
+                    format_value(value) + "'" + std::string(kThirdColumnIsTheLevel));
       sets_[set].levels.push_back(static_cast<int>(value));
       return;
     }
