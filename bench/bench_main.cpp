@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
 #include <time.h>
 
 #include "alloc_tracker.h"
+#include "bench_args.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/parallel.h"
@@ -501,60 +501,47 @@ void write_scaling_plot(const std::string& path, const std::vector<Row>& rows, c
 
 int run(int argc, char** argv) {
   Options o;
-  std::string sizes_text, starts_text, engines_text, resolutions_text;
-  CLI::App app{"bluetile_bench: exact, CGAL and raster centroid engines side by side"};
+  CLI::App app{"Exact, CGAL and raster centroid engines side by side: time of one Lloyd iteration, working memory and "
+               "the centroid error against the exact engine for every N and start, then the paper's workload (1000 "
+               "sites, 80 iterations); a CSV, a markdown report and log-log plots",
+               "bluetile_bench"};
   app.add_flag("--quick", o.quick, "small N and few repeats, finishes in seconds (CI)");
-  app.add_option("--sizes", sizes_text, "comma-separated N (default 1000,10000,100000,1000000)");
-  app.add_option("--starts", starts_text, "comma-separated: random,relaxed");
-  app.add_option("--engines", engines_text, "comma-separated engine families to run: exact,cgal-periodic,cgal-band,raster");
-  app.add_option("--repeats", o.repeats, "timed repeats per row (default by N: 21/11/5/3)");
-  app.add_option("--warmup", o.warmup, "untimed repeats before timing")->check(CLI::Range(1, 100));
-  app.add_option("--relax-iterations", o.relax_iterations, "exact Lloyd iterations making a relaxed start (default 30)");
-  app.add_option("--max-cgal-periodic", o.max_cgal_periodic, "largest N for the CGAL periodic reference");
-  app.add_option("--max-cgal-band", o.max_cgal_band, "largest N for the CGAL band reference");
-  app.add_option("--max-raster", o.max_raster, "largest N for the raster engine");
-  app.add_option("--raster-resolutions", resolutions_text, "comma-separated ID-buffer sides (default 256,512,1024,2048)");
+  bench::add_integers(app, "--sizes", o.sizes, 1LL, bench::kMaxCount, "comma-separated N")
+      ->delimiter(',')
+      ->default_str("1000,10000,100000,1000000; --quick: 500,2000");
+  bench::add_names(app, "--starts", o.starts, {"random", "relaxed"}, "comma-separated starts")->delimiter(',');
+  bench::add_names(app, "--engines", o.engines, {"exact", "cgal-periodic", "cgal-band", "raster"},
+                   "comma-separated engine families to run (those built)")
+      ->delimiter(',')
+      ->default_str("all");
+  bench::add_integer(app, "--repeats", o.repeats, 1, bench::kMaxRepeats, "timed repeats per row")
+      ->default_str("by N: 21/11/5/3; --quick: 3");
+  bench::add_integer(app, "--warmup", o.warmup, 1, 100, "untimed repeats before timing");
+  bench::add_integer(app, "--relax-iterations", o.relax_iterations, 1, bench::kMaxIterations,
+                     "exact Lloyd iterations making a relaxed start")
+      ->default_str("30; --quick: 5");
+  bench::add_integer(app, "--max-cgal-periodic", o.max_cgal_periodic, 0LL, bench::kMaxCount,
+                     "largest N for the CGAL periodic reference");
+  bench::add_integer(app, "--max-cgal-band", o.max_cgal_band, 0LL, bench::kMaxCount, "largest N for the CGAL band reference");
+  bench::add_integer(app, "--max-raster", o.max_raster, 0LL, bench::kMaxCount, "largest N for the raster engine");
+  // The raster engine's limits on a given resolution (kMinResolution, kMaxResolution, engine_choice.h).
+  bench::add_integers(app, "--raster-resolutions", o.raster_resolutions, 16, 65536,
+                      "comma-separated ID-buffer sides")
+      ->delimiter(',')
+      ->default_str("256,512,1024,2048; --quick: 256");
   app.add_flag("--check", o.check, "fail unless the exact engine matches itself across thread counts and CGAL within 1e-9 (on with --quick)");
   app.add_flag("!--no-paper", o.paper, "skip the paper's workload (1000 sites, 80 iterations)");
-  app.add_option("--seed", o.seed, "seed of the random starts");
-  app.add_option("--threads", o.threads, "threads for the exact engine (default: all cores)");
+  bench::add_integer(app, "--seed", o.seed, std::uint64_t{0}, bench::kMaxSeed, "seed of the random starts");
+  bench::add_integer(app, "--threads", o.threads, 1, bench::kMaxThreads, "threads for the exact engine")
+      ->default_str("all cores");
   app.add_option("--csv", o.csv, "write every row as CSV");
   app.add_option("--markdown", o.markdown, "write the report as markdown");
   app.add_option("--plot-dir", o.plot_dir, "write bench_*.png plots into this folder");
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return app.exit(e);
-  }
+  if (!bench::parse(app, argc, argv)) return 0;
 
-  auto split = [](const std::string& text) {
-    std::vector<std::string> parts;
-    std::stringstream in(text);
-    std::string part;
-    while (std::getline(in, part, ','))
-      if (!part.empty()) parts.push_back(part);
-    return parts;
-  };
-  auto to_count = [](const std::string& s) -> std::size_t {
-    double v = std::stod(s);  // accepts 1e6
-    if (!(v >= 1 && v <= 1e8)) throw Error("N out of range: " + s);
-    return static_cast<std::size_t>(v);
-  };
-  if (!sizes_text.empty()) {
-    for (const std::string& s : split(sizes_text)) o.sizes.push_back(to_count(s));
-  } else {
+  if (o.sizes.empty())
     o.sizes = o.quick ? std::vector<std::size_t>{500, 2000} : std::vector<std::size_t>{1000, 10000, 100000, 1000000};
-  }
-  if (!starts_text.empty()) o.starts = split(starts_text);
-  for (const std::string& s : o.starts)
-    if (s != "random" && s != "relaxed") throw Error("unknown start: " + s + " (random or relaxed)");
-  if (!engines_text.empty()) o.engines = split(engines_text);
-  if (!resolutions_text.empty()) {
-    o.raster_resolutions.clear();
-    for (const std::string& s : split(resolutions_text)) o.raster_resolutions.push_back(std::stoi(s));
-  } else if (o.quick) {
-    o.raster_resolutions = {256};
-  }
+  if (o.quick && app.count("--raster-resolutions") == 0) o.raster_resolutions = {256};
   if (o.relax_iterations == 0) o.relax_iterations = o.quick ? 5 : 30;
   if (o.quick) o.check = true;
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
@@ -674,11 +661,8 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace bluetile::bench
 
-int main(int argc, char** argv) {
-  try {
-    return bluetile::bench::run(argc, argv);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "bluetile_bench: %s\n", e.what());
-    return 1;
-  }
+int main(int argc, char** argv) try {
+  return bluetile::bench::run(argc, argv);
+} catch (...) {
+  return bluetile::bench::exit_status("bluetile_bench");
 }

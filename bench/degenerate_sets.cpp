@@ -4,7 +4,7 @@
 // iteration (wall and CPU) and as a ratio to uniform. Repeats interleave the sets so that a
 // machine shared with others drifts alike for all (docs/BENCHMARKS.md).
 //   bluetile_degenerate_bench [--sizes 1000,2000,8000,32000] [--repeats 3] [--threads T]
-//                             [--engine exact|raster] [--kinds uniform,line,...]
+//                             [--engine exact|raster] [--kinds line,ordered,...] [--max-cone-overlap X]
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -15,8 +15,7 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "bench_args.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/voronoi/exact_engine.h"
@@ -75,22 +74,32 @@ double median(std::vector<double> v) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  CLI::App app{"bluetile_degenerate_bench: a centroid engine on sites on a line or in a cluster"};
+int main(int argc, char** argv) try {
+  CLI::App app{"A centroid engine on sites far from uniform (on a line, tilted, diagonal, four parallel lines, nearly on "
+               "a line, in a small cluster) next to uniform sites of the same N: one Lloyd step's cells, ms per "
+               "iteration (wall and CPU) and the ratio to uniform, median of interleaved repeats",
+               "bluetile_degenerate_bench"};
   std::vector<std::size_t> sizes = {1000, 2000, 8000, 32000};
   int repeats = 3, threads = 1;
   std::string engine_name = "exact";
   std::vector<std::string> kinds;
   double max_cone_overlap = -1.0;
-  app.add_option("--sizes", sizes, "numbers of sites")->delimiter(',');
-  app.add_option("--repeats", repeats, "interleaved repeats (the median is reported)");
-  app.add_option("--threads", threads, "CPU threads (default 1: per-site cost)");
-  app.add_option("--engine", engine_name, "exact or raster (default settings: area coverage, resolution from N)");
-  app.add_option("--kinds", kinds, "sets to run (default all): uniform, line, ordered, tilted, diagonal, parallel, jitter, cluster")
-      ->delimiter(',');
-  app.add_option("--max-cone-overlap", max_cone_overlap,
-                 "raster: RasterOptions::max_cone_overlap (0: the raster path on every scene; default: the engine's)");
-  CLI11_PARSE(app, argc, argv);
+  std::vector<std::string> kind_keys;
+  for (const Kind& kind : kKinds) kind_keys.push_back(kind.key);
+  // 4 sites at least: the four parallel lines take N / 4 each.
+  bench::add_integers(app, "--sizes", sizes, 4LL, bench::kMaxCount, "numbers of sites")->delimiter(',');
+  bench::add_integer(app, "--repeats", repeats, 1, bench::kMaxRepeats, "interleaved repeats (the median is reported)");
+  bench::add_integer(app, "--threads", threads, 1, bench::kMaxThreads, "CPU threads (default 1: per-site cost)");
+  bench::add_name(app, "--engine", engine_name, {"exact", "raster"},
+                  "exact or raster (default settings: area coverage, resolution from N)");
+  bench::add_names(app, "--kinds", kinds, kind_keys, "sets to run besides uniform, which is always run")
+      ->delimiter(',')
+      ->default_str("all");
+  auto* overlap = bench::add_real(app, "--max-cone-overlap", max_cone_overlap, {},
+                                  "raster: RasterOptions::max_cone_overlap (0: the raster path on every scene)")
+                      ->default_str("the engine's");
+  if (!bench::parse(app, argc, argv)) return 0;
+  bench::check_given(overlap, engine_name == "raster", "only with --engine raster");
   set_thread_count(static_cast<std::size_t>(threads));
   std::unique_ptr<CentroidEngine> engine;
   if (engine_name == "exact") {
@@ -102,7 +111,7 @@ int main(int argc, char** argv) {
     engine = std::make_unique<RasterEngine>(options);
 #endif
   } else {
-    std::fprintf(stderr, "bluetile_degenerate_bench: --engine: unknown or not built '%s'\n", engine_name.c_str());
+    std::fprintf(stderr, "bluetile_degenerate_bench: --engine '%s': not built into this benchmark\n", engine_name.c_str());
     return 1;
   }
   std::vector<const Kind*> chosen;
@@ -131,4 +140,6 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   return 0;
+} catch (...) {
+  return bench::exit_status("bluetile_degenerate_bench");
 }

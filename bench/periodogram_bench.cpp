@@ -9,8 +9,7 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "bench_args.h"
 #include "bluetile/analysis/periodogram.h"
 #include "bluetile/analysis/spectral_measures.h"
 #include "bluetile/core/parallel.h"
@@ -24,17 +23,23 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  CLI::App app("bluetile_periodogram_bench: direct sum against the non-uniform FFT");
+int main(int argc, char** argv) try {
+  namespace bench = bluetile::bench;
+  CLI::App app{"Direct sum against the non-uniform FFT: seconds of each for N uniform points at psa's default F, and "
+               "their largest difference relative to P(0) = N; then seconds of psa's RDF-derived radial power",
+               "bluetile_periodogram_bench"};
   std::vector<std::size_t> counts = {1000, 4096, 16384, 65536, 262144, 1000000};
   std::size_t direct_max = 65536;
   int threads = 0;
-  app.add_option("-n,--count", counts, "Point counts");
-  app.add_option("--direct-max", direct_max, "Largest N for the direct sum");
+  bench::add_integers(app, "-n,--count", counts, 1LL, bench::kMaxCount, "Point counts");
+  bench::add_integer(app, "--direct-max", direct_max, 0LL, bench::kMaxCount,
+                     "Largest N for the direct sum (O(N^2); 0: never)");
   std::vector<std::size_t> rdf_counts;
-  app.add_option("--rdf-count", rdf_counts, "Point counts for psa's RDF spectrum (none by default)");
-  app.add_option("--threads", threads, "Threads (default: all cores)");
-  CLI11_PARSE(app, argc, argv);
+  bench::add_integers(app, "--rdf-count", rdf_counts, 2LL, bench::kMaxCount,
+                      "Point counts for psa's RDF spectrum (O(N^2); none by default)")
+      ->default_str("none");
+  bench::add_integer(app, "--threads", threads, 1, bench::kMaxThreads, "Threads")->default_str("all cores");
+  if (!bench::parse(app, argc, argv)) return 0;
   if (threads > 0) bluetile::set_thread_count(static_cast<std::size_t>(threads));
   std::printf("| N | F | M | direct s | NUFFT s | max diff / N | chosen |\n|---|---|---|---|---|---|---|\n");
   for (std::size_t n : counts) {
@@ -72,4 +77,6 @@ int main(int argc, char** argv) {
     std::fflush(stdout);
   }
   return 0;
+} catch (...) {
+  return bluetile::bench::exit_status("bluetile_periodogram_bench");
 }

@@ -4,18 +4,21 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <vector>
 
 #include "bluetile/core/rng.h"
+#include "bench_args.h"
 #include "bluetile/sampling/plot_order.h"
 
 using namespace bluetile;
 
-int main(int argc, char** argv) {
-  std::vector<std::size_t> sizes;
-  for (int i = 1; i < argc; ++i) sizes.push_back(std::strtoul(argv[i], nullptr, 10));
-  if (sizes.empty()) sizes = {1000, 10000, 100000};
+int main(int argc, char** argv) try {
+  CLI::App app{"Pen-plotter order of N uniform dots: time, and the pen-up travel of the greedy path and after 2-opt, "
+               "both over the random-tour constant 0.7124 sqrt(N)",
+               "bluetile_plot_order_bench"};
+  std::vector<std::size_t> sizes = {1000, 10000, 100000};
+  bench::add_integers(app, "N", sizes, 1LL, bench::kMaxCount, "Numbers of dots, one table row each");
+  if (!bench::parse(app, argc, argv)) return 0;
   std::printf("| dots | time (s) | greedy / 0.7124 sqrt(N) | after 2-opt / 0.7124 sqrt(N) |\n|---|---|---|---|\n");
   for (std::size_t n : sizes) {
     Rng rng(1);
@@ -28,4 +31,6 @@ int main(int argc, char** argv) {
     std::printf("| %zu | %.3f | %.3f | %.3f |\n", n, seconds, plot.greedy_travel / tour, plot.travel / tour);
   }
   return 0;
+} catch (...) {
+  return bench::exit_status("bluetile_plot_order_bench");
 }

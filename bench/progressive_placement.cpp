@@ -2,14 +2,14 @@
 // For base sets of N relaxed points plus N new ones, prints after K iterations the mean
 // distance of the new points to their exact centroids (with the base fixed in the diagram) and
 // the minimum nearest-neighbour distance over all points in hexagonal-spacing units, averaged
-// over seeds. Usage: bluetile_progressive_bench [N] [seeds]
+// over seeds. Usage: bluetile_progressive_bench [N] [seeds]; --help lists the modes.
 //
 // `bluetile_progressive_bench sets K N`: K hierarchies of 4 levels of N points each (as
 // `bluetile progressive --count N --sets K --engine exact`), built one set after another with one
 // exact engine and in parallel with an engine per worker, side by side in one run; checks that
 // both give the same bits.
 //
-// `bluetile_progressive_bench prefixes N seeds [sigma...]`: the prefix sweep (docs/RESULTS.md) of untiled
+// `bluetile_progressive_bench prefixes N seeds [sigma]`: the prefix sweep (docs/RESULTS.md) of untiled
 // progressive sets of N points (k at 1/16 ... 1 of N and every level boundary), rho and LF worst
 // (and mean) over seeds 1..seeds, for the placement, voids and fill rank orders side by side, then
 // the worst over every prefix from N/16 on in steps of 5 % ("dense"), built as
@@ -24,17 +24,19 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "bench_args.h"
 #include "bluetile/analysis/nearest_neighbour.h"
 #include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/progressive.h"
+#include "bluetile/relax/void_order.h"
+#include "bluetile/relax/wang_relax.h"  // kMinVoidSigma, kMaxVoidSigma
 #include "bluetile/voronoi/exact_engine.h"
 #include "ranked_samplers.h"
 
@@ -166,12 +168,7 @@ int compare_prefixes(std::size_t n, std::size_t seeds, double sigma) {
 }
 
 int compare_anchors(std::size_t n, std::size_t seeds) {
-  // The fill's five levels from N/16 at ratio 2 make N points only for a multiple of 16.
-  if (n < 16 || n % 16 != 0 || seeds == 0) {
-    std::fprintf(stderr, "bluetile_progressive_bench anchors: N must be a positive multiple of 16 and seeds at least 1 "
-                         "(got N = %zu, seeds = %zu)\n", n, seeds);
-    return 1;
-  }
+  // N is a multiple of 16, seeds at least 1 (checked in main).
   using Clock = std::chrono::steady_clock;
   const std::size_t boundaries[] = {n / 16, n / 8, n / 4, n / 2};
   const std::vector<std::size_t> sweep = prefix_sweep(n, boundaries);
@@ -213,25 +210,66 @@ int compare_anchors(std::size_t n, std::size_t seeds) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  if (argc > 1 && std::strcmp(argv[1], "anchors") == 0) {
-    const std::size_t n = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 4096;
-    const std::size_t seeds = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 4;
-    return compare_anchors(n, seeds);
+int main(int argc, char** argv) try {
+  CLI::App app{"Which start relaxes a new level faster, uniform random (the paper) or best-candidate gaps: for base sets "
+               "of N relaxed points plus N new ones, the mean distance of the new points to their exact centroids and "
+               "the minimum nearest-neighbour distance after K iterations, averaged over seeds. Or one of the modes "
+               "below",
+               "bluetile_progressive_bench"};
+  std::size_t n = 1000;
+  int seeds = 5;
+  // The first word is N or a mode: a word that is neither is an unknown mode.
+  app.add_option_function<std::string>(
+         "N",
+         [&n](const std::string& text) {
+           const bool number = !text.empty() && std::string_view("0123456789+-.").find(text[0]) != std::string_view::npos;
+           if (!number)
+             throw bench::bad_argument("mode", text, "unknown mode; expected sets, prefixes, anchors, or N (a point count)");
+           n = bench::integer_argument<std::size_t>("N", text, 1, bench::kMaxCount);
+         },
+         "Base points, and as many new ones")
+      ->type_name("INT")
+      ->default_str(std::to_string(n));
+  bench::add_integer(app, "seeds", seeds, 1, bench::kMaxRepeats, "Seeds 0 .. seeds-1 to average over");
+
+  CLI::App* sets_mode = app.add_subcommand(
+      "sets", "K hierarchies of 4 levels of N points each (as bluetile progressive --count N --sets K --engine exact), "
+              "one set after another and in parallel, side by side; checks that both give the same bits");
+  std::size_t sets = 256, set_points = 64;
+  bench::add_integer(*sets_mode, "K", sets, 1LL, 10'000'000LL, "Hierarchies");
+  bench::add_integer(*sets_mode, "N", set_points, 1LL, bench::kMaxCount, "Points of each level");
+
+  CLI::App* prefixes_mode = app.add_subcommand(
+      "prefixes", "The prefix sweep (docs/RESULTS.md) of untiled progressive sets of N points built three ways (N/16 "
+                  "at ratio 2 and at ratio 4, and one point doubling), rho and LF worst and mean over seeds 1..seeds, "
+                  "for the placement, voids and fill rank orders side by side");
+  std::size_t prefix_points = 4096, prefix_seeds = 4;
+  double sigma = kVoidSigmaFactor;
+  // 32 points at least: two of the constructions start from N/16, and the sweep measures prefixes
+  // from N/16 on, which need 2 points.
+  bench::add_integer(*prefixes_mode, "N", prefix_points, 32LL, bench::kMaxCount, "Points of each set");
+  bench::add_integer(*prefixes_mode, "seeds", prefix_seeds, 1LL, static_cast<long long>(bench::kMaxRepeats), "Seeds");
+  bench::add_real(*prefixes_mode, "sigma", sigma, {kMinVoidSigma, kMaxVoidSigma},
+                  "The void order's kernel width in hexagonal spacings");
+
+  CLI::App* anchors_mode = app.add_subcommand(
+      "anchors", "The same sweep for ranked tables of published samplers (Owen-scrambled Sobol', Mitchell's best "
+                 "candidate) beside the fill order, seeds 1..seeds");
+  std::size_t anchor_points = 4096, anchor_seeds = 4;
+  // The fill's five levels from N/16 at ratio 2 make N points only for a multiple of 16; 32 at least
+  // for prefixes of 2 points from N/16 on.
+  auto* anchor_n = bench::add_integer(*anchors_mode, "N", anchor_points, 32LL, bench::kMaxCount,
+                                      "Points of each set, a multiple of 16");
+  bench::add_integer(*anchors_mode, "seeds", anchor_seeds, 1LL, static_cast<long long>(bench::kMaxRepeats), "Seeds");
+  app.require_subcommand(0, 1);
+  if (!bench::parse(app, argc, argv)) return 0;
+
+  if (anchors_mode->parsed()) {
+    bench::check_given(anchor_n, anchor_points % 16 == 0, "expected a multiple of 16");
+    return compare_anchors(anchor_points, anchor_seeds);
   }
-  if (argc > 1 && std::strcmp(argv[1], "prefixes") == 0) {
-    const std::size_t n = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 4096;
-    const std::size_t seeds = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 4;
-    const double sigma = argc > 4 ? std::strtod(argv[4], nullptr) : kVoidSigmaFactor;
-    return compare_prefixes(n, seeds, sigma);
-  }
-  if (argc > 1 && std::strcmp(argv[1], "sets") == 0) {
-    const std::size_t sets = argc > 2 ? std::strtoul(argv[2], nullptr, 10) : 256;
-    const std::size_t n = argc > 3 ? std::strtoul(argv[3], nullptr, 10) : 64;
-    return compare_parallel_sets(sets, n);
-  }
-  const std::size_t n = argc > 1 ? std::strtoul(argv[1], nullptr, 10) : 1000;
-  const int seeds = argc > 2 ? std::atoi(argv[2]) : 5;
+  if (prefixes_mode->parsed()) return compare_prefixes(prefix_points, prefix_seeds, sigma);
+  if (sets_mode->parsed()) return compare_parallel_sets(sets, set_points);
   const int checkpoints[] = {0, 5, 10, 20, 40, 80};
   ExactEngine engine;
   std::printf("N=%zu base + %zu new, %d seeds, exact engine\n", n, n, seeds);
@@ -265,4 +303,7 @@ int main(int argc, char** argv) {
                   centroid_distance / seeds, min_nn / seeds);
     }
   }
+  return 0;
+} catch (...) {
+  return bench::exit_status("bluetile_progressive_bench");
 }

@@ -21,8 +21,7 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "bench_args.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/voronoi/exact_engine.h"
@@ -98,29 +97,39 @@ std::string stage_row(const std::string& job, const std::string& label, const Ra
 }  // namespace
 }  // namespace bluetile
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
   using namespace bluetile;
-  CLI::App app{"bluetile_raster_profile: where raster Lloyd iterations spend their time, beside the exact engine"};
-  std::string jobs_text = "paper,n1e4,n1e5,sets256,sets4096,point";
+  CLI::App app{"Where raster Lloyd iterations spend their time, beside the exact engine: Lloyd loops of each job on "
+               "both engines, interleaved, with the raster engine's stage times, passes, redos and boundary pixels",
+               "bluetile_raster_profile"};
+  std::vector<std::string> jobs = {"paper", "n1e4", "n1e5", "sets256", "sets4096", "point"};
   int repeats = 3;
   bool device_pixels = false;
   double pixels_per_cell = 0.0;
-  app.add_option("--jobs", jobs_text, "comma-separated jobs: paper, n1e4, n1e5, sets256, sets4096, point");
-  app.add_option("--repeats", repeats, "interleaved repeats per job");
+  bench::add_names(app, "--jobs", jobs, jobs,
+                   "comma-separated jobs: paper (1000 sites, 80 iterations), n1e4, n1e5, sets256, sets4096 (sets of 64 "
+                   "sites), point (point coverage)")
+      ->delimiter(',');
+  bench::add_integer(app, "--repeats", repeats, 1, bench::kMaxRepeats, "interleaved repeats per job");
   app.add_flag("--device-pixels", device_pixels,
                "run the per-pixel work on the host and on the device, one engine each (without it: PixelWork::automatic)");
-  std::string cone_draws_text;
-  app.add_option("--cone-draws", cone_draws_text,
-                 "comma-separated ways to draw the cones, each a raster engine of its own (host pixel work): "
-                 "triangles, indexed, instanced, points");
-  std::string split_kernels_text;
-  app.add_option("--split-kernels", split_kernels_text,
-                 "comma-separated float64 split kernels, each a raster engine of its own (device pixel work): lane (the "
-                 "device's choice), lane3, lane5, pixel");
+  std::vector<std::string> cone_draws;
+  bench::add_names(app, "--cone-draws", cone_draws, {"triangles", "indexed", "instanced", "points"},
+                   "comma-separated ways to draw the cones, each a raster engine of its own (host pixel work)")
+      ->delimiter(',')
+      ->default_str("none");
+  std::vector<std::string> split_kernels;
+  bench::add_names(app, "--split-kernels", split_kernels, {"lane", "lane3", "lane5", "pixel"},
+                   "comma-separated float64 split kernels, each a raster engine of its own (device pixel work): lane (the "
+                   "device's choice), lane3, lane5, pixel")
+      ->delimiter(',')
+      ->default_str("none");
   bool stages = false;
   app.add_flag("--stages", stages, "also print every stage's time per iteration, host and device pixel work side by side");
-  app.add_option("--pixels-per-cell", pixels_per_cell, "resolution from this many pixels per cell (default: the engine's)");
-  CLI11_PARSE(app, argc, argv);
+  bench::add_real(app, "--pixels-per-cell", pixels_per_cell, {0.0, 1e6, true, false},
+                  "resolution from this many pixels per cell")
+      ->default_str("the engine's");
+  if (!bench::parse(app, argc, argv)) return 0;
   if (stages) device_pixels = true;
   std::vector<std::string> stage_rows;
 
@@ -132,7 +141,7 @@ int main(int argc, char** argv) {
   std::printf("| job | engine | iterations | wall ms/it | cpu ms/it | ratio (wall) | passes/it | redone | boundary px/it | host-split px/it | upload ms/it | device ms/it | cones ms/it | classify ms/it | split ms/it | host ms/it | start-up ms |\n");
   std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Job& job : all) {
-    if (("," + jobs_text + ",").find("," + job.name + ",") == std::string::npos) continue;
+    if (std::find(jobs.begin(), jobs.end(), job.name) == jobs.end()) continue;
     // Both paths by name: what `auto` picks depends on the device and the coverage.
     std::vector<PixelWork> works = {PixelWork::automatic};
     if (device_pixels) works = {PixelWork::host, PixelWork::device};
@@ -150,15 +159,8 @@ int main(int argc, char** argv) {
     };
     std::vector<Variant> variants;
     for (PixelWork work : works) variants.push_back({work, "", ""});
-    auto each = [](const std::string& list, auto add) {
-      for (std::size_t at = 0; at < list.size();) {
-        const std::size_t comma = std::min(list.find(',', at), list.size());
-        add(list.substr(at, comma - at));
-        at = comma + 1;
-      }
-    };
-    each(cone_draws_text, [&](std::string draw) { variants.push_back({PixelWork::host, draw, ""}); });
-    each(split_kernels_text, [&](std::string split) { variants.push_back({PixelWork::device, "", split}); });
+    for (const std::string& draw : cone_draws) variants.push_back({PixelWork::host, draw, ""});
+    for (const std::string& split : split_kernels) variants.push_back({PixelWork::device, "", split});
     for (const Variant& variant : variants) {
       const PixelWork work = variant.work;
       RasterOptions options;
@@ -166,19 +168,9 @@ int main(int argc, char** argv) {
       else if (variant.draw == "indexed") options.cone_draw = ConeDraw::indexed;
       else if (variant.draw == "instanced") options.cone_draw = ConeDraw::instanced;
       else if (variant.draw == "points") options.cone_draw = ConeDraw::points;
-      else if (!variant.draw.empty()) {
-        std::fprintf(stderr, "bluetile_raster_profile: --cone-draws: unknown '%s' (triangles, indexed, instanced, points)\n",
-                     variant.draw.c_str());
-        return 1;
-      }
       if (variant.split == "pixel") options.split_kernel = SplitKernel::pixel;
       else if (variant.split == "lane3") options.split_kernel = SplitKernel::lane_three;
       else if (variant.split == "lane5") options.split_kernel = SplitKernel::lane_five;
-      else if (variant.split != "lane" && !variant.split.empty()) {
-        std::fprintf(stderr, "bluetile_raster_profile: --split-kernels: unknown '%s' (lane, lane3, lane5, pixel)\n",
-                     variant.split.c_str());
-        return 1;
-      }
       options.coverage = job.coverage;
       options.pixel_work = work;
       if (pixels_per_cell > 0.0)
@@ -238,4 +230,6 @@ int main(int argc, char** argv) {
     for (const std::string& row : stage_rows) std::printf("%s\n", row.c_str());
   }
   return 0;
+} catch (...) {
+  return bluetile::bench::exit_status("bluetile_raster_profile");
 }

@@ -12,8 +12,7 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "bench_args.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/io/density_map.h"
 #include "bluetile/relax/lloyd.h"
@@ -109,22 +108,24 @@ Timing median(std::vector<Timing> v) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  CLI::App app{"Weighted (stipple) against unweighted Lloyd, side by side"};
+int main(int argc, char** argv) try {
+  CLI::App app{"What weighting costs: a stipple (weighted Lloyd in a bounded domain, density from a picture) against "
+               "unweighted relaxation of the same N on the same engine, K iterations each, repeats interleaved",
+               "bluetile_stipple_bench"};
   std::string image;
   int texels = 1024, iterations = 50, repeats = 3;
   std::vector<long long> counts = {10000, 100000};
   std::vector<std::string> engines = {"exact", "raster"};
   app.add_option("--image", image, "Picture whose darkness is the density (default: a procedural one)");
-  app.add_option("--texels", texels, "Density grid side after resampling")->capture_default_str();
-  app.add_option("--counts", counts, "Point counts")->delimiter(',');
-  app.add_option("--iterations", iterations, "Lloyd iterations per run")->capture_default_str();
-  app.add_option("--repeats", repeats, "Interleaved repeats (the median is reported)")->capture_default_str();
-  app.add_option("--engines", engines, "Engines")->delimiter(',');
+  bench::add_integer(app, "--texels", texels, 1, 16384, "Density grid side after resampling");
+  bench::add_integers(app, "--counts", counts, 1LL, bench::kMaxCount, "Point counts")->delimiter(',');
+  bench::add_integer(app, "--iterations", iterations, 1, bench::kMaxIterations, "Lloyd iterations per run");
+  bench::add_integer(app, "--repeats", repeats, 1, bench::kMaxRepeats, "Interleaved repeats (the median is reported)");
+  bench::add_names(app, "--engines", engines, {"exact", "raster"}, "Engines")->delimiter(',');
   bool no_energy = false;
   app.add_flag("--no-energy", no_energy,
                "Ask for no Lloyd energy (no second moments), as bluetile stipple and relax without --log or -v");
-  CLI11_PARSE(app, argc, argv);
+  if (!bench::parse(app, argc, argv)) return 0;
   g_energy = !no_energy;
 
   auto density = std::make_shared<DensityGrid>(bench_density(image, texels));
@@ -175,4 +176,7 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
     }
   }
+  return 0;
+} catch (...) {
+  return bench::exit_status("bluetile_stipple_bench");
 }

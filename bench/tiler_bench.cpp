@@ -17,8 +17,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "bench_args.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/tiling/default_tile_set.h"
 #include "bluetile/tiling/tile_set_file.h"
@@ -274,6 +273,11 @@ void ramp(const TileSet& set, double count, std::uint64_t seed) {
     if (margin < 2.0 * d_hex) continue;
     rho.push_back(nearest[k] / d_hex);
   }
+  if (rho.empty()) {  // too few points for any to lie 2 d_hex inside the window
+    std::printf("| %.0f | %llu | %zu | %.2f %% | %.2f %% | %.2f %% | - | - | - | 0 |\n", count,
+                static_cast<unsigned long long>(seed), points.size(), 100.0 * mean_error, 100.0 * max_error, 100.0 * lowest);
+    return;
+  }
   std::printf("| %.0f | %llu | %zu | %.2f %% | %.2f %% | %.2f %% | %.3f | %.3f | %.3f | %.3f |\n", count,
               static_cast<unsigned long long>(seed), points.size(), 100.0 * mean_error, 100.0 * max_error,
               100.0 * lowest, *std::min_element(rho.begin(), rho.end()), percentile(rho, 0.01), percentile(rho, 0.5),
@@ -325,8 +329,12 @@ void dynamic_range(const TileSet& set, double range, const std::string& image) {
 }  // namespace
 }  // namespace bluetile
 
-int main(int argc, char** argv) {
-  CLI::App app{"bluetile_tiler_bench: plane tiler throughput and density control"};
+int main(int argc, char** argv) try {
+  namespace bench = bluetile::bench;
+  CLI::App app{"The plane tiler's throughput (uniform points, density tests, 10^6 stipples; one thread) and density "
+               "control (a linear ramp, and with --range a dynamic range). Without --throughput, --ramp or --range: "
+               "throughput and ramp",
+               "bluetile_tiler_bench"};
   std::string tiles;
   int repeats = 7;
   std::vector<double> counts = {1e4, 1e5, 1e6};
@@ -334,15 +342,18 @@ int main(int argc, char** argv) {
   bool run_throughput = false, run_ramp = false;
   double range = 0.0;
   std::string range_image;
-  app.add_option("--range", range, "Dynamic range check: density from 1 down to 1/R across a window");
-  app.add_option("--range-image", range_image, "With --range: a PNG render of it");
+  auto* range_option = bench::add_real(app, "--range", range, {1.0, 1e12},
+                                       "Dynamic range check: density from 1 down to 1/R across a window")
+                           ->default_str("off");
+  auto* range_image_option = app.add_option("--range-image", range_image, "With --range: a PNG render of it");
   app.add_option("--tiles", tiles, "Tile-set file (default: the built-in set)");
-  app.add_option("--repeats", repeats, "Interleaved timed repeats")->capture_default_str();
-  app.add_option("--counts", counts, "Ramp: expected point counts")->capture_default_str();
-  app.add_option("--seeds", seeds, "Ramp: seeds")->capture_default_str();
+  bench::add_integer(app, "--repeats", repeats, 1, bench::kMaxRepeats, "Throughput: interleaved timed repeats");
+  bench::add_integers(app, "--counts", counts, 1LL, bench::kMaxCount, "Ramp: expected point counts");
+  bench::add_integers(app, "--seeds", seeds, std::uint64_t{0}, bench::kMaxSeed, "Ramp: seeds");
   app.add_flag("--throughput", run_throughput, "Points per second and density tests per second");
   app.add_flag("--ramp", run_ramp, "Density control on a linear ramp");
-  CLI11_PARSE(app, argc, argv);
+  if (!bench::parse(app, argc, argv)) return 0;
+  bench::check_given(range_image_option, range_option->count() > 0, "needs --range");
   if (!run_throughput && !run_ramp && range == 0.0) run_throughput = run_ramp = true;
   bluetile::TileSet set = tiles.empty() ? bluetile::default_tile_set() : bluetile::read_tile_set(tiles);
   if (run_throughput) bluetile::throughput(set, repeats);
@@ -356,4 +367,6 @@ int main(int argc, char** argv) {
       for (std::uint64_t seed : seeds) bluetile::ramp(set, count, seed);
   }
   return 0;
+} catch (...) {
+  return bluetile::bench::exit_status("bluetile_tiler_bench");
 }

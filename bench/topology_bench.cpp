@@ -19,8 +19,7 @@
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "bench_args.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/lloyd.h"
@@ -145,8 +144,11 @@ std::unique_ptr<CentroidEngine> make_engine(const std::string& name) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  CLI::App app{"Exact engine: Delaunay triangulation kept between Lloyd iterations against the search and CGAL"};
+int main(int argc, char** argv) try {
+  CLI::App app{"Exact engine: Delaunay triangulation kept between Lloyd iterations against the search and CGAL. Per N, "
+               "a relaxation from uniform random sites and iterations continuing from relaxed sites, one markdown "
+               "table each, repeats interleaved",
+               "bluetile_topology_bench"};
   std::vector<std::size_t> sizes{1000, 10000, 100000, 1000000};
   std::vector<std::string> starts{"random", "relaxed"};
   std::vector<std::size_t> threads{1, 2};
@@ -155,15 +157,21 @@ int main(int argc, char** argv) {
   std::size_t max_cgal = 1000000;
   bool check = false, caller_order = false, no_energy = false, per_call = false;
   std::string profile;
-  app.add_option("--sizes", sizes, "Site counts")->delimiter(',');
-  app.add_option("--starts", starts, "random (a relaxation from random sites) and/or relaxed")->delimiter(',');
-  app.add_option("--relax", relax, "Search iterations from random sites that make the relaxed start")->capture_default_str();
-  app.add_option("--iterations", iterations, "Timed iterations from relaxed sites")->capture_default_str();
-  app.add_option("--random-iterations", random_iterations, "Timed iterations from random sites")->capture_default_str();
-  app.add_option("--threads", threads, "Thread counts of the exact engine (CGAL: one)")->delimiter(',');
-  app.add_option("--engines", engines, "Engines: search, kept, cgal-band, cgal-periodic")->delimiter(',');
-  app.add_option("--repeats", repeats, "Interleaved repeats (median reported)")->capture_default_str();
-  app.add_option("--max-cgal", max_cgal, "Largest N for the CGAL references")->capture_default_str();
+  bench::add_integers(app, "--sizes", sizes, 1LL, bench::kMaxCount, "Site counts")->delimiter(',');
+  bench::add_names(app, "--starts", starts, {"random", "relaxed"}, "random (a relaxation from random sites) and/or relaxed")
+      ->delimiter(',');
+  bench::add_integer(app, "--relax", relax, 0, bench::kMaxIterations,
+                     "Search iterations from random sites that make the relaxed start");
+  bench::add_integer(app, "--iterations", iterations, 1, bench::kMaxIterations, "Timed iterations from relaxed sites");
+  bench::add_integer(app, "--random-iterations", random_iterations, 1, bench::kMaxIterations,
+                     "Timed iterations from random sites");
+  bench::add_integers(app, "--threads", threads, 1, bench::kMaxThreads, "Thread counts of the exact engine (CGAL: one)")
+      ->delimiter(',');
+  bench::add_names(app, "--engines", engines, {"search", "kept", "cgal-band", "cgal-periodic"},
+                   "Engines (the CGAL ones only where CGAL is built)")
+      ->delimiter(',');
+  bench::add_integer(app, "--repeats", repeats, 1, bench::kMaxRepeats, "Interleaved repeats (median reported)");
+  bench::add_integer(app, "--max-cgal", max_cgal, 0LL, bench::kMaxCount, "Largest N for the CGAL references");
   app.add_flag("--check", check, "After each run, the last sites against a fresh search (differences reported)");
   app.add_flag("--caller-order", caller_order,
                "Keep the sites in the order they were drawn (at random) instead of the grid order relax_lloyd puts "
@@ -173,8 +181,10 @@ int main(int argc, char** argv) {
   app.add_flag("--per-call", per_call,
                "After each table, every timed call of each row (median over the repeats): wall and CPU ns per site, "
                "and the kept engine's rebuilds, flips and repaired vertices (the last repeat's)");
-  app.add_option("--profile", profile, "Run only this engine (search or kept), one thread, relaxed, for a profiler");
-  CLI11_PARSE(app, argc, argv);
+  bench::add_name(app, "--profile", profile, {"search", "kept"},
+                  "Run only this engine, one thread, relaxed, for a profiler")
+      ->default_str("off");
+  if (!bench::parse(app, argc, argv)) return 0;
 #if !BLUETILE_HAVE_CGAL
   std::printf("CGAL not built: the CGAL reference rows are skipped\n");
   std::erase_if(engines, [](const std::string& e) { return e.rfind("cgal", 0) == 0; });
@@ -298,4 +308,6 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+} catch (...) {
+  return bench::exit_status("bluetile_topology_bench");
 }

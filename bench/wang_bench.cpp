@@ -20,8 +20,7 @@
 #include <tuple>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-
+#include "bench_args.h"
 #include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
@@ -382,50 +381,61 @@ void levels(const Options& o) {
 }  // namespace
 }  // namespace bluetile::bench
 
-int main(int argc, char** argv) {
+int main(int argc, char** argv) try {
+  using namespace bluetile;
   using namespace bluetile::bench;
   Options o;
-  CLI::App app{"bluetile_wang_bench: build time and quality of Wang-tile sample sets"};
-  app.add_option("mode", o.mode, "quality | time | levels")->check(CLI::IsMember({"quality", "time", "levels"}));
-  app.add_option("--set", o.kinds, "Tile set kinds")->check(CLI::IsMember({"wang8", "wang16", "corner16", "corner81"}));
-  app.add_option("--points", o.points, "Points per tile (level 0)");
-  app.add_option("--strategy", o.strategies, "Strategies")->check(CLI::IsMember({"exact", "instances", "rounds"}));
-  app.add_option("--period", o.periods, "Torus tiling sizes M for the plane metrics");
-  app.add_option("--seeds", o.seeds, "Seeds per configuration");
-  app.add_option("--first-seed", o.first_seed, "First seed");
-  app.add_option("--iterations", o.iterations, "Constrained iterations per level");
-  app.add_option("--warm", o.warm, "Warm-start iterations per level");
-  app.add_option("--margin", o.margin, "Edge margin (tile units)");
-  app.add_option("--lattice-steps", o.refine.lattice_iterations, "Lattice decorrelation steps after each level (0: none)");
-  app.add_option("--lattice-steps-per-iteration", o.refine.lattice_steps_per_iteration,
-                 "Lattice steps after each constrained iteration of the second half (0: none)");
-  app.add_option("--lattice-step", o.refine.lattice_step, "Largest move of a lattice step, in hexagonal spacings");
-  app.add_option("--seam-steps", o.refine.seam_iterations, "Seam spacing steps after each level (0: none)");
-  app.add_option("--seam-spacing", o.refine.seam_spacing, "Seam spacing of level 0, in hexagonal spacings");
-  app.add_option("--level-seam-spacing", o.refine.later_seam_spacing, "Seam spacing of levels 1 and up, in hexagonal spacings");
-  app.add_option("--levels", o.levels, "Levels");
-  app.add_option("--ratio", o.ratio, "Level ratio");
-  app.add_option("--prefixes", o.prefixes, "levels mode: also this many evenly spaced steps between level boundaries");
-  app.add_option("--rank-order", o.rank_orders, "levels mode: rank orders side by side (farthest, voids, fill)")
-      ->check(CLI::IsMember({"farthest", "voids", "fill"}));
-  app.add_option("--repeats", o.repeats, "time mode: interleaved repeats");
-  app.add_option("--engine", o.engines, "time mode: engines side by side")->check(CLI::IsMember({"exact", "raster"}));
-  app.add_flag("--diagnose", o.diagnose, "quality mode: split C_mid into tile crystallinity and coherence");
-  app.add_flag("--untiled", o.untiled, "quality mode: also untiled Lloyd at the same N");
-  app.add_option("--untiled-iterations", o.untiled_iterations, "Iterations of the untiled reference");
-  app.add_option("--plot", o.plot, "levels mode: the sweep's worst rho and LF against k, as SVG (or .png)");
-  app.add_option("--threads", o.threads, "Threads (default: all cores)");
-  CLI11_PARSE(app, argc, argv);
-  try {
-    if (o.threads > 0) bluetile::set_thread_count(static_cast<std::size_t>(o.threads));
-    for (const auto& [name, value] : machine_facts()) std::printf("%s: %s\n", name.c_str(), value.c_str());
-    std::printf("\n");
-    if (o.mode == "quality") quality(o);
-    if (o.mode == "time") timing(o);
-    if (o.mode == "levels") levels(o);
-  } catch (const bluetile::Error& e) {
-    std::fprintf(stderr, "bluetile_wang_bench: %s\n", e.what());
-    return 1;
-  }
+  CLI::App app{"Build time and quality of Wang-tile sample sets over seeds. quality: the seam check and the plane "
+               "metrics of seeded torus tilings, per seed, worst and mean; time: the build time with each engine, "
+               "interleaved repeats; levels: the prefix sweep of a hierarchical set, rank orders side by side",
+               "bluetile_wang_bench"};
+  add_name(app, "mode", o.mode, {"quality", "time", "levels"}, "quality | time | levels");
+  add_names(app, "--set", o.kinds, {"wang8", "wang16", "corner16", "corner81"}, "Tile set kinds");
+  add_integers(app, "--points", o.points, std::size_t{1}, kMaxWangPoints, "Points per tile (level 0)");
+  add_names(app, "--strategy", o.strategies, {"exact", "instances", "rounds"}, "Strategies");
+  add_integers(app, "--period", o.periods, kMinWangPeriod, kMaxWangPeriod, "Torus tiling sizes M for the plane metrics");
+  add_integer(app, "--seeds", o.seeds, 1, kMaxRepeats, "Seeds per configuration");
+  add_integer(app, "--first-seed", o.first_seed, std::uint64_t{0}, kMaxSeed, "First seed");
+  add_integer(app, "--iterations", o.iterations, 0, kMaxWangIterations, "Constrained iterations per level");
+  add_integer(app, "--warm", o.warm, 0, kMaxWangIterations, "Warm-start iterations per level");
+  add_real(app, "--margin", o.margin, {0.0, kMaxEdgeMargin}, "Edge margin (tile units)");
+  add_integer(app, "--lattice-steps", o.refine.lattice_iterations, 0, kMaxLatticeSteps,
+              "Lattice decorrelation steps after each level (0: none)");
+  add_integer(app, "--lattice-steps-per-iteration", o.refine.lattice_steps_per_iteration, 0, kMaxLatticeStepsPerIteration,
+              "Lattice steps after each constrained iteration of the second half (0: none)");
+  add_real(app, "--lattice-step", o.refine.lattice_step, {kMinLatticeStep, kMaxLatticeStep},
+           "Largest move of a lattice step, in hexagonal spacings");
+  add_integer(app, "--seam-steps", o.refine.seam_iterations, 0, kMaxSeamSteps, "Seam spacing steps after each level (0: none)");
+  add_real(app, "--seam-spacing", o.refine.seam_spacing, {kMinSeamSpacing, kMaxSeamSpacing},
+           "Seam spacing of level 0, in hexagonal spacings");
+  add_real(app, "--level-seam-spacing", o.refine.later_seam_spacing, {kMinSeamSpacing, kMaxSeamSpacing},
+           "Seam spacing of levels 1 and up, in hexagonal spacings");
+  add_integer(app, "--levels", o.levels, 1, kMaxWangLevels, "Levels");
+  add_real(app, "--ratio", o.ratio, {1.0, kMaxWangRatio, true, false}, "Level ratio");
+  auto* prefixes = add_integer(app, "--prefixes", o.prefixes, 0, kMaxRepeats,
+                               "levels mode: also this many evenly spaced steps between level boundaries");
+  auto* rank_orders = add_names(app, "--rank-order", o.rank_orders, {"farthest", "voids", "fill"},
+                                "levels mode: rank orders side by side");
+  auto* repeats = add_integer(app, "--repeats", o.repeats, 1, kMaxRepeats, "time mode: interleaved repeats");
+  auto* engines = add_names(app, "--engine", o.engines, {"exact", "raster"}, "time mode: engines side by side");
+  auto* diagnose = app.add_flag("--diagnose", o.diagnose, "quality mode: split C_mid into tile crystallinity and coherence");
+  auto* untiled = app.add_flag("--untiled", o.untiled, "quality mode: also untiled Lloyd at the same N");
+  auto* untiled_iterations = add_integer(app, "--untiled-iterations", o.untiled_iterations, 0, kMaxIterations,
+                                         "quality mode, with --untiled: iterations of the untiled reference");
+  auto* plot = app.add_option("--plot", o.plot, "levels mode: the sweep's worst rho and LF against k, as SVG (or .png)");
+  add_integer(app, "--threads", o.threads, 1, kMaxThreads, "Threads")->default_str("all cores");
+  if (!parse(app, argc, argv)) return 0;
+  for (CLI::Option* option : {prefixes, rank_orders, plot}) check_given(option, o.mode == "levels", "only in levels mode");
+  for (CLI::Option* option : {repeats, engines}) check_given(option, o.mode == "time", "only in time mode");
+  for (CLI::Option* option : {diagnose, untiled}) check_given(option, o.mode == "quality", "only in quality mode");
+  check_given(untiled_iterations, o.mode == "quality" && o.untiled, "only in quality mode with --untiled");
+  if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
+  for (const auto& [name, value] : machine_facts()) std::printf("%s: %s\n", name.c_str(), value.c_str());
+  std::printf("\n");
+  if (o.mode == "quality") quality(o);
+  if (o.mode == "time") timing(o);
+  if (o.mode == "levels") levels(o);
   return 0;
+} catch (...) {
+  return bluetile::bench::exit_status("bluetile_wang_bench");
 }
