@@ -652,6 +652,31 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
   }
   EXPECT_NE(checked.out.find("levels 0-1"), std::string::npos) << checked.out;
   EXPECT_NE(checked.out.find("prefix sweep (4x4 torus tiling)"), std::string::npos) << checked.out;
+  EXPECT_EQ(checked.out.find("note:"), std::string::npos) << checked.out;
+  {
+    // Tiles of different counts (the reader takes up to 4x) were measured at the smallest count
+    // without a word. Tile 0 loses its last point by rank.
+    TileSet uneven = read_tile_set(tiles);
+    Tile& tile = uneven.tiles[0];
+    const std::size_t last = static_cast<std::size_t>(
+        std::max_element(tile.ranks.begin(), tile.ranks.end()) - tile.ranks.begin());
+    tile.points.erase(tile.points.begin() + static_cast<std::ptrdiff_t>(last));
+    tile.levels.erase(tile.levels.begin() + static_cast<std::ptrdiff_t>(last));
+    tile.ranks.erase(tile.ranks.begin() + static_cast<std::ptrdiff_t>(last));
+    const std::string path = dir.write("uneven.txt", format_tile_set(uneven));
+    test::CommandResult noted = test::run_bluetile({"wang-check", path, "--period", "4"});
+    ASSERT_EQ(noted.exit_code, 0) << noted.err;
+    EXPECT_NE(noted.out.find("\nnote: levels 0-1: the tiles hold 15 to 16 points; each row measures the first 15 by "
+                             "rank of every tile\n"),
+              std::string::npos)
+        << noted.out;
+    EXPECT_EQ(noted.out.find("note: levels 0-0"), std::string::npos) << noted.out;
+    // Options that need another were taken and ignored.
+    EXPECT_EQ(test::run_bluetile({"wang-check", path, "--untiled-iterations", "5"}).err,
+              "bluetile: --untiled-iterations requires --untiled (see --help)\n");
+    EXPECT_EQ(test::run_bluetile({"wang-check", path, "--image-size", "100"}).err,
+              "bluetile: --image-size requires --output (see --help)\n");
+  }
   // The sweep: 1/16 .. 1 of the 16 points per tile and the boundary 8, each plane measured once,
   // so a boundary's row is its level's.
   const nlohmann::json stats = nlohmann::json::parse(test::read_text(dir.file("check/stats.json")));

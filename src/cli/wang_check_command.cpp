@@ -89,6 +89,21 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
   SeamCheck seams = check_seams(set);
   std::printf("%s: %s set, %zu tiles\n%s", o.input.c_str(), std::string(tile_set_kind_name(set.kind)).c_str(),
               set.tiles.size(), seam_report(seams).c_str());
+  // A set whose tiles hold different counts (the reader takes up to 4x): every row below measures
+  // the smallest tile's count, and the rest would go unmentioned.
+  for (const SeamLevel& level : seams.levels) {
+    std::size_t fewest = SIZE_MAX, most = 0;
+    for (const Tile& tile : set.tiles) {
+      std::size_t n = 0;
+      for (std::size_t k = 0; k < tile.points.size(); ++k) n += (k < tile.levels.size() ? tile.levels[k] : 0) <= level.level ? 1 : 0;
+      fewest = std::min(fewest, n);
+      most = std::max(most, n);
+    }
+    if (fewest != most)
+      std::printf("note: levels 0-%d: the tiles hold %zu to %zu points; each row measures the first %zu by rank of "
+                  "every tile\n",
+                  level.level, fewest, most, fewest);
+  }
 
   const int tiles = static_cast<int>(set.tiles.size());
   TiledPlane plane = torus_tiling(set, o.period, o.seed);
@@ -221,9 +236,12 @@ void add_wang_check_command(CLI::App& app) {
   add_output_folder_option(check, "-o,--output", c->output,
                            "Folder for stats.json, plane.txt and the images (spectrum, radial power, points, the tile set)");
   check->add_flag("--untiled", c->untiled, "Compare with untiled Lloyd at the same N (exact engine)");
+  CLI::Option* untiled = check->get_option("--untiled");
   add_integer_option(check, "--untiled-iterations", c->untiled_iterations, 0, 100000,
-                     "Iterations of the untiled reference");
-  add_integer_option(check, "--image-size", c->image_size, 64, 8192, "Side of points.png in pixels");
+                     "Iterations of the untiled reference (with --untiled)")
+      ->needs(untiled);
+  add_integer_option(check, "--image-size", c->image_size, 64, 8192, "Side of points.png in pixels (with --output)")
+      ->needs(check->get_option("--output"));
   add_threads_option(check, c->threads);
   check->callback([c, check] { run_check(*c, *check); });
 }
