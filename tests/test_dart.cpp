@@ -39,6 +39,26 @@ TEST(DartThrowing, NoTwoPointsCloserThanTheFinalRadius) {
   }
 }
 
+TEST(DartThrowing, StartsAtMostAtHalfTheTorusAndSaysSo) {
+  // --start 4 and --start 2 on 10 points gave the same points, while the header reported
+  // starting radii of 1.36 and 0.68: both had started at 0.5.
+  DartOptions o;
+  o.count = 10;
+  o.start = 4.0;
+  const DartResult four = throw_darts(o);
+  o.start = 2.0;
+  const DartResult two = throw_darts(o);
+  EXPECT_EQ(four.initial_radius, kMaxDartRadius);
+  EXPECT_EQ(two.initial_radius, kMaxDartRadius);
+  EXPECT_EQ(four.points, two.points);
+  o.start = 1.0;
+  EXPECT_EQ(throw_darts(o).initial_radius, hexagonal_spacing(10.0));
+  test::TempDir dir;
+  auto r = test::run_bluetile({"dart", "-n", "10", "--start", "4", "-v", "-o", dir.file("d.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.rfind("bluetile dart: 10 points, seed 1, radius 0.5 (half the torus) -> ", 0), 0u) << r.err;
+}
+
 TEST(DartThrowing, ExactCountAndSameSeedSamePoints) {
   DartOptions o;
   o.count = 777;

@@ -33,7 +33,8 @@ void add_dart_command(CLI::App& app) {
   add_integer_option(cmd, "--max-failures", o->max_failures, std::size_t{1}, kMaxDartFailures,
                      "Rejections in a row before the radius shrinks");
   add_real_option(cmd, "--shrink", o->shrink, {kMinDartShrink, kMaxDartShrink}, "Factor applied to the radius at each reduction");
-  add_real_option(cmd, "--start", o->start, {kMinDartStart, kMaxDartStart}, "Starting radius in hexagonal spacings sqrt(2/(sqrt(3) N))");
+  add_real_option(cmd, "--start", o->start, {kMinDartStart, kMaxDartStart},
+                  "Starting radius in hexagonal spacings sqrt(2/(sqrt(3) N)), at most half the torus (0.5)");
   add_point_output_options(cmd, *output, "Output points ('-': standard output)");
   cmd->add_flag("-v,--verbose", *verbose, "Print the final radius and the number of trials on stderr");
   cmd->callback([o, output, sets, verbose] {
@@ -50,9 +51,10 @@ void add_dart_command(CLI::App& app) {
       DartResult r = throw_darts(one);
       char line[200];
       std::snprintf(line, sizeof line,
-                    "bluetile dart: %zu points, seed %llu, radius %.6g -> %.6g (%zu reductions, %zu trials)",
-                    r.points.size(), static_cast<unsigned long long>(one.seed), r.initial_radius, r.final_radius,
-                    r.reductions, r.trials);
+                    "bluetile dart: %zu points, seed %llu, radius %.6g%s -> %.6g (%zu reductions, %zu trial%s)",
+                    r.points.size(), static_cast<unsigned long long>(one.seed), r.initial_radius,
+                    r.initial_radius == kMaxDartRadius ? " (half the torus)" : "", r.final_radius, r.reductions,
+                    r.trials, r.trials == 1 ? "" : "s");
       if (k_sets == 1) header.push_back(line);
       if (*verbose) std::fprintf(stderr, "%s\n", line);
       results[k].points = std::move(r.points);

@@ -27,8 +27,8 @@ DartResult throw_darts(const DartOptions& o) {
 
   const Domain unit;
   DartResult result;
-  result.initial_radius = o.start * hexagonal_spacing(static_cast<double>(o.count));
-  double radius = std::min(result.initial_radius, 0.5);
+  result.initial_radius = std::min(o.start * hexagonal_spacing(static_cast<double>(o.count)), kMaxDartRadius);
+  double radius = result.initial_radius;
   // Buckets about half the starting spacing wide: a few points each even late in the process.
   const long side = std::clamp<long>(static_cast<long>(2.0 / result.initial_radius), 1, 8192);
   const double bucket = 1.0 / static_cast<double>(side);

@@ -25,9 +25,13 @@ struct DartOptions {
   double start = 1.0;
 };
 
+// The largest starting radius: half the torus' side. A larger one, which `start` gives for few
+// points, would only spend rejections before shrinking to it.
+inline constexpr double kMaxDartRadius = 0.5;
+
 struct DartResult {
   std::vector<Point> points;  // exactly `count`, in acceptance order
-  double initial_radius = 0.0;
+  double initial_radius = 0.0;  // the radius the throwing started with: `start` spacings, at most kMaxDartRadius
   double final_radius = 0.0;  // no two points are closer than this (torus distance)
   std::size_t trials = 0;     // candidates drawn
   std::size_t reductions = 0; // times the radius shrank
