@@ -141,6 +141,15 @@ TEST(FormatsCli, EveryBraceInAnOutputNameIsTheSetIndex) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("00-of-11_00.npy")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("10-of-11_10.npy")));
   EXPECT_EQ(read_point_table(dir.file("07-of-11_07.npy")).size(), 1u);
+  // A text file of one set said "11 sets of 20 points" and not which set it held.
+  ok({"relax", "-n", "16", "--sets", "3", "-k", "2", "--engine", "exact", "-o", dir.file("rs-{}.txt")});
+  ok({"relax", "-n", "16", "--sets", "3", "-k", "2", "--engine", "exact", "-o", dir.file("all.txt")});
+  const std::string one = read_text(dir.file("rs-1.txt"));
+  EXPECT_EQ(one.substr(0, one.find('\n', one.find('\n') + 1) + 1),
+            "# bluetile relax: 3 sets of 16 points, 2 iterations, engine exact, seed 1\n"
+            "# this file: set 1 of 3\n")
+      << one;
+  EXPECT_EQ(read_point_file(dir.file("rs-1.txt")).points, read_point_table(dir.file("all.txt"))[1].points);
 }
 
 TEST(FormatsCli, MultiSetInputsAreKeptApart) {

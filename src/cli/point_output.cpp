@@ -26,6 +26,14 @@ void check_format_options(const std::string& path, TableFormat format, const Poi
   if (format == TableFormat::header) checked_table_name(path, options.name);
 }
 
+// A file of one set, of several written one file each, says which it holds: the header
+// describes the whole run ("3 sets of 16 points, seed 5 + set index").
+std::vector<std::string> with_set_line(std::vector<std::string> header, std::size_t set, std::size_t sets) {
+  header.insert(header.begin() + (header.empty() ? 0 : 1),
+                "this file: set " + std::to_string(set) + " of " + std::to_string(sets));
+  return header;
+}
+
 // One set of a table, as its own table.
 TableView single_set(const TableView& table, std::size_t set) {
   TableView one = table;
@@ -86,7 +94,8 @@ void PointOutput::write(std::span<const PointSet> sets, const std::vector<std::s
     write_one(*files_[0], table, sets, header);
     return;
   }
-  for (std::size_t k = 0; k < sets.size(); ++k) write_one(*files_[k], single_set(table, k), sets.subspan(k, 1), header);
+  for (std::size_t k = 0; k < sets.size(); ++k)
+    write_one(*files_[k], single_set(table, k), sets.subspan(k, 1), with_set_line(header, k, sets.size()));
 }
 
 void PointOutput::write(const TableView& table, const std::vector<std::string>& header) {
@@ -94,7 +103,8 @@ void PointOutput::write(const TableView& table, const std::vector<std::string>& 
     write_one(*files_[0], table, {}, header);
     return;
   }
-  for (std::size_t k = 0; k < table.sets; ++k) write_one(*files_[k], single_set(table, k), {}, header);
+  for (std::size_t k = 0; k < table.sets; ++k)
+    write_one(*files_[k], single_set(table, k), {}, with_set_line(header, k, table.sets));
 }
 
 void PointOutput::write_one(OutputFile& file, const TableView& table, std::span<const PointSet> point_sets,
