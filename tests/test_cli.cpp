@@ -1,6 +1,7 @@
 // The command line as a user runs it: outputs, determinism, and bad input.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 
 #include "bluetile/core/point_file.h"
@@ -202,6 +203,18 @@ TEST(Cli, OptionsARunWouldNotUseAreRefused) {
   auto r = run_bluetile({"relax", "-n", "64", "-k", "1", "--engine", "exact", "--resolution", "64", "--id-image",
                          dir.file("id.png"), "-o", out});
   EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(Cli, IdImagesTakeTheSetIndexAsTheOutputDoes) {
+  // --id-image 'id-{}.png' with --sets 3 wrote one file literally named "id-{}.png".
+  TempDir dir;
+  auto r = run_bluetile({"relax", "-n", "64", "-k", "1", "--sets", "3", "--engine", "exact", "--resolution", "64",
+                         "--id-image", dir.file("id-{}.png"), "-o", dir.file("p.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(dir.list().size(), 4u);
+  for (const char* name : {"id-0.png", "id-1.png", "id-2.png"})
+    EXPECT_TRUE(std::filesystem::exists(dir.file(name))) << name;
+  EXPECT_NE(read_text(dir.file("id-0.png")), read_text(dir.file("id-2.png")));  // each set's own cells
 }
 
 }  // namespace

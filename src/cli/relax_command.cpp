@@ -67,10 +67,17 @@ void run_relax(const RelaxOptions& o, const CLI::App& command) {
     inputs = read_input_sets(o.input, "relax");
   }
   // Every output is declared, and so checked, before any work.
-  PointOutput point_output(outputs, o.output, o.input.empty() ? static_cast<std::size_t>(o.sets) : inputs.size());
+  const std::size_t set_count = o.input.empty() ? static_cast<std::size_t>(o.sets) : inputs.size();
+  PointOutput point_output(outputs, o.output, set_count);
   if (!o.log.empty()) check_text_output_name("--log", o.log, "a CSV log");
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
-  OutputFile* id_image = o.id_image.empty() ? nullptr : &outputs.add(o.id_image);
+  // The ID image of the first set, or with '{}' in the name one image per set, as --output.
+  std::vector<OutputFile*> id_images;
+  if (!o.id_image.empty()) {
+    const bool each = o.id_image.find("{}") != std::string::npos;
+    for (std::size_t k = 0; k < (each ? set_count : 1); ++k)
+      id_images.push_back(&outputs.add(each ? set_file_name(o.id_image, k, set_count) : o.id_image));
+  }
 
   // The map is stretched over the unit square, whatever its aspect ratio. Random starts follow
   // it; the cells are weighted so that the relaxed set keeps following it.
@@ -123,7 +130,7 @@ void run_relax(const RelaxOptions& o, const CLI::App& command) {
   for (std::size_t k = 0; k < scenes.size(); ++k) inputs[k].points = scenes[k].sites;
   point_output.write(inputs, header);
   if (log_file) log_file->close();
-  if (id_image) write_id_image(o.engine, *engine, scenes[0], *id_image);
+  for (std::size_t k = 0; k < id_images.size(); ++k) write_id_image(o.engine, *engine, scenes[k], *id_images[k]);
   outputs.publish();
 }
 
@@ -149,7 +156,8 @@ void add_relax_command(CLI::App& app) {
   add_point_output_options(cmd, o->output, "Output points ('-': standard output)");
   add_output_option(cmd, "--log", o->log, kCsvLog, "Write a CSV log of energy and displacement per iteration");
   add_output_option(cmd, "--id-image", o->id_image, {.formats = kImageFormats},
-                    "Write the raster ID buffer of the result as an image (cells coloured, sites drawn)");
+                    "Write the raster ID buffer of the result as an image (cells coloured, sites drawn): of the first "
+                    "set, or with {} in the name one image per set");
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
   add_input_option(cmd, "--density-map", o->density_map, InputKind::image,
                    "Relax toward this image's density (bright means dense unless --invert), stretched over the unit "
