@@ -5,6 +5,8 @@
 #include <fstream>
 
 #include "bluetile/core/point_file.h"
+#include "bluetile/io/image_file.h"
+#include "bluetile/voronoi/exact_engine.h"
 #include "test_support.h"
 
 namespace bluetile {
@@ -203,6 +205,57 @@ TEST(Cli, OptionsARunWouldNotUseAreRefused) {
   auto r = run_bluetile({"relax", "-n", "64", "-k", "1", "--engine", "exact", "--resolution", "64", "--id-image",
                          dir.file("id.png"), "-o", out});
   EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(Cli, BoundedSetsSayTheirDomainAndStayBounded) {
+  // relax --bounded and stipple wrote no line that analyze reads ("# domain bounded"), so their
+  // sets were analysed, relaxed and measured on the torus unless told again.
+  TempDir dir;
+  auto r = run_bluetile({"relax", "-n", "50", "-k", "3", "--bounded", "-o", dir.file("b.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string made = read_text(dir.file("b.txt"));
+  EXPECT_NE(made.find("\n# domain bounded\n"), std::string::npos) << made.substr(0, 200);
+  EXPECT_EQ(read_point_file(dir.file("b.txt")).declared_boundary, Boundary::bounded);
+  // Relaxed again: bounded (and on the exact engine) as with --bounded.
+  r = run_bluetile({"relax", "-i", dir.file("b.txt"), "-k", "2", "-o", dir.file("again.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_bluetile({"relax", "-i", dir.file("b.txt"), "-k", "2", "--bounded", "--engine", "exact", "-o", dir.file("told.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_point_file(dir.file("again.txt")).points, read_point_file(dir.file("told.txt")).points);
+  // Its cells end at the square's border: the areas sum to 1 with no wrap-around.
+  r = run_bluetile({"centroids", "-i", dir.file("b.txt"), "--engine", "exact", "-o", dir.file("c.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(dir.file("c.txt")).find("bounded"), std::string::npos);
+  const Scene scene = [&] {
+    Scene s = make_scene(read_point_file(dir.file("b.txt")).points);
+    s.boundary = Boundary::bounded;
+    return s;
+  }();
+  std::ifstream table(dir.file("c.txt"));
+  std::string line;
+  std::getline(table, line);  // the header
+  const SceneCells cells = ExactEngine().compute(scene);
+  for (const Cell& cell : cells.cells) {
+    double cx = 0.0, cy = 0.0, area = 0.0;
+    table >> cx >> cy >> area;
+    EXPECT_EQ(cx, cell.centroid.x);
+    EXPECT_EQ(cy, cell.centroid.y);
+    EXPECT_EQ(area, cell.area);
+  }
+  // stipple's output declares it too, and analyze then measures Euclidean distances.
+  write_image_file(dir.file("map.png"), 4, 4, 1, std::vector<float>(16, 0.5f), SampleFormat::uint8);
+  r = run_bluetile({"stipple", "--image", dir.file("map.png"), "-n", "40", "-k", "2", "-o", dir.file("s.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_point_file(dir.file("s.txt")).declared_boundary, Boundary::bounded);
+  r = run_bluetile({"analyze", "-i", dir.file("s.txt"), "-o", dir.file("an"), "--no-psa-measures"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_text(dir.file("an/report.txt")).find("bounded (Euclidean distances in the unit square)"),
+            std::string::npos);
+  // progressive builds on the torus: a bounded base is refused, not made periodic.
+  r = run_bluetile({"progressive", "-i", dir.file("b.txt"), "--add", "10", "-o", dir.file("p.txt")});
+  EXPECT_EQ(r.err, "bluetile: " + dir.file("b.txt") +
+                       ": declares '# domain bounded'; progressive builds its levels on the torus\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("p.txt")));
 }
 
 TEST(Cli, IdImagesTakeTheSetIndexAsTheOutputDoes) {

@@ -27,8 +27,13 @@ void run_centroids(const CentroidsOptions& o, const CLI::App& command) {
   std::vector<PointSet> sets = read_input_sets(o.input, "centroids");
   PointOutput output(outputs, o.output, sets.size());
 
+  // A bounded set (relax --bounded, stipple) is measured in the unit square, as it was made.
+  const bool bounded = declared_domain(sets, o.input) == Boundary::bounded;
   std::vector<Scene> scenes;
-  for (PointSet& set : sets) scenes.push_back(make_scene(std::move(set.points)));
+  for (PointSet& set : sets) {
+    scenes.push_back(make_scene(std::move(set.points)));
+    if (bounded) scenes.back().boundary = Boundary::bounded;
+  }
   auto engine = make_engine(o.engine);
   std::vector<SceneCells> results(scenes.size());
   engine->compute(scenes, results);
@@ -42,7 +47,8 @@ void run_centroids(const CentroidsOptions& o, const CLI::App& command) {
     const Cell& cell = results[k].cells[i];
     return c == 0 ? cell.centroid.x : c == 1 ? cell.centroid.y : cell.area;
   };
-  output.write(table, {"bluetile centroids of " + input_name(o.input) + ", engine " + std::string(engine->name()) + ": cx cy area"});
+  output.write(table, {"bluetile centroids of " + input_name(o.input) + ", engine " + std::string(engine->name()) +
+                           (bounded ? ", bounded (its '# domain bounded' line)" : "") + ": cx cy area"});
   outputs.publish();
   std::size_t coincident = 0;
   for (const SceneCells& r : results) coincident += r.coincident_count;

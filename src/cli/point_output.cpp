@@ -127,6 +127,16 @@ void PointOutput::write_one(OutputFile& file, const TableView& table, std::span<
   });
 }
 
+std::optional<Boundary> declared_domain(const std::vector<PointSet>& sets, const std::string& path) {
+  std::optional<Boundary> declared;
+  for (const PointSet& set : sets) {
+    if (declared && set.declared_boundary && *set.declared_boundary != *declared)
+      throw Error(input_name(path) + ": its sets declare both '# domain bounded' and '# domain periodic'");
+    if (set.declared_boundary) declared = set.declared_boundary;
+  }
+  return declared;
+}
+
 std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command) {
   std::vector<PointSet> sets = read_point_table(path);
   if (sets.empty()) throw Error(input_name(path) + ": no points");

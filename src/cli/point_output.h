@@ -7,6 +7,7 @@
 // --format).
 #pragma once
 
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -35,6 +36,10 @@ void add_point_output_options(CLI::App* command, PointOutputOptions& options, co
 // The point sets of --input `path` (every format read_point_table reads), refused unless every
 // set holds at least one point: `command` is named in the message ("relax needs ...").
 std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command);
+
+// The domain a point file's "# domain bounded" or "# domain periodic" line declares (point_file.h),
+// if any; sets of `path` that declare different ones are refused.
+std::optional<Boundary> declared_domain(const std::vector<PointSet>& sets, const std::string& path);
 
 // `pattern` with every "{}" replaced by the set's index, zero-padded to the width of the last.
 std::string set_file_name(const std::string& pattern, std::size_t set, std::size_t sets);

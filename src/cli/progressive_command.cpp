@@ -51,6 +51,8 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
   if (!o.input.empty()) {
     sets = read_point_table(o.input);
     if (sets.empty()) throw Error(input_name(o.input) + ": no points");
+    if (declared_domain(sets, o.input) == Boundary::bounded)
+      throw Error(input_name(o.input) + ": declares '# domain bounded'; progressive builds its levels on the torus");
   }
   PointOutput output(outputs, o.output, sets.size());  // names and formats checked before any work
 

@@ -49,7 +49,7 @@ std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_
   return density ? density_random_points(*density, count, seed, set) : uniform_random_points(count, seed, set);
 }
 
-void run_relax(const RelaxOptions& o, const CLI::App& command) {
+void run_relax(RelaxOptions o, const CLI::App& command) {
   if (o.input.empty()) {
     check_memory(static_cast<double>(o.sets) * static_cast<double>(o.count) * kRelaxBytesPerSite,
                  "--count " + std::to_string(o.count) + " x --sets " + std::to_string(o.sets));
@@ -63,9 +63,27 @@ void run_relax(const RelaxOptions& o, const CLI::App& command) {
   // The input's sets (UTK's '#' lines, .npy, .bpt: each set is relaxed on its own), or the
   // random starts below.
   std::vector<PointSet> inputs;
+  bool declared_bounded = false;
   if (!o.input.empty()) {
     inputs = read_input_sets(o.input, "relax");
+    // A bounded set (relax --bounded, stipple) stays bounded, as analyze measures it.
+    const std::optional<Boundary> declared = declared_domain(inputs, o.input);
+    if (declared == Boundary::periodic && o.bounded)
+      throw Error("--bounded, but " + input_name(o.input) + " declares '# domain periodic'");
+    declared_bounded = declared == Boundary::bounded && !o.bounded;
+    o.bounded = o.bounded || declared_bounded;
   }
+  // Both engines weight cells and bound domains, the raster one only on its host per-pixel
+  // path, measured 5x slower than the exact engine on stipples (docs/BENCHMARKS.md): exact is
+  // the default there.
+  std::string why_exact;
+  if (command.count("--engine") == 0 && (!o.density_map.empty() || o.bounded)) {
+    o.engine.engine = "exact";
+    why_exact = declared_bounded ? ", the default for a set declared '# domain bounded'"
+                : o.bounded      ? ", the default with --bounded"
+                                 : ", the default with --density-map";
+  }
+  refuse_unused_raster_options(command, o.engine, why_exact, !o.id_image.empty());
   // Every output is declared, and so checked, before any work.
   const std::size_t set_count = o.input.empty() ? static_cast<std::size_t>(o.sets) : inputs.size();
   PointOutput point_output(outputs, o.output, set_count);
@@ -127,6 +145,8 @@ void run_relax(const RelaxOptions& o, const CLI::App& command) {
       (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + input_name(o.input)) +
       (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "") +
       (o.density_map.empty() ? "" : ", density map " + o.density_map) + (o.bounded ? ", bounded" : "")};
+  // The line analyze reads to measure a bounded set in the unit square, not on the torus.
+  if (o.bounded) header.push_back("domain bounded");
   for (std::size_t k = 0; k < scenes.size(); ++k) inputs[k].points = scenes[k].sites;
   point_output.write(inputs, header);
   if (log_file) log_file->close();
@@ -163,24 +183,17 @@ void add_relax_command(CLI::App& app) {
                    "Relax toward this image's density (bright means dense unless --invert), stretched over the unit "
                    "square; random starts are drawn from it")
       ->check(CLI::ExistingFile);
-  cmd->add_flag("--bounded", o->bounded, "Cells end at the unit square's border instead of wrapping around");
+  cmd->add_flag("--bounded", o->bounded,
+                "Cells end at the unit square's border instead of wrapping around (also chosen by the input's '# "
+                "domain bounded' line, which the output gets)");
   add_density_transfer_options(cmd, o->transfer);
   add_weight_exponent_option(cmd, o->weight_exponent);
   add_engine_options(cmd, o->engine);
   cmd->get_option("--engine")->description(
-      "Centroid engine: raster (Vulkan) or exact (CPU); exact is the default with --density-map or --bounded");
+      "Centroid engine: raster (Vulkan) or exact (CPU); exact is the default with --density-map or a bounded domain");
   cmd->callback([o, cmd] {
     if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");
     refuse_transfer_without_map(*cmd, !o->density_map.empty());
-    // Both engines weight cells and bound domains, the raster one only on its host per-pixel
-    // path, measured 5x slower than the exact engine on stipples (docs/BENCHMARKS.md): exact is
-    // the default there.
-    std::string why_exact;
-    if (cmd->count("--engine") == 0 && (!o->density_map.empty() || o->bounded)) {
-      o->engine.engine = "exact";
-      why_exact = o->bounded ? ", the default with --bounded" : ", the default with --density-map";
-    }
-    refuse_unused_raster_options(*cmd, o->engine, why_exact, !o->id_image.empty());
     run_relax(*o, *cmd);
   });
 }

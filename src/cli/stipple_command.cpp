@@ -130,7 +130,9 @@ void run_stipple(const StippleOptions& o, const CLI::App& command) {
       "bluetile stipple: " + std::to_string(count) + " points, " + std::to_string(result.iterations) +
           " iterations, engine " + std::string(engine->name()) + ", seed " + std::to_string(o.seed) + ", image " +
           o.image + " (" + transfer_text(o.transfer) + ")",
-      std::string("domain ") + size + (o.periodic ? ", periodic" : ", bounded") + " (y up: image row 0 at the top)"};
+      // The line analyze reads (point_file.h: "domain bounded" or "domain periodic"), then the region.
+      o.periodic ? "domain periodic" : "domain bounded",
+      std::string("region ") + size + " (y up: image row 0 at the top)"};
   if (points_file) points_file->write(std::vector<PointSet>{PointSet{scene.sites, {}}}, header);
   const std::vector<double> radii = dot_radii(scene.sites, *map, domain, radius, o.drawing.follow_density);
   if (svg_file) {
