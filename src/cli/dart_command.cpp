@@ -8,6 +8,7 @@
 #include "cli/numeric_options.h"
 #include "cli/point_output.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/sampling/dart_throwing.h"
@@ -51,10 +52,12 @@ void add_dart_command(CLI::App& app) {
       DartResult r = throw_darts(one);
       char line[200];
       std::snprintf(line, sizeof line,
-                    "bluetile dart: %zu points, seed %llu, radius %.6g%s -> %.6g (%zu reductions, %zu trial%s)",
-                    r.points.size(), static_cast<unsigned long long>(one.seed), r.initial_radius,
-                    r.initial_radius == kMaxDartRadius ? " (half the torus)" : "", r.final_radius, r.reductions,
-                    r.trials, r.trials == 1 ? "" : "s");
+                    "bluetile dart: %s, seed %llu, radius %.6g%s -> %.6g (%s, %s)",
+                    counted(static_cast<long long>(r.points.size()), "point").c_str(),
+                    static_cast<unsigned long long>(one.seed), r.initial_radius,
+                    r.initial_radius == kMaxDartRadius ? " (half the torus)" : "", r.final_radius,
+                    counted(static_cast<long long>(r.reductions), "reduction").c_str(),
+                    counted(static_cast<long long>(r.trials), "trial").c_str());
       if (k_sets == 1) header.push_back(line);
       if (*verbose) std::fprintf(stderr, "%s\n", line);
       results[k].points = std::move(r.points);

@@ -139,14 +139,14 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
   note_exact_hand_over(*engine);
   std::string how = !o.input.empty() ? "on " + input_name(o.input) + ", seed " + std::to_string(o.seed)
                     : filled         ? "from no points, seed " + std::to_string(o.seed)
-                                     : "from " + std::to_string(o.count) + " random points, seed " + std::to_string(o.seed);
+                                     : "from " + counted(o.count, "random point") + ", seed " + std::to_string(o.seed);
   if (sets.size() > 1) how += " + set index";
   const std::string what = sets.size() == 1 ? std::to_string(sets[0].points.size()) + " points"
                                             : std::to_string(sets.size()) + " sets of " +
                                                   std::to_string(sets[0].points.size()) + " points";
   const std::string method = filled ? (o.input.empty() ? "every point filled, no relaxation" : "every new point filled, no relaxation")
-                                    : (o.tolerance > 0.0 ? "at most " : "") + std::to_string(o.iterations) +
-                                          " iterations per level" +
+                                    : (o.tolerance > 0.0 ? "at most " : "") + counted(o.iterations, "iteration") +
+                                          " per level" +
                                           (o.tolerance > 0.0 ? " (tolerance " + shortest_text(o.tolerance) + ")" : "") +
                                           ", engine " + std::string(engine->name()) + ", placement " + o.placement;
   const std::vector<std::string> header = {

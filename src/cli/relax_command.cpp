@@ -13,6 +13,7 @@
 #include "cli/output_names.h"
 #include "cli/relax_log.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
@@ -137,11 +138,10 @@ void run_relax(RelaxOptions o, const CLI::App& command) {
   log.finish(result, o.tolerance, o.iterations);
   note_exact_hand_over(*engine);
 
-  const std::string what = inputs.size() == 1 ? std::to_string(n) + " points"
-                                              : std::to_string(inputs.size()) + " sets of " + std::to_string(n) + " points";
+  const std::string what = inputs.size() == 1 ? counted(static_cast<long long>(n), "point")
+                                              : std::to_string(inputs.size()) + " sets of " + counted(static_cast<long long>(n), "point");
   std::vector<std::string> header = {
-      "bluetile relax: " + what + ", " + std::to_string(result.iterations) +
-      " iterations, engine " + std::string(engine->name()) +
+      "bluetile relax: " + what + ", " + counted(result.iterations, "iteration") + ", engine " + std::string(engine->name()) +
       (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + input_name(o.input)) +
       (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "") +
       (o.density_map.empty() ? "" : ", density map " + o.density_map) + (o.bounded ? ", bounded" : "")};

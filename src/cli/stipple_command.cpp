@@ -19,6 +19,7 @@
 #include "cli/relax_log.h"
 #include "cli/stipple_drawing.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/io/image.h"
@@ -127,8 +128,8 @@ void run_stipple(const StippleOptions& o, const CLI::App& command) {
   char size[64];
   std::snprintf(size, sizeof size, "%.17g x %.17g", domain.size.x, domain.size.y);
   const std::vector<std::string> header = {
-      "bluetile stipple: " + std::to_string(count) + " points, " + std::to_string(result.iterations) +
-          " iterations, engine " + std::string(engine->name()) + ", seed " + std::to_string(o.seed) + ", image " +
+      "bluetile stipple: " + counted(static_cast<long long>(count), "point") + ", " +
+          counted(result.iterations, "iteration") + ", engine " + std::string(engine->name()) + ", seed " + std::to_string(o.seed) + ", image " +
           o.image + " (" + transfer_text(o.transfer) + ")",
       // The line analyze reads (point_file.h: "domain bounded" or "domain periodic"), then the region.
       o.periodic ? "domain periodic" : "domain bounded",

@@ -38,6 +38,10 @@ std::string count_text(double v) {
   return text;
 }
 
+std::string counted(long long n, std::string_view noun) {
+  return std::to_string(n) + " " + std::string(noun) + (n == 1 ? "" : "s");
+}
+
 std::string fixed_text(double v, int decimals) {
   char buffer[352];  // %f of the largest double is 309 digits, plus the decimals asked for
   std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);

@@ -21,6 +21,9 @@ std::string number_text(double v);
 // ("100000000000000", "1.23e+20").
 std::string count_text(double v);
 
+// `n` and the noun, plural unless n is 1 ("1 iteration", "80 iterations"); regular nouns only.
+std::string counted(long long n, std::string_view noun);
+
 // `v` with `decimals` digits after the point ("%.*f"), for tables meant for reading.
 std::string fixed_text(double v, int decimals);
 

@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/relax/void_order.h"
@@ -148,7 +149,7 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
   for (int l = base_levels; l < target_levels; ++l) {
     std::size_t add = from_scratch && l == 0 ? options.count : level_size(total, per_level, options.ratio);
     if (add == 0) {
-      throw Error("ratio " + std::to_string(options.ratio) + " adds no point to a set of " + std::to_string(total) +
+      throw Error("ratio " + shortest_text(options.ratio) + " adds no point to a set of " + std::to_string(total) +
                   " (level " + std::to_string(l) + ")");
     }
     if (add > kMaxHierarchyPoints - total) {

@@ -273,7 +273,7 @@ TileSet relax_wang_tiles(CentroidEngine& engine, const WangOptions& options) {
     WangLevelOptions level = options.level;
     level.add = l == 0 ? options.points : level_size(total, 0, options.ratio);
     if (level.add == 0)
-      throw Error("ratio " + std::to_string(options.ratio) + " adds no point to tiles of " + std::to_string(total) +
+      throw Error("ratio " + shortest_text(options.ratio) + " adds no point to tiles of " + std::to_string(total) +
                   " (level " + std::to_string(l) + ")");
     level.seed = derive_seed(options.seed, static_cast<std::uint64_t>(l));
     add_wang_level(engine, set, level);
