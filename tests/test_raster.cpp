@@ -6,6 +6,8 @@
 // skip (lavapipe is installed on CI and developer machines, so there they run).
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -13,6 +15,7 @@
 #include <filesystem>
 #include <map>
 #include <set>
+#include <sstream>
 
 #include <sys/wait.h>
 
@@ -314,6 +317,31 @@ TEST(RasterTool, PixelWorkOptionMovesTheWorkNotTheResult) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("bounded domain"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("bounded.txt")));
+}
+
+TEST(RasterTool, CellsNoSampleReachedAreSaidToHaveGoneToTheExactEngine) {
+  // 1000 cells on 16 x 16 point samples: most were measured by the exact engine, and only the
+  // log's fallbacks column said so.
+  REQUIRE_VULKAN();
+  test::TempDir dir;
+  test::CommandResult r = test::run_bluetile({"relax", "-n", "1000", "-k", "1", "--resolution", "16", "--coverage",
+                                              "point", "-o", dir.file("low.txt"), "--log", dir.file("log.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::istringstream log(test::read_text(dir.file("log.csv")));
+  std::string line;
+  std::getline(log, line);  // the column names
+  std::getline(log, line);  // iteration 1
+  std::vector<std::string> fields;
+  std::istringstream row(line);
+  for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+  ASSERT_EQ(fields.size(), 7u) << line;
+  EXPECT_GT(std::stoi(fields[5]), 0) << line;
+  EXPECT_EQ(r.err, "bluetile: note: the raster engine measured " + fields[5] +
+                       " cells (over every iteration) with the exact engine: point coverage found no pixel centre in "
+                       "them (a higher --resolution, or --coverage area, draws them)\n");
+  r = test::run_bluetile({"relax", "-n", "100", "-k", "1", "--coverage", "point", "-o", dir.file("fine.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
 }
 
 TEST(RasterTool, DevicesCommandAndIdImage) {

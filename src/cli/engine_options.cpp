@@ -72,8 +72,16 @@ void note_faster_engine(const CentroidEngine& engine, double site_iterations) {
 
 void note_exact_hand_over(const CentroidEngine& engine) {
   const auto* raster = dynamic_cast<const RasterEngine*>(&engine);
-  if (raster == nullptr || raster->stats().exact_scenes == 0) return;
+  if (raster == nullptr) return;
   const RasterStats& s = raster->stats();
+  if (s.fallback_cells > 0) {
+    // Only the --log's fallbacks column said so: a resolution too low for the cells looked fine.
+    std::fprintf(stderr,
+                 "bluetile: note: the raster engine measured %llu cells (over every iteration) with the exact engine: point "
+                 "coverage found no pixel centre in them (a higher --resolution, or --coverage area, draws them)\n",
+                 static_cast<unsigned long long>(s.fallback_cells));
+  }
+  if (s.exact_scenes == 0) return;
   std::fprintf(stderr,
                "bluetile: note: the raster engine measured %llu of %llu scene computations with the exact engine: their sites "
                "lie on lines or in clusters, whose sliver cells cost about N^2 to rasterize (docs/RASTER.md, \"Sliver "

@@ -34,7 +34,8 @@ std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options);
 // the fast path without reading the benchmarks. `site_iterations`: cells measured over the run.
 void note_faster_engine(const CentroidEngine& engine, double site_iterations);
 // After a raster run, one line on stderr when scenes went to the exact engine (sites on lines or
-// in clusters: RasterOptions::max_cone_overlap), so a user is not left thinking they were drawn.
+// in clusters: RasterOptions::max_cone_overlap), and one when cells did (point coverage whose
+// samples missed them), so a user is not left thinking they were drawn.
 void note_exact_hand_over(const CentroidEngine& engine);
 
 // Writes the raster ID buffer of `scene` as an image (cells coloured, sites drawn). Uses
