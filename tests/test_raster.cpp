@@ -6,8 +6,6 @@
 // skip (lavapipe is installed on CI and developer machines, so there they run).
 #include <gtest/gtest.h>
 
-#include <sstream>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
