@@ -337,6 +337,9 @@ TEST(RasterTool, CellsNoSampleReachedAreSaidToHaveGoneToTheExactEngine) {
   EXPECT_EQ(r.err, "bluetile: note: the raster engine measured " + fields[5] +
                        " cells (over every iteration) with the exact engine: point coverage found no pixel centre in "
                        "them (a higher --resolution, or --coverage area, draws them)\n");
+  // The header names the settings that shaped the cells (it said "engine raster" only).
+  EXPECT_NE(test::read_text(dir.file("low.txt")).find(", engine raster (point coverage, resolution 16, quad cones),"),
+            std::string::npos);
   r = test::run_bluetile({"relax", "-n", "100", "-k", "1", "--coverage", "point", "-o", dir.file("fine.txt")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err, "");

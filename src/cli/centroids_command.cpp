@@ -47,7 +47,7 @@ void run_centroids(const CentroidsOptions& o, const CLI::App& command) {
     const Cell& cell = results[k].cells[i];
     return c == 0 ? cell.centroid.x : c == 1 ? cell.centroid.y : cell.area;
   };
-  output.write(table, {"bluetile centroids of " + input_name(o.input) + ", engine " + std::string(engine->name()) +
+  output.write(table, {"bluetile centroids of " + input_name(o.input) + ", engine " + engine_text(*engine, o.engine) +
                            (bounded ? ", bounded (its '# domain bounded' line)" : "") + ": cx cy area"});
   outputs.publish();
   std::size_t coincident = 0;

@@ -53,6 +53,12 @@ std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options) {
   return bluetile::make_engine(static_cast<const EngineChoice&>(options));
 }
 
+std::string engine_text(const CentroidEngine& engine, const EngineOptions& options) {
+  if (dynamic_cast<const RasterEngine*>(&engine) == nullptr) return std::string(engine.name());
+  return std::string(engine.name()) + " (" + options.coverage + " coverage, resolution " +
+         (options.resolution > 0 ? std::to_string(options.resolution) : "from N") + ", " + options.cone + " cones)";
+}
+
 void note_faster_engine(const CentroidEngine& engine, double site_iterations) {
   const auto* raster = dynamic_cast<const RasterEngine*>(&engine);
   if (raster == nullptr || !raster->cpu_device()) return;

@@ -29,6 +29,10 @@ void refuse_unused_raster_options(const CLI::App& command, const EngineOptions& 
 // The engine the options ask for; throws Error when it cannot be had.
 std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options);
 
+// The engine as a header names it: "exact", or "raster (area coverage, resolution from N, quad
+// cones)" with the settings that shape its results.
+std::string engine_text(const CentroidEngine& engine, const EngineOptions& options);
+
 // Before a long raster job on a CPU device (lavapipe), one line on stderr with its estimated time
 // and the exact engine's for the same cells (which is several times faster there): a user finds
 // the fast path without reading the benchmarks. `site_iterations`: cells measured over the run.

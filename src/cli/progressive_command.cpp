@@ -148,7 +148,7 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
                                     : (o.tolerance > 0.0 ? "at most " : "") + counted(o.iterations, "iteration") +
                                           " per level" +
                                           (o.tolerance > 0.0 ? " (tolerance " + shortest_text(o.tolerance) + ")" : "") +
-                                          ", engine " + std::string(engine->name()) + ", placement " + o.placement;
+                                          ", engine " + engine_text(*engine, o.engine) + ", placement " + o.placement;
   const std::vector<std::string> header = {
       "bluetile progressive: " + what + " in " + std::to_string(target_levels) + (target_levels == 1 ? " level " : " levels ") +
           how + ", " + method + ", rank order " + rank_order_name(options.rank_order),

@@ -141,7 +141,7 @@ void run_relax(RelaxOptions o, const CLI::App& command) {
   const std::string what = inputs.size() == 1 ? counted(static_cast<long long>(n), "point")
                                               : std::to_string(inputs.size()) + " sets of " + counted(static_cast<long long>(n), "point");
   std::vector<std::string> header = {
-      "bluetile relax: " + what + ", " + counted(result.iterations, "iteration") + ", engine " + std::string(engine->name()) +
+      "bluetile relax: " + what + ", " + counted(result.iterations, "iteration") + ", engine " + engine_text(*engine, o.engine) +
       (o.input.empty() ? ", seed " + std::to_string(o.seed) : ", input " + input_name(o.input)) +
       (o.fixed ? ", first " + std::to_string(o.fixed) + " fixed" : "") +
       (o.density_map.empty() ? "" : ", density map " + o.density_map) + (o.bounded ? ", bounded" : "")};

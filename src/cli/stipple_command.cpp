@@ -129,7 +129,7 @@ void run_stipple(const StippleOptions& o, const CLI::App& command) {
   std::snprintf(size, sizeof size, "%.17g x %.17g", domain.size.x, domain.size.y);
   const std::vector<std::string> header = {
       "bluetile stipple: " + counted(static_cast<long long>(count), "point") + ", " +
-          counted(result.iterations, "iteration") + ", engine " + std::string(engine->name()) + ", seed " + std::to_string(o.seed) + ", image " +
+          counted(result.iterations, "iteration") + ", engine " + engine_text(*engine, o.engine) + ", seed " + std::to_string(o.seed) + ", image " +
           o.image + " (" + transfer_text(o.transfer) + ")",
       // The line analyze reads (point_file.h: "domain bounded" or "domain periodic"), then the region.
       o.periodic ? "domain periodic" : "domain bounded",
