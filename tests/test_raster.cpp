@@ -337,6 +337,15 @@ TEST(RasterTool, CellsNoSampleReachedAreSaidToHaveGoneToTheExactEngine) {
   EXPECT_EQ(r.err, "bluetile: note: the raster engine measured " + fields[5] +
                        " cells (over every iteration) with the exact engine: point coverage found no pixel centre in "
                        "them (a higher --resolution, or --coverage area, draws them)\n");
+  // A resolution past the device's budget says the budget (it said only "exceeds").
+  test::CommandResult big = test::run_bluetile({"relax", "-n", "10", "-k", "1", "--resolution", "65536", "-o",
+                                                dir.file("big.txt")});
+  EXPECT_EQ(big.exit_code, 1);
+  EXPECT_EQ(big.err.rfind("bluetile: raster engine: a scene of 65536 x 65536 pixels exceeds the device's memory budget "
+                          "of ", 0),
+            0u)
+      << big.err;
+  EXPECT_NE(big.err.find(" pixels a pass (a side of "), std::string::npos) << big.err;
   // The header names the settings that shaped the cells (it said "engine raster" only).
   EXPECT_NE(test::read_text(dir.file("low.txt")).find(", engine raster (point coverage, resolution 16, quad cones),"),
             std::string::npos);

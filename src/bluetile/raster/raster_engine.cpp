@@ -38,6 +38,7 @@
 #include <mutex>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/raster/raster_cells.h"
 #include "bluetile/raster/raster_coverage.h"
@@ -185,7 +186,9 @@ struct RasterEngine::Impl {
                     " sites exceeds what the device's largest storage buffer holds; use the exact engine");
       if (double(w) * h > pixel_budget)
         throw Error("raster engine: a scene of " + std::to_string(w) + " x " + std::to_string(h) +
-                    " pixels exceeds the device's memory budget; use a smaller resolution");
+                    " pixels exceeds the device's memory budget of " + count_text(pixel_budget) +
+                    " pixels a pass (a side of " + std::to_string(static_cast<long>(std::sqrt(pixel_budget))) +
+                    "); use a smaller resolution");
       job->origin_x = static_cast<int>(x);
       job->origin_y = static_cast<int>(y);
       x += w;
