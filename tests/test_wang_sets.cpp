@@ -671,6 +671,11 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
               std::string::npos)
         << noted.out;
     EXPECT_EQ(noted.out.find("note: levels 0-0"), std::string::npos) << noted.out;
+    // "-" is standard input, as for tile --tiles (it was "File does not exist: -").
+    test::CommandResult piped =
+        test::run_command("sh -c \"'" BLUETILE_BINARY "' wang-check - --period 4 < '" + path + "'\"");
+    ASSERT_EQ(piped.exit_code, 0) << piped.err;
+    EXPECT_EQ(piped.out, "stdin" + noted.out.substr(path.size()));
     // Options that need another were taken and ignored.
     EXPECT_EQ(test::run_bluetile({"wang-check", path, "--untiled-iterations", "5"}).err,
               "bluetile: --untiled-iterations requires --untiled (see --help)\n");

@@ -87,7 +87,7 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
                  "the spectrum of the " + std::to_string(n) + "-point plane");
   }
   SeamCheck seams = check_seams(set);
-  std::printf("%s: %s set, %zu tiles\n%s", o.input.c_str(), std::string(tile_set_kind_name(set.kind)).c_str(),
+  std::printf("%s: %s set, %zu tiles\n%s", input_name(o.input).c_str(), std::string(tile_set_kind_name(set.kind)).c_str(),
               set.tiles.size(), seam_report(seams).c_str());
   // A set whose tiles hold different counts (the reader takes up to 4x): every row below measures
   // the smallest tile's count, and the rest would go unmentioned.
@@ -163,7 +163,7 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
     sweep_json.push_back({{"k", k}, {"N", m.count}, {"rho", m.rho}, {"LF", m.low_frequency},
                           {"lattice_peak", m.lattice_peak}, {"C_LF", m.coherence_low}, {"C_mid", m.coherence_mid}});
   }
-  nlohmann::json stats = {{"input", o.input},
+  nlohmann::json stats = {{"input", input_name(o.input)},
                           {"set", tile_set_kind_name(set.kind)},
                           {"tiles", tiles},
                           {"blocks", seams.blocks},
@@ -204,7 +204,7 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
   file("plane.txt").write([&](OutputStream& out) {
     write_points(out, PointSet{plane.points, plane.levels},
                  {"bluetile wang-check: " + std::to_string(o.period) + "x" + std::to_string(o.period) +
-                      " torus tiling of " + o.input + ", seed " + std::to_string(o.seed),
+                      " torus tiling of " + input_name(o.input) + ", seed " + std::to_string(o.seed),
                   "columns: x y level"});
   });
   Periodogram full = compute_periodogram(plane.points, default_periodogram_size(plane.points.size()));
@@ -216,7 +216,7 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
     write_image(file("spectrum-untiled.png"), draw_spectrum(reference));
     curves.push_back({"untiled Lloyd", radial_power(reference), untiled.size()});
   }
-  write_image(file("radial.png"), draw_radial(curves, o.input));
+  write_image(file("radial.png"), draw_radial(curves, input_name(o.input)));
   PointsFigure figure;
   figure.points = plane.points;
   write_image(file("points.png"), draw_points(figure, o.image_size));
@@ -230,7 +230,7 @@ void add_wang_check_command(CLI::App& app) {
   auto c = std::make_shared<CheckOptions>();
   CLI::App* check = app.add_subcommand(
       "wang-check", "Seam check of a tile set (every admissible 2x2 block) and the analysis of a tiled plane");
-  add_input_option(check, "tiles", c->input, InputKind::tiles, "Tile-set file")->required()->check(CLI::ExistingFile);
+  add_input_option(check, "tiles", c->input, InputKind::tiles, "Tile-set file ('-': standard input)")->required();
   add_integer_option(check, "--period", c->period, 1, 1024, "The analysed plane is an M x M torus tiling");
   add_seed_option(check, c->seed, "Seed of the tiling");
   add_output_folder_option(check, "-o,--output", c->output,

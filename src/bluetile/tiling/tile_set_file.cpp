@@ -12,6 +12,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/input_file.h"
 #include "bluetile/core/output_file.h"
+#include "bluetile/core/point_file.h"
 #include "bluetile/core/text.h"
 
 namespace bluetile {
@@ -51,9 +52,6 @@ std::string colours_text(const TileColours& c) {
   return std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]) + " " +
          std::to_string(c[3]);
 }
-
-// Every read checked, out of memory included (input_file.h): never a tile set cut short.
-std::string read_whole_file(const std::string& path) { return read_input(path); }
 
 // Checks one finished tile: ranks a permutation of 0..n-1, levels non-decreasing along ranks.
 // Returns an empty string when the tile is sound, else what is wrong and the index of the point.
@@ -266,7 +264,9 @@ TileSet parse_tile_set(const std::string& text, const std::string& name) {
   return set;
 }
 
-TileSet read_tile_set(const std::string& path) { return parse_tile_set(read_whole_file(path), path); }
+// Every read checked, out of memory included (input_file.h): never a tile set cut short. "-" is
+// standard input, named "stdin" in messages.
+TileSet read_tile_set(const std::string& path) { return parse_tile_set(read_input(path), input_name(path)); }
 
 std::string format_tile_set(const TileSet& set) {
   validate_tile_set(set);
