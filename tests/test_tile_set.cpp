@@ -316,6 +316,8 @@ std::string wang8_file(const std::string& tile3 = "# tile 3 0 1 1 1\n0.5 0.5 0 0
 TEST(TileSet, MalformedFilesNameLineAndValue) {
   EXPECT_EQ(parse_error(wang8_file()), "");
   EXPECT_EQ(parse_error("\xEF\xBB\xBF" + wang8_file()), "");  // byte-order mark accepted
+  // "# Tile 3 ..." was a comment, and its points tile 2's: "duplicate rank".
+  EXPECT_EQ(parse_error(wang8_file("# Tile 3 0 1 1 1\n0.5 0.5 0 0\n")), "t.txt:9: 'Tile' is not a directive: write '# tile ...'");
   // Spaces an editor leaves at the end of the first line made the file "not a tile-set file".
   EXPECT_EQ(parse_error("# bluetile tiles 1  \t" + wang8_file().substr(18)), "");
   EXPECT_EQ(parse_error("0.5 0.5 0 0\n"), "t.txt:1: not a tile-set file: the first line must be '# bluetile tiles 1'");

@@ -161,6 +161,12 @@ TileSet parse_tile_set(const std::string& text, const std::string& name) {
       std::vector<std::string_view> words = tokens;
       if (words[0] == "#") words.erase(words.begin());
       else words[0].remove_prefix(1);
+      // "# Tile 3 0 1 1 1" was read as a comment, and its points as the tile before's: a line
+      // that looks like a tile directive but for the case is refused.
+      long long looks_like_id = 0;
+      if (rules && words.size() >= 6 && words[0] != "tile" && lower_case(std::string(words[0])) == "tile" &&
+          parse_int(words[1], looks_like_id))
+        fail(quoted(words[0]) + " is not a directive: write '# tile ...'");
       if (!words.empty() && words[0] == "set") {
         if (rules) fail("a second set line");
         if (words.size() != 4 || words[2] != "colours") fail("expected '# set KIND colours C', got " + quoted(line));
