@@ -21,6 +21,23 @@ namespace pybluetile {
 
 using namespace nb::literals;
 
+void check_engine_choice(const EngineChoice& choice) {
+  bluetile::validate(choice);
+  if (choice.engine != "exact") return;
+  const EngineChoice defaults;
+  const std::pair<const char*, std::string> settings[] = {
+      {"resolution", choice.resolution != defaults.resolution ? std::to_string(choice.resolution) : ""},
+      {"coverage", choice.coverage != defaults.coverage ? "'" + choice.coverage + "'" : ""},
+      {"cone", choice.cone != defaults.cone ? "'" + choice.cone + "'" : ""},
+      {"device", choice.device != defaults.device ? "'" + choice.device + "'" : ""},
+      {"pixel_work", choice.pixel_work != defaults.pixel_work ? "'" + choice.pixel_work + "'" : ""}};
+  for (const auto& [name, value] : settings)
+    if (!value.empty())
+      throw nb::value_error((std::string(name) + "=" + value +
+                             ": a raster engine setting, and the exact engine runs here; engine=\"raster\" uses it")
+                                .c_str());
+}
+
 namespace {
 
 // The tool's limits (relax --count, --sets, --iterations).

@@ -15,8 +15,9 @@ namespace pybluetile {
 // ranges; a bad one raises pybluetile.Error (a ValueError) naming the argument.
 using bluetile::EngineChoice;
 
-// Checks the choice before any work.
-inline void check_engine_choice(const EngineChoice& choice) { bluetile::validate(choice); }
+// Checks the choice before any work: its names and ranges, and, as the tool does, raster
+// settings given with the exact engine, where they would change nothing.
+void check_engine_choice(const EngineChoice& choice);
 using bluetile::make_engine;
 
 // resolution: 0 (from N) or the library's range, which the choice's check names; one past an

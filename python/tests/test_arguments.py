@@ -229,3 +229,18 @@ def test_save_table_refuses_options_its_format_ignores(tmp_path):
     assert list(tmp_path.iterdir()) == []
     bt.save_table(tmp_path / "t.bpt", points, float32=True)
     bt.save_table(tmp_path / "t.h", points, name="table")
+
+
+def test_raster_settings_with_the_exact_engine_are_refused():
+    # As the tool refuses them: they changed nothing, an absent device included.
+    points = bt.random_points(20)
+    with pytest.raises(ValueError, match=r"^resolution=100: a raster engine setting, and the exact engine runs here; "
+                                         r'engine="raster" uses it$'):
+        bt.centroids(points, engine="exact", resolution=100)
+    with pytest.raises(ValueError, match=r"^device='7': a raster engine setting"):
+        bt.relax(count=20, iterations=1, engine="exact", device="7")
+    with pytest.raises(ValueError, match=r"^pixel_work='device': a raster engine setting"):
+        bt.relax(count=20, iterations=1, bounded=True, pixel_work="device")  # exact: the default when bounded
+    with pytest.raises(ValueError, match=r"^coverage='point': a raster engine setting"):
+        bt.stipple(np.ones((4, 4)), count=10, iterations=1, coverage="point")  # exact by default
+    assert bt.relax(count=20, iterations=1, engine="exact", coverage="area").shape == (20, 2)  # the default value
