@@ -287,7 +287,8 @@ weighted by map^``weight_exponent`` (2 keeps the point density proportional to t
 engine: "raster" (Vulkan, lavapipe by default) or "exact" (CPU, exact polygons); None picks the
 tool's default: raster, or exact with a density map or bounded cells. resolution,
 coverage ("area" | "point"), cone ("quad" | "fan"), device and pixel_work ("auto" | "device" |
-"host": where the per-pixel work runs, as ``--pixel-work``; the same bits) set the raster engine.
+"host": where the per-pixel work runs, as ``--pixel-work``; the same bits) set the raster engine,
+and are refused with the exact one.
 With ``history=True`` returns (points, history) where history holds one array per column of
 ``--log``: iteration, energy, max_displacement, mean_displacement, coincident, fallbacks and
 zero_density (sites whose cell has no density, left in place).
