@@ -135,6 +135,7 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
     options.iterations = iterations;
     options.tolerance = tolerance;
     options.keep_history = history;
+    options.on_iteration = [](const bluetile::LloydIteration&) { raise_pending_signals(); };
     result = bluetile::relax_lloyd(*e, scenes, options);
   }
   std::vector<std::vector<bluetile::Point>> relaxed;
@@ -168,6 +169,7 @@ nb::object stipple(const ArrayArg& density_map, const Whole& count, const Whole&
     bluetile::LloydOptions options;
     options.iterations = iterations;
     options.tolerance = tolerance;
+    options.on_iteration = [](const bluetile::LloydIteration&) { raise_pending_signals(); };
     result = bluetile::relax_lloyd(*make_engine(choice), scene, options);
   }
   nb::object points = nb::cast(points_to_numpy({scene.sites}, false));
@@ -252,6 +254,8 @@ nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base
     const bool filled = options.rank_order == bluetile::ProgressiveOrder::fill;
     std::unique_ptr<bluetile::CentroidEngine> engine =
         filled ? std::make_unique<bluetile::ExactEngine>() : make_engine(choice);
+    options.on_iteration = [](int, const bluetile::LloydIteration&) { raise_pending_signals(); };
+    options.fill.on_round = [](std::size_t, std::size_t) { raise_pending_signals(); };
     set = bluetile::add_levels(*engine, std::move(set), options);
   }
   const std::size_t n = set.points.size();

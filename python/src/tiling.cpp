@@ -103,6 +103,8 @@ std::string wang_tiles(const std::string& set, const Whole& points_arg, const Wh
   {
     nb::gil_scoped_release release;
     auto e = make_engine(choice);
+    w.level.on_iteration = [](const bluetile::WangIteration&) { raise_pending_signals(); };
+    w.level.fill.on_round = [](std::size_t, std::size_t) { raise_pending_signals(); };
     bluetile::TileSet tiles = bluetile::relax_wang_tiles(*e, w);
     tiles.header.push_back("made by: pybluetile.wang_tiles(set='" + set + "', points=" + std::to_string(points) +
                            ", iterations=" + std::to_string(iterations) + ", warm=" + std::to_string(warm) +

@@ -1,6 +1,7 @@
 """pybluetile against the bluetile tool (bit for bit, same seeds), NumPy as an independent
 reader and writer of .npy, bad input, and the GIL released while the library works."""
 import json
+import os
 import pickle
 import signal
 import subprocess
@@ -451,3 +452,20 @@ def test_an_interrupt_during_the_first_call_is_keyboard_interrupt(tmp_path):
     child.send_signal(signal.SIGINT)
     out, err = child.communicate(timeout=120)
     assert out == "interrupted\n", (child.returncode, err)
+
+
+@pytest.mark.parametrize("call", [
+    lambda: bt.relax(count=100000, iterations=100000, engine="exact"),
+    lambda: bt.progressive(count=50000, levels=3, iterations=100000, engine="exact"),
+])
+def test_ctrl_c_ends_a_long_call(call):
+    # Long calls ran to their last iteration before a Ctrl-C was seen.
+    def interrupt():
+        time.sleep(0.5)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    threading.Thread(target=interrupt).start()
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        call()
+    assert time.monotonic() - started < 60  # the calls as asked would take hours
