@@ -76,7 +76,7 @@ struct Series {
   std::string input;
   int level = -1;
   std::size_t rank_prefix = 0;  // by rank: the first rank_prefix points
-  double low_frequency = 0.0;   // by rank: LF (tiling_metrics.h)
+  double low_frequency = 0.0;   // by rank: LF (tiling_metrics.h; NaN for k <= 4)
   PointSet first;         // drawn in points.png
   std::size_t sets = 1;   // sets in the input (points.png shows the first)
   Summary summary;
@@ -191,11 +191,8 @@ std::string rdf_csv(const std::vector<Series>& series, bool with_label) {
   return text;
 }
 
-std::string fixed(double v, int decimals) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
-  return buffer;
-}
+// A measure in the report's tables and lines: "-" where it is undefined, never "nan".
+std::string fixed(double v, int decimals) { return measure_text(v, decimals); }
 
 std::string discrepancy_text(double v) {
   char buffer[32];
@@ -304,8 +301,8 @@ void report_table(std::ostringstream& out, const std::vector<Series>& series) {
     const Summary& m = s.summary;
     const std::string nu_eff = m.has_spectral_measures ? fixed(m.measures.nu_eff, 3) : "-";
     const std::string omega = m.has_spectral_measures ? fixed(m.measures.omega, 3) : "-";
-    std::snprintf(row, sizeof row, "%-*s %8zu %8.4f %8.4f %8s %8s %8s\n", static_cast<int>(width), s.label.c_str(),
-                  m.count, m.nn.rho(), m.nn.rho_mean(), nu_eff.c_str(), omega.c_str(),
+    std::snprintf(row, sizeof row, "%-*s %8zu %8s %8s %8s %8s %8s\n", static_cast<int>(width), s.label.c_str(),
+                  m.count, fixed(m.nn.rho(), 4).c_str(), fixed(m.nn.rho_mean(), 4).c_str(), nu_eff.c_str(), omega.c_str(),
                   m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
     out << row;
   }
@@ -323,7 +320,8 @@ void report_psa_table(std::ostringstream& out, const std::vector<Series>& series
   for (const Series& s : series) {
     const Summary& m = s.summary;
     const bool spectral = m.has_spectral_measures;
-    std::snprintf(row, sizeof row, "%-16s  \t%.3f\t%.3f\t%s\t%s\n", s.label.c_str(), m.nn.rho(), m.nn.rho_mean(),
+    std::snprintf(row, sizeof row, "%-16s  \t%s\t%s\t%s\t%s\n", s.label.c_str(), fixed(m.nn.rho(), 3).c_str(),
+                  fixed(m.nn.rho_mean(), 3).c_str(),
                   spectral ? fixed(m.measures.nu_eff, 3).c_str() : "-", spectral ? fixed(m.measures.omega, 3).c_str() : "-");
     out << row;
   }
@@ -557,12 +555,16 @@ void report_rank_table(std::ostringstream& out, const std::vector<Series>& serie
     const Summary& m = s.summary;
     const std::string nu_eff = m.has_spectral_measures ? fixed(m.measures.nu_eff, 3) : "-";
     const std::string omega = m.has_spectral_measures ? fixed(m.measures.omega, 3) : "-";
-    std::snprintf(row, sizeof row, "%-12s %8.4f %8.4f %8.4f %8.4f %8s %8s %8s\n", s.label.c_str(),
-                  static_cast<double>(s.rank_prefix) / static_cast<double>(n), m.nn.rho(), s.low_frequency,
-                  m.nn.rho_mean(), nu_eff.c_str(), omega.c_str(), m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
+    std::snprintf(row, sizeof row, "%-12s %8.4f %8s %8s %8s %8s %8s %8s\n", s.label.c_str(),
+                  static_cast<double>(s.rank_prefix) / static_cast<double>(n), fixed(m.nn.rho(), 4).c_str(),
+                  fixed(s.low_frequency, 4).c_str(), fixed(m.nn.rho_mean(), 4).c_str(), nu_eff.c_str(), omega.c_str(),
+                  m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
     out << row;
   }
-  out << "LF: mean periodogram over integer frequencies f with 0 < |f|^2 < k / 4 (white noise 1)\n\n";
+  out << "LF: mean periodogram over integer frequencies f with 0 < |f|^2 < k / 4 (white noise 1)\n";
+  if (std::any_of(series.begin(), series.end(), [](const Series& s) { return std::isnan(s.low_frequency); }))
+    out << "LF \"-\": k <= 4, whose band holds no frequency (null in stats.json)\n";
+  out << "\n";
 }
 
 // run_analyze's steps, in its order: check the options, declare the outputs, read the inputs,
