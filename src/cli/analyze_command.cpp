@@ -159,19 +159,19 @@ nlohmann::json to_json(const Record& r) {
 
 nlohmann::json summary_json(const Summary& s) { return to_json(summary_record(s)); }
 
-std::string csv_number(double v) {
-  if (!std::isfinite(v)) return "nan";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
-}
+// radial.csv's and rdf.csv's numbers: 10 significant digits, an undefined value (the anisotropy
+// of annulus 0, which holds the one frequency k = 0) an empty field, as stats.json's null.
+std::string csv_field(double v) { return csv_number(v, 10); }
+
+// The same digits in the report's text, "-" where undefined.
+std::string general(double v) { return std::isfinite(v) ? csv_number(v, 10) : "-"; }
 
 std::string radial_csv(const std::vector<Series>& series, bool with_label) {
   std::string text = with_label ? "frequency,power,anisotropy_db,nu,set\n" : "frequency,power,anisotropy_db,nu\n";
   for (const Series& s : series) {
     for (const Annulus& a : s.summary.radial) {
-      text += csv_number(a.frequency) + "," + csv_number(a.power) + "," + csv_number(a.anisotropy_db) + "," +
-              csv_number(s.summary.nu(a.frequency));
+      text += csv_field(a.frequency) + "," + csv_field(a.power) + "," + csv_field(a.anisotropy_db) + "," +
+              csv_field(s.summary.nu(a.frequency));
       text += with_label ? "," + s.label + "\n" : "\n";
     }
   }
@@ -183,8 +183,8 @@ std::string rdf_csv(const std::vector<Series>& series, bool with_label) {
   for (const Series& s : series) {
     const RadialDistribution& rdf = s.summary.rdf;
     for (std::size_t b = 0; b < rdf.g.size(); ++b) {
-      text += csv_number(rdf.radius(b)) + "," + csv_number(rdf.radius(b) / rdf.hexagonal_spacing) + "," +
-              csv_number(rdf.g[b]);
+      text += csv_field(rdf.radius(b)) + "," + csv_field(rdf.radius(b) / rdf.hexagonal_spacing) + "," +
+              csv_field(rdf.g[b]);
       text += with_label ? "," + s.label + "\n" : "\n";
     }
   }
@@ -269,14 +269,14 @@ void report_series(std::ostringstream& out, const Series& series) {
         << discrepancy_text(s.discrepancy.wrap_around) << ", MD " << discrepancy_text(s.discrepancy.mixture)
         << " (squared), L2-star " << discrepancy_text(s.discrepancy.l2_star) << "\n";
   if (s.has_centroid_distance)
-    out << "  mean distance to cell centroid: " << csv_number(s.centroid_distance) << " ("
+    out << "  mean distance to cell centroid: " << general(s.centroid_distance) << " ("
         << fixed(s.centroid_distance / h, 4) << " hexagonal spacings; 0 = centroidal)\n";
   std::size_t peak = 1;
   for (std::size_t i = 1; i < s.radial.size(); ++i)
     if (s.radial[i].power > s.radial[peak].power) peak = i;
   if (peak < s.radial.size())
     out << "  periodogram F = " << s.periodogram.size << ": peak radial power " << fixed(s.radial[peak].power, 3)
-        << " at |k| = " << csv_number(s.radial[peak].frequency) << ", nu = " << fixed(s.nu(s.radial[peak].frequency), 3)
+        << " at |k| = " << general(s.radial[peak].frequency) << ", nu = " << fixed(s.nu(s.radial[peak].frequency), 3)
         << " (hexagonal lattice: nu = " << fixed(2.0 * std::sqrt(2.0 / std::sqrt(3.0)), 3) << ")\n";
   std::size_t rdf_peak = 0;
   for (std::size_t b = 0; b < s.rdf.g.size(); ++b)
