@@ -479,9 +479,33 @@ TEST(AnalyzeCommand, BadInputFailsCleanlyAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("rdf")));
   r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf"), "--rdf-range", "2", "--no-discrepancy"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(" hexagonal spacings (range 2.00, 32 bins)\n"), std::string::npos) << r.out;
+  // 0 was taken and meant the default; it is refused like any other value out of range.
+  r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf0"), "--rdf-range", "0", "--no-discrepancy"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: --rdf-range 0: out of range; expected a number above 0 and at most 1000000 (see --help)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("rdf0")));
+  // The default is capped, and the report says so (it gave the range alone).
+  r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf8"), "--no-discrepancy"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(" hexagonal spacings (range 2.08: the default 8 capped at half the square, 32 bins)\n"),
+            std::string::npos)
+      << r.out;
+  r = test::run_bluetile({"analyze", "--help"});
+  EXPECT_NE(r.out.find("default psa's 8, capped at half the square for N < 296"), std::string::npos) << r.out;
   // An odd --size is named with its value (it said only "--size must be an even number >= 2").
   r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("odd"), "--size", "7"});
   EXPECT_EQ(r.err, "bluetile: --size 7: expected 0 (from N) or an even number from 2 to 65536\n");
+}
+
+// The help's "N < 296": psa's 8 spacings fit in half the torus from 296 points on (8 d_hex <= 1/2
+// for N >= 512 / sqrt(3) = 295.6).
+TEST(AnalyzeCommand, DefaultRdfRangeIsCappedBelow296Points) {
+  for (const auto& [n, capped] : {std::pair<std::size_t, bool>{295, true}, {296, false}}) {
+    const RadialDistribution rdf = radial_distribution(uniform_points(n, 1));
+    const double range = rdf.range() / rdf.hexagonal_spacing;
+    EXPECT_EQ(range < kDefaultRdfRange * (1.0 - 1e-9), capped) << n << " points: range " << range;
+  }
 }
 
 TEST(AnalyzeCommand, RefusesUpFrontWithTheEstimate) {

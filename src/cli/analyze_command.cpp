@@ -230,7 +230,8 @@ std::vector<std::pair<std::string, std::string>> measure_rows(const Summary& s) 
   return rows;
 }
 
-void report_series(std::ostringstream& out, const Series& series) {
+// `default_rdf_range`: no --rdf-range, so the report says when psa's 8 was capped.
+void report_series(std::ostringstream& out, const Series& series, bool default_rdf_range) {
   const Summary& s = series.summary;
   const double h = s.nn.hexagonal_spacing;
   out << series.label << ": " << s.count << " points";
@@ -281,9 +282,14 @@ void report_series(std::ostringstream& out, const Series& series) {
   std::size_t rdf_peak = 0;
   for (std::size_t b = 0; b < s.rdf.g.size(); ++b)
     if (s.rdf.g[b] > s.rdf.g[rdf_peak]) rdf_peak = b;
-  if (!s.rdf.g.empty())
+  if (!s.rdf.g.empty()) {
+    const double range = s.rdf.range() / h;
+    const bool capped = default_rdf_range && range < kDefaultRdfRange * (1.0 - 1e-9);
     out << "  RDF peak g = " << fixed(s.rdf.g[rdf_peak], 3) << " at r = " << fixed(s.rdf.radius(rdf_peak) / h, 3)
-        << " hexagonal spacings (range " << fixed(s.rdf.range() / h, 2) << ", " << s.rdf.g.size() << " bins)\n";
+        << " hexagonal spacings (range " << fixed(range, 2)
+        << (capped ? ": the default " + number_text(kDefaultRdfRange) + " capped at half the square" : "") << ", "
+        << s.rdf.g.size() << " bins)\n";
+  }
   if (s.sets > 1)
     out << "  (anisotropy of a mean of " << s.sets << " periodograms: white noise sits at "
         << fixed(-10.0 * std::log10(static_cast<double>(s.sets)), 1) << " dB, not 0)\n";
@@ -579,7 +585,6 @@ void check_options(const AnalyzeOptions& o) {
     throw Error("--size " + std::to_string(o.size) + ": expected 0 (from N) or an even number from 2 to 65536");
   if (!(o.bin_width > 0.0) || !std::isfinite(o.bin_width))
     throw Error("--bin-width " + number_text(o.bin_width) + ": expected a positive number");
-  if (!(o.rdf_range >= 0.0) || !std::isfinite(o.rdf_range)) throw Error("--rdf-range must be a positive number of hexagonal spacings");
   if (!o.labels.empty() && o.labels.size() != o.inputs.size())
     throw Error("--label needs one label per input (" + std::to_string(o.inputs.size()) + ")");
 }
@@ -927,7 +932,7 @@ std::string report_text(const AnalyzeOptions& o, const std::vector<Series>& seri
   if (by_rank) report_rank_table(report, series, n);
   else if (several) report_table(report, series);
   for (const Series& s : series) {
-    report_series(report, s);
+    report_series(report, s, o.rdf_range == 0.0);
     report << "\n";
     if (!by_rank) report_set_table(report, s);  // by rank: one table per prefix would repeat every set
   }
@@ -1046,8 +1051,10 @@ void add_analyze_command(CLI::App& app) {
   add_output_option(cmd, "--psa-points", o->psa_points, {.extension = ".txt", .standard_output = true},
                     "Also write the points analysed (after --domain) as psa's plain text (N, then 'x y' lines) to this "
                     "file; {} in the name is the set index, one file per set");
-  add_real_option(cmd, "--rdf-range", o->rdf_range, {0.0, 1e6}, "Largest RDF distance in hexagonal spacings (default 8, psa's)")
-      ->default_str("8");
+  add_real_option(cmd, "--rdf-range", o->rdf_range, {0.0, 1e6, true},
+                  "Largest RDF distance in hexagonal spacings, at most half the square (0.5 / d_hex: 4.65 at N = 100); "
+                  "default psa's 8, capped at half the square for N < 296 (the report gives the range used)")
+      ->default_str(number_text(kDefaultRdfRange));
   add_integer_option(cmd, "--rdf-bins", o->rdf_bins, 1, 1000000, "RDF histogram bins (default N / 8 within 32..1000, psa's)")
       ->default_str("N / 8");
   add_output_option(cmd, "--summary", o->summary, {.formats = kSummaryFormats},
