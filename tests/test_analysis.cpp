@@ -508,6 +508,29 @@ TEST(AnalyzeCommand, DefaultRdfRangeIsCappedBelow296Points) {
   }
 }
 
+// --by-level on several sets pointed to --average or --compare, neither of which takes
+// --by-level, and said "(1 files)".
+TEST(AnalyzeCommand, SeveralSetsNameTheModesThatTakeThem) {
+  test::TempDir dir;
+  const std::string leveled = test::read_text(BLUETILE_TEST_DATA "/levels_lattice.txt");
+  const std::string two = dir.write("two.txt", leveled + "#\n" + leveled);
+  auto r = test::run_bluetile({"analyze", "-i", two, "-o", dir.file("lev"), "--by-level"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: --by-level analyses one set, but 2 point sets are given (1 file): --by-rank K... averages "
+                   "the first K rows over the sets (rows in level order, as bluetile progressive writes them: K at the "
+                   "level boundaries gives the level prefixes), --average the whole sets\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("lev")));
+  // What it names works: the level boundaries 16, 32 and 64 of the file as --by-rank counts.
+  r = test::run_bluetile({"analyze", "-i", two, "-o", dir.file("ranks"), "--by-rank", "16", "32", "64", "--image-size", "64"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(test::read_text(dir.file("ranks/stats.json")))["ranks"][1]["sets"], 2);
+  r = test::run_bluetile({"analyze", "-i", two, "-o", dir.file("none")});
+  EXPECT_EQ(r.err, "bluetile: 2 point sets given (1 file): use --average to analyse their mean (with a table of each "
+                   "set), --compare to plot them together or --by-rank to average their prefixes\n");
+  r = test::run_bluetile({"analyze", "-i", two, two, "-o", dir.file("none")});
+  EXPECT_NE(r.err.find("4 point sets given (2 files)"), std::string::npos) << r.err;
+}
+
 TEST(AnalyzeCommand, RefusesUpFrontWithTheEstimate) {
   // psa's measures are what takes the time (their RDF is O(N^2)): the refusal says so, names the
   // way to skip them and the way to raise the limit, and writes nothing.

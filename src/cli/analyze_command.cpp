@@ -662,9 +662,17 @@ AnalyzeInputs read_inputs(const AnalyzeOptions& o) {
   read.domain = domain_option(o.domain);
   for (const std::string& path : o.inputs) inputs.push_back(read_sets(path, read));
   for (const auto& sets : inputs) in.total_sets += sets.size();
+  const std::string files = std::to_string(o.inputs.size()) + (o.inputs.size() == 1 ? " file" : " files");
+  // --by-level takes one set; of the modes that take several, --by-rank is the one that measures
+  // prefixes (bluetile progressive writes its rows level by level, so level boundaries are counts).
+  if (o.by_level && in.total_sets > 1)
+    throw Error("--by-level analyses one set, but " + std::to_string(in.total_sets) + " point sets are given (" + files +
+                "): --by-rank K... averages the first K rows over the sets (rows in level order, as bluetile "
+                "progressive writes them: K at the level boundaries gives the level prefixes), --average the whole sets");
   if (!o.average && !o.compare && !by_rank && in.total_sets > 1)
-    throw Error(std::to_string(in.total_sets) + " point sets given (" + std::to_string(o.inputs.size()) +
-                " files): use --average to analyse their mean (with a table of each set) or --compare to plot them together");
+    throw Error(std::to_string(in.total_sets) + " point sets given (" + files +
+                "): use --average to analyse their mean (with a table of each set), --compare to plot them together "
+                "or --by-rank to average their prefixes");
   if (o.by_level && !inputs[0][0].has_levels())
     throw Error(o.inputs[0] + ": --by-level needs a level column (x y level)");
   if (by_rank) in.prefixes = rank_prefixes(o.by_rank, inputs[0][0].points.size(), o.inputs[0]);
