@@ -24,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -34,6 +35,7 @@
 #include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/relax/void_order.h"
 #include "bluetile/relax/wang_relax.h"  // kMinVoidSigma, kMaxVoidSigma
@@ -74,8 +76,10 @@ int compare_parallel_sets(std::size_t sets, std::size_t n) {
   return same ? 0 : 1;
 }
 
+// LF is NaN for prefixes of at most 4 points (tiling_metrics.h): worst_lf is the largest defined
+// one (std::fmax leaves NaN out), NaN while there is none, and the tables print "-" for it.
 struct SweepRow {
-  double worst_rho = HUGE_VAL, mean_rho = 0.0, worst_lf = 0.0, mean_lf = 0.0;
+  double worst_rho = HUGE_VAL, mean_rho = 0.0, worst_lf = std::numeric_limits<double>::quiet_NaN(), mean_lf = 0.0;
 };
 
 // rho and LF of the first k points of every set, for every k of the sweep.
@@ -86,7 +90,7 @@ std::vector<SweepRow> measure_sweep(const std::vector<PointSet>& sets, const std
       const std::span<const Point> prefix(set.points.data(), sweep[i]);
       const TilingMetrics m = measure_tiling(prefix, 0, 0);
       rows[i].worst_rho = std::min(rows[i].worst_rho, m.rho);
-      rows[i].worst_lf = std::max(rows[i].worst_lf, m.low_frequency);
+      rows[i].worst_lf = std::fmax(rows[i].worst_lf, m.low_frequency);
       rows[i].mean_rho += m.rho / static_cast<double>(sets.size());
       rows[i].mean_lf += m.low_frequency / static_cast<double>(sets.size());
     }
@@ -105,14 +109,15 @@ void print_sweep_table(const std::vector<std::string>& names, const std::vector<
   for (std::size_t i = 0; i < sweep.size(); ++i) {
     std::printf("| %zu | %.4f |", sweep[i], static_cast<double>(sweep[i]) / static_cast<double>(sweep.back()));
     for (const std::vector<SweepRow>& r : results)
-      std::printf(" %.3f / %.3f | %.4f / %.4f |", r[i].worst_rho, r[i].mean_rho, r[i].worst_lf, r[i].mean_lf);
+      std::printf(" %.3f / %.3f | %s / %s |", r[i].worst_rho, r[i].mean_rho, measure_text(r[i].worst_lf, 4).c_str(),
+                  measure_text(r[i].mean_lf, 4).c_str());
     std::printf("\n");
   }
   std::printf("| dense (%zu prefixes, worst) | |", dense.size());
   for (const std::vector<SweepRow>& r : dense_results) {
     SweepRow w;
-    for (const SweepRow& row : r) w.worst_rho = std::min(w.worst_rho, row.worst_rho), w.worst_lf = std::max(w.worst_lf, row.worst_lf);
-    std::printf(" %.3f | %.4f |", w.worst_rho, w.worst_lf);
+    for (const SweepRow& row : r) w.worst_rho = std::min(w.worst_rho, row.worst_rho), w.worst_lf = std::fmax(w.worst_lf, row.worst_lf);
+    std::printf(" %.3f | %s |", w.worst_rho, measure_text(w.worst_lf, 4).c_str());
   }
   std::printf("\n");
 }

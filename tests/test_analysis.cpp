@@ -430,7 +430,7 @@ TEST(AnalyzeCommand, WritesEveryOutput) {
   std::string csv = test::read_text(out + "/radial.csv");
   EXPECT_EQ(csv.substr(0, csv.find('\n')), "frequency,power,anisotropy_db,nu");
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 1 + 100);  // F/2 annuli
-  EXPECT_NE(csv.find("\n0,400,nan,0\n"), std::string::npos);
+  EXPECT_NE(csv.find("\n0,400,,0\n"), std::string::npos);  // annulus 0's anisotropy undefined: empty
   EXPECT_NE(csv.find("\n10,"), std::string::npos);
   EXPECT_NE(csv.find(",1\n"), std::string::npos);  // |k| = 10 is nu = 10 / (sqrt(400) / 2) = 1
   std::string rdf = test::read_text(out + "/rdf.csv");
@@ -479,9 +479,56 @@ TEST(AnalyzeCommand, BadInputFailsCleanlyAndWritesNothing) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("rdf")));
   r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf"), "--rdf-range", "2", "--no-discrepancy"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(" hexagonal spacings (range 2.00, 32 bins)\n"), std::string::npos) << r.out;
+  // 0 was taken and meant the default; it is refused like any other value out of range.
+  r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf0"), "--rdf-range", "0", "--no-discrepancy"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: --rdf-range 0: out of range; expected a number above 0 and at most 1000000 (see --help)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("rdf0")));
+  // The default is capped, and the report says so (it gave the range alone).
+  r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("rdf8"), "--no-discrepancy"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find(" hexagonal spacings (range 2.08: the default 8 capped at half the square, 32 bins)\n"),
+            std::string::npos)
+      << r.out;
+  r = test::run_bluetile({"analyze", "--help"});
+  EXPECT_NE(r.out.find("default psa's 8, capped at half the square for N < 296"), std::string::npos) << r.out;
   // An odd --size is named with its value (it said only "--size must be an even number >= 2").
   r = test::run_bluetile({"analyze", "-i", twenty, "-o", dir.file("odd"), "--size", "7"});
   EXPECT_EQ(r.err, "bluetile: --size 7: expected 0 (from N) or an even number from 2 to 65536\n");
+}
+
+// The help's "N < 296": psa's 8 spacings fit in half the torus from 296 points on (8 d_hex <= 1/2
+// for N >= 512 / sqrt(3) = 295.6).
+TEST(AnalyzeCommand, DefaultRdfRangeIsCappedBelow296Points) {
+  for (const auto& [n, capped] : {std::pair<std::size_t, bool>{295, true}, {296, false}}) {
+    const RadialDistribution rdf = radial_distribution(uniform_points(n, 1));
+    const double range = rdf.range() / rdf.hexagonal_spacing;
+    EXPECT_EQ(range < kDefaultRdfRange * (1.0 - 1e-9), capped) << n << " points: range " << range;
+  }
+}
+
+// --by-level on several sets pointed to --average or --compare, neither of which takes
+// --by-level, and said "(1 files)".
+TEST(AnalyzeCommand, SeveralSetsNameTheModesThatTakeThem) {
+  test::TempDir dir;
+  const std::string leveled = test::read_text(BLUETILE_TEST_DATA "/levels_lattice.txt");
+  const std::string two = dir.write("two.txt", leveled + "#\n" + leveled);
+  auto r = test::run_bluetile({"analyze", "-i", two, "-o", dir.file("lev"), "--by-level"});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: --by-level analyses one set, but 2 point sets are given (1 file): --by-rank K... averages "
+                   "the first K rows over the sets (rows in level order, as bluetile progressive writes them: K at the "
+                   "level boundaries gives the level prefixes), --average the whole sets\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("lev")));
+  // What it names works: the level boundaries 16, 32 and 64 of the file as --by-rank counts.
+  r = test::run_bluetile({"analyze", "-i", two, "-o", dir.file("ranks"), "--by-rank", "16", "32", "64", "--image-size", "64"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(nlohmann::json::parse(test::read_text(dir.file("ranks/stats.json")))["ranks"][1]["sets"], 2);
+  r = test::run_bluetile({"analyze", "-i", two, "-o", dir.file("none")});
+  EXPECT_EQ(r.err, "bluetile: 2 point sets given (1 file): use --average to analyse their mean (with a table of each "
+                   "set), --compare to plot them together or --by-rank to average their prefixes\n");
+  r = test::run_bluetile({"analyze", "-i", two, two, "-o", dir.file("none")});
+  EXPECT_NE(r.err.find("4 point sets given (2 files)"), std::string::npos) << r.err;
 }
 
 TEST(AnalyzeCommand, RefusesUpFrontWithTheEstimate) {

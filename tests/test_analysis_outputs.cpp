@@ -174,6 +174,32 @@ TEST(AnalyzeOutputs, MultiSetFilesSayWhatTheirPointsImageShows) {
   EXPECT_TRUE(note);
 }
 
+// An undefined number in a CSV is an empty field, CSV's missing value, as stats.json writes null:
+// radial.csv's annulus 0 holds the one frequency k = 0, whose anisotropy has no variance (the row
+// was "0,N,nan,0"). No CSV holds "nan" or "inf".
+TEST(AnalyzeOutputs, CsvLeavesUndefinedValuesEmpty) {
+  test::TempDir dir;
+  const std::string a = dir.write("a.txt", points_text(uniform_points(40, 7)));
+  const std::string b = dir.write("b.txt", points_text(uniform_points(50, 8)));
+  auto r = test::run_bluetile({"analyze", "-i", a, "-o", dir.file("one"), "--no-discrepancy", "--image-size", "64"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string radial = test::read_text(dir.file("one/radial.csv"));
+  EXPECT_EQ(radial.substr(0, radial.find('\n', radial.find('\n') + 1)), "frequency,power,anisotropy_db,nu\n0,40,,0");
+  const auto stats = nlohmann::json::parse(test::read_text(dir.file("one/stats.json")));
+  EXPECT_TRUE(stats["radial"]["anisotropy_db"][0].is_null());
+  EXPECT_FALSE(stats["radial"]["anisotropy_db"][1].is_null());
+  r = test::run_bluetile({"analyze", "-i", a, b, "-o", dir.file("cmp"), "--compare", "--no-discrepancy", "--image-size", "64"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string labelled = test::read_text(dir.file("cmp/radial.csv"));
+  EXPECT_NE(labelled.find("\n0,40,,0,a\n"), std::string::npos) << labelled.substr(0, 200);
+  EXPECT_NE(labelled.find("\n0,50,,0,b\n"), std::string::npos);
+  for (const char* file : {"one/radial.csv", "one/rdf.csv", "cmp/radial.csv", "cmp/rdf.csv"}) {
+    const std::string text = test::read_text(dir.file(file));
+    EXPECT_EQ(text.find("nan"), std::string::npos) << file;
+    EXPECT_EQ(text.find("inf"), std::string::npos) << file;
+  }
+}
+
 TEST(AnalyzeOutputs, CompareSummaryShowsEverySeries) {
   test::TempDir dir;
   const std::string a = dir.write("a.txt", points_text(uniform_points(128, 41)));

@@ -24,17 +24,26 @@ TEST(AnalyzeByRank, PrefixesOfAHandMadeRankedSet) {
   ASSERT_EQ(stats["ranks"].size(), 3u);  // 1/1 and 16 are one prefix
   const double nn_min[] = {0.5, 0.25, 0.125};
   const std::size_t counts[] = {4, 8, 16};
-  // LF: no frequency with 0 < |f|^2 < 1 for 4 points; the 4 x 2 lattice sums to 0 at (1, 0) and
-  // (0, 1); with 16 points only the moved one is left at 0 < |f|^2 < 4: |exp(-2 pi i f.d) - 1|^2
-  // = 2 - sqrt(2) at the 6 frequencies with f.d = +-1/8, 0 at (0, +-1): 6 (2 - sqrt(2)) / 8 / 16.
+  // LF: no frequency with 0 < |f|^2 < 1 for 4 points, so no mean: null (it was 0, which reads as
+  // perfect blue noise); the 4 x 2 lattice sums to 0 at (1, 0) and (0, 1), a true 0; with 16
+  // points only the moved one is left at 0 < |f|^2 < 4: |exp(-2 pi i f.d) - 1|^2 = 2 - sqrt(2) at
+  // the 6 frequencies with f.d = +-1/8, 0 at (0, +-1): 6 (2 - sqrt(2)) / 8 / 16.
+  EXPECT_TRUE(stats["ranks"][0]["low_frequency"].is_null()) << stats["ranks"][0]["low_frequency"];
   const double low_frequency[] = {0.0, 0.0, 3.0 * (2.0 - std::sqrt(2.0)) / 64.0};
   for (std::size_t i = 0; i < 3; ++i) {
     const nlohmann::json& p = stats["ranks"][i];
     EXPECT_EQ(p["rank_prefix"], counts[i]);
     EXPECT_EQ(p["n"], counts[i]);
     EXPECT_NEAR(p["nn_min"].get<double>(), nn_min[i], 1e-15) << counts[i];
-    EXPECT_NEAR(p["low_frequency"].get<double>(), low_frequency[i], 1e-12) << counts[i];
+    if (i > 0) {
+      EXPECT_NEAR(p["low_frequency"].get<double>(), low_frequency[i], 1e-12) << counts[i];
+    }
   }
+  // The table shows the undefined LF as "-" and says why; never "nan".
+  EXPECT_NE(r.out.find("\nfirst 4        0.2500   0.9306        -   0.9306 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("LF \"-\": k <= 4, whose band holds no frequency (null in stats.json)\n"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
   EXPECT_EQ(stats["n"], 16);  // the top level describes the largest prefix
   EXPECT_NE(r.out.find("first 8"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("0.0275"), std::string::npos) << r.out;  // LF of all 16 in the table

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <map>
 #include <tuple>
@@ -178,6 +180,47 @@ TEST(TilingMetrics, LatticeCoherenceOfIdenticalTilesIsTheirPeriodogram) {
   EXPECT_NEAR(m.coherence_mid, 8.0 * 16.0, 1e-6);
   EXPECT_NEAR(m.coherence_low, 0.0, 1e-9);
   EXPECT_NEAR(m.low_frequency, 0.0, 1e-9);
+}
+
+// LF's band 0 < |k|^2 < N / 4 holds no integer frequency for N <= 4: no mean, so NaN (it was 0,
+// which reads as perfect blue noise). From 5 points on it is the mean of P at (+-1, 0), (0, +-1).
+TEST(TilingMetrics, LowFrequencyIsUndefinedWhenItsBandIsEmpty) {
+  for (std::size_t n = 2; n <= 4; ++n) {
+    const double lf = measure_tiling(test::uniform_points(n, n), 0, 0).low_frequency;
+    EXPECT_TRUE(std::isnan(lf)) << n << " points: " << lf;
+  }
+  const std::vector<Point> five = test::uniform_points(5, 5);
+  const Periodogram p = compute_periodogram(five, tiling_metrics_periodogram_size(five.size()));
+  const double mean = (p.at(1, 0) + p.at(-1, 0) + p.at(0, 1) + p.at(0, -1)) / 4.0;
+  EXPECT_NEAR(measure_tiling(five, 0, 0).low_frequency, mean, 1e-12);
+}
+
+// wang-check's prefix sweep of a 1 x 1 tiling reaches planes of 2 to 4 points: their LF is "-" in
+// the table and null in stats.json, never 0 or "nan".
+TEST(WangCommand, UndefinedLowFrequencyIsADashAndNull) {
+  test::TempDir dir;
+  const std::string tiles = dir.write("grid.tiles", format_tile_set(grid_set()));
+  test::CommandResult r = test::run_bluetile({"wang-check", tiles, "--period", "1", "--output", dir.file("check")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const nlohmann::json stats = nlohmann::json::parse(test::read_text(dir.file("check/stats.json")));
+  std::size_t undefined = 0;
+  for (const auto& row : stats["prefix_sweep"]) {
+    const std::size_t n = row["N"].get<std::size_t>();
+    EXPECT_EQ(row["LF"].is_null(), n <= 4) << n << " points: " << row["LF"];
+    if (n <= 4) {
+      ++undefined;
+      char line[64];
+      std::snprintf(line, sizeof line, "\n  %8zu %8zu ", n, n);
+      const std::size_t at = r.out.find(line);
+      ASSERT_NE(at, std::string::npos) << line << r.out;
+      EXPECT_EQ(r.out.substr(at + std::strlen(line) + 7, 9), "        -") << r.out;  // after rho
+    }
+  }
+  EXPECT_EQ(undefined, 3u);  // k = 2, 3 and 4 (k = 1 is a single point, left out)
+  EXPECT_FALSE(stats["levels"][0]["plane"]["LF"].is_null());
+  EXPECT_NE(r.out.find("(LF \"-\": a plane of at most 4 points, whose band holds no frequency)"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
 }
 
 WangOptions small_options(TileSetKind kind, std::size_t n, std::uint64_t seed) {

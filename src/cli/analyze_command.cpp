@@ -76,7 +76,7 @@ struct Series {
   std::string input;
   int level = -1;
   std::size_t rank_prefix = 0;  // by rank: the first rank_prefix points
-  double low_frequency = 0.0;   // by rank: LF (tiling_metrics.h)
+  double low_frequency = 0.0;   // by rank: LF (tiling_metrics.h; NaN for k <= 4)
   PointSet first;         // drawn in points.png
   std::size_t sets = 1;   // sets in the input (points.png shows the first)
   Summary summary;
@@ -159,19 +159,19 @@ nlohmann::json to_json(const Record& r) {
 
 nlohmann::json summary_json(const Summary& s) { return to_json(summary_record(s)); }
 
-std::string csv_number(double v) {
-  if (!std::isfinite(v)) return "nan";
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
-}
+// radial.csv's and rdf.csv's numbers: 10 significant digits, an undefined value (the anisotropy
+// of annulus 0, which holds the one frequency k = 0) an empty field, as stats.json's null.
+std::string csv_field(double v) { return csv_number(v, 10); }
+
+// The same digits in the report's text, "-" where undefined.
+std::string general(double v) { return std::isfinite(v) ? csv_number(v, 10) : "-"; }
 
 std::string radial_csv(const std::vector<Series>& series, bool with_label) {
   std::string text = with_label ? "frequency,power,anisotropy_db,nu,set\n" : "frequency,power,anisotropy_db,nu\n";
   for (const Series& s : series) {
     for (const Annulus& a : s.summary.radial) {
-      text += csv_number(a.frequency) + "," + csv_number(a.power) + "," + csv_number(a.anisotropy_db) + "," +
-              csv_number(s.summary.nu(a.frequency));
+      text += csv_field(a.frequency) + "," + csv_field(a.power) + "," + csv_field(a.anisotropy_db) + "," +
+              csv_field(s.summary.nu(a.frequency));
       text += with_label ? "," + s.label + "\n" : "\n";
     }
   }
@@ -183,19 +183,16 @@ std::string rdf_csv(const std::vector<Series>& series, bool with_label) {
   for (const Series& s : series) {
     const RadialDistribution& rdf = s.summary.rdf;
     for (std::size_t b = 0; b < rdf.g.size(); ++b) {
-      text += csv_number(rdf.radius(b)) + "," + csv_number(rdf.radius(b) / rdf.hexagonal_spacing) + "," +
-              csv_number(rdf.g[b]);
+      text += csv_field(rdf.radius(b)) + "," + csv_field(rdf.radius(b) / rdf.hexagonal_spacing) + "," +
+              csv_field(rdf.g[b]);
       text += with_label ? "," + s.label + "\n" : "\n";
     }
   }
   return text;
 }
 
-std::string fixed(double v, int decimals) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
-  return buffer;
-}
+// A measure in the report's tables and lines: "-" where it is undefined, never "nan".
+std::string fixed(double v, int decimals) { return measure_text(v, decimals); }
 
 std::string discrepancy_text(double v) {
   char buffer[32];
@@ -233,7 +230,8 @@ std::vector<std::pair<std::string, std::string>> measure_rows(const Summary& s) 
   return rows;
 }
 
-void report_series(std::ostringstream& out, const Series& series) {
+// `default_rdf_range`: no --rdf-range, so the report says when psa's 8 was capped.
+void report_series(std::ostringstream& out, const Series& series, bool default_rdf_range) {
   const Summary& s = series.summary;
   const double h = s.nn.hexagonal_spacing;
   out << series.label << ": " << s.count << " points";
@@ -272,21 +270,26 @@ void report_series(std::ostringstream& out, const Series& series) {
         << discrepancy_text(s.discrepancy.wrap_around) << ", MD " << discrepancy_text(s.discrepancy.mixture)
         << " (squared), L2-star " << discrepancy_text(s.discrepancy.l2_star) << "\n";
   if (s.has_centroid_distance)
-    out << "  mean distance to cell centroid: " << csv_number(s.centroid_distance) << " ("
+    out << "  mean distance to cell centroid: " << general(s.centroid_distance) << " ("
         << fixed(s.centroid_distance / h, 4) << " hexagonal spacings; 0 = centroidal)\n";
   std::size_t peak = 1;
   for (std::size_t i = 1; i < s.radial.size(); ++i)
     if (s.radial[i].power > s.radial[peak].power) peak = i;
   if (peak < s.radial.size())
     out << "  periodogram F = " << s.periodogram.size << ": peak radial power " << fixed(s.radial[peak].power, 3)
-        << " at |k| = " << csv_number(s.radial[peak].frequency) << ", nu = " << fixed(s.nu(s.radial[peak].frequency), 3)
+        << " at |k| = " << general(s.radial[peak].frequency) << ", nu = " << fixed(s.nu(s.radial[peak].frequency), 3)
         << " (hexagonal lattice: nu = " << fixed(2.0 * std::sqrt(2.0 / std::sqrt(3.0)), 3) << ")\n";
   std::size_t rdf_peak = 0;
   for (std::size_t b = 0; b < s.rdf.g.size(); ++b)
     if (s.rdf.g[b] > s.rdf.g[rdf_peak]) rdf_peak = b;
-  if (!s.rdf.g.empty())
+  if (!s.rdf.g.empty()) {
+    const double range = s.rdf.range() / h;
+    const bool capped = default_rdf_range && range < kDefaultRdfRange * (1.0 - 1e-9);
     out << "  RDF peak g = " << fixed(s.rdf.g[rdf_peak], 3) << " at r = " << fixed(s.rdf.radius(rdf_peak) / h, 3)
-        << " hexagonal spacings (range " << fixed(s.rdf.range() / h, 2) << ", " << s.rdf.g.size() << " bins)\n";
+        << " hexagonal spacings (range " << fixed(range, 2)
+        << (capped ? ": the default " + number_text(kDefaultRdfRange) + " capped at half the square" : "") << ", "
+        << s.rdf.g.size() << " bins)\n";
+  }
   if (s.sets > 1)
     out << "  (anisotropy of a mean of " << s.sets << " periodograms: white noise sits at "
         << fixed(-10.0 * std::log10(static_cast<double>(s.sets)), 1) << " dB, not 0)\n";
@@ -304,8 +307,8 @@ void report_table(std::ostringstream& out, const std::vector<Series>& series) {
     const Summary& m = s.summary;
     const std::string nu_eff = m.has_spectral_measures ? fixed(m.measures.nu_eff, 3) : "-";
     const std::string omega = m.has_spectral_measures ? fixed(m.measures.omega, 3) : "-";
-    std::snprintf(row, sizeof row, "%-*s %8zu %8.4f %8.4f %8s %8s %8s\n", static_cast<int>(width), s.label.c_str(),
-                  m.count, m.nn.rho(), m.nn.rho_mean(), nu_eff.c_str(), omega.c_str(),
+    std::snprintf(row, sizeof row, "%-*s %8zu %8s %8s %8s %8s %8s\n", static_cast<int>(width), s.label.c_str(),
+                  m.count, fixed(m.nn.rho(), 4).c_str(), fixed(m.nn.rho_mean(), 4).c_str(), nu_eff.c_str(), omega.c_str(),
                   m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
     out << row;
   }
@@ -323,7 +326,8 @@ void report_psa_table(std::ostringstream& out, const std::vector<Series>& series
   for (const Series& s : series) {
     const Summary& m = s.summary;
     const bool spectral = m.has_spectral_measures;
-    std::snprintf(row, sizeof row, "%-16s  \t%.3f\t%.3f\t%s\t%s\n", s.label.c_str(), m.nn.rho(), m.nn.rho_mean(),
+    std::snprintf(row, sizeof row, "%-16s  \t%s\t%s\t%s\t%s\n", s.label.c_str(), fixed(m.nn.rho(), 3).c_str(),
+                  fixed(m.nn.rho_mean(), 3).c_str(),
                   spectral ? fixed(m.measures.nu_eff, 3).c_str() : "-", spectral ? fixed(m.measures.omega, 3).c_str() : "-");
     out << row;
   }
@@ -557,12 +561,16 @@ void report_rank_table(std::ostringstream& out, const std::vector<Series>& serie
     const Summary& m = s.summary;
     const std::string nu_eff = m.has_spectral_measures ? fixed(m.measures.nu_eff, 3) : "-";
     const std::string omega = m.has_spectral_measures ? fixed(m.measures.omega, 3) : "-";
-    std::snprintf(row, sizeof row, "%-12s %8.4f %8.4f %8.4f %8.4f %8s %8s %8s\n", s.label.c_str(),
-                  static_cast<double>(s.rank_prefix) / static_cast<double>(n), m.nn.rho(), s.low_frequency,
-                  m.nn.rho_mean(), nu_eff.c_str(), omega.c_str(), m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
+    std::snprintf(row, sizeof row, "%-12s %8.4f %8s %8s %8s %8s %8s %8s\n", s.label.c_str(),
+                  static_cast<double>(s.rank_prefix) / static_cast<double>(n), fixed(m.nn.rho(), 4).c_str(),
+                  fixed(s.low_frequency, 4).c_str(), fixed(m.nn.rho_mean(), 4).c_str(), nu_eff.c_str(), omega.c_str(),
+                  m.has_bond_order ? fixed(m.bond_order.local, 3).c_str() : "-");
     out << row;
   }
-  out << "LF: mean periodogram over integer frequencies f with 0 < |f|^2 < k / 4 (white noise 1)\n\n";
+  out << "LF: mean periodogram over integer frequencies f with 0 < |f|^2 < k / 4 (white noise 1)\n";
+  if (std::any_of(series.begin(), series.end(), [](const Series& s) { return std::isnan(s.low_frequency); }))
+    out << "LF \"-\": k <= 4, whose band holds no frequency (null in stats.json)\n";
+  out << "\n";
 }
 
 // run_analyze's steps, in its order: check the options, declare the outputs, read the inputs,
@@ -577,7 +585,6 @@ void check_options(const AnalyzeOptions& o) {
     throw Error("--size " + std::to_string(o.size) + ": expected 0 (from N) or an even number from 2 to 65536");
   if (!(o.bin_width > 0.0) || !std::isfinite(o.bin_width))
     throw Error("--bin-width " + number_text(o.bin_width) + ": expected a positive number");
-  if (!(o.rdf_range >= 0.0) || !std::isfinite(o.rdf_range)) throw Error("--rdf-range must be a positive number of hexagonal spacings");
   if (!o.labels.empty() && o.labels.size() != o.inputs.size())
     throw Error("--label needs one label per input (" + std::to_string(o.inputs.size()) + ")");
 }
@@ -655,9 +662,17 @@ AnalyzeInputs read_inputs(const AnalyzeOptions& o) {
   read.domain = domain_option(o.domain);
   for (const std::string& path : o.inputs) inputs.push_back(read_sets(path, read));
   for (const auto& sets : inputs) in.total_sets += sets.size();
+  const std::string files = std::to_string(o.inputs.size()) + (o.inputs.size() == 1 ? " file" : " files");
+  // --by-level takes one set; of the modes that take several, --by-rank is the one that measures
+  // prefixes (bluetile progressive writes its rows level by level, so level boundaries are counts).
+  if (o.by_level && in.total_sets > 1)
+    throw Error("--by-level analyses one set, but " + std::to_string(in.total_sets) + " point sets are given (" + files +
+                "): --by-rank K... averages the first K rows over the sets (rows in level order, as bluetile "
+                "progressive writes them: K at the level boundaries gives the level prefixes), --average the whole sets");
   if (!o.average && !o.compare && !by_rank && in.total_sets > 1)
-    throw Error(std::to_string(in.total_sets) + " point sets given (" + std::to_string(o.inputs.size()) +
-                " files): use --average to analyse their mean (with a table of each set) or --compare to plot them together");
+    throw Error(std::to_string(in.total_sets) + " point sets given (" + files +
+                "): use --average to analyse their mean (with a table of each set), --compare to plot them together "
+                "or --by-rank to average their prefixes");
   if (o.by_level && !inputs[0][0].has_levels())
     throw Error(o.inputs[0] + ": --by-level needs a level column (x y level)");
   if (by_rank) in.prefixes = rank_prefixes(o.by_rank, inputs[0][0].points.size(), o.inputs[0]);
@@ -925,7 +940,7 @@ std::string report_text(const AnalyzeOptions& o, const std::vector<Series>& seri
   if (by_rank) report_rank_table(report, series, n);
   else if (several) report_table(report, series);
   for (const Series& s : series) {
-    report_series(report, s);
+    report_series(report, s, o.rdf_range == 0.0);
     report << "\n";
     if (!by_rank) report_set_table(report, s);  // by rank: one table per prefix would repeat every set
   }
@@ -1044,8 +1059,10 @@ void add_analyze_command(CLI::App& app) {
   add_output_option(cmd, "--psa-points", o->psa_points, {.extension = ".txt", .standard_output = true},
                     "Also write the points analysed (after --domain) as psa's plain text (N, then 'x y' lines) to this "
                     "file; {} in the name is the set index, one file per set");
-  add_real_option(cmd, "--rdf-range", o->rdf_range, {0.0, 1e6}, "Largest RDF distance in hexagonal spacings (default 8, psa's)")
-      ->default_str("8");
+  add_real_option(cmd, "--rdf-range", o->rdf_range, {0.0, 1e6, true},
+                  "Largest RDF distance in hexagonal spacings, at most half the square (0.5 / d_hex: 4.65 at N = 100); "
+                  "default psa's 8, capped at half the square for N < 296 (the report gives the range used)")
+      ->default_str(number_text(kDefaultRdfRange));
   add_integer_option(cmd, "--rdf-bins", o->rdf_bins, 1, 1000000, "RDF histogram bins (default N / 8 within 32..1000, psa's)")
       ->default_str("N / 8");
   add_output_option(cmd, "--summary", o->summary, {.formats = kSummaryFormats},

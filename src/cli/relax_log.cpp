@@ -2,6 +2,8 @@
 
 #include <cstdio>
 
+#include "bluetile/core/text.h"
+
 namespace bluetile::cli {
 
 RelaxLog::RelaxLog(std::string label, int iterations, bool verbose, OutputStream* csv)
@@ -22,8 +24,10 @@ LloydOptions RelaxLog::lloyd_options(int iterations, double tolerance) {
 
 void RelaxLog::record(const LloydIteration& it) {
   if (csv_) {
-    csv_->print("%d,%.17g,%.17g,%.17g,%zu,%zu,%zu\n", it.iteration, it.energy, it.max_displacement,
-                it.mean_displacement, it.coincident, it.fallbacks, it.zero_density);
+    // An undefined number is an empty field (CSV's missing value), as in analyze's CSVs.
+    csv_->print("%d,%s,%s,%s,%zu,%zu,%zu\n", it.iteration, csv_number(it.energy, 17).c_str(),
+                csv_number(it.max_displacement, 17).c_str(), csv_number(it.mean_displacement, 17).c_str(), it.coincident,
+                it.fallbacks, it.zero_density);
   }
   if (verbose_) {
     progress_.finish();

@@ -1,5 +1,6 @@
 // bluetile wang-check: the seam check of a tile set and the analysis of a plane it tiles.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -17,6 +18,7 @@
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 #include "bluetile/drawing/figures.h"
 #include "bluetile/drawing/tile_set_drawing.h"
 #include "bluetile/relax/lloyd.h"
@@ -33,16 +35,20 @@
 namespace bluetile::cli {
 namespace {
 
+// LF is undefined (NaN) for planes of at most 4 points: "-" in the tables, null in stats.json.
 std::string metrics_row(const std::string& label, const TilingMetrics& m, bool tiled) {
   char row[256];
+  const std::string lf = measure_text(m.low_frequency, 5);
   if (tiled)
-    std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8.5f %8.5f %8.2f %9.2f\n", label.c_str(), m.count, m.rho,
-                  m.low_frequency, m.coherence_low, m.coherence_mid, m.diffuse_anisotropy_db);
+    std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8s %8.5f %8.2f %9.2f\n", label.c_str(), m.count, m.rho,
+                  lf.c_str(), m.coherence_low, m.coherence_mid, m.diffuse_anisotropy_db);
   else
-    std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8.5f %8s %8s %9.2f\n", label.c_str(), m.count, m.rho,
-                  m.low_frequency, "-", "-", m.diffuse_anisotropy_db);
+    std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8s %8s %8s %9.2f\n", label.c_str(), m.count, m.rho, lf.c_str(),
+                  "-", "-", m.diffuse_anisotropy_db);
   return row;
 }
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
 
 struct CheckOptions {
   std::string input;
@@ -115,6 +121,7 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
   // The plane of the first k ranks of every tile, each measured once (level boundaries are in
   // the sweep too).
   std::map<std::size_t, TilingMetrics> measured;
+  bool undefined_lf = false;  // some row's LF is "-"
   auto metrics_at = [&](std::size_t k) -> const TilingMetrics& {
     auto found = measured.find(k);
     if (found != measured.end()) return found->second;
@@ -123,7 +130,9 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
     // The plane's own periodogram (the non-uniform FFT above ~100 points): at 2048 points per
     // tile the per-tile sum (tiled_periodogram) takes minutes a prefix, this a second.
     Periodogram periodogram = compute_periodogram(p.points, tiling_periodogram_size(p.points.size(), o.period));
-    return measured.emplace(k, measure_tiling(p.points, periodogram, o.period, tiles)).first->second;
+    const TilingMetrics& m = measured.emplace(k, measure_tiling(p.points, periodogram, o.period, tiles)).first->second;
+    undefined_lf = undefined_lf || std::isnan(m.low_frequency);
+    return m;
   };
   nlohmann::json levels_json = nlohmann::json::array();
   std::size_t total = 0;
@@ -140,7 +149,7 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
                            {"plane",
                             {{"N", m.count},
                              {"rho", m.rho},
-                             {"LF", m.low_frequency},
+                             {"LF", number(m.low_frequency)},
                              {"C_LF", m.coherence_low},
                              {"C_mid", m.coherence_mid},
                              {"lattice_peak", m.lattice_peak},
@@ -158,9 +167,9 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
   for (const std::size_t k : sweep) {
     if (k * static_cast<std::size_t>(o.period) * static_cast<std::size_t>(o.period) < 2) continue;
     const TilingMetrics& m = metrics_at(k);
-    std::printf("  %8zu %8zu %7.3f %8.4f %9.2f %8.3f %8.3f\n", k, m.count, m.rho, m.low_frequency, m.lattice_peak,
-                m.coherence_low, m.coherence_mid);
-    sweep_json.push_back({{"k", k}, {"N", m.count}, {"rho", m.rho}, {"LF", m.low_frequency},
+    std::printf("  %8zu %8zu %7.3f %8s %9.2f %8.3f %8.3f\n", k, m.count, m.rho, measure_text(m.low_frequency, 4).c_str(),
+                m.lattice_peak, m.coherence_low, m.coherence_mid);
+    sweep_json.push_back({{"k", k}, {"N", m.count}, {"rho", m.rho}, {"LF", number(m.low_frequency)},
                           {"lattice_peak", m.lattice_peak}, {"C_LF", m.coherence_low}, {"C_mid", m.coherence_mid}});
   }
   nlohmann::json stats = {{"input", input_name(o.input)},
@@ -191,13 +200,14 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
     stats["untiled"] = {{"iterations", o.untiled_iterations},
                         {"N", m.count},
                         {"rho", m.rho},
-                        {"LF", m.low_frequency},
+                        {"LF", number(m.low_frequency)},
                         {"diffuse_anisotropy_db", m.diffuse_anisotropy_db}};
   }
   std::printf("  (rho: min NN distance / hexagonal spacing; LF: mean periodogram for 0 < |k| < 0.5 sqrt(N);\n"
               "   C_LF, C_mid: tile-lattice coherence for M = %d; anisotropy: mean over annuli 0.5-1.6 sqrt(N),\n"
               "   lattice frequencies left out; lattice: mean periodogram at k = M m, 0 < |k| < sqrt(N))\n",
               o.period);
+  if (undefined_lf) std::printf("  (LF \"-\": a plane of at most 4 points, whose band holds no frequency)\n");
 
   if (o.output.empty()) return;
   file("stats.json").write(stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");

@@ -17,7 +17,6 @@
 namespace bluetile {
 namespace {
 
-constexpr double kDefaultRangeSpacings = 8.0;    // psa's rrange: 8 hexagonal spacings
 constexpr std::size_t kPointsPerBin = 8;         // psa's rbinsize 0.125: N / 8 bins
 constexpr std::size_t kMinBins = 32, kMaxBins = 1000;
 // Points per block of the pair loop: each block keeps its own histogram, summed in block order
@@ -44,7 +43,7 @@ RadialDistribution radial_distribution(std::span<const Point> points, const RdfO
   rdf.count = n;
   rdf.area = domain.area();
   rdf.hexagonal_spacing = hexagonal_spacing(static_cast<double>(n), rdf.area);
-  const double wanted = (options.range > 0.0 ? options.range : kDefaultRangeSpacings) * rdf.hexagonal_spacing;
+  const double wanted = (options.range > 0.0 ? options.range : kDefaultRdfRange) * rdf.hexagonal_spacing;
   const double half = 0.5 * std::min(width, height);
   if (options.range > 0.0 && wanted > half * (1.0 + 1e-12))
     throw Error("RDF range " + number_text(options.range) + " hexagonal spacings is more than half the domain's " +

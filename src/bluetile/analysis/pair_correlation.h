@@ -26,11 +26,15 @@
 
 namespace bluetile {
 
+// psa's default RDF range (its rrange), in hexagonal spacings.
+inline constexpr double kDefaultRdfRange = 8.0;
+
 struct RdfOptions {
   Boundary boundary = Boundary::periodic;
-  // Largest distance, in hexagonal spacings; 0 picks psa's 8, capped at half the domain's
-  // shorter side (beyond it a torus annulus overlaps itself; the edge correction explodes). A
-  // range asked for beyond that half is refused, not cut (it was cut without a word).
+  // Largest distance, in hexagonal spacings; 0 picks psa's 8 (kDefaultRdfRange), capped at half
+  // the domain's shorter side (beyond it a torus annulus overlaps itself; the edge correction
+  // explodes): 4.65 spacings at N = 100. A range asked for beyond that half is refused, not cut
+  // (it was cut without a word).
   double range = 0.0;
   // Histogram bins; 0 picks psa's N / 8, clamped to [32, 1000] (finer bins for larger sets,
   // whose histograms are less noisy).

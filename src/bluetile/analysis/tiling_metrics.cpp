@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
+#include <limits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -95,7 +96,7 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
       }
     }
   }
-  m.low_frequency = low_count ? low_sum / static_cast<double>(low_count) : 0.0;
+  m.low_frequency = low_count ? low_sum / static_cast<double>(low_count) : std::numeric_limits<double>::quiet_NaN();
   m.lattice_peak = lattice_count ? lattice_sum / static_cast<double>(lattice_count) : 0.0;
   double db_sum = 0.0;
   std::size_t db_count = 0;

@@ -3,7 +3,8 @@
 // section 5). For N points on the unit torus:
 //  - rho: the global minimum nearest-neighbour distance over the hexagonal spacing
 //    sqrt(2 / (sqrt(3) N)) (Lagae and Dutré's relative radius, psa's global mindist);
-//  - LF: the mean periodogram over integer k with 0 < |k| < 0.5 sqrt(N) (white noise 1);
+//  - LF: the mean periodogram over integer k with 0 < |k| < 0.5 sqrt(N) (white noise 1); NaN
+//    (undefined, not 0: an empty band has no mean) for N <= 4, whose band holds no frequency;
 //  - lattice coherence of an M x M tiling of a T-tile set, at the tile lattice frequencies
 //    k = M m: C_LF = max over 0 < |m|^2 <= 5 of P(M m) / (M^2 / T), and C_mid = max of the same
 //    over 0.5 sqrt(N) <= |k| < 1.5 sqrt(N) (P(M m) M^2 / T is |sum over the T tiles' points of
@@ -38,7 +39,7 @@ inline bool in_coherence_low_band(std::int64_t m2) { return m2 > 0 && m2 <= 5; }
 struct TilingMetrics {
   std::size_t count = 0;  // N
   double rho = 0.0;
-  double low_frequency = 0.0;       // LF
+  double low_frequency = 0.0;       // LF (NaN for N <= 4: no frequency in its band)
   double coherence_low = 0.0;       // C_LF (0 for an untiled set)
   double coherence_mid = 0.0;       // C_mid (0 for an untiled set)
   double lattice_peak = 0.0;        // mean P over k = M m, 0 < |k| < sqrt(N) (0 for an untiled set)

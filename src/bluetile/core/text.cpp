@@ -48,6 +48,15 @@ std::string fixed_text(double v, int decimals) {
   return buffer;
 }
 
+std::string measure_text(double v, int decimals) { return std::isfinite(v) ? fixed_text(v, decimals) : "-"; }
+
+std::string csv_number(double v, int digits) {
+  if (!std::isfinite(v)) return "";
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+  return buffer;
+}
+
 std::string lower_case(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;

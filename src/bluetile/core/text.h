@@ -27,6 +27,14 @@ std::string counted(long long n, std::string_view noun);
 // `v` with `decimals` digits after the point ("%.*f"), for tables meant for reading.
 std::string fixed_text(double v, int decimals);
 
+// A measure in a table meant for reading: fixed_text, or "-" where the measure is undefined (NaN
+// or infinite: LF of a set too small to hold its band, say), never a bare "nan".
+std::string measure_text(double v, int decimals);
+
+// A number as a CSV field, "%.*g" with `digits` significant digits, or the empty field (CSV's
+// missing value, stats.json's null) where `v` is undefined (NaN or infinite).
+std::string csv_number(double v, int digits);
+
 // `s` in ASCII lower case (file extensions, device names).
 std::string lower_case(std::string s);
 
