@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <complex>
 #include <filesystem>
+#include <limits>
 #include <numbers>
 
 #include <nlohmann/json.hpp>
@@ -28,6 +29,7 @@
 namespace bluetile {
 namespace {
 
+using test::error_of;
 using test::uniform_points;
 
 double brute_force_power(const std::vector<Point>& points, int kx, int ky) {
@@ -223,6 +225,22 @@ TEST(Periodogram, RejectsBadArguments) {
   EXPECT_THROW(compute_periodogram(uniform_points(3, 1), 15), Error);
   EXPECT_THROW(compute_periodogram(uniform_points(3, 1), 0), Error);
   EXPECT_EQ(default_periodogram_size(1000), 316);  // 2 floor(5 sqrt(1000)) = 2 * 158
+  // A point that is not finite: the direct sum gave NaN power without a word, as the
+  // non-uniform FFT never did.
+  const std::vector<Point> nan_point = {{0.1, 0.1}, {std::nan(""), 0.2}};
+  EXPECT_EQ(error_of([&] { compute_periodogram_direct(nan_point, 8); }), "periodogram: point 1 is not finite");
+  EXPECT_EQ(error_of([&] { compute_periodogram(nan_point, 8); }), "periodogram: point 1 is not finite");
+}
+
+TEST(NearestNeighbour, PointsThatAreNotFiniteAreRefused) {
+  // A NaN point hung the ring search (its reach never passed the best distance), on every
+  // front end that did not check first; an infinity came back as a distance.
+  for (double bad : {std::nan(""), std::numeric_limits<double>::infinity()}) {
+    const std::vector<Point> points = {{0.1, 0.1}, {bad, 0.2}, {0.5, 0.5}};
+    for (Boundary boundary : {Boundary::periodic, Boundary::bounded})
+      EXPECT_EQ(error_of([&] { nearest_neighbour_distances(points, Domain{}, boundary); }),
+                "nearest-neighbour distances: point 1 is not finite");
+  }
 }
 
 TEST(RadialPower, HandComputedAnnulus) {

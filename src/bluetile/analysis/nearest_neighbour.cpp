@@ -15,6 +15,10 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points
   if (n == 0) throw Error("nearest-neighbour distances need at least one point");
   const bool periodic = boundary == Boundary::periodic;
   if (!periodic && n < 2) throw Error("nearest-neighbour distances in a bounded domain need at least two points");
+  // A NaN would never be proved nearest: the ring search below would not end.
+  for (std::size_t i = 0; i < n; ++i)
+    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
+      throw Error("nearest-neighbour distances: point " + std::to_string(i) + " is not finite");
   // Buckets of side >= the typical spacing; rings grow until the nearest found is provably nearest.
   double side = std::sqrt(2.0 * domain.area() / static_cast<double>(n));
   long columns = std::clamp<long>(static_cast<long>(domain.size.x / side), 1, 1 << 14);
