@@ -112,6 +112,17 @@ TEST_P(EngineRefusals, BrokenScenesAreRefusedWithTheProjectsError) {
     bad.domain.size = size;
     EXPECT_NE(error_of(*engine, bad).find("is not a finite positive size"), std::string::npos) << size.x << " " << size.y;
   }
+  // Room for fewer results than scenes: the exact engine wrote past it (an assert, gone in a
+  // release build: a crash).
+  const std::vector<Scene> two = {scene, scene};
+  std::vector<SceneCells> one(1);
+  std::string message;
+  try {
+    engine->compute(two, one);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_EQ(message, std::string(engine->name()) + " engine: 2 scenes but room for 1 result");
 }
 
 TEST_P(EngineRefusals, LargeScenesNameTheFirstBadSiteOnAnyThreadCount) {

@@ -530,6 +530,7 @@ RasterEngine::RasterEngine(const RasterOptions& options) : impl_(std::make_uniqu
 RasterEngine::~RasterEngine() = default;
 
 void RasterEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
+  check_batch(name(), scenes.size(), out.size());
   // The contract, checked once per scene; wrapped copies only of scenes that need them.
   std::vector<Scene> wrapped(scenes.size());
   std::vector<const Scene*> checked(scenes.size());

@@ -157,7 +157,7 @@ const ExactEngine::DensityEntry& ExactEngine::density_entry(const std::shared_pt
 }
 
 void ExactEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {
-  assert(scenes.size() == out.size());
+  check_batch(name(), scenes.size(), out.size());
   // The contract, checked once per scene; wrapped copies only of scenes that need them.
   std::vector<Scene> wrapped(scenes.size());
   std::vector<const Scene*> checked(scenes.size());

@@ -98,4 +98,10 @@ const Scene& validated_scene(const Scene& scene, Scene& storage) {
   return storage;
 }
 
+void check_batch(std::string_view engine, std::size_t scenes, std::size_t results) {
+  if (scenes != results)
+    throw Error(std::string(engine) + " engine: " + counted(static_cast<long long>(scenes), "scene") +
+                " but room for " + counted(static_cast<long long>(results), "result"));
+}
+
 }  // namespace bluetile

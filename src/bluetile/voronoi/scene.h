@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <string_view>
 
 #include "bluetile/voronoi/engine.h"
 
@@ -27,5 +28,9 @@ inline constexpr std::size_t kMaxSceneSites = 0xFFFFFFFEu;
 // inside already, else a copy with wrapped sites, kept in `storage`. Cells are then those of the
 // wrapped sites, in the same order, so their areas sum to the domain's area.
 const Scene& validated_scene(const Scene& scene, Scene& storage);
+
+// Throws Error unless a batch has one result per scene (every engine's compute checks it first:
+// an `out` shorter than the scenes was written past, a crash in a release build).
+void check_batch(std::string_view engine, std::size_t scenes, std::size_t results);
 
 }  // namespace bluetile
