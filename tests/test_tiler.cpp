@@ -12,6 +12,8 @@
 #include "bluetile/core/rng.h"
 #include "bluetile/tiling/density_thinning.h"
 #include "bluetile/tiling/tiler.h"
+#include "bluetile/tiling/tiling_plan.h"
+#include "test_support.h"
 #include "tiler_support.h"
 
 namespace bluetile {
@@ -348,6 +350,16 @@ TEST(Tiler, BadInputIsRefused) {
   std::vector<float> ones(4, 1.0f);
   EXPECT_THROW(Thinning::from_map(2, 2, ones, {0, 0, 0, 1}, 1.0), Error);
   EXPECT_THROW(Thinning::from_map(2, 2, ones, {0, 0, 1, 1}, 0.0), Error);
+  // The plan took the map's mean over its largest texel first: a zero map was "density -nan is
+  // too low for tiles of size 1", a NaN texel "density nan ...".
+  TilingRequest request;
+  request.window = {0, 0, 2, 2};
+  request.count = 100;
+  DensityGrid zero_map(2, 2, 0.0f), nan_map(2, 2, 1.0f);
+  nan_map.texels[1] = NAN;
+  EXPECT_EQ(test::error_of([&] { plan_tiling(set, &zero_map, request); }), "density map is zero everywhere");
+  EXPECT_EQ(test::error_of([&] { plan_tiling(set, &nan_map, request); }),
+            "density map: texel 1, 0 is nan (must be finite and >= 0)");
 }
 
 }  // namespace

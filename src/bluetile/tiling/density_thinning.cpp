@@ -74,25 +74,31 @@ Thinning Thinning::uniform(double fraction) {
   return t;
 }
 
-Thinning Thinning::from_map(int width, int height, std::span<const float> texels, const Window& rectangle,
-                            double max_fraction) {
-  check_fraction(max_fraction, "maximum density fraction");
+void check_density_map(int width, int height, std::span<const float> texels) {
   if (width < 1 || height < 1 || texels.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
     throw Error("density map: " + std::to_string(width) + " x " + std::to_string(height) + " texels but " +
                 std::to_string(texels.size()) + " values");
-  if (!(std::isfinite(rectangle.x0) && std::isfinite(rectangle.y0) && std::isfinite(rectangle.x1) &&
-        std::isfinite(rectangle.y1) && rectangle.x1 > rectangle.x0 && rectangle.y1 > rectangle.y0))
-    throw Error("density map rectangle must be finite with x1 > x0 and y1 > y0");
-  float largest = 0.0f;
+  bool any_positive = false;
   for (std::size_t k = 0; k < texels.size(); ++k) {
-    float v = texels[k];
+    const float v = texels[k];
     if (!(std::isfinite(v) && v >= 0.0f))
       throw Error("density map: texel " + std::to_string(k % static_cast<std::size_t>(width)) + ", " +
                   std::to_string(k / static_cast<std::size_t>(width)) + " is " + exact_text(v) +
                   " (must be finite and >= 0)");
-    largest = std::max(largest, v);
+    any_positive = any_positive || v > 0.0f;
   }
-  if (largest <= 0.0f) throw Error("density map is zero everywhere");
+  if (!any_positive) throw Error("density map is zero everywhere");
+}
+
+Thinning Thinning::from_map(int width, int height, std::span<const float> texels, const Window& rectangle,
+                            double max_fraction) {
+  check_fraction(max_fraction, "maximum density fraction");
+  check_density_map(width, height, texels);
+  if (!(std::isfinite(rectangle.x0) && std::isfinite(rectangle.y0) && std::isfinite(rectangle.x1) &&
+        std::isfinite(rectangle.y1) && rectangle.x1 > rectangle.x0 && rectangle.y1 > rectangle.y0))
+    throw Error("density map rectangle must be finite with x1 > x0 and y1 > y0");
+  float largest = 0.0f;
+  for (float v : texels) largest = std::max(largest, v);
   Thinning t;
   t.fraction_ = max_fraction;
   t.width_ = width;

@@ -29,6 +29,9 @@
 
 namespace bluetile {
 
+// Throws Error unless `texels` are width x height values, each finite and >= 0, not all zero.
+void check_density_map(int width, int height, std::span<const float> texels);
+
 // How a density map of one aspect ratio is placed on a window of another.
 enum class MapFit {
   contain,  // the whole map, its aspect kept, centred; nothing beside it

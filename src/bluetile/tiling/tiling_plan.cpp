@@ -60,6 +60,8 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
   // aspect) keeps the texel mean; otherwise the fitted map's mean over the window is sampled.
   double largest = 1.0, mean = 1.0;
   if (map) {
+    // Before its mean over its largest texel is taken: a zero map gave "density -nan is too low".
+    check_density_map(map->width, map->height, map->texels);
     largest = 0.0, mean = 0.0;
     for (float v : map->texels) largest = std::max(largest, static_cast<double>(v)), mean += v;
     mean /= static_cast<double>(map->texels.size());
