@@ -5,7 +5,9 @@
 #include <stdexcept>
 
 #include "bluetile/core/parallel.h"
+#include "bluetile/raster/raster_engine.h"
 #include "bluetile/relax/lloyd.h"
+#include "bluetile/relax/progressive.h"
 #include "test_support.h"
 #include "bluetile/voronoi/exact_engine.h"
 
@@ -74,6 +76,35 @@ TEST(Lloyd, StopsOnceBelowTheTolerance) {
   EXPECT_EQ(result.last.max_displacement, result.history.back().max_displacement);
   EXPECT_LT(result.history.back().max_displacement, 1e-4);
   EXPECT_GE(result.history[result.history.size() - 2].max_displacement, 1e-4);
+}
+
+TEST(Lloyd, BadOptionsAreRefusedByTheLibraryToo) {
+  // Iterations -1 ran none, and a NaN or negative tolerance was taken; the front ends checked,
+  // a caller of the library was not told. The same for progressive levels and the raster engine.
+  Scene scene = make_scene(test::uniform_points(20, 2));
+  const std::vector<Point> before = scene.sites;
+  ExactEngine engine;
+  auto relaxed = [&](int iterations, double tolerance) {
+    LloydOptions options;
+    options.iterations = iterations;
+    options.tolerance = tolerance;
+    return test::error_of([&] { relax_lloyd(engine, scene, options); });
+  };
+  EXPECT_EQ(relaxed(-1, 0.0), "iterations: expected 0 to 2147483647, got -1");
+  EXPECT_EQ(relaxed(1, std::nan("")), "tolerance: expected 0 to inf, got nan");
+  EXPECT_EQ(relaxed(1, -1.0), "tolerance: expected 0 to inf, got -1");
+  EXPECT_EQ(scene.sites, before);
+  HierarchyOptions hierarchy;
+  hierarchy.count = 10;
+  hierarchy.iterations = -3;
+  EXPECT_EQ(test::error_of([&] { add_levels(engine, PointSet{}, hierarchy); }),
+            "iterations: expected 0 to 2147483647, got -3");
+  RasterOptions raster;
+  raster.resolution = -5;
+  EXPECT_EQ(test::error_of([&] { RasterEngine r(raster); }), "resolution: expected 0 (from N) or 16 to 65536, got -5");
+  raster.resolution = 0;
+  raster.radius_factor = std::nan("");
+  EXPECT_EQ(test::error_of([&] { RasterEngine r(raster); }), "radius_factor: expected 0.001 to 1e+03, got nan");
 }
 
 TEST(Lloyd, KeepsNoHistoryUnlessAsked) {

@@ -35,11 +35,14 @@
 #include <chrono>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <mutex>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/field_checks.h"
 #include "bluetile/core/text.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/raster/engine_choice.h"
 #include "bluetile/raster/raster_cells.h"
 #include "bluetile/raster/raster_coverage.h"
 #include "bluetile/raster/raster_device.h"
@@ -526,7 +529,22 @@ struct RasterEngine::Impl {
   std::mutex memory_mutex;
 };
 
-RasterEngine::RasterEngine(const RasterOptions& options) : impl_(std::make_unique<Impl>(options)) {}
+namespace {
+
+// The options a caller of the library may set wrong (the front ends check theirs through
+// EngineChoice): a resolution of -5 or a NaN radius factor ran as if given sensibly.
+const RasterOptions& checked(const RasterOptions& options) {
+  if (options.resolution != 0 && (options.resolution < kMinResolution || options.resolution > kMaxResolution))
+    throw Error("resolution: expected 0 (from N) or " + std::to_string(kMinResolution) + " to " +
+                std::to_string(kMaxResolution) + ", got " + std::to_string(options.resolution));
+  check_real_field("radius_factor", options.radius_factor, 1e-3, 1e3);
+  check_real_field("max_cone_overlap", options.max_cone_overlap, 0.0, std::numeric_limits<double>::infinity());
+  return options;
+}
+
+}  // namespace
+
+RasterEngine::RasterEngine(const RasterOptions& options) : impl_(std::make_unique<Impl>(checked(options))) {}
 RasterEngine::~RasterEngine() = default;
 
 void RasterEngine::compute(std::span<const Scene> scenes, std::span<SceneCells> out) {

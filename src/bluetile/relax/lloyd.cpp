@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/field_checks.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/text.h"
 
@@ -190,6 +191,8 @@ class GridOrders {
 }  // namespace
 
 LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, const LloydOptions& options) {
+  check_whole_field("iterations", options.iterations, 0, std::numeric_limits<int>::max());
+  check_real_field("tolerance", options.tolerance, 0.0, std::numeric_limits<double>::infinity());
   LloydResult result;
   std::vector<SceneCells> cells(scenes.size());
   // The scenes' own requests, given back however the run ends (an interrupt throws).

@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/field_checks.h"
 #include "bluetile/core/text.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
@@ -131,7 +132,10 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
   if (!from_scratch && options.add == 0 && options.ratio == 0.0)
     throw Error("nothing to add: give the points per level (add) or a ratio");
   if (options.ratio != 0.0 && !(options.ratio > 1.0))
-    throw Error("the ratio must be above 1, got " + std::to_string(options.ratio));
+    throw Error("the ratio must be above 1, got " + shortest_text(options.ratio));
+  // Checked here, before any level is placed, as relax_lloyd would check them at the first level.
+  check_whole_field("iterations", options.iterations, 0, std::numeric_limits<int>::max());
+  check_real_field("tolerance", options.tolerance, 0.0, std::numeric_limits<double>::infinity());
   const int base_levels = count_levels(base);
   const int target_levels = options.levels ? options.levels : std::max(base_levels + 1, from_scratch ? 4 : 1);
   if (target_levels <= base_levels) {
