@@ -4,6 +4,8 @@
 #   MODE=core_only     builds and runs core_only/ against PREFIX with Vulkan and pkg-config (the
 #                      way to OpenImageIO) hidden, then again through pkg-config's bluetile-core
 #   MODE=subdirectory  builds and runs subdirectory/, which add_subdirectory()s SOURCE_DIR
+#   MODE=headers       builds headers/ against PREFIX: every installed header alone, with
+#                      -Wall -Wextra -Wpedantic -Werror
 # Each step's output is shown only when it fails.
 cmake_minimum_required(VERSION 3.25)
 
@@ -77,6 +79,8 @@ elseif(MODE STREQUAL "subdirectory")
   # they are what broke in a subdirectory before.
   set(EXTRA_TARGETS bluetile_raster_shaders)
   configure_build_run(subdirectory none -DBLUETILE_SOURCE_DIR=${SOURCE_DIR})
+elseif(MODE STREQUAL "headers")
+  configure_build_run(headers none -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug)
 else()
   message(FATAL_ERROR "unknown MODE '${MODE}'")
 endif()
