@@ -6,6 +6,9 @@
 #   MODE=subdirectory  builds and runs subdirectory/, which add_subdirectory()s SOURCE_DIR
 #   MODE=headers       builds headers/ against PREFIX: every installed header alone, with
 #                      -Wall -Wextra -Wpedantic -Werror
+#   MODE=components    builds and runs components/ against PREFIX (find_package called several
+#                      times), then configures it asking for an unknown component: that fails,
+#                      naming it
 # Each step's output is shown only when it fails.
 cmake_minimum_required(VERSION 3.25)
 
@@ -16,6 +19,19 @@ function(step what)
   endif()
   message(STATUS "${what}: ok")
   set(step_output "${out}" PARENT_SCOPE)
+endfunction()
+
+# step_fails(<what> <regex> <command...>): the command fails, and its output matches regex.
+function(step_fails what regex)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "${what} succeeded, expected a failure:\n${out}")
+  endif()
+  string(REGEX REPLACE "[ \n]+" " " flat "${out}")
+  if(NOT flat MATCHES "${regex}")
+    message(FATAL_ERROR "${what} failed without saying '${regex}':\n${out}")
+  endif()
+  message(STATUS "${what}: fails as expected")
 endfunction()
 
 # configure_build_run(<project folder> <program argument> <cmake arguments...>)
@@ -81,6 +97,12 @@ elseif(MODE STREQUAL "subdirectory")
   configure_build_run(subdirectory none -DBLUETILE_SOURCE_DIR=${SOURCE_DIR})
 elseif(MODE STREQUAL "headers")
   configure_build_run(headers none -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug)
+elseif(MODE STREQUAL "components")
+  configure_build_run(components image.png -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug)
+  step_fails("find_package(bluetile REQUIRED COMPONENTS core bogus)"
+    "bluetile has no component 'bogus'; its components are core, images, raster"
+    ${CMAKE_COMMAND} -S ${CMAKE_CURRENT_LIST_DIR}/components -B ${WORK_DIR}/components-unknown -G ${GENERATOR}
+    -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${PREFIX} -DUNKNOWN_COMPONENT=bogus)
 else()
   message(FATAL_ERROR "unknown MODE '${MODE}'")
 endif()
