@@ -69,6 +69,20 @@ elseif(MODE STREQUAL "installed")
       message(FATAL_ERROR "pkg-config --cflags bluetile lacks -D${define}=1: '${step_output}'")
     endif()
   endforeach()
+  # A program built through pkg-config with a relative PKG_CONFIG_PATH finds the image plugin
+  # when run from another folder: its RUNPATH is absolute.
+  file(RELATIVE_PATH pc_relative ${WORK_DIR} ${pc_dir})
+  step("pkg-config bluetile-images, relative PKG_CONFIG_PATH" ${CMAKE_COMMAND} -E chdir ${WORK_DIR}
+    ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pc_relative} pkg-config --cflags --libs bluetile-images)
+  string(STRIP "${step_output}" flags)
+  if(NOT flags MATCHES "-Wl,-rpath,${PREFIX}/")
+    message(FATAL_ERROR "pkg-config --libs bluetile-images gives no absolute RUNPATH under ${PREFIX}: '${flags}'")
+  endif()
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  step("compile with pkg-config" ${CMAKE_COMMAND} -E chdir ${WORK_DIR} ${CXX_COMPILER} -std=c++20
+    ${CMAKE_CURRENT_LIST_DIR}/components/main.cpp -o images_pc ${flags})
+  step("run the pkg-config build from another folder" ${CMAKE_COMMAND} -E chdir ${CMAKE_CURRENT_LIST_DIR}
+    ${WORK_DIR}/images_pc ${WORK_DIR}/image_pc.png)
 elseif(MODE STREQUAL "core_only")
   configure_build_run(core_only table.h -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug
     -DCMAKE_DISABLE_FIND_PACKAGE_Vulkan=ON -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON)
