@@ -3,20 +3,97 @@
 # then runs what was asked.
 #
 #   ./setup.sh demo [DIR]   build, then relax 1000 points (80 iterations) and write the points,
-#                           images and a report to DIR (default: out/)
+#                           images and a report to DIR (default: out/ in the repository; a
+#                           relative DIR is taken from the folder you run the script in)
 #   ./setup.sh test         build, then run the whole test suite (ctest); build the Python module
 #                           with pip into a virtual environment (build/python-venv) and run its
 #                           tests (pytest); then build the suite with address + undefined
 #                           sanitizers (in build-sanitize/) and run it again, and fuzz every file
-#                           reader briefly with libFuzzer (clang, in build-fuzz/)
+#                           reader briefly with libFuzzer (clang, in build-fuzz/). The Python pass
+#                           needs network access: pip fetches scikit-build-core and nanobind.
 #   ./setup.sh build        install and build only
+#   ./setup.sh help         this text (also -h, --help)
 #
-# Environment: BLUETILE_BUILD_DIR (default build), BLUETILE_BUILD_TYPE (default Release),
-# BLUETILE_SANITIZE=OFF skips the sanitizer pass of `test` (fuzzing included), BLUETILE_PYTHON=OFF
-# its Python pass, BLUETILE_FUZZ_SECONDS (default 10) sets each fuzz target's run.
+# Environment: BLUETILE_BUILD_DIR (default build in the repository; a relative one is taken from
+# the folder you run the script in), BLUETILE_BUILD_TYPE (default Release), BLUETILE_SANITIZE=OFF
+# skips the sanitizer pass of `test` (fuzzing included), BLUETILE_PYTHON=OFF its Python pass (both
+# take ON/on/1/yes/true or OFF/off/0/no/false), BLUETILE_FUZZ_SECONDS (default 10) sets each fuzz
+# target's run.
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+self=$here/$(basename "${BASH_SOURCE[0]}")
+
+# The comment block above, without its '# '.
+usage() {
+  sed -n '2,/^[^#]/p' "$self" | sed '$d' | sed 's/^# \{0,1\}//'
+}
+
+# usage_error MESSAGE: the message and the usage on stderr, exit status 2.
+usage_error() {
+  echo "setup.sh: $1" >&2
+  usage >&2
+  exit 2
+}
+
+# on_off NAME DEFAULT: ON or OFF for the environment variable NAME (DEFAULT when unset or empty),
+# into the variable of that name in lower case; any other spelling is refused.
+on_off() {
+  local name=$1 value=${!1:-$2}
+  case ${value,,} in
+    on | 1 | yes | true) printf -v "${name,,}" ON ;;
+    off | 0 | no | false) printf -v "${name,,}" OFF ;;
+    *) usage_error "$name='$value': expected ON, on, 1, yes or true, or OFF, off, 0, no or false" ;;
+  esac
+}
+
+# Everything asked for is checked here, before anything is installed or built. Paths given
+# relative are taken from the caller's folder; the defaults live in the repository.
+caller=$PWD
+absolute() {
+  case $1 in
+    /*) printf '%s\n' "$1" ;;
+    *) printf '%s\n' "$caller/$1" ;;
+  esac
+}
+# The arguments, each in quotes, for messages.
+quoted() {
+  local a list=()
+  for a in "$@"; do list+=("'$a'"); done
+  echo "${list[*]}"
+}
+what=${1:-}
+if [ $# -gt 0 ]; then shift; fi
+case "$what" in
+  demo)
+    [ $# -le 1 ] || usage_error "demo takes one folder at most, got $(quoted "$@")"
+    out=out
+    if [ $# -eq 1 ]; then
+      case $1 in
+        "") usage_error "demo: the folder name is empty" ;;
+        -*) usage_error "demo: '$1' looks like an option, not a folder (write ./$1 for a folder of that name)" ;;
+      esac
+      out=$(absolute "$1")
+    fi
+    ;;
+  test | build)
+    [ $# -eq 0 ] || usage_error "$what takes no arguments, got $(quoted "$@")"
+    ;;
+  help | -h | --help)
+    [ $# -eq 0 ] || usage_error "$what takes no arguments, got $(quoted "$@")"
+    usage
+    exit 0
+    ;;
+  "") usage_error "no command given" ;;
+  *) usage_error "unknown command '$what'" ;;
+esac
+if [ "$what" = test ]; then
+  on_off BLUETILE_SANITIZE ON
+  on_off BLUETILE_PYTHON ON
+fi
+build_dir=build
+[ -z "${BLUETILE_BUILD_DIR:-}" ] || build_dir=$(absolute "$BLUETILE_BUILD_DIR")
+build_type=${BLUETILE_BUILD_TYPE:-Release}
 cd "$here"
 
 # Packages the library, the tool and its tests need (cairo: PDF output, through a plugin
@@ -112,9 +189,10 @@ fuzz_readers() {
   rm -rf "$scratch"
 }
 
+# demo DIR
 demo() {
-  local out=${1:-out}
-  mkdir -p "$out"
+  local out=$1
+  mkdir -p -- "$out"
   local bin="$build_dir/bluetile"
   "$bin" relax --count 1000 --iterations 80 --seed 1 --output "$out/points.txt" \
     --log "$out/relax-log.csv"
@@ -123,27 +201,23 @@ demo() {
   echo "setup: wrote $out/points.txt, $out/relax-log.csv and the analysis in $out/" >&2
 }
 
-build_dir=${BLUETILE_BUILD_DIR:-build}
-build_type=${BLUETILE_BUILD_TYPE:-Release}
-what=${1:-}
 case "$what" in
   demo)
     install_missing
     # Only the tool: the tests and benchmarks are built by `test` and `build`.
     build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type" --target bluetile
-    shift
-    demo "$@"
+    demo "$out"
     ;;
   test)
     install_missing
     build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
     run_tests "$build_dir"
-    if [ "${BLUETILE_PYTHON:-ON}" = ON ]; then
+    if [ "$bluetile_python" = ON ]; then
       echo "setup: the Python module (pip install . into $build_dir/python-venv) and its tests" >&2
       python_tests
     fi
     # The same tests once more with address + undefined-behaviour sanitizers.
-    if [ "${BLUETILE_SANITIZE:-ON}" = ON ]; then
+    if [ "$bluetile_sanitize" = ON ]; then
       echo "setup: tests under address + undefined sanitizers" >&2
       build "$build_dir-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLUETILE_SANITIZE=ON -DBLUETILE_BUILD_BENCH=OFF
       run_tests "$build_dir-sanitize"
@@ -154,9 +228,5 @@ case "$what" in
   build)
     install_missing
     build "$build_dir" -DCMAKE_BUILD_TYPE="$build_type"
-    ;;
-  *)
-    sed -n "2,16p" "$0" | sed 's/^# \{0,1\}//'
-    exit 2
     ;;
 esac

@@ -54,8 +54,11 @@ install(FILES ${PROJECT_BINARY_DIR}/bluetileConfig.cmake ${PROJECT_BINARY_DIR}/b
   DESTINATION ${bluetile_cmake_dir} COMPONENT core)
 
 # pkg-config: one file per component, and bluetile.pc for all of them. Static libraries carry
-# their dependencies in Libs (there is no shared object to carry them).
-file(RELATIVE_PATH pc_to_prefix /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+# their dependencies in Libs (there is no shared object to carry them). The prefix is written
+# absolute when installing (the one `cmake --install --prefix` names): the image plugin's RUNPATH
+# must be absolute, and ${pcfiledir} is relative wherever PKG_CONFIG_PATH is, which gave a program
+# that found its plugin only when run from the folder it was built in.
+set(pc_prefix "@BLUETILE_PC_PREFIX@")  # left for install_pc_file below
 set(pc_core_requires glm)
 set(pc_core_libs "-pthread")
 set(pc_images_requires bluetile-core)
@@ -87,7 +90,7 @@ foreach(component ${bluetile_components})
   endif()
   string(REPLACE ";" " " pc_libs "${pc_libs}")
   string(REPLACE ";" " " pc_libs_private "${pc_libs_private}")
-  configure_file(${PROJECT_SOURCE_DIR}/cmake/bluetile.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${pc_name}.pc @ONLY)
+  configure_file(${PROJECT_SOURCE_DIR}/cmake/bluetile.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${pc_name}.pc.in @ONLY)
   list(APPEND pc_all_requires ${pc_name})
 endforeach()
 set(pc_name bluetile)
@@ -96,9 +99,19 @@ set(pc_description "bluetile: blue-noise sample points by Lloyd relaxation (ever
 list(JOIN pc_all_requires " " pc_requires)
 set(pc_libs "")
 set(pc_libs_private "")
-configure_file(${PROJECT_SOURCE_DIR}/cmake/bluetile.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/bluetile.pc @ONLY)
+configure_file(${PROJECT_SOURCE_DIR}/cmake/bluetile.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/bluetile.pc.in @ONLY)
+
+# install_pc_file(NAME COMPONENT): at install time, NAME.pc with the install prefix filled in.
+function(install_pc_file name component)
+  set(template ${PROJECT_BINARY_DIR}/pkgconfig/${name}.pc.in)
+  set(staged ${PROJECT_BINARY_DIR}/pkgconfig/installed/${name}.pc)
+  install(CODE "
+    set(BLUETILE_PC_PREFIX \"\${CMAKE_INSTALL_PREFIX}\")
+    configure_file(\"${template}\" \"${staged}\" @ONLY)
+    file(INSTALL DESTINATION \"\${CMAKE_INSTALL_PREFIX}/${CMAKE_INSTALL_LIBDIR}/pkgconfig\" TYPE FILE FILES \"${staged}\")"
+    COMPONENT ${component})
+endfunction()
 foreach(component ${bluetile_components})
-  install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/bluetile-${component}.pc
-    DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT ${component})
+  install_pc_file(bluetile-${component} ${component})
 endforeach()
-install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/bluetile.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT core)
+install_pc_file(bluetile core)

@@ -4,6 +4,11 @@
 #   MODE=core_only     builds and runs core_only/ against PREFIX with Vulkan and pkg-config (the
 #                      way to OpenImageIO) hidden, then again through pkg-config's bluetile-core
 #   MODE=subdirectory  builds and runs subdirectory/, which add_subdirectory()s SOURCE_DIR
+#   MODE=headers       builds headers/ against PREFIX: every installed header alone, with
+#                      -Wall -Wextra -Wpedantic -Werror
+#   MODE=components    builds and runs components/ against PREFIX (find_package called several
+#                      times), then configures it asking for an unknown component: that fails,
+#                      naming it
 # Each step's output is shown only when it fails.
 cmake_minimum_required(VERSION 3.25)
 
@@ -14,6 +19,19 @@ function(step what)
   endif()
   message(STATUS "${what}: ok")
   set(step_output "${out}" PARENT_SCOPE)
+endfunction()
+
+# step_fails(<what> <regex> <command...>): the command fails, and its output matches regex.
+function(step_fails what regex)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "${what} succeeded, expected a failure:\n${out}")
+  endif()
+  string(REGEX REPLACE "[ \n]+" " " flat "${out}")
+  if(NOT flat MATCHES "${regex}")
+    message(FATAL_ERROR "${what} failed without saying '${regex}':\n${out}")
+  endif()
+  message(STATUS "${what}: fails as expected")
 endfunction()
 
 # configure_build_run(<project folder> <program argument> <cmake arguments...>)
@@ -51,6 +69,20 @@ elseif(MODE STREQUAL "installed")
       message(FATAL_ERROR "pkg-config --cflags bluetile lacks -D${define}=1: '${step_output}'")
     endif()
   endforeach()
+  # A program built through pkg-config with a relative PKG_CONFIG_PATH finds the image plugin
+  # when run from another folder: its RUNPATH is absolute.
+  file(RELATIVE_PATH pc_relative ${WORK_DIR} ${pc_dir})
+  step("pkg-config bluetile-images, relative PKG_CONFIG_PATH" ${CMAKE_COMMAND} -E chdir ${WORK_DIR}
+    ${CMAKE_COMMAND} -E env PKG_CONFIG_PATH=${pc_relative} pkg-config --cflags --libs bluetile-images)
+  string(STRIP "${step_output}" flags)
+  if(NOT flags MATCHES "-Wl,-rpath,${PREFIX}/")
+    message(FATAL_ERROR "pkg-config --libs bluetile-images gives no absolute RUNPATH under ${PREFIX}: '${flags}'")
+  endif()
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  step("compile with pkg-config" ${CMAKE_COMMAND} -E chdir ${WORK_DIR} ${CXX_COMPILER} -std=c++20
+    ${CMAKE_CURRENT_LIST_DIR}/components/main.cpp -o images_pc ${flags})
+  step("run the pkg-config build from another folder" ${CMAKE_COMMAND} -E chdir ${CMAKE_CURRENT_LIST_DIR}
+    ${WORK_DIR}/images_pc ${WORK_DIR}/image_pc.png)
 elseif(MODE STREQUAL "core_only")
   configure_build_run(core_only table.h -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug
     -DCMAKE_DISABLE_FIND_PACKAGE_Vulkan=ON -DCMAKE_DISABLE_FIND_PACKAGE_PkgConfig=ON)
@@ -77,6 +109,14 @@ elseif(MODE STREQUAL "subdirectory")
   # they are what broke in a subdirectory before.
   set(EXTRA_TARGETS bluetile_raster_shaders)
   configure_build_run(subdirectory none -DBLUETILE_SOURCE_DIR=${SOURCE_DIR})
+elseif(MODE STREQUAL "headers")
+  configure_build_run(headers none -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug)
+elseif(MODE STREQUAL "components")
+  configure_build_run(components image.png -DCMAKE_PREFIX_PATH=${PREFIX} -DCMAKE_BUILD_TYPE=Debug)
+  step_fails("find_package(bluetile REQUIRED COMPONENTS core bogus)"
+    "bluetile has no component 'bogus'; its components are core, images, raster"
+    ${CMAKE_COMMAND} -S ${CMAKE_CURRENT_LIST_DIR}/components -B ${WORK_DIR}/components-unknown -G ${GENERATOR}
+    -DCMAKE_CXX_COMPILER=${CXX_COMPILER} -DCMAKE_PREFIX_PATH=${PREFIX} -DUNKNOWN_COMPONENT=bogus)
 else()
   message(FATAL_ERROR "unknown MODE '${MODE}'")
 endif()

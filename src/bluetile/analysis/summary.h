@@ -36,10 +36,10 @@ struct SummaryOptions {
   bool spectral_measures = true;
   // CD, WD, MD and L2-star discrepancies (discrepancy.h): O(N^2).
   bool discrepancy = true;
-  RdfOptions rdf;          // range and bins (its boundary is taken from `boundary`)
-  std::function<void(std::size_t, std::size_t)> progress;  // periodogram progress
+  RdfOptions rdf{};  // range and bins (its boundary is taken from `boundary`)
+  std::function<void(std::size_t, std::size_t)> progress{};  // periodogram progress
   // Called with the name of each step as it starts ("nearest neighbours", "periodogram", ...).
-  std::function<void(const char*)> step;
+  std::function<void(const char*)> step{};
 };
 
 // One set's own measures, for the per-set table of a mean over several sets. NaN where a

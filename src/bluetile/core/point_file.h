@@ -46,7 +46,7 @@ struct ReadOptions {
   bool wrap = true;
   // The domain the set was made in: every coordinate is mapped linearly from [x0, x1) x [y0, y1)
   // onto the unit torus (a non-square box is stretched). None: the file is on the unit torus.
-  std::optional<CoordinateBox> domain;
+  std::optional<CoordinateBox> domain{};
 };
 
 // A point as read, placed on the unit torus as `options` says. `outside` is set to the axis

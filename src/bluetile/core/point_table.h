@@ -79,9 +79,9 @@ void write_text_table(const TableView& table, const ByteSink& sink);
 struct TableWriteOptions {
   bool float32 = false;  // npy and binary: 4-byte floats instead of 8 (header: always float)
   // header: the array's name; empty picks one from the file name (table_name_for_path).
-  std::string name;
+  std::string name{};
   // header: comment lines at the top of the file.
-  std::vector<std::string> comment;
+  std::vector<std::string> comment{};
 };
 
 // Writes `table` in a binary or code format (npy, binary, header; text goes through

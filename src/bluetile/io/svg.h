@@ -56,12 +56,12 @@ class SvgPaint {
 
 // Presentation attributes of a shape or group. Absent values are inherited from the group.
 struct SvgStyle {
-  SvgPaint fill;
-  SvgPaint stroke;
-  std::optional<double> stroke_width;  // user units
-  std::optional<double> opacity;       // [0, 1], multiplies the group's
-  std::vector<double> dash;            // stroke dash pattern (user units); empty: inherited/solid
-  bool round_caps = false;             // round line caps and joins (else SVG's butt/miter)
+  SvgPaint fill{};
+  SvgPaint stroke{};
+  std::optional<double> stroke_width{};  // user units
+  std::optional<double> opacity{};       // [0, 1], multiplies the group's
+  std::vector<double> dash{};            // stroke dash pattern (user units); empty: inherited/solid
+  bool round_caps = false;               // round line caps and joins (else SVG's butt/miter)
 
   static SvgStyle filled(Colour c) { return {.fill = c, .stroke = SvgPaint::none()}; }
   static SvgStyle stroked(Colour c, double width) {

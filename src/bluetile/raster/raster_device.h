@@ -17,7 +17,7 @@
 namespace bluetile {
 
 struct RasterDeviceSettings {
-  std::string device;       // name or index; empty for the default (lavapipe first)
+  std::string device{};   // name or index; empty for the default (lavapipe first)
   bool fan = false;         // tessellated cones instead of exact-depth quads
   ConeDraw cone_draw = ConeDraw::points;
   bool force_float32 = false;  // the float32 split even where the device has shaderFloat64

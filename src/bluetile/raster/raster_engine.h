@@ -69,7 +69,7 @@ struct RasterOptions {
   std::uint32_t split_guard_test = 0;
   PixelWork pixel_work = PixelWork::automatic;
   // Vulkan device: empty (CPU/lavapipe first), an index or a name substring.
-  std::string device;
+  std::string device{};
   // Sites on lines (or a few parallel lines) have sliver cells that reach across the domain:
   // every cone covers most of it and every pixel it crosses is split among O(N) strips, so a
   // pass costs about N^2 (docs/RASTER.md, "Sliver cells"). A scene whose cones would overlap more

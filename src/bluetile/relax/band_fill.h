@@ -53,7 +53,7 @@ struct FillOptions {
   double regrid = kFillRegrid;                  // kernel rebuilt when the prefix grew this much
   std::uint64_t seed = 1;
   // Called after each round (one new point in every tile) with the rounds done and the total.
-  std::function<void(std::size_t done, std::size_t total)> on_round;
+  std::function<void(std::size_t done, std::size_t total)> on_round{};
 };
 
 // Adds `add` points to every tile. tiles[t] holds tile t's existing points, in [0,1)^2, ranked

@@ -38,7 +38,7 @@ struct LloydOptions {
   // 0 runs all iterations.
   double tolerance = 0.0;
   // Called after every iteration (logging, progress).
-  std::function<void(const LloydIteration&)> on_iteration;
+  std::function<void(const LloydIteration&)> on_iteration{};
   // Keep every iteration's figures in LloydResult::history (memory grows with the iterations:
   // about 56 bytes each); otherwise only the last is kept.
   bool keep_history = false;

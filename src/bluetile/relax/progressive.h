@@ -57,7 +57,7 @@ struct LevelOptions {
   double tolerance = 0.0;  // see LloydOptions
   std::uint64_t seed = 1;
   Placement placement = Placement::gaps;
-  std::function<void(const LloydIteration&)> on_iteration;
+  std::function<void(const LloydIteration&)> on_iteration{};
 };
 
 // Returns base followed by `add` new points relaxed around the base, which is kept bit for bit.
@@ -84,9 +84,9 @@ struct HierarchyOptions {
   Placement placement = Placement::gaps;
   ProgressiveOrder rank_order = ProgressiveOrder::voids;  // LF between boundaries about half placement's (docs/RESULTS.md)
   double void_sigma = kVoidSigmaFactor;  // the voids order's kernel width (void_order.h)
-  FillOptions fill;  // the fill order's floor, window and grid (band_fill.h); its seed is set from `seed`
+  FillOptions fill{};  // the fill order's floor, window and grid (band_fill.h); its seed is set from `seed`
   // With the voids order, level is the first level of the stage being relaxed.
-  std::function<void(int level, const LloydIteration&)> on_iteration;
+  std::function<void(int level, const LloydIteration&)> on_iteration{};
 };
 
 // A hierarchy as `bluetile progressive` builds it: the base (kept bit for bit), then levels up

@@ -75,15 +75,15 @@ struct WangLevelOptions {
   std::uint64_t seed = 1;     // this level's seed (placement, instances, rounds)
   // Points are kept this far inside their tile square (tile units; 0: anywhere in [0,1)).
   double edge_margin = 0.0;
-  WangRefinement refine;  // the lattice and seam spacing steps
+  WangRefinement refine{};  // the lattice and seam spacing steps
   // The order of the level's points (wang_ranks.h): farthest point, or by voids with a kernel of
   // void_sigma hexagonal spacings of the prefix; or fill, the default: levels after the first
   // filled point by point (band_fill.h), every prefix above level 0 at rho 0.66 and about half the
   // low-frequency power of farthest's between the boundaries (docs/RESULTS.md, "Every prefix").
   RankOrder rank_order = RankOrder::fill;
   double void_sigma = 0.5;
-  FillOptions fill;  // the fill order's floor, window and grid; its seed is set from `seed`
-  std::function<void(const WangIteration&)> on_iteration;
+  FillOptions fill{};  // the fill order's floor, window and grid; its seed is set from `seed`
+  std::function<void(const WangIteration&)> on_iteration{};
 };
 
 // An empty set of `kind`: every tile with its colours and no points.
@@ -101,7 +101,7 @@ struct WangOptions {
   double ratio = 2.0;       // each further level brings a tile's count to round(ratio * count)
   std::uint64_t seed = 1;
   // Iterations, strategy, margin and callback of every level (add and seed are set per level).
-  WangLevelOptions level;
+  WangLevelOptions level{};
 };
 
 // The values the tool's options and the Python module's arguments accept, defined once. More

@@ -16,7 +16,7 @@
 namespace bluetile {
 
 struct TilingRequest {
-  Window window;             // x1 > x0, y1 > y0, finite
+  Window window{};           // x1 > x0, y1 > y0, finite
   double tile_size = 0.0;    // plane units per tile; 0: from the density, else 1
   double density = 0.0;      // uniform: points per unit area (0: every point of every tile)
   double max_density = 0.0;  // with a map: points per unit area where it is densest (0: not given)
