@@ -246,7 +246,10 @@ TEST_P(Raster, RebuiltScenesDrawConesNoLargerThanKeptOnes) {
 TEST(RasterLimits, ResolutionBeyondTheDeviceIsAClearError) {
   REQUIRE_VULKAN();
   RasterOptions options;
-  options.resolution = 1 << 20;
+  options.resolution = 1 << 20;  // beyond the engine's own range: refused when made
+  EXPECT_EQ(test::error_of([&] { RasterEngine beyond(options); }),
+            "resolution: expected 0 (from N) or 16 to 65536, got 1048576");
+  options.resolution = 65536;  // in range, past every device's largest image side
   RasterEngine huge(options);
   try {
     huge.compute(make_scene(uniform_points(10, 1)));
