@@ -8,9 +8,9 @@
 #include "cli/numeric_options.h"
 #include "cli/point_output.h"
 #include "bluetile/core/error.h"
-#include "bluetile/core/text.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/text.h"
 #include "bluetile/sampling/dart_throwing.h"
 
 namespace bluetile::cli {

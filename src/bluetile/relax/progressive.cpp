@@ -7,9 +7,9 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/field_checks.h"
-#include "bluetile/core/text.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 #include "bluetile/relax/void_order.h"
 
 namespace bluetile {
