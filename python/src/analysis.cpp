@@ -9,6 +9,7 @@
 #include "bindings.h"
 #include "bluetile/analysis/summary.h"
 #include "bluetile/analysis/summary_record.h"
+#include "bluetile/core/text.h"
 
 namespace pybluetile {
 
@@ -28,7 +29,7 @@ int spectrum_size(const Whole& size_arg) {
 
 void check_bin_width(double bin_width) {
   if (!(bin_width > 0.0) || !std::isfinite(bin_width))
-    throw nb::value_error(("bin_width: expected a positive number, got " + std::to_string(bin_width)).c_str());
+    throw nb::value_error(("bin_width: expected a positive number, got " + bluetile::shortest_text(bin_width)).c_str());
 }
 
 // Refused outside [0, 1), as `bluetile analyze` refuses them.
@@ -125,8 +126,8 @@ void bind_analysis(nb::module_& m) {
       R"(Statistics of a point set on the unit torus, as ``bluetile analyze`` writes them to stats.json.
 
 ``points``: shape (N, 2), or (K, N, 2) for the mean over K sets (``--average``), coordinates in
-[0, 1) as the tool asks (``points % 1.0`` wraps others; so for every analysis function). Returns a dict
-with stats.json's keys and numbers (one serializer in the library makes both): n, sets,
+[0, 1) as the tool asks (``points % 1.0 % 1.0`` wraps others: once gives 1.0 for -1e-17; so for
+every analysis function). Returns a dict with stats.json's keys and numbers (one serializer in the library makes both): n, sets,
 boundary, nn_min, nn_max, nn_mean, nn_x1000, nn_relative, hexagonal_spacing, rho,
 average_min_distance, nn_min_lowest/highest (K > 1), mean_centroid_distance[_relative] unless
 ``centroids=False``, nu_eff and omega by psa's definitions (None when ``psa_measures=False``;

@@ -10,6 +10,7 @@
 #include "bindings.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/relax/stipple.h"
@@ -46,7 +47,8 @@ constexpr int kMaxIterations = 100'000'000;
 
 void check_non_negative(const char* name, double value) {
   if (!(value >= 0.0) || !std::isfinite(value))
-    throw nb::value_error((std::string(name) + ": expected a finite number >= 0, got " + std::to_string(value)).c_str());
+    throw nb::value_error(
+        (std::string(name) + ": expected a finite number >= 0, got " + bluetile::shortest_text(value)).c_str());
 }
 
 nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {

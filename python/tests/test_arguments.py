@@ -83,9 +83,19 @@ def test_analysis_refuses_points_outside_the_torus_as_the_tool_does():
     # (1, 1) was wrapped onto (0, 0) without a word: rho 0 from a pair that is not there.
     points = np.array([[0.0, 0.0], [1.0, 1.0], [0.5, 0.5]])
     for function in (bt.analyze, bt.periodogram, bt.radial_power, bt.nearest_neighbour_distances):
-        with pytest.raises(ValueError, match=r"^points\[1\]: x = 1 is outside \[0, 1\) \(points % 1.0 wraps them"):
+        with pytest.raises(ValueError, match=r"^points\[1\]: x = 1 is outside \[0, 1\) \(points % 1.0 % 1.0 wraps them"):
             function(points)
-    assert bt.analyze(points % 1.0, psa_measures=False, discrepancy=False)["rho"] == 0.0  # wrapped by the caller
+    assert bt.analyze(points % 1.0 % 1.0, psa_measures=False, discrepancy=False)["rho"] == 0.0  # wrapped by the caller
+
+
+def test_the_wrapping_the_refusal_suggests_is_accepted():
+    # The hint said "points % 1.0", but -1e-17 % 1.0 is 1.0, which was refused again.
+    for x in (-1e-17, -0.0, 1.0, 1.5, -2.5, 3.0 - 2**-51):
+        points = np.array([[x, 0.5], [0.25, 0.25]])
+        if not 0.0 <= x < 1.0:
+            with pytest.raises(ValueError, match=r"\(points % 1.0 % 1.0 wraps them onto the torus"):
+                bt.periodogram(points)
+        assert bt.periodogram(points % 1.0 % 1.0).shape == (14, 14), x
     # relax and centroids wrap, as the tool wraps point files it relaxes.
     bt.centroids(np.array([[1.25, 0.5], [0.5, 0.5]]), engine="exact")
 
@@ -244,3 +254,36 @@ def test_raster_settings_with_the_exact_engine_are_refused():
     with pytest.raises(ValueError, match=r"^coverage='point': a raster engine setting"):
         bt.stipple(np.ones((4, 4)), count=10, iterations=1, coverage="point")  # exact by default
     assert bt.relax(count=20, iterations=1, engine="exact", coverage="area").shape == (20, 2)  # the default value
+
+
+@pytest.mark.parametrize("dtype", [np.int8, np.int16, np.int32, np.int64])
+def test_negative_levels_are_quoted_as_given(tmp_path, dtype):
+    # An int32 -1 was read as uint32 and quoted as 4294967295.
+    points = bt.random_points(10)
+    with pytest.raises(ValueError, match=r"^levels\[0\]: level must be in \[0, 1000000\], got -1$"):
+        bt.save_table(tmp_path / "x.txt", points, levels=-np.ones(10, dtype))
+    with pytest.raises(ValueError, match=r"^base_levels\[0\]: level must be in \[0, 1000000\], got -1$"):
+        bt.progressive(points, -np.ones(10, dtype), add=5, iterations=1, engine="exact")
+    with pytest.raises(ValueError, match=r"^levels\[0\]: level must be in \[0, 1000000\], got 18446744073709551615$"):
+        bt.save_table(tmp_path / "x.txt", points, levels=np.full(10, 2**64 - 1, np.uint64))
+    bt.save_table(tmp_path / "x.txt", points, levels=np.arange(10, dtype=dtype))
+    assert np.array_equal(bt.load_table(tmp_path / "x.txt", levels=True)[0][1], np.arange(10))
+
+
+def test_numbers_in_messages_are_written_shortest():
+    # They were printed with %f: "got -1.000000", "got 0.500000".
+    points = np.random.default_rng(5).random((20, 2))
+    with pytest.raises(ValueError, match=r"^tolerance: expected a finite number >= 0, got -1$"):
+        bt.relax(count=5, tolerance=-1.0, engine="exact")
+    with pytest.raises(ValueError, match=r"^tolerance: expected a finite number >= 0, got -0.25$"):
+        bt.stipple(np.ones((2, 2)), count=5, tolerance=-0.25)
+    with pytest.raises(ValueError, match=r"^ratio: expected a finite number >= 0, got -1e\+20$"):
+        bt.progressive(count=5, ratio=-1e20, engine="exact")
+    with pytest.raises(bt.Error, match=r"^the ratio must be above 1, got 0.5$"):
+        bt.progressive(count=5, ratio=0.5, engine="exact")
+    with pytest.raises(ValueError, match=r"^bin_width: expected a positive number, got -1$"):
+        bt.analyze(points, bin_width=-1.0)
+    with pytest.raises(ValueError, match=r"^bin_width: expected a positive number, got 0$"):
+        bt.radial_power(points, bin_width=0.0)
+    with pytest.raises(ValueError, match=r"^density_map: values must be finite and >= 0, got -0.5 at row 1, column 0$"):
+        bt.relax(count=5, density_map=[[1.0, 1.0], [-0.5, 1.0]])

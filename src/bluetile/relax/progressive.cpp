@@ -131,7 +131,7 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
   if (!from_scratch && options.add == 0 && options.ratio == 0.0)
     throw Error("nothing to add: give the points per level (add) or a ratio");
   if (options.ratio != 0.0 && !(options.ratio > 1.0))
-    throw Error("the ratio must be above 1, got " + std::to_string(options.ratio));
+    throw Error("the ratio must be above 1, got " + shortest_text(options.ratio));
   const int base_levels = count_levels(base);
   const int target_levels = options.levels ? options.levels : std::max(base_levels + 1, from_scratch ? 4 : 1);
   if (target_levels <= base_levels) {
