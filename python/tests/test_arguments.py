@@ -270,6 +270,26 @@ def test_negative_levels_are_quoted_as_given(tmp_path, dtype):
     assert np.array_equal(bt.load_table(tmp_path / "x.txt", levels=True)[0][1], np.arange(10))
 
 
+def test_tile_set_text_is_told_from_a_path(tmp_path):
+    # Text that began with a space, a byte-order mark or a newline was taken for a path, and the
+    # error quoted it whole ("cannot open: File name too long"); bytes always were a path.
+    text = bt.wang_tiles(**CALLS["wang_tiles"][1])
+    expected = bt.tile_set(text)["tiles"][3]["points"]
+    for variant in (" " + text, "\ufeff" + text, "\t" + text, text.encode(), ("\ufeff" + text).encode()):
+        assert np.array_equal(bt.tile_set(variant)["tiles"][3]["points"], expected), repr(variant[:3])
+    # Text with a line break is text, refused by its line as a file with the same bytes would be.
+    with pytest.raises(bt.Error, match=r"^tiles:1: not a tile-set file: the first line must be '# bluetile tiles 1'$"):
+        bt.tile_set("\n" + text)
+    with pytest.raises(bt.Error, match=r"^tiles:1: not a tile-set file"):
+        bt.tile((0.0, 0.0, 1.0, 1.0), tiles="points\n0.5 0.5\n")
+    # Anything else is a path, str, bytes or os.PathLike.
+    (tmp_path / "set.tiles").write_text(text)
+    for path in (str(tmp_path / "set.tiles"), bytes(tmp_path / "set.tiles"), tmp_path / "set.tiles"):
+        assert np.array_equal(bt.tile_set(path)["tiles"][3]["points"], expected)
+    with pytest.raises(bt.Error, match=r"absent\.tiles: cannot open: No such file or directory$"):
+        bt.tile_set(str(tmp_path / "absent.tiles"))
+
+
 def test_numbers_in_messages_are_written_shortest():
     # They were printed with %f: "got -1.000000", "got 0.500000".
     points = np.random.default_rng(5).random((20, 2))
