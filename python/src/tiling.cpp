@@ -173,6 +173,8 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
   request.count = count;
   request.seed = seed_value(seed);
   request.fit = bluetile::parse_map_fit(fit);
+  // As the tool's --fit without --density-map: refused, not ignored.
+  if (!density_map && fit != "contain") throw nb::value_error(("fit='" + fit + "' places a density_map: give one").c_str());
   std::optional<bluetile::DensityGrid> map;
   if (density_map) map = density_grid(array_arg(*density_map, "density_map", ArrayKind::density), "density_map");
 

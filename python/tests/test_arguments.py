@@ -239,6 +239,14 @@ def test_save_table_refuses_options_its_format_ignores(tmp_path):
     assert list(tmp_path.iterdir()) == []
     bt.save_table(tmp_path / "t.bpt", points, float32=True)
     bt.save_table(tmp_path / "t.h", points, name="table")
+    # A comment was dropped without a word where the format holds none.
+    for name, kind in (("c.npy", "npy"), ("c.bpt", "binary")):
+        with pytest.raises(bt.Error, match=rf"^comment: .*{name} is {kind}; comment lines are for text tables and C headers$"):
+            bt.save_table(tmp_path / name, points, comment=["made here"])
+        assert not (tmp_path / name).exists()
+    bt.save_table(tmp_path / "c.txt", points, comment=["made here"])
+    bt.save_table(tmp_path / "c.h", points, comment=["made here"])
+    assert "made here" in (tmp_path / "c.txt").read_text() and "made here" in (tmp_path / "c.h").read_text()
 
 
 def test_raster_settings_with_the_exact_engine_are_refused():
@@ -254,6 +262,52 @@ def test_raster_settings_with_the_exact_engine_are_refused():
     with pytest.raises(ValueError, match=r"^coverage='point': a raster engine setting"):
         bt.stipple(np.ones((4, 4)), count=10, iterations=1, coverage="point")  # exact by default
     assert bt.relax(count=20, iterations=1, engine="exact", coverage="area").shape == (20, 2)  # the default value
+
+
+def test_the_fill_order_refuses_what_it_would_ignore(tool, tmp_path):
+    # The fill order relaxes nothing and runs no engine; iterations, placement and the rest were
+    # ignored without a word, where the tool refuses them.
+    cli = tool("progressive", "--count", 10, "--rank-order", "fill", "--iterations", 7, "-o", tmp_path / "p.txt",
+               check=False)
+    assert cli.returncode != 0 and "--rank-order fill relaxes nothing and runs no engine" in cli.stderr
+    settings = {"iterations": (7, "7"), "tolerance": (0.5, "0.5"), "placement": ("random", "'random'"),
+                "engine": ("exact", "'exact'"), "resolution": (64, "64"), "coverage": ("point", "'point'"),
+                "cone": ("fan", "'fan'"), "device": ("0", "'0'"), "pixel_work": ("host", "'host'")}
+    for argument, (value, text) in settings.items():
+        with pytest.raises(ValueError, match=rf"^{argument}={re.escape(text)}: rank_order='fill' relaxes nothing and "
+                                             r"runs no engine; this is for the orders that relax \('voids', 'placement'\)$"):
+            bt.progressive(count=10, rank_order="fill", **{argument: value})
+    # The defaults, given or not, are the same call; the tool's points bit for bit.
+    tool("progressive", "--count", 10, "--rank-order", "fill", "-o", tmp_path / "f.txt")
+    points, levels = bt.progressive(count=10, rank_order="fill", iterations=80, placement="gaps", engine="raster")
+    assert np.array_equal(points, np.loadtxt(tmp_path / "f.txt", comments="#")[:, :2])
+    assert bt.progressive(count=10, levels=2, iterations=7, placement="random", engine="exact")[0].shape == (20, 2)
+
+
+def test_tile_refuses_a_fit_without_a_map(tool, tmp_path):
+    # fit placed nothing without a density_map and was ignored; the tool refuses --fit alone.
+    cli = tool("tile", "--region", 0, 0, 2, 2, "--density", 100, "--fit", "cover", "-o", tmp_path / "t.txt", check=False)
+    assert cli.returncode != 0 and "--fit cover places a --density-map: give one" in cli.stderr
+    for fit in ("cover", "stretch"):
+        with pytest.raises(ValueError, match=rf"^fit='{fit}' places a density_map: give one$"):
+            bt.tile((0.0, 0.0, 2.0, 2.0), density=100, fit=fit)
+    assert bt.tile((0.0, 0.0, 2.0, 2.0), density=100, fit="contain").shape[1] == 2
+    assert bt.tile((0.0, 0.0, 2.0, 2.0), density_map=np.ones((2, 2)), count=50, fit="cover").shape[1] == 2
+
+
+def test_relax_refuses_a_seed_or_weight_exponent_that_would_change_nothing():
+    # The seed draws only a random start, and the exponent weights only a map's cells: with
+    # points given, or no map, they were ignored without a word.
+    points = bt.random_points(10)
+    with pytest.raises(ValueError, match=r"^seed=7: only with count \(it draws the random start; the points given are "
+                                         r"the start\)$"):
+        bt.relax(points, seed=7, iterations=1, engine="exact")
+    with pytest.raises(ValueError, match=r"^weight_exponent=3 weights the cells by a density_map: give one$"):
+        bt.relax(count=5, weight_exponent=3, iterations=1, engine="exact")
+    with pytest.raises(ValueError, match=r"^weight_exponent=0.5 weights the cells by a density_map: give one$"):
+        bt.relax(points, weight_exponent=0.5, iterations=1, engine="exact")
+    assert np.array_equal(bt.relax(points, seed=1, iterations=1, engine="exact"), bt.relax(points, iterations=1, engine="exact"))
+    assert bt.relax(count=5, seed=7, weight_exponent=3, density_map=np.ones((2, 2)), iterations=1).shape == (5, 2)
 
 
 @pytest.mark.parametrize("dtype", [np.int8, np.int16, np.int32, np.int64])
