@@ -10,6 +10,7 @@
 
 #include "arrays.h"
 #include "bindings.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/core/text.h"
@@ -131,6 +132,10 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
   if (points_arg) {
     input = point_sets(array_arg(*points_arg, "points", ArrayKind::points), "points");
   } else {
+    // As the tool's relax --count --sets: refused at once with the estimate, not a MemoryError
+    // after seconds of work.
+    bluetile::check_memory(static_cast<double>(std::max(sets, 1LL)) * static_cast<double>(count) * bluetile::kRelaxBytesPerSite,
+                           "count=" + std::to_string(count) + (sets != 0 ? " x sets=" + std::to_string(sets) : ""));
     input.batched = sets != 0;
     for (long long k = 0; k < std::max(sets, 1LL); ++k) {
       const auto n = static_cast<std::size_t>(count);
@@ -176,6 +181,8 @@ nb::object stipple(const ArrayArg& density_map, const Whole& count, const Whole&
   check_engine_choice(choice);
   bluetile::StippleStart start;
   start.count = whole<std::size_t>(count, "count", 1, kMaxCount);
+  bluetile::check_memory(static_cast<double>(start.count) * bluetile::kRelaxBytesPerSite,
+                         "count=" + std::to_string(start.count));  // as the tool's stipple --count
   const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
   check_non_negative("tolerance", tolerance);
   bluetile::check_weight_exponent(weight_exponent, "weight_exponent");
@@ -288,6 +295,20 @@ nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base
   options.seed = seed_value(seed);
   options.placement = placement == "random" ? bluetile::Placement::random : bluetile::Placement::gaps;
   options.rank_order = order;
+  {
+    // The levels' sizes and the memory of them all, checked before any work as the tool checks
+    // them (the fill order's grid included).
+    const std::vector<std::size_t> sizes = bluetile::hierarchy_level_sizes(set, options);
+    double total = static_cast<double>(set.points.size());
+    for (std::size_t add : sizes) total += static_cast<double>(add);
+    const double fill = order == bluetile::ProgressiveOrder::fill
+                            ? bluetile::band_fill_cost(0, static_cast<std::size_t>(total), 1, options.fill).bytes
+                            : 0.0;
+    const int target_levels = bluetile::count_levels(set) + static_cast<int>(sizes.size());
+    bluetile::check_memory(total * bluetile::kProgressiveBytesPerPoint + fill,
+                           std::to_string(static_cast<long long>(total)) + " points in " + std::to_string(target_levels) +
+                               " levels");
+  }
   {
     nb::gil_scoped_release release;
     // The fill order relaxes nothing: no engine of the choice is made for it (no Vulkan device

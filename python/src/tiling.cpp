@@ -14,6 +14,8 @@
 #include "bindings.h"
 #include "engines.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
+#include "bluetile/core/text.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/tiling/default_tile_set.h"
 #include "bluetile/tiling/density_thinning.h"
@@ -183,6 +185,14 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
     nb::gil_scoped_release release;
     const bluetile::TilingPlan plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request);
     bluetile::check_tiling_size(plan, "region", "tile_size");  // as the tool: refused, not a MemoryError
+    // The tool streams its points; here they are held: the tiler's (with the slack of a growing
+    // vector), the (M, 2) array and with `columns` i, j, tile, level and rank.
+    const double points_held = plan.window.area() * plan.mean_density;
+    const double bytes_per_point = 2.0 * sizeof(bluetile::TiledPoint) + 16.0 + (columns ? 28.0 : 0.0);
+    bluetile::check_memory(points_held * bytes_per_point,
+                           "region " + bluetile::number_text(x0) + " " + bluetile::number_text(y0) + " " +
+                               bluetile::number_text(x1) + " " + bluetile::number_text(y1) + " of about " +
+                               bluetile::count_text(points_held) + " points");
     points = plan.tiler->tiled_points(plan.window, plan.thinning.get());
   }
   const std::size_t n = points.size();

@@ -4,7 +4,11 @@ The arguments are read from the functions' own signatures, so a new one is cover
 test. Paths and arrays: os.PathLike paths and sequences of numbers are taken, anything else is
 refused by name."""
 import math
+import os
 import re
+import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -361,3 +365,62 @@ def test_numbers_in_messages_are_written_shortest():
         bt.radial_power(points, bin_width=0.0)
     with pytest.raises(ValueError, match=r"^density_map: values must be finite and >= 0, got -0.5 at row 1, column 0$"):
         bt.relax(count=5, density_map=[[1.0, 1.0], [-0.5, 1.0]])
+
+
+# Run in a child whose address space is limited to about 1 GiB more than it maps after the imports,
+# so that every request below is past what is available on any machine.
+_LIMITED = """
+import resource, sys
+import numpy as np, pybluetile as bt
+vm = int([l for l in open("/proc/self/status") if l.startswith("VmSize")][0].split()[1]) * 1024
+resource.setrlimit(resource.RLIMIT_AS, (vm + (1 << 30), resource.getrlimit(resource.RLIMIT_AS)[1]))
+p = np.random.default_rng(1).random((1000, 2))
+calls = {
+    "relax": lambda: bt.relax(count=10**8, sets=10**7, iterations=0, engine="exact"),
+    "relax_sets": lambda: bt.relax(count=10**6, sets=1000, iterations=0, engine="exact"),
+    "stipple": lambda: bt.stipple(np.ones((2, 2)), count=10**8),
+    "progressive": lambda: bt.progressive(count=10**7, levels=2, engine="exact"),
+    "dart": lambda: bt.dart(10**8),
+    "random_points": lambda: bt.random_points(10**8),
+    "periodogram": lambda: bt.periodogram(p, size=65536),
+    "analyze": lambda: bt.analyze(p, size=65536),
+    "radial_power": lambda: bt.radial_power(p, size=65536),
+    "tile": lambda: bt.tile((0.0, 0.0, 1e4, 1e4), density=1),
+}
+for name, call in calls.items():
+    try:
+        call()
+        print(name, "accepted")
+    except bt.Error as e:
+        print(name, "refused:", e)
+    except MemoryError as e:
+        print(name, "MemoryError:", e)
+"""
+
+
+def test_requests_past_the_memory_are_refused_at_once_with_the_tools_estimate(tool, tmp_path):
+    # Each ended in a bare "MemoryError: std::bad_alloc" after seconds of work, or ran for long;
+    # the tool refuses them at once with its estimate, and so does the module now.
+    started = time.monotonic()
+    child = subprocess.run([sys.executable, "-c", _LIMITED], capture_output=True, text=True, timeout=120,
+                           env={**os.environ, "OPENBLAS_NUM_THREADS": "1"})
+    assert child.returncode == 0, child.stderr
+    assert time.monotonic() - started < 60
+    lines = dict(line.split(" ", 1) for line in child.stdout.splitlines())
+    expected = {
+        "relax": r"count=100000000 x sets=10000000 needs about 142\.1 PiB of memory",
+        "relax_sets": r"count=1000000 x sets=1000 needs about 149\.0 GiB of memory",
+        "stipple": r"count=100000000 needs about 14\.9 GiB of memory",
+        "progressive": r"20000000 points in 2 levels needs about 3\.1 GiB of memory",
+        "dart": r"count=100000000 needs about 6\.0 GiB of memory",
+        "random_points": r"count=100000000 needs about 3\.0 GiB of memory",
+        "periodogram": r"periodogram of 1000 points, size=65536 needs about \d+\.\d GiB of memory",
+        "analyze": r"analyze of 1000 points, size=65536 needs about \d+\.\d GiB of memory",
+        "radial_power": r"radial_power of 1000 points, size=65536 needs about \d+\.\d GiB of memory",
+        "tile": r"region 0 0 10000 10000 of about 100000000 points needs about \d+\.\d GiB of memory",
+    }
+    for name, message in expected.items():
+        assert re.fullmatch(rf"refused: {message}, more than the \d+\.\d [KMG]iB available", lines[name]), lines[name]
+    # The same estimate as the tool's, in the same words after the request.
+    cli = tool("relax", "--count", 10**8, "--sets", 10**7, "--output", tmp_path / "p.txt", check=False)
+    assert "--count 100000000 x --sets 10000000 needs about 142.1 PiB of memory, more than the" in cli.stderr
