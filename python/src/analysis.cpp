@@ -9,6 +9,8 @@
 #include "bindings.h"
 #include "bluetile/analysis/summary.h"
 #include "bluetile/analysis/summary_record.h"
+#include "bluetile/core/memory_budget.h"
+#include "bluetile/core/text.h"
 
 namespace pybluetile {
 
@@ -28,7 +30,7 @@ int spectrum_size(const Whole& size_arg) {
 
 void check_bin_width(double bin_width) {
   if (!(bin_width > 0.0) || !std::isfinite(bin_width))
-    throw nb::value_error(("bin_width: expected a positive number, got " + std::to_string(bin_width)).c_str());
+    throw nb::value_error(("bin_width: expected a positive number, got " + bluetile::shortest_text(bin_width)).c_str());
 }
 
 // Refused outside [0, 1), as `bluetile analyze` refuses them.
@@ -36,6 +38,17 @@ PointSets analysed_sets(const ArrayArg& points) {
   PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", false);
   if (input.sets[0].size() < 2) throw nb::value_error("points: analysis needs at least 2 points per set");
   return input;
+}
+
+// Refused at once with the estimate where the periodograms of `sets` sets of `count` points at
+// size F would not fit (a bare MemoryError after seconds of work before): each set's periodogram
+// kept (`kept`: for a mean after them all) and one set's working space.
+void check_periodogram_memory(const char* function, std::size_t count, std::size_t sets, int size, bool kept) {
+  const double n = static_cast<double>(count), k = static_cast<double>(sets), f = static_cast<double>(size);
+  const double bytes = k * 16.0 * n + (kept ? k * 8.0 * f * f : 0.0) +
+                       static_cast<double>(bluetile::periodogram_memory_bytes(count, size));
+  bluetile::check_memory(bytes, std::string(function) + " of " + (sets > 1 ? std::to_string(sets) + " sets of " : "") +
+                                    std::to_string(count) + " points, size=" + std::to_string(size));
 }
 
 nb::ndarray<nb::numpy, double> periodogram_array(bluetile::Periodogram&& p) {
@@ -111,6 +124,11 @@ void bind_analysis(nb::module_& m) {
         options.centroids = centroids;
         options.spectral_measures = psa_measures;
         options.discrepancy = discrepancy;
+        // As the tool's analyze: refused at once with the estimate.
+        const std::size_t n = input.sets[0].size(), sets = input.sets.size();
+        bluetile::check_memory(bluetile::summary_memory_bytes(n, sets, size),
+                               "analyze of " + (sets > 1 ? std::to_string(sets) + " sets of " : "") + std::to_string(n) +
+                                   " points, size=" + std::to_string(size ? size : bluetile::default_periodogram_size(n)));
         bluetile::Summary summary;
         {
           nb::gil_scoped_release release;
@@ -125,8 +143,8 @@ void bind_analysis(nb::module_& m) {
       R"(Statistics of a point set on the unit torus, as ``bluetile analyze`` writes them to stats.json.
 
 ``points``: shape (N, 2), or (K, N, 2) for the mean over K sets (``--average``), coordinates in
-[0, 1) as the tool asks (``points % 1.0`` wraps others; so for every analysis function). Returns a dict
-with stats.json's keys and numbers (one serializer in the library makes both): n, sets,
+[0, 1) as the tool asks (``points % 1.0 % 1.0`` wraps others: once gives 1.0 for -1e-17; so for
+every analysis function). Returns a dict with stats.json's keys and numbers (one serializer in the library makes both): n, sets,
 boundary, nn_min, nn_max, nn_mean, nn_x1000, nn_relative, hexagonal_spacing, rho,
 average_min_distance, nn_min_lowest/highest (K > 1), mean_centroid_distance[_relative] unless
 ``centroids=False``, nu_eff and omega by psa's definitions (None when ``psa_measures=False``;
@@ -144,6 +162,7 @@ bin_width: the annulus width.)");
         PointSets input = analysed_sets(points);
         if (input.batched) throw nb::value_error("points: expected shape (N, 2); analyze averages several sets");
         const int f = size ? size : bluetile::default_periodogram_size(input.sets[0].size());
+        check_periodogram_memory("periodogram", input.sets[0].size(), 1, f, false);
         bluetile::Periodogram p;
         {
           nb::gil_scoped_release release;
@@ -163,6 +182,9 @@ White noise gives about 1; P(0) = N. size: F, even (0: 2 floor(5 sqrt(N))).)");
         const int size = spectrum_size(size_arg);
         check_bin_width(bin_width);
         PointSets input = analysed_sets(points);
+        const std::size_t n = input.sets[0].size();
+        check_periodogram_memory("radial_power", n, input.sets.size(), size ? size : bluetile::default_periodogram_size(n),
+                                 true);
         std::vector<bluetile::Annulus> radial;
         {
           nb::gil_scoped_release release;

@@ -1,8 +1,11 @@
 #include "arrays.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+
+#include "bluetile/core/text.h"
 
 namespace pybluetile {
 namespace {
@@ -75,7 +78,8 @@ PointSets point_sets(const AnyArray& array, const char* name, bool wrap) {
           char value[32];
           std::snprintf(value, sizeof value, "%.17g", xy[c]);
           throw nb::value_error((element_name(k, i) + ": " + (c == 0 ? "x" : "y") + " = " + value + " is outside [0, 1) (" +
-                                 name + " % 1.0 wraps them onto the torus)")
+                                 name + " % 1.0 % 1.0 wraps them onto the torus; a single % 1.0 gives 1.0 for a "
+                                 "tiny negative)")
                                     .c_str());
         }
       points[i] = bluetile::wrap_point({xy[0], xy[1]}, bluetile::Domain{});
@@ -97,19 +101,29 @@ std::vector<int> levels_array(const AnyArray& array, std::size_t count, const ch
   for (std::size_t i = 0; i < count; ++i) {
     std::size_t offset = static_cast<std::size_t>(static_cast<std::int64_t>(i) * array.stride(0));
     const void* data = array.data();
+    // Each width read as its own type: `signed ? int32 : uint32` would be uint32 (-1 read as
+    // 4294967295), and a uint64 past 2**63 does not fit a long long.
     long long v = 0;
-    switch (bits) {
-      case 8: v = is_signed ? static_cast<const std::int8_t*>(data)[offset] : static_cast<const std::uint8_t*>(data)[offset]; break;
-      case 16: v = is_signed ? static_cast<const std::int16_t*>(data)[offset] : static_cast<const std::uint16_t*>(data)[offset]; break;
-      case 32: v = is_signed ? static_cast<const std::int32_t*>(data)[offset] : static_cast<const std::uint32_t*>(data)[offset]; break;
-      default: {
-        std::uint64_t u = static_cast<const std::uint64_t*>(data)[offset];
-        v = is_signed ? static_cast<long long>(u) : (u > static_cast<std::uint64_t>(max) ? -1 : static_cast<long long>(u));
+    std::uint64_t u = 0;
+    if (is_signed) {
+      switch (bits) {
+        case 8: v = static_cast<const std::int8_t*>(data)[offset]; break;
+        case 16: v = static_cast<const std::int16_t*>(data)[offset]; break;
+        case 32: v = static_cast<const std::int32_t*>(data)[offset]; break;
+        default: v = static_cast<const std::int64_t*>(data)[offset];
       }
+    } else {
+      switch (bits) {
+        case 8: u = static_cast<const std::uint8_t*>(data)[offset]; break;
+        case 16: u = static_cast<const std::uint16_t*>(data)[offset]; break;
+        case 32: u = static_cast<const std::uint32_t*>(data)[offset]; break;
+        default: u = static_cast<const std::uint64_t*>(data)[offset];
+      }
+      v = static_cast<long long>(std::min<std::uint64_t>(u, static_cast<std::uint64_t>(max) + 1));
     }
     if (v < 0 || v > max)
       throw nb::value_error((std::string(name) + "[" + std::to_string(i) + "]: level must be in [0, " +
-                             std::to_string(max) + "], got " + std::to_string(v)).c_str());
+                             std::to_string(max) + "], got " + (is_signed ? std::to_string(v) : std::to_string(u))).c_str());
     levels[i] = static_cast<int>(v);
   }
   return levels;
@@ -140,7 +154,7 @@ bluetile::DensityGrid density_grid(const AnyArray& a, const char* name) {
       const std::int64_t at = r * a.stride(0) + c * a.stride(1);
       const double v = f64 ? static_cast<const double*>(a.data())[at] : static_cast<const float*>(a.data())[at];
       if (!(v >= 0.0) || !std::isfinite(v))
-        throw nb::value_error((what + ": values must be finite and >= 0, got " + std::to_string(v) + " at row " +
+        throw nb::value_error((what + ": values must be finite and >= 0, got " + bluetile::shortest_text(v) + " at row " +
                                std::to_string(r) + ", column " + std::to_string(c)).c_str());
       grid.at(c, height - 1 - r) = static_cast<float>(v);  // row 0 at the bottom, y up
     }

@@ -2,14 +2,18 @@
 #include "engines.h"
 
 #include <optional>
+#include <utility>
+#include <vector>
 
 #include <nanobind/stl/optional.h>
 #include <nanobind/stl/string.h>
 
 #include "arrays.h"
 #include "bindings.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/relax/stipple.h"
@@ -21,17 +25,26 @@ namespace pybluetile {
 
 using namespace nb::literals;
 
+namespace {
+
+// The raster settings of `choice` that differ from their defaults, as "name" and the value as
+// Python writes it ("100", "'point'"); the value is empty for those left alone.
+std::vector<std::pair<const char*, std::string>> raster_settings(const EngineChoice& choice) {
+  const EngineChoice defaults;
+  auto quoted = [](const std::string& v) { return "'" + v + "'"; };
+  return {{"resolution", choice.resolution != defaults.resolution ? std::to_string(choice.resolution) : ""},
+          {"coverage", choice.coverage != defaults.coverage ? quoted(choice.coverage) : ""},
+          {"cone", choice.cone != defaults.cone ? quoted(choice.cone) : ""},
+          {"device", choice.device != defaults.device ? quoted(choice.device) : ""},
+          {"pixel_work", choice.pixel_work != defaults.pixel_work ? quoted(choice.pixel_work) : ""}};
+}
+
+}  // namespace
+
 void check_engine_choice(const EngineChoice& choice) {
   bluetile::validate(choice);
   if (choice.engine != "exact") return;
-  const EngineChoice defaults;
-  const std::pair<const char*, std::string> settings[] = {
-      {"resolution", choice.resolution != defaults.resolution ? std::to_string(choice.resolution) : ""},
-      {"coverage", choice.coverage != defaults.coverage ? "'" + choice.coverage + "'" : ""},
-      {"cone", choice.cone != defaults.cone ? "'" + choice.cone + "'" : ""},
-      {"device", choice.device != defaults.device ? "'" + choice.device + "'" : ""},
-      {"pixel_work", choice.pixel_work != defaults.pixel_work ? "'" + choice.pixel_work + "'" : ""}};
-  for (const auto& [name, value] : settings)
+  for (const auto& [name, value] : raster_settings(choice))
     if (!value.empty())
       throw nb::value_error((std::string(name) + "=" + value +
                              ": a raster engine setting, and the exact engine runs here; engine=\"raster\" uses it")
@@ -43,10 +56,14 @@ namespace {
 // The tool's limits (relax --count, --sets, --iterations).
 constexpr long long kMaxCount = 100'000'000, kMaxSets = 10'000'000;
 constexpr int kMaxIterations = 100'000'000;
+constexpr int kDefaultIterations = 80;  // relax's and progressive's iterations, as the tool's
+constexpr std::uint64_t kDefaultSeed = 1;
+constexpr double kDefaultWeightExponent = 2.0;
 
 void check_non_negative(const char* name, double value) {
   if (!(value >= 0.0) || !std::isfinite(value))
-    throw nb::value_error((std::string(name) + ": expected a finite number >= 0, got " + std::to_string(value)).c_str());
+    throw nb::value_error(
+        (std::string(name) + ": expected a finite number >= 0, got " + bluetile::shortest_text(value)).c_str());
 }
 
 nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {
@@ -104,10 +121,21 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
   }
   if (points_arg.has_value() == (count != 0)) throw nb::value_error("give either points or count");
   if (sets != 0 && points_arg) throw nb::value_error("sets: only with count (an array of shape (K, N, 2) has its sets)");
+  // Refused where they would change nothing, as the tool refuses --gamma without a map.
+  if (seed != kDefaultSeed && points_arg)
+    throw nb::value_error(("seed=" + std::to_string(seed) + ": only with count (it draws the random start; the points "
+                           "given are the start)").c_str());
+  if (weight_exponent != kDefaultWeightExponent && !density_map)
+    throw nb::value_error(("weight_exponent=" + bluetile::shortest_text(weight_exponent) +
+                           " weights the cells by a density_map: give one").c_str());
   PointSets input;
   if (points_arg) {
     input = point_sets(array_arg(*points_arg, "points", ArrayKind::points), "points");
   } else {
+    // As the tool's relax --count --sets: refused at once with the estimate, not a MemoryError
+    // after seconds of work.
+    bluetile::check_memory(static_cast<double>(std::max(sets, 1LL)) * static_cast<double>(count) * bluetile::kRelaxBytesPerSite,
+                           "count=" + std::to_string(count) + (sets != 0 ? " x sets=" + std::to_string(sets) : ""));
     input.batched = sets != 0;
     for (long long k = 0; k < std::max(sets, 1LL); ++k) {
       const auto n = static_cast<std::size_t>(count);
@@ -153,6 +181,8 @@ nb::object stipple(const ArrayArg& density_map, const Whole& count, const Whole&
   check_engine_choice(choice);
   bluetile::StippleStart start;
   start.count = whole<std::size_t>(count, "count", 1, kMaxCount);
+  bluetile::check_memory(static_cast<double>(start.count) * bluetile::kRelaxBytesPerSite,
+                         "count=" + std::to_string(start.count));  // as the tool's stipple --count
   const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
   check_non_negative("tolerance", tolerance);
   bluetile::check_weight_exponent(weight_exponent, "weight_exponent");
@@ -214,7 +244,6 @@ nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base
                       const std::string& engine, const Whole& resolution, const std::string& coverage,
                       const std::string& cone, const std::string& device, const std::string& pixel_work) {
   EngineChoice choice{engine, resolution_arg(resolution), coverage, cone, device, pixel_work};
-  check_engine_choice(choice);
   const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
   const int levels = whole<int>(levels_arg, "levels", 0, 64);
   // 0: not given.
@@ -224,6 +253,25 @@ nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base
   check_non_negative("ratio", ratio);
   if (placement != "gaps" && placement != "random")
     throw nb::value_error(("placement: expected one of 'gaps', 'random', got '" + placement + "'").c_str());
+  const bluetile::ProgressiveOrder order = bluetile::parse_rank_order(rank_order);
+  if (order == bluetile::ProgressiveOrder::fill) {
+    // As the tool's --rank-order fill: it relaxes nothing and runs no engine, so these would
+    // change nothing; refused where they differ from their defaults.
+    std::vector<std::pair<const char*, std::string>> settings = {
+        {"iterations", iterations != kDefaultIterations ? std::to_string(iterations) : ""},
+        {"tolerance", tolerance != 0.0 ? bluetile::shortest_text(tolerance) : ""},
+        {"placement", placement != "gaps" ? "'" + placement + "'" : ""},
+        {"engine", engine != EngineChoice{}.engine ? "'" + engine + "'" : ""}};
+    for (auto& setting : raster_settings(choice)) settings.push_back(std::move(setting));
+    for (const auto& [name, value] : settings)
+      if (!value.empty())
+        throw nb::value_error((std::string(name) + "=" + value +
+                               ": rank_order='fill' relaxes nothing and runs no engine; this is for the orders that "
+                               "relax ('voids', 'placement')")
+                                  .c_str());
+  } else {
+    check_engine_choice(choice);
+  }
   if (base.has_value() == (count != 0)) throw nb::value_error("give either base or count");
   if (add != 0 && ratio != 0.0) throw nb::value_error("give add or ratio, not both");
   bluetile::PointSet set;
@@ -246,7 +294,21 @@ nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base
   options.tolerance = tolerance;
   options.seed = seed_value(seed);
   options.placement = placement == "random" ? bluetile::Placement::random : bluetile::Placement::gaps;
-  options.rank_order = bluetile::parse_rank_order(rank_order);
+  options.rank_order = order;
+  {
+    // The levels' sizes and the memory of them all, checked before any work as the tool checks
+    // them (the fill order's grid included).
+    const std::vector<std::size_t> sizes = bluetile::hierarchy_level_sizes(set, options);
+    double total = static_cast<double>(set.points.size());
+    for (std::size_t add : sizes) total += static_cast<double>(add);
+    const double fill = order == bluetile::ProgressiveOrder::fill
+                            ? bluetile::band_fill_cost(0, static_cast<std::size_t>(total), 1, options.fill).bytes
+                            : 0.0;
+    const int target_levels = bluetile::count_levels(set) + static_cast<int>(sizes.size());
+    bluetile::check_memory(total * bluetile::kProgressiveBytesPerPoint + fill,
+                           std::to_string(static_cast<long long>(total)) + " points in " + std::to_string(target_levels) +
+                               " levels");
+  }
   {
     nb::gil_scoped_release release;
     // The fill order relaxes nothing: no engine of the choice is made for it (no Vulkan device
@@ -271,22 +333,23 @@ void bind_engines(nb::module_& m) {
                 "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, density_map: numpy.typing.ArrayLike | None = None, "
                 "weight_exponent: float = 2.0, bounded: bool = False, engine: str | None = None, resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
                 "history: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, NDArray]]"),
-        "points"_a = nb::none(), nb::kw_only(), "count"_a = 0, "sets"_a = 0, "iterations"_a = 80,
-        "seed"_a = 1, "fixed"_a = 0, "tolerance"_a = 0.0, "density_map"_a = nb::none(), "weight_exponent"_a = 2.0,
+        "points"_a = nb::none(), nb::kw_only(), "count"_a = 0, "sets"_a = 0, "iterations"_a = kDefaultIterations,
+        "seed"_a = kDefaultSeed, "fixed"_a = 0, "tolerance"_a = 0.0, "density_map"_a = nb::none(), "weight_exponent"_a = kDefaultWeightExponent,
         "bounded"_a = false, "engine"_a = nb::none(), "resolution"_a = 0,
         "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto", "history"_a = false,
         R"(Lloyd relaxation, as ``bluetile relax``.
 
 Start from ``points`` (shape (N, 2), or (K, N, 2) for K sets relaxed each on its own) or from
 ``count`` random points (the same as ``bluetile relax --count N --seed S``; with ``sets=K``, K
-sets of shape (K, N, 2), set k seeded as the tool seeds it). Every wanted site moves to the
+sets of shape (K, N, 2), set k seeded as the tool seeds it; ``seed`` is refused with ``points``,
+which need none). Every wanted site moves to the
 centroid of its periodic Voronoi cell, ``iterations`` times, or until no site moves more than
 ``tolerance``. The first ``fixed`` sites shape the cells but stay in place.
 
 With ``density_map`` (a 2-D array of densities, row 0 at the top, stretched over the unit square,
 as ``--density-map`` with the image's densities) random starts follow the map and the cells are
-weighted by map^``weight_exponent`` (2 keeps the point density proportional to the map), as
-``bluetile relax --density-map``. ``bounded=True``: cells end at the square's border (``--bounded``).
+weighted by map^``weight_exponent`` (2 keeps the point density proportional to the map; refused
+without a map), as ``bluetile relax --density-map``. ``bounded=True``: cells end at the square's border (``--bounded``).
 
 engine: "raster" (Vulkan, lavapipe by default) or "exact" (CPU, exact polygons); None picks the
 tool's default: raster, or exact with a density map or bounded cells. resolution,
@@ -334,7 +397,7 @@ Returns (centroids, areas): shapes (N, 2) and (N,) for points of shape (N, 2), o
                 "tolerance: float = 0.0, seed: int = 1, placement: str = 'gaps', rank_order: str = 'voids', engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
                 "-> tuple[NDArray[numpy.float64], NDArray[numpy.int32]]"),
         "base"_a = nb::none(), "base_levels"_a = nb::none(), nb::kw_only(),
-        "count"_a = 0, "add"_a = 0, "ratio"_a = 0.0, "levels"_a = 0, "iterations"_a = 80, "tolerance"_a = 0.0,
+        "count"_a = 0, "add"_a = 0, "ratio"_a = 0.0, "levels"_a = 0, "iterations"_a = kDefaultIterations, "tolerance"_a = 0.0,
         "seed"_a = 1, "placement"_a = "gaps", "rank_order"_a = "voids", "engine"_a = "raster", "resolution"_a = 0, "coverage"_a = "area",
         "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto",
         R"(Hierarchical point sets, as ``bluetile progressive`` (the paper, section 2.1).
@@ -348,7 +411,8 @@ relaxed around the fixed earlier levels. ``rank_order="voids"`` (the default, as
 by voids, so that every prefix of the rows is well spread; ``"placement"`` keeps each level as
 placed and relaxed alone (the paper); ``"fill"`` relaxes nothing and places every point after the
 base in the deepest void of the band-limited density of the points before it, so that every prefix
-is about as even as every other (a ranked sample table). Returns (points (M, 2), levels (M,) int32), rows in rank order.)");
+is about as even as every other (a ranked sample table); it takes no iterations, tolerance,
+placement or engine settings, as the tool's ``--rank-order fill``. Returns (points (M, 2), levels (M,) int32), rows in rank order.)");
 }
 
 }  // namespace pybluetile

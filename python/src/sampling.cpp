@@ -4,6 +4,7 @@
 #include "arguments.h"
 #include "arrays.h"
 #include "bindings.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/sampling/dart_throwing.h"
 
@@ -19,6 +20,8 @@ void bind_sampling(nb::module_& m) {
         constexpr std::size_t kMaxPoints = 100'000'000;
         const auto count = whole<std::size_t>(count_arg, "count", 0, kMaxPoints);
         const std::uint64_t seed = seed_value(seed_arg), set = seed_value(set_arg, "set");
+        // The points and the array they are copied into: refused at once with the estimate.
+        bluetile::check_memory(static_cast<double>(count) * 2.0 * sizeof(bluetile::Point), "count=" + std::to_string(count));
         std::vector<bluetile::Point> points;
         {
           nb::gil_scoped_release release;
@@ -41,6 +44,8 @@ of ``bluetile relax --count N --seed S``, bit for bit.)");
         o.shrink = shrink;
         o.start = start;
         bluetile::validate(o);  // before the GIL is released: a bad value raises at once
+        bluetile::check_memory(static_cast<double>(o.count) * bluetile::kDartBytesPerPoint,
+                               "count=" + std::to_string(o.count));  // as the tool's dart --count
         bluetile::DartResult r;
         {
           nb::gil_scoped_release release;

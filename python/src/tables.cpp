@@ -61,12 +61,15 @@ void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<A
                                   bluetile::kMaxTableLevel);
   }
   const bluetile::TableFormat f = table_format(path, format);
-  // As the tool's --float32 and --name: refused where they would change nothing.
+  // As the tool's --float32 and --name (and comment, which npy and binary tables cannot hold):
+  // refused where they would change nothing.
   const std::string is = path + " is " + std::string(bluetile::table_format_name(f));
   if (float32 && f != bluetile::TableFormat::npy && f != bluetile::TableFormat::binary)
     throw bluetile::Error("float32: " + is + "; 4-byte floats are for npy and binary tables");
   if (!name.empty() && f != bluetile::TableFormat::header)
     throw bluetile::Error("name: " + is + "; the array name is for C headers (.h, .hpp)");
+  if (!comment.empty() && f != bluetile::TableFormat::text && f != bluetile::TableFormat::header)
+    throw bluetile::Error("comment: " + is + "; comment lines are for text tables and C headers");
   nb::gil_scoped_release release;
   bluetile::TableWriteOptions options;
   options.float32 = float32;
@@ -109,7 +112,7 @@ void bind_tables(nb::module_& m) {
 ``points``: shape (N, 2) or (K, N, 2); ``levels``: (N,) whole numbers for one set. The format is
 ``format`` ("text", "npy", "binary", "header") or the extension (.txt .dat .pts, .npy, .bpt, .h
 .hpp; anything else is refused). ``float32``: 4-byte values in npy and binary; ``name``: the C
-array of a header (default from the file name); ``comment``: lines at the top (text, header).
+array of a header (default from the file name); ``comment``: lines at the top (text, header; refused for the others).
 The file appears whole or not at all.)");
 
   m.def("load_table", &load_table,

@@ -14,6 +14,8 @@
 #include "bindings.h"
 #include "engines.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
+#include "bluetile/core/text.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/tiling/default_tile_set.h"
 #include "bluetile/tiling/density_thinning.h"
@@ -28,23 +30,41 @@ using namespace nb::literals;
 
 namespace {
 
-// The text of a file starts with its version line; any other str names a file, as an
-// os.PathLike does.
+// The text of a file starts with its version line.
 constexpr std::string_view kTileSetMagic = "# bluetile tiles";
 
 struct TileSource {
   std::optional<std::string> text, path;  // neither: the set built into the library
 };
 
+// A tile set's text, not a path: it has a line break (a set of one line holds no tile, and no
+// path has one) or starts with the version line after spaces and a UTF-8 byte-order mark (which
+// the parser skips, or refuses by line number: a message quoting kilobytes of text as a file name
+// that is too long helps no one).
+bool is_tile_set_text(std::string_view s) {
+  if (s.find_first_of("\n\r") != std::string_view::npos) return true;
+  if (s.starts_with("\xEF\xBB\xBF")) s.remove_prefix(3);
+  const std::size_t start = s.find_first_not_of(" \t\f\v");
+  return start != std::string_view::npos && s.substr(start).starts_with(kTileSetMagic);
+}
+
+// A str or bytes argument is the text of a file by is_tile_set_text, else a path, as an
+// os.PathLike is.
 TileSource tile_source(const std::optional<PathArg>& tiles) {
   if (!tiles) return {};
-  if (PyUnicode_Check(tiles->ptr())) {
+  PyObject* p = tiles->ptr();
+  if (PyBytes_Check(p)) {
+    const std::string_view bytes(PyBytes_AS_STRING(p), static_cast<std::size_t>(PyBytes_GET_SIZE(p)));
+    if (is_tile_set_text(bytes)) return {std::string(bytes), {}};
+  } else if (PyUnicode_Check(p)) {
     Py_ssize_t size = 0;
-    const char* utf8 = PyUnicode_AsUTF8AndSize(tiles->ptr(), &size);
-    if (!utf8)
+    const char* utf8 = PyUnicode_AsUTF8AndSize(p, &size);
+    if (!utf8) {
       PyErr_Clear();  // not a file's text (a lone surrogate of an undecodable name): a path
-    else if (std::string_view(utf8, static_cast<std::size_t>(size)).starts_with(kTileSetMagic))
-      return {std::string(utf8, static_cast<std::size_t>(size)), {}};
+    } else {
+      const std::string_view text(utf8, static_cast<std::size_t>(size));
+      if (is_tile_set_text(text)) return {std::string(text), {}};
+    }
   }
   return {{}, path_text(*tiles, "tiles")};
 }
@@ -155,6 +175,8 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
   request.count = count;
   request.seed = seed_value(seed);
   request.fit = bluetile::parse_map_fit(fit);
+  // As the tool's --fit without --density-map: refused, not ignored.
+  if (!density_map && fit != "contain") throw nb::value_error(("fit='" + fit + "' places a density_map: give one").c_str());
   std::optional<bluetile::DensityGrid> map;
   if (density_map) map = density_grid(array_arg(*density_map, "density_map", ArrayKind::density), "density_map");
 
@@ -163,6 +185,14 @@ nb::object tile(std::tuple<double, double, double, double> region, const std::op
     nb::gil_scoped_release release;
     const bluetile::TilingPlan plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request);
     bluetile::check_tiling_size(plan, "region", "tile_size");  // as the tool: refused, not a MemoryError
+    // The tool streams its points; here they are held: the tiler's (with the slack of a growing
+    // vector), the (M, 2) array and with `columns` i, j, tile, level and rank.
+    const double points_held = plan.window.area() * plan.mean_density;
+    const double bytes_per_point = 2.0 * sizeof(bluetile::TiledPoint) + 16.0 + (columns ? 28.0 : 0.0);
+    bluetile::check_memory(points_held * bytes_per_point,
+                           "region " + bluetile::number_text(x0) + " " + bluetile::number_text(y0) + " " +
+                               bluetile::number_text(x1) + " " + bluetile::number_text(y1) + " of about " +
+                               bluetile::count_text(points_held) + " points");
     points = plan.tiler->tiled_points(plan.window, plan.thinning.get());
   }
   const std::size_t n = points.size();
@@ -207,14 +237,16 @@ void bind_tiling(nb::module_& m) {
 points bit for bit), returned as the text of its tile-set file: write it to a file for
 ``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``.)");
 
-  m.def("tile_set", &tile_set, nb::sig("def tile_set(tiles: str | os.PathLike[str] | None = None) -> dict[str, object]"),
+  m.def("tile_set", &tile_set, nb::sig("def tile_set(tiles: str | bytes | os.PathLike[str] | None = None) -> dict[str, object]"),
         "tiles"_a = nb::none(),
         R"(A tile set's tiles as arrays: {'kind': str, 'tiles': [{'id', 'colours' (N, E, S, W, or the
 corners NW, NE, SE, SW), 'points' (n, 2) tile-local, 'levels' (n,), 'ranks' (n,)}]}. ``tiles``:
-the text of a tile-set file, a path to one (str or os.PathLike), or None for the set built into the library.)");
+the text of a tile-set file, a path to one (str or os.PathLike), or None for the set built into the library.
+A str (or bytes) is text when it holds a line break or starts with '# bluetile tiles' (after spaces
+and a byte-order mark), else a path.)");
 
   m.def("tile", &tile,
-        nb::sig("def tile(region: tuple[float, float, float, float], *, tiles: str | os.PathLike[str] | None = None, tile_size: float = 0, "
+        nb::sig("def tile(region: tuple[float, float, float, float], *, tiles: str | bytes | os.PathLike[str] | None = None, tile_size: float = 0, "
                 "density: float = 0, seed: int = 1, density_map: numpy.typing.ArrayLike | None = None, "
                 "max_density: float = 0, count: float = 0, fit: str = 'contain', columns: bool = False) -> "
                 "NDArray[numpy.float64] | "

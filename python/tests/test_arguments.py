@@ -4,7 +4,11 @@ The arguments are read from the functions' own signatures, so a new one is cover
 test. Paths and arrays: os.PathLike paths and sequences of numbers are taken, anything else is
 refused by name."""
 import math
+import os
 import re
+import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -83,9 +87,19 @@ def test_analysis_refuses_points_outside_the_torus_as_the_tool_does():
     # (1, 1) was wrapped onto (0, 0) without a word: rho 0 from a pair that is not there.
     points = np.array([[0.0, 0.0], [1.0, 1.0], [0.5, 0.5]])
     for function in (bt.analyze, bt.periodogram, bt.radial_power, bt.nearest_neighbour_distances):
-        with pytest.raises(ValueError, match=r"^points\[1\]: x = 1 is outside \[0, 1\) \(points % 1.0 wraps them"):
+        with pytest.raises(ValueError, match=r"^points\[1\]: x = 1 is outside \[0, 1\) \(points % 1.0 % 1.0 wraps them"):
             function(points)
-    assert bt.analyze(points % 1.0, psa_measures=False, discrepancy=False)["rho"] == 0.0  # wrapped by the caller
+    assert bt.analyze(points % 1.0 % 1.0, psa_measures=False, discrepancy=False)["rho"] == 0.0  # wrapped by the caller
+
+
+def test_the_wrapping_the_refusal_suggests_is_accepted():
+    # The hint said "points % 1.0", but -1e-17 % 1.0 is 1.0, which was refused again.
+    for x in (-1e-17, -0.0, 1.0, 1.5, -2.5, 3.0 - 2**-51):
+        points = np.array([[x, 0.5], [0.25, 0.25]])
+        if not 0.0 <= x < 1.0:
+            with pytest.raises(ValueError, match=r"\(points % 1.0 % 1.0 wraps them onto the torus"):
+                bt.periodogram(points)
+        assert bt.periodogram(points % 1.0 % 1.0).shape == (14, 14), x
     # relax and centroids wrap, as the tool wraps point files it relaxes.
     bt.centroids(np.array([[1.25, 0.5], [0.5, 0.5]]), engine="exact")
 
@@ -229,6 +243,14 @@ def test_save_table_refuses_options_its_format_ignores(tmp_path):
     assert list(tmp_path.iterdir()) == []
     bt.save_table(tmp_path / "t.bpt", points, float32=True)
     bt.save_table(tmp_path / "t.h", points, name="table")
+    # A comment was dropped without a word where the format holds none.
+    for name, kind in (("c.npy", "npy"), ("c.bpt", "binary")):
+        with pytest.raises(bt.Error, match=rf"^comment: .*{name} is {kind}; comment lines are for text tables and C headers$"):
+            bt.save_table(tmp_path / name, points, comment=["made here"])
+        assert not (tmp_path / name).exists()
+    bt.save_table(tmp_path / "c.txt", points, comment=["made here"])
+    bt.save_table(tmp_path / "c.h", points, comment=["made here"])
+    assert "made here" in (tmp_path / "c.txt").read_text() and "made here" in (tmp_path / "c.h").read_text()
 
 
 def test_raster_settings_with_the_exact_engine_are_refused():
@@ -244,3 +266,161 @@ def test_raster_settings_with_the_exact_engine_are_refused():
     with pytest.raises(ValueError, match=r"^coverage='point': a raster engine setting"):
         bt.stipple(np.ones((4, 4)), count=10, iterations=1, coverage="point")  # exact by default
     assert bt.relax(count=20, iterations=1, engine="exact", coverage="area").shape == (20, 2)  # the default value
+
+
+def test_the_fill_order_refuses_what_it_would_ignore(tool, tmp_path):
+    # The fill order relaxes nothing and runs no engine; iterations, placement and the rest were
+    # ignored without a word, where the tool refuses them.
+    cli = tool("progressive", "--count", 10, "--rank-order", "fill", "--iterations", 7, "-o", tmp_path / "p.txt",
+               check=False)
+    assert cli.returncode != 0 and "--rank-order fill relaxes nothing and runs no engine" in cli.stderr
+    settings = {"iterations": (7, "7"), "tolerance": (0.5, "0.5"), "placement": ("random", "'random'"),
+                "engine": ("exact", "'exact'"), "resolution": (64, "64"), "coverage": ("point", "'point'"),
+                "cone": ("fan", "'fan'"), "device": ("0", "'0'"), "pixel_work": ("host", "'host'")}
+    for argument, (value, text) in settings.items():
+        with pytest.raises(ValueError, match=rf"^{argument}={re.escape(text)}: rank_order='fill' relaxes nothing and "
+                                             r"runs no engine; this is for the orders that relax \('voids', 'placement'\)$"):
+            bt.progressive(count=10, rank_order="fill", **{argument: value})
+    # The defaults, given or not, are the same call; the tool's points bit for bit.
+    tool("progressive", "--count", 10, "--rank-order", "fill", "-o", tmp_path / "f.txt")
+    points, levels = bt.progressive(count=10, rank_order="fill", iterations=80, placement="gaps", engine="raster")
+    assert np.array_equal(points, np.loadtxt(tmp_path / "f.txt", comments="#")[:, :2])
+    assert bt.progressive(count=10, levels=2, iterations=7, placement="random", engine="exact")[0].shape == (20, 2)
+
+
+def test_tile_refuses_a_fit_without_a_map(tool, tmp_path):
+    # fit placed nothing without a density_map and was ignored; the tool refuses --fit alone.
+    cli = tool("tile", "--region", 0, 0, 2, 2, "--density", 100, "--fit", "cover", "-o", tmp_path / "t.txt", check=False)
+    assert cli.returncode != 0 and "--fit cover places a --density-map: give one" in cli.stderr
+    for fit in ("cover", "stretch"):
+        with pytest.raises(ValueError, match=rf"^fit='{fit}' places a density_map: give one$"):
+            bt.tile((0.0, 0.0, 2.0, 2.0), density=100, fit=fit)
+    assert bt.tile((0.0, 0.0, 2.0, 2.0), density=100, fit="contain").shape[1] == 2
+    assert bt.tile((0.0, 0.0, 2.0, 2.0), density_map=np.ones((2, 2)), count=50, fit="cover").shape[1] == 2
+
+
+def test_relax_refuses_a_seed_or_weight_exponent_that_would_change_nothing():
+    # The seed draws only a random start, and the exponent weights only a map's cells: with
+    # points given, or no map, they were ignored without a word.
+    points = bt.random_points(10)
+    with pytest.raises(ValueError, match=r"^seed=7: only with count \(it draws the random start; the points given are "
+                                         r"the start\)$"):
+        bt.relax(points, seed=7, iterations=1, engine="exact")
+    with pytest.raises(ValueError, match=r"^weight_exponent=3 weights the cells by a density_map: give one$"):
+        bt.relax(count=5, weight_exponent=3, iterations=1, engine="exact")
+    with pytest.raises(ValueError, match=r"^weight_exponent=0.5 weights the cells by a density_map: give one$"):
+        bt.relax(points, weight_exponent=0.5, iterations=1, engine="exact")
+    assert np.array_equal(bt.relax(points, seed=1, iterations=1, engine="exact"), bt.relax(points, iterations=1, engine="exact"))
+    assert bt.relax(count=5, seed=7, weight_exponent=3, density_map=np.ones((2, 2)), iterations=1).shape == (5, 2)
+
+
+@pytest.mark.parametrize("dtype", [np.int8, np.int16, np.int32, np.int64])
+def test_negative_levels_are_quoted_as_given(tmp_path, dtype):
+    # An int32 -1 was read as uint32 and quoted as 4294967295.
+    points = bt.random_points(10)
+    with pytest.raises(ValueError, match=r"^levels\[0\]: level must be in \[0, 1000000\], got -1$"):
+        bt.save_table(tmp_path / "x.txt", points, levels=-np.ones(10, dtype))
+    with pytest.raises(ValueError, match=r"^base_levels\[0\]: level must be in \[0, 1000000\], got -1$"):
+        bt.progressive(points, -np.ones(10, dtype), add=5, iterations=1, engine="exact")
+    with pytest.raises(ValueError, match=r"^levels\[0\]: level must be in \[0, 1000000\], got 18446744073709551615$"):
+        bt.save_table(tmp_path / "x.txt", points, levels=np.full(10, 2**64 - 1, np.uint64))
+    bt.save_table(tmp_path / "x.txt", points, levels=np.arange(10, dtype=dtype))
+    assert np.array_equal(bt.load_table(tmp_path / "x.txt", levels=True)[0][1], np.arange(10))
+
+
+def test_tile_set_text_is_told_from_a_path(tmp_path):
+    # Text that began with a space, a byte-order mark or a newline was taken for a path, and the
+    # error quoted it whole ("cannot open: File name too long"); bytes always were a path.
+    text = bt.wang_tiles(**CALLS["wang_tiles"][1])
+    expected = bt.tile_set(text)["tiles"][3]["points"]
+    for variant in (" " + text, "\ufeff" + text, "\t" + text, text.encode(), ("\ufeff" + text).encode()):
+        assert np.array_equal(bt.tile_set(variant)["tiles"][3]["points"], expected), repr(variant[:3])
+    # Text with a line break is text, refused by its line as a file with the same bytes would be.
+    with pytest.raises(bt.Error, match=r"^tiles:1: not a tile-set file: the first line must be '# bluetile tiles 1'$"):
+        bt.tile_set("\n" + text)
+    with pytest.raises(bt.Error, match=r"^tiles:1: not a tile-set file"):
+        bt.tile((0.0, 0.0, 1.0, 1.0), tiles="points\n0.5 0.5\n")
+    # Anything else is a path, str, bytes or os.PathLike.
+    (tmp_path / "set.tiles").write_text(text)
+    for path in (str(tmp_path / "set.tiles"), bytes(tmp_path / "set.tiles"), tmp_path / "set.tiles"):
+        assert np.array_equal(bt.tile_set(path)["tiles"][3]["points"], expected)
+    with pytest.raises(bt.Error, match=r"absent\.tiles: cannot open: No such file or directory$"):
+        bt.tile_set(str(tmp_path / "absent.tiles"))
+
+
+def test_numbers_in_messages_are_written_shortest():
+    # They were printed with %f: "got -1.000000", "got 0.500000".
+    points = np.random.default_rng(5).random((20, 2))
+    with pytest.raises(ValueError, match=r"^tolerance: expected a finite number >= 0, got -1$"):
+        bt.relax(count=5, tolerance=-1.0, engine="exact")
+    with pytest.raises(ValueError, match=r"^tolerance: expected a finite number >= 0, got -0.25$"):
+        bt.stipple(np.ones((2, 2)), count=5, tolerance=-0.25)
+    with pytest.raises(ValueError, match=r"^ratio: expected a finite number >= 0, got -1e\+20$"):
+        bt.progressive(count=5, ratio=-1e20, engine="exact")
+    with pytest.raises(bt.Error, match=r"^the ratio must be above 1, got 0.5$"):
+        bt.progressive(count=5, ratio=0.5, engine="exact")
+    with pytest.raises(ValueError, match=r"^bin_width: expected a positive number, got -1$"):
+        bt.analyze(points, bin_width=-1.0)
+    with pytest.raises(ValueError, match=r"^bin_width: expected a positive number, got 0$"):
+        bt.radial_power(points, bin_width=0.0)
+    with pytest.raises(ValueError, match=r"^density_map: values must be finite and >= 0, got -0.5 at row 1, column 0$"):
+        bt.relax(count=5, density_map=[[1.0, 1.0], [-0.5, 1.0]])
+
+
+# Run in a child whose address space is limited to about 1 GiB more than it maps after the imports,
+# so that every request below is past what is available on any machine.
+_LIMITED = """
+import resource, sys
+import numpy as np, pybluetile as bt
+vm = int([l for l in open("/proc/self/status") if l.startswith("VmSize")][0].split()[1]) * 1024
+resource.setrlimit(resource.RLIMIT_AS, (vm + (1 << 30), resource.getrlimit(resource.RLIMIT_AS)[1]))
+p = np.random.default_rng(1).random((1000, 2))
+calls = {
+    "relax": lambda: bt.relax(count=10**8, sets=10**7, iterations=0, engine="exact"),
+    "relax_sets": lambda: bt.relax(count=10**6, sets=1000, iterations=0, engine="exact"),
+    "stipple": lambda: bt.stipple(np.ones((2, 2)), count=10**8),
+    "progressive": lambda: bt.progressive(count=10**7, levels=2, engine="exact"),
+    "dart": lambda: bt.dart(10**8),
+    "random_points": lambda: bt.random_points(10**8),
+    "periodogram": lambda: bt.periodogram(p, size=65536),
+    "analyze": lambda: bt.analyze(p, size=65536),
+    "radial_power": lambda: bt.radial_power(p, size=65536),
+    "tile": lambda: bt.tile((0.0, 0.0, 1e4, 1e4), density=1),
+}
+for name, call in calls.items():
+    try:
+        call()
+        print(name, "accepted")
+    except bt.Error as e:
+        print(name, "refused:", e)
+    except MemoryError as e:
+        print(name, "MemoryError:", e)
+"""
+
+
+def test_requests_past_the_memory_are_refused_at_once_with_the_tools_estimate(tool, tmp_path):
+    # Each ended in a bare "MemoryError: std::bad_alloc" after seconds of work, or ran for long;
+    # the tool refuses them at once with its estimate, and so does the module now.
+    started = time.monotonic()
+    child = subprocess.run([sys.executable, "-c", _LIMITED], capture_output=True, text=True, timeout=120,
+                           env={**os.environ, "OPENBLAS_NUM_THREADS": "1"})
+    assert child.returncode == 0, child.stderr
+    assert time.monotonic() - started < 60
+    lines = dict(line.split(" ", 1) for line in child.stdout.splitlines())
+    expected = {
+        "relax": r"count=100000000 x sets=10000000 needs about 142\.1 PiB of memory",
+        "relax_sets": r"count=1000000 x sets=1000 needs about 149\.0 GiB of memory",
+        "stipple": r"count=100000000 needs about 14\.9 GiB of memory",
+        "progressive": r"20000000 points in 2 levels needs about 3\.1 GiB of memory",
+        "dart": r"count=100000000 needs about 6\.0 GiB of memory",
+        "random_points": r"count=100000000 needs about 3\.0 GiB of memory",
+        "periodogram": r"periodogram of 1000 points, size=65536 needs about \d+\.\d GiB of memory",
+        "analyze": r"analyze of 1000 points, size=65536 needs about \d+\.\d GiB of memory",
+        "radial_power": r"radial_power of 1000 points, size=65536 needs about \d+\.\d GiB of memory",
+        "tile": r"region 0 0 10000 10000 of about 100000000 points needs about \d+\.\d GiB of memory",
+    }
+    for name, message in expected.items():
+        assert re.fullmatch(rf"refused: {message}, more than the \d+\.\d [KMG]iB available", lines[name]), lines[name]
+    # The same estimate as the tool's, in the same words after the request.
+    cli = tool("relax", "--count", 10**8, "--sets", 10**7, "--output", tmp_path / "p.txt", check=False)
+    assert "--count 100000000 x --sets 10000000 needs about 142.1 PiB of memory, more than the" in cli.stderr

@@ -134,9 +134,10 @@ def test_progressive_rank_order_matches_the_tool(tool, tmp_path):
     reference = np.loadtxt(out, comments="#")
     points, levels = bt.progressive(count=64, ratio=2, levels=3, seed=3, rank_order="fill")
     assert np.array_equal(points, reference[:, :2]) and np.array_equal(levels, reference[:, 2])
-    # The fill relaxes nothing, so it opens no device: a name no device has does not stop it.
-    points, levels = bt.progressive(count=64, ratio=2, levels=3, seed=3, rank_order="fill", device="no-such-device")
-    assert np.array_equal(points, reference[:, :2]) and np.array_equal(levels, reference[:, 2])
+    # The fill relaxes nothing and opens no device: a device named for it is refused, as the tool's
+    # --device with --rank-order fill, not looked for.
+    with pytest.raises(ValueError, match=r"^device='no-such-device': rank_order='fill' relaxes nothing"):
+        bt.progressive(count=64, ratio=2, levels=3, seed=3, rank_order="fill", device="no-such-device")
     with pytest.raises(ValueError, match="rank order: expected 'placement', 'voids' or 'fill', got 'farthest'"):
         bt.progressive(count=10, rank_order="farthest", engine="exact")
 

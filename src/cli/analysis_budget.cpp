@@ -7,9 +7,10 @@
 #include "bluetile/analysis/discrepancy.h"
 #include "bluetile/analysis/periodogram.h"
 #include "bluetile/analysis/spectral_measures.h"
+#include "bluetile/analysis/summary.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/parallel.h"
-#include "cli/memory_budget.h"
 
 namespace bluetile::cli {
 namespace {
@@ -23,9 +24,6 @@ constexpr double kPeriodogramFftSeconds = 4e-9; // per butterfly of the non-unif
 // --no-discrepancy, 0.6 to 0.9 s of user time apart for 2e8 pairs on the loaded 2-core machine.
 constexpr double kDiscrepancyPairSeconds = 4e-9;
 constexpr double kPerPointSeconds = 1.2e-5;     // the rest: neighbours, RDF to 8 spacings, two Voronoi diagrams, images
-// Peak resident bytes per point beyond the periodogram (points, Voronoi cells, grids, images):
-// analyze of 10^6 points peaks at 2.64 GB, 2.13 GB of it the periodogram.
-constexpr double kBytesPerPoint = 600.0;
 // A run estimated longer than this (and within --time-limit) says so before it starts.
 constexpr double kLongAnalysisSeconds = 60.0;
 
@@ -56,10 +54,7 @@ AnalysisEstimate estimate_analysis(const std::vector<AnalysisJob>& jobs, bool ps
       e.psa_pairs = std::max(e.psa_pairs, pairs);
     }
     if (discrepancy) discrepancy_cpu += sets * kDiscrepancyPairSeconds * discrepancy_pairs(job.count);
-    // The sets' points, the periodograms' running sum and one set's working space at a time.
-    const double periodogram = 8.0 * static_cast<double>(f) * f;
-    const double working = static_cast<double>(periodogram_memory_bytes(job.count, f));
-    e.bytes = std::max(e.bytes, sets * 16.0 * n + kBytesPerPoint * n + (job.sets > 1 ? periodogram : 0.0) + working);
+    e.bytes = std::max(e.bytes, summary_memory_bytes(job.count, job.sets, f));
   }
   e.seconds = (cpu + psa_cpu + discrepancy_cpu) / threads;
   e.psa_seconds = psa_cpu / threads;

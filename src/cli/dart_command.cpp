@@ -4,22 +4,16 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/point_output.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/text.h"
 #include "bluetile/sampling/dart_throwing.h"
 
 namespace bluetile::cli {
-namespace {
-
-// The points, the acceptance grid and its bookkeeping, rounded up.
-constexpr double kDartBytesPerPoint = 64.0;
-
-}  // namespace
 
 void add_dart_command(CLI::App& app) {
   auto o = std::make_shared<DartOptions>();

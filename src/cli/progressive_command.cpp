@@ -6,11 +6,11 @@
 #include "cli/commands.h"
 #include "cli/engine_options.h"
 #include "cli/file_options.h"
-#include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/point_output.h"
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/core/point_file.h"
@@ -37,9 +37,6 @@ struct ProgressiveOptions {
   PointOutputOptions output;
   EngineOptions engine;
 };
-
-// Bytes per point of a level's relaxation (see kRelaxBytesPerSite) plus the levels column.
-constexpr double kBytesPerPoint = kRelaxBytesPerSite + 8.0;
 
 void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
   if (!o.input.empty() && o.add == 0 && o.ratio == 0.0)
@@ -95,7 +92,7 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     fill.places_visited *= static_cast<double>(sets.size());
     fill.bytes *= static_cast<double>(std::min<std::size_t>(sets.size(), thread_count()));
   }
-  check_memory(total * kBytesPerPoint + fill.bytes, std::to_string(static_cast<long long>(total)) + " points in " +
+  check_memory(total * kProgressiveBytesPerPoint + fill.bytes, std::to_string(static_cast<long long>(total)) + " points in " +
                                                         std::to_string(target_levels) + " levels");
   const double fill_seconds = fill.places_visited * kFillSecondsPerPlace;
   if (fill_seconds >= 60.0)

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/relax/wang_relax.h"
@@ -17,7 +18,6 @@
 #include "cli/commands.h"
 #include "cli/engine_options.h"
 #include "cli/file_options.h"
-#include "cli/memory_budget.h"
 #include "cli/numeric_options.h"
 #include "cli/output_names.h"
 #include "cli/progress.h"

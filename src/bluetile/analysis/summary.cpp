@@ -21,6 +21,15 @@ double mean_centroid_distance(std::span<const Point> points) {
   return sum / static_cast<double>(points.size());
 }
 
+double summary_memory_bytes(std::size_t count, std::size_t sets, int size) {
+  constexpr double kBytesPerPoint = 600.0;  // beyond the periodogram: points, cells, grids, images
+  const int f = size > 0 ? size : default_periodogram_size(count);
+  const double n = static_cast<double>(count), k = static_cast<double>(sets);
+  const double periodogram = 8.0 * static_cast<double>(f) * f;
+  const double working = static_cast<double>(periodogram_memory_bytes(count, f));
+  return k * 16.0 * n + kBytesPerPoint * n + (sets > 1 ? periodogram : 0.0) + working;
+}
+
 Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions& options) {
   if (sets.empty()) throw Error("no point sets to analyse");
   const std::size_t n = sets[0].size();

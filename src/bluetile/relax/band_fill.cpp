@@ -13,6 +13,7 @@
 #include "bluetile/core/field_checks.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -422,7 +423,7 @@ void validate(const FillOptions& options) {
   check_real_field("fill_window", options.window, 1.0, 8.0, " hexagonal spacings");
   check_whole_field("fill_cells_per_spacing", options.cells_per_spacing, 2, 64);
   if (!(options.regrid > 1.0 && options.regrid <= 2.0))
-    throw Error("fill_regrid: expected above 1 to 2, got " + std::to_string(options.regrid));
+    throw Error("fill_regrid: expected above 1 to 2, got " + shortest_text(options.regrid));
 }
 
 }  // namespace

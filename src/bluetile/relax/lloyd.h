@@ -67,6 +67,11 @@ DensityGrid weight_for_point_density(const DensityGrid& target, double exponent 
 inline constexpr double kMaxWeightExponent = 8.0;
 void check_weight_exponent(double exponent, const char* name = "weight exponent");
 
+// Bytes per site of a relaxation, beyond the points themselves: the scene's copy, the cell
+// results, the engine's search grid and per-site state, for up-front checks (core/memory_budget.h).
+// Measured (peak RSS of `relax -n 1000000 -k 2`, both engines, divided by N) and rounded up.
+inline constexpr double kRelaxBytesPerSite = 160.0;
+
 // The move of a site to the centroid of its cell, in domain units: the shortest periodic offset
 // on a torus, the plain difference in a bounded rectangle.
 inline Point lloyd_displacement(const Scene& scene, Point site, const Cell& cell) {

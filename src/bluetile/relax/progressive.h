@@ -115,6 +115,10 @@ std::vector<PointSet> add_levels(const EngineMaker& new_engine, std::vector<Poin
                                  const HierarchyOptions& options,
                                  const std::function<void(std::size_t done)>& on_base_done = {});
 
+// Bytes per point of a level's relaxation (kRelaxBytesPerSite) plus the levels column, for
+// up-front checks.
+inline constexpr double kProgressiveBytesPerPoint = kRelaxBytesPerSite + 8.0;
+
 // The number of points each new level of add_levels adds, checked as add_levels checks them.
 std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const HierarchyOptions& options);
 

@@ -266,7 +266,7 @@ TileSet relax_wang_tiles(CentroidEngine& engine, const WangOptions& options) {
   if (options.points == 0) throw Error("a tile needs at least one point");
   if (options.levels < 1) throw Error("a set needs at least one level");
   if (options.levels > 1 && !(options.ratio > 1.0))
-    throw Error("ratio must be above 1, got " + std::to_string(options.ratio));
+    throw Error("ratio must be above 1, got " + shortest_text(options.ratio));
   TileSet set = empty_tile_set(options.kind);
   std::size_t total = 0;
   for (int l = 0; l < options.levels; ++l) {

@@ -43,6 +43,10 @@ inline constexpr std::size_t kMaxDartCount = 100'000'000, kMaxDartFailures = 1'0
 inline constexpr double kMinDartShrink = 1e-6, kMaxDartShrink = 0.999999;
 inline constexpr double kMinDartStart = 1e-6, kMaxDartStart = 4.0;
 
+// Bytes per point of a run, for up-front checks (core/memory_budget.h): the points, the
+// acceptance grid and its bookkeeping, rounded up.
+inline constexpr double kDartBytesPerPoint = 64.0;
+
 // Throws Error naming the first field out of range ("shrink: expected 1e-06 to 0.999999, got 1").
 void validate(const DartOptions& options);
 

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 #include "bluetile/voronoi/engine.h"
 
 namespace bluetile {
@@ -202,7 +203,7 @@ void check_density(const Scene& scene) {
     const float t = d.texels[k];
     if (!std::isfinite(t) || t < 0.0f)
       throw Error("density texel (" + std::to_string(k % static_cast<std::size_t>(d.width)) + ", " +
-                  std::to_string(k / static_cast<std::size_t>(d.width)) + ") is " + std::to_string(t) +
+                  std::to_string(k / static_cast<std::size_t>(d.width)) + ") is " + shortest_text(t) +
                   ": densities must be finite and non-negative");
   }
   if (!any_positive) throw Error("the density is zero everywhere: no cell has a centre of mass");

@@ -1,11 +1,14 @@
-// What a run will need, checked before it starts: a mistyped --count or --sets is refused with
-// the estimate instead of running for hours into an out-of-memory kill.
+// What a run will need, checked before it starts: a mistyped count is refused with the estimate
+// instead of running for hours into an out-of-memory kill (the tool) or a bare MemoryError after
+// seconds of work (the Python module). Both front ends call this one check; the estimates live
+// next to what they measure (kRelaxBytesPerSite in relax/lloyd.h, kDartBytesPerPoint in
+// sampling/dart_throwing.h, summary_memory_bytes in analysis/summary.h).
 #pragma once
 
 #include <cstdint>
 #include <string>
 
-namespace bluetile::cli {
+namespace bluetile {
 
 // Bytes this process may still allocate: the least of the memory the system reports available
 // (MemAvailable), the cgroup's limit less its use, and the address-space and data limits
@@ -19,9 +22,4 @@ std::string format_bytes(double bytes);
 // exceeds available_memory().
 void check_memory(double needed, const std::string& what);
 
-// Bytes per site of a relaxation, beyond the points themselves: the scene's copy, the cell
-// results, the engine's search grid and per-site state. Measured (peak RSS of `relax -n 1000000
-// -k 2`, both engines, divided by N) and rounded up.
-inline constexpr double kRelaxBytesPerSite = 160.0;
-
-}  // namespace bluetile::cli
+}  // namespace bluetile

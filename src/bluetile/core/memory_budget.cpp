@@ -1,4 +1,4 @@
-#include "cli/memory_budget.h"
+#include "bluetile/core/memory_budget.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -9,7 +9,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/process_limits.h"
 
-namespace bluetile::cli {
+namespace bluetile {
 namespace {
 
 constexpr std::uint64_t kUnlimited = std::numeric_limits<std::uint64_t>::max();
@@ -66,4 +66,4 @@ void check_memory(double needed, const std::string& what) {
               format_bytes(static_cast<double>(available)) + " available");
 }
 
-}  // namespace bluetile::cli
+}  // namespace bluetile
