@@ -194,6 +194,10 @@ TEST(Cli, OptionsARunWouldNotUseAreRefused) {
        "--placement random: --rank-order fill"},
       {{"progressive", "-n", "64", "--levels", "3", "--rank-order", "fill", "--device", "7", "-o", out},
        "--device 7: --rank-order fill"},
+      {{"relax", "-i", BLUETILE_TEST_DATA "/ranks_square.txt", "--seed", "7", "--engine", "exact", "-o", out},
+       "--seed 7: only with --count (it draws the random start; the input is the start)\n"},
+      {{"relax", "-n", "5", "--weight-exponent", "3", "--engine", "exact", "-o", out},
+       "--weight-exponent 3 weights the cells by a --density-map: give one\n"},
   };
   for (const auto& c : cases) {
     auto r = run_bluetile(c.args);

@@ -51,6 +51,9 @@ void refuse_transfer_without_map(const CLI::App& command, bool has_map) {
       const std::string given = std::string(name) == "--invert" && !command.get_option(name)->as<bool>() ? "--no-invert" : name;
       throw Error(given + " shapes a --density-map: give one");
     }
+  if (command.get_option_no_throw("--weight-exponent") != nullptr && command.count("--weight-exponent") > 0)
+    throw Error("--weight-exponent " + command.get_option("--weight-exponent")->as<std::string>() +
+                " weights the cells by a --density-map: give one");
 }
 
 }  // namespace bluetile::cli

@@ -30,9 +30,9 @@ void add_weight_exponent_option(CLI::App* command, double& exponent);
 // The transfer the options name.
 DensityTransfer density_transfer(const DensityMapOptions& options);
 
-// For commands whose map is optional (relax, tile): --transfer, --invert, --no-invert and --gamma
-// given without a --density-map are refused ("--gamma shapes a --density-map: give one"), not
-// ignored.
+// For commands whose map is optional (relax, tile): --transfer, --invert, --no-invert, --gamma
+// and --weight-exponent given without a --density-map are refused ("--gamma shapes a
+// --density-map: give one"), not ignored.
 void refuse_transfer_without_map(const CLI::App& command, bool has_map);
 
 // The options as output headers record them, so that a file says how its map was read:

@@ -193,6 +193,9 @@ void add_relax_command(CLI::App& app) {
       "Centroid engine: raster (Vulkan) or exact (CPU); exact is the default with --density-map or a bounded domain");
   cmd->callback([o, cmd] {
     if (o->count == 0 && o->input.empty()) throw CLI::RequiredError("--count or --input");
+    if (!o->input.empty() && cmd->count("--seed") > 0)
+      throw Error("--seed " + std::to_string(o->seed) + ": only with --count (it draws the random start; the input is the "
+                  "start)");
     refuse_transfer_without_map(*cmd, !o->density_map.empty());
     run_relax(*o, *cmd);
   });
