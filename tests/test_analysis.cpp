@@ -345,6 +345,8 @@ TEST(Summary, LatticeSitesAreTheirCentroids) {
   // Uniform random sites are far from their centroids: a sizeable fraction of the spacing.
   auto points = uniform_points(500, 4);
   EXPECT_GT(mean_centroid_distance(points) / hexagonal_spacing(500.0), 0.1);
+  // No points gave 0 / 0.
+  EXPECT_EQ(error_of([] { mean_centroid_distance(std::vector<Point>{}); }), "mean centroid distance of no points");
 }
 
 TEST(Summary, RecordHoldsStatsJsonFieldsWithTheSummarysNumbers) {

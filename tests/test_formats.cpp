@@ -9,6 +9,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_table.h"
+#include "bluetile/core/text.h"
 #include "test_support.h"
 
 namespace bluetile {
@@ -182,6 +183,15 @@ TEST(Formats, SetsOfDifferentSizesNeedText) {
   sets[1].points.pop_back();
   EXPECT_EQ(error_of([&] { encode(TableFormat::npy, sets, {}, "t.npy"); }),
             "t.npy: set 0 has 4 points but set 1 has 3: the npy format needs the same count in every set (text takes any)");
+}
+
+TEST(Formats, PointsThatAreNotFiniteAreNeverWritten) {
+  // A NaN went into text and .bpt tables, which every reader then refused.
+  std::vector<PointSet> sets = sample_sets(2, 4, false);
+  sets[1].points[2].y = std::nan("");
+  for (TableFormat format : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header})
+    EXPECT_EQ(error_of([&] { write_point_table(format, sets, {}, "t", [](std::string_view) {}); }),
+              "t: set 1, point 2 (" + exact_text(sets[1].points[2].x) + ", nan) is not finite: no reader would take it back");
 }
 
 TEST(Formats, ReadsNpyInFortranOrderBigEndianAndFloat32) {

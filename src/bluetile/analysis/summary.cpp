@@ -13,6 +13,7 @@
 namespace bluetile {
 
 double mean_centroid_distance(std::span<const Point> points) {
+  if (points.empty()) throw Error("mean centroid distance of no points");  // was 0 / 0
   Scene scene = make_scene(std::vector<Point>(points.begin(), points.end()));
   SceneCells cells = ExactEngine().compute(scene);
   double sum = 0.0;

@@ -82,6 +82,7 @@ struct Summary {
 };
 
 // Mean distance of each site to the centroid of its exact periodic Voronoi cell (domain units).
+// Throws Error for no points.
 double mean_centroid_distance(std::span<const Point> points);
 
 // Analyses one set, or the mean over several sets of equal size (periodograms and RDFs

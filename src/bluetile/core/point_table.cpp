@@ -453,6 +453,14 @@ void write_table(TableFormat format, const TableView& table, const TableWriteOpt
 
 void write_point_table(TableFormat format, std::span<const PointSet> sets, const TableWriteOptions& options,
                        const std::string& path, const ByteSink& sink) {
+  // Before any byte: a NaN or infinity was written, and every reader then refused the file.
+  for (std::size_t k = 0; k < sets.size(); ++k)
+    for (std::size_t i = 0; i < sets[k].points.size(); ++i) {
+      const Point p = sets[k].points[i];
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        throw Error(path + ": set " + std::to_string(k) + ", point " + std::to_string(i) + " (" + exact_text(p.x) +
+                    ", " + exact_text(p.y) + ") is not finite: no reader would take it back");
+    }
   if (format != TableFormat::text) {
     write_table(format, point_sets_table(sets), options, path, sink);
     return;
