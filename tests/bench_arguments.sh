@@ -7,15 +7,7 @@
 set -u
 bin_dir=$1
 shift
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-cases=0
-
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+source "$(dirname "$0")/script_cases.sh"
 
 # expect STATUS PROGRAM ARG...: runs the program and checks its status and what it printed.
 expect() {
@@ -151,5 +143,4 @@ for program in "$@"; do
   esac
 done
 
-echo "$cases cases, $failures failures"
-[ "$failures" = 0 ]
+finish

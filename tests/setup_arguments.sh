@@ -13,15 +13,7 @@
 #   setup_arguments.sh SETUP_SH
 set -u
 setup=$1
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-cases=0
-
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
+source "$(dirname "$0")/script_cases.sh"
 
 mkdir -p "$work/stubs" "$work/caller"
 for tool in cmake ctest; do
@@ -138,5 +130,4 @@ for sanitize in OFF off 0 no false; do
   done
 done
 
-echo "$cases cases, $failures failures"
-[ "$failures" = 0 ]
+finish

@@ -222,7 +222,6 @@ struct RasterEngine::Impl {
   }
 
   void compute(std::span<const Scene* const> batch, std::span<SceneCells> out) {
-    if (batch.size() != out.size()) throw Error("raster engine: scenes and results differ in number");
     if (options.pixel_work == PixelWork::device) refuse_host_only_scenes(batch);
     auto host_start = Clock::now();
     ++stats.computes;
