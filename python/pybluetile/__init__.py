@@ -4,7 +4,7 @@ After Hiller, Deussen and Keller, *Tiled Blue Noise Samples* (2001). Point sets 
 arrays of shape (N, 2) (or (K, N, 2) for K sets) of float64 coordinates in [0, 1). Every
 function releases the GIL while it computes; bad input raises ``pybluetile.Error`` (a
 ``ValueError``) with the same message the ``bluetile`` tool prints, or a ``TypeError`` /
-``ValueError`` naming the argument.
+``ValueError`` naming the argument. ``None`` for an argument with a default means that default.
 """
 
 # NumPy first: nanobind would import it lazily on the first array returned, and an interrupt

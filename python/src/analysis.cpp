@@ -23,14 +23,17 @@ namespace {
 int spectrum_size(const Whole& size_arg) {
   constexpr int kMaxSize = 65536;
   const std::string range = "0 (from N) or an even number 2 to " + std::to_string(kMaxSize);
-  const int size = whole<int>(size_arg, "size", 0, kMaxSize, range);
+  const int size = whole_or<int>(size_arg, 0, "size", 0, kMaxSize, range);
   if (size % 2 != 0) throw nb::value_error(("size: expected " + range + ", got " + std::to_string(size)).c_str());
   return size;
 }
 
-void check_bin_width(double bin_width) {
+// The annulus width; None: 1, the default.
+double bin_width_of(const Real& bin_width_arg) {
+  const double bin_width = real_or(bin_width_arg, 1.0, "bin_width");
   if (!(bin_width > 0.0) || !std::isfinite(bin_width))
     throw nb::value_error(("bin_width: expected a positive number, got " + bluetile::shortest_text(bin_width)).c_str());
+  return bin_width;
 }
 
 // Refused outside [0, 1), as `bluetile analyze` refuses them.
@@ -113,17 +116,16 @@ nb::dict summary_dict(bluetile::Summary&& s) {
 void bind_analysis(nb::module_& m) {
   m.def(
       "analyze",
-      [](const ArrayArg& points, const Whole& size_arg, double bin_width, bool centroids, bool psa_measures,
-         bool discrepancy) {
+      [](const ArrayArg& points, const Whole& size_arg, const Real& bin_width, const Flag& centroids,
+         const Flag& psa_measures, const Flag& discrepancy) {
         const int size = spectrum_size(size_arg);
-        check_bin_width(bin_width);
-        PointSets input = analysed_sets(points);
         bluetile::SummaryOptions options;
         options.size = size;
-        options.bin_width = bin_width;
-        options.centroids = centroids;
-        options.spectral_measures = psa_measures;
-        options.discrepancy = discrepancy;
+        options.bin_width = bin_width_of(bin_width);
+        options.centroids = flag_or(centroids, true, "centroids");
+        options.spectral_measures = flag_or(psa_measures, true, "psa_measures");
+        options.discrepancy = flag_or(discrepancy, true, "discrepancy");
+        PointSets input = analysed_sets(points);
         // As the tool's analyze: refused at once with the estimate.
         const std::size_t n = input.sets[0].size(), sets = input.sets.size();
         bluetile::check_memory(bluetile::summary_memory_bytes(n, sets, size),
@@ -138,8 +140,8 @@ void bind_analysis(nb::module_& m) {
       },
       nb::sig("def analyze(points: numpy.typing.ArrayLike, *, size: int = 0, bin_width: float = 1.0, centroids: bool = True, "
               "psa_measures: bool = True, discrepancy: bool = True) -> dict[str, typing.Any]"),
-      "points"_a, nb::kw_only(), "size"_a = 0, "bin_width"_a = 1.0, "centroids"_a = true, "psa_measures"_a = true,
-      "discrepancy"_a = true,
+      "points"_a.none(), nb::kw_only(), "size"_a.none() = 0, "bin_width"_a.none() = 1.0, "centroids"_a.none() = true, "psa_measures"_a.none() = true,
+      "discrepancy"_a.none() = true,
       R"(Statistics of a point set on the unit torus, as ``bluetile analyze`` writes them to stats.json.
 
 ``points``: shape (N, 2), or (K, N, 2) for the mean over K sets (``--average``), coordinates in
@@ -170,7 +172,8 @@ bin_width: the annulus width.)");
         }
         return periodogram_array(std::move(p));
       },
-      "points"_a, "size"_a = 0,
+      nb::sig("def periodogram(points: numpy.typing.ArrayLike, size: int = 0) -> NDArray[numpy.float64]"),
+      "points"_a.none(), "size"_a.none() = 0,
       R"(The periodogram P(k) = |sum_j exp(-2 pi i k.x_j)|^2 / N, shape (F, F) (the direct sum for
 small sets, a non-uniform FFT within 1e-9 of it for larger ones):
 element [ky + F/2, kx + F/2] is P at integer frequency (kx, ky), for kx, ky in [-F/2, F/2).
@@ -178,9 +181,9 @@ White noise gives about 1; P(0) = N. size: F, even (0: 2 floor(5 sqrt(N))).)");
 
   m.def(
       "radial_power",
-      [](const ArrayArg& points, const Whole& size_arg, double bin_width) {
+      [](const ArrayArg& points, const Whole& size_arg, const Real& bin_width_arg) {
         const int size = spectrum_size(size_arg);
-        check_bin_width(bin_width);
+        const double bin_width = bin_width_of(bin_width_arg);
         PointSets input = analysed_sets(points);
         const std::size_t n = input.sets[0].size();
         check_periodogram_memory("radial_power", n, input.sets.size(), size ? size : bluetile::default_periodogram_size(n),
@@ -198,7 +201,7 @@ White noise gives about 1; P(0) = N. size: F, even (0: 2 floor(5 sqrt(N))).)");
         return radial_dict(radial);
       },
       nb::sig("def radial_power(points: numpy.typing.ArrayLike, size: int = 0, bin_width: float = 1.0) -> dict[str, NDArray]"),
-      "points"_a, "size"_a = 0, "bin_width"_a = 1.0,
+      "points"_a.none(), "size"_a.none() = 0, "bin_width"_a.none() = 1.0,
       R"(Radial power and anisotropy per annulus (psa's conventions), of one set or the mean
 periodogram of K sets: a dict of arrays frequency (the annulus' inner radius), power,
 anisotropy_db (10 log10 of variance / power^2; white noise about 0 dB) and count.)");
@@ -216,7 +219,8 @@ anisotropy_db (10 log10 of variance / power^2; white noise about 0 dB) and count
         const std::size_t n = d.size();
         return to_numpy(std::move(d), {n});
       },
-      "points"_a, R"(Distance of every point to its nearest neighbour on the unit torus, shape (N,): periodic
+      nb::sig("def nearest_neighbour_distances(points: numpy.typing.ArrayLike) -> NDArray[numpy.float64]"),
+      "points"_a.none(), R"(Distance of every point to its nearest neighbour on the unit torus, shape (N,): periodic
 images count, so a lone point's nearest neighbour is its own copy one period away (distance 1).)");
 }
 

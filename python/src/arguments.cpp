@@ -1,5 +1,7 @@
 #include "arguments.h"
 
+#include <string_view>
+
 namespace pybluetile {
 
 using namespace nb::literals;
@@ -15,9 +17,18 @@ std::string type_text(nb::handle value) {
 // str(value); a handle first, so that an attribute is converted rather than taken for a str.
 std::string text_of(nb::handle value) { return nb::str(value).c_str(); }
 
-// The int of an integer argument (NumPy's integers and bool included, as range() takes them).
+// Python's bool or NumPy's (numpy.bool_, numpy.bool in NumPy 2, a static type: its tp_name has
+// the module).
+bool is_bool(nb::handle value) {
+  if (PyBool_Check(value.ptr())) return true;
+  const std::string_view type = Py_TYPE(value.ptr())->tp_name;
+  return type == "numpy.bool_" || type == "numpy.bool";
+}
+
+// The int of an integer argument (NumPy's integers included, as range() takes them). A bool is
+// refused: Python takes True as 1, and count=True is a slip, not a count.
 nb::object python_int(const Whole& value, const char* name) {
-  if (!PyIndex_Check(value.ptr()))
+  if (!PyIndex_Check(value.ptr()) || is_bool(value))
     throw nb::type_error((std::string(name) + ": expected an integer, got " + type_text(value)).c_str());
   PyObject* index = PyNumber_Index(value.ptr());
   if (!index) throw nb::python_error();
@@ -67,6 +78,45 @@ unsigned long long whole_unsigned(const Whole& value, const char* name, unsigned
   if (!fits || u < low || u > high)
     out_of_range(name, range.empty() ? std::to_string(low) + " to " + std::to_string(high) : range, number);
   return u;
+}
+
+double real_or(const Real& value, double fallback, const char* name) {
+  if (value.is_none()) return fallback;
+  PyObject* v = value.ptr();
+  // What float() takes but text (which it would parse); a bool is a slip, as for integers.
+  const PyNumberMethods* methods = Py_TYPE(v)->tp_as_number;
+  const bool number = !is_bool(value) && (PyFloat_Check(v) || PyIndex_Check(v) || (methods && methods->nb_float));
+  if (!number)
+    throw nb::type_error((std::string(name) + ": expected a number (int or float), got " + type_text(value)).c_str());
+  const double d = PyFloat_AsDouble(v);
+  if (d == -1.0 && PyErr_Occurred()) {
+    if (!PyErr_ExceptionMatches(PyExc_OverflowError)) throw nb::python_error();
+    PyErr_Clear();
+    throw nb::value_error((std::string(name) + ": expected a number, got an integer too large for a float").c_str());
+  }
+  return d;
+}
+
+bool flag_or(const Flag& value, bool fallback, const char* name) {
+  if (value.is_none()) return fallback;
+  if (!is_bool(value))
+    throw nb::type_error((std::string(name) + ": expected a bool (True or False), got " + type_text(value)).c_str());
+  const int truth = PyObject_IsTrue(value.ptr());
+  if (truth < 0) throw nb::python_error();
+  return truth != 0;
+}
+
+std::string text_or(const Text& value, const std::string& fallback, const char* name) {
+  if (value.is_none()) return fallback;
+  if (!PyUnicode_Check(value.ptr()))
+    throw nb::type_error((std::string(name) + ": expected a str, got " + type_text(value)).c_str());
+  Py_ssize_t size = 0;
+  const char* utf8 = PyUnicode_AsUTF8AndSize(value.ptr(), &size);
+  if (!utf8) {  // a lone surrogate
+    PyErr_Clear();
+    throw nb::value_error((std::string(name) + ": not valid text (" + text_of(nb::repr(value)) + ")").c_str());
+  }
+  return std::string(utf8, static_cast<std::size_t>(size));
 }
 
 std::string path_text(const PathArg& path, const char* name) {

@@ -57,6 +57,7 @@ namespace {
 constexpr long long kMaxCount = 100'000'000, kMaxSets = 10'000'000;
 constexpr int kMaxIterations = 100'000'000;
 constexpr int kDefaultIterations = 80;  // relax's and progressive's iterations, as the tool's
+constexpr int kDefaultStippleIterations = 50;
 constexpr std::uint64_t kDefaultSeed = 1;
 constexpr double kDefaultWeightExponent = 2.0;
 
@@ -97,18 +98,24 @@ std::string default_engine(const std::optional<std::string>& engine, bool weight
 }
 
 nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, const Whole& sets_arg,
-                 const Whole& iterations_arg, const Whole& seed_arg, const Whole& fixed_arg, double tolerance,
-                 std::optional<ArrayArg> density_map, double weight_exponent, bool bounded,
-                 const std::optional<std::string>& engine, const Whole& resolution, const std::string& coverage,
-                 const std::string& cone, const std::string& device, const std::string& pixel_work, bool history) {
-  EngineChoice choice{default_engine(engine, density_map.has_value() || bounded), resolution_arg(resolution),
-                      coverage, cone, device, pixel_work};
+                 const Whole& iterations_arg, const Whole& seed_arg, const Whole& fixed_arg, const Real& tolerance_arg,
+                 std::optional<ArrayArg> density_map, const Real& weight_exponent_arg, const Flag& bounded_arg,
+                 const Text& engine, const Whole& resolution, const Text& coverage, const Text& cone,
+                 const Text& device, const Text& pixel_work, const Flag& history_arg) {
+  const bool bounded = flag_or(bounded_arg, false, "bounded"), history = flag_or(history_arg, false, "history");
+  const std::optional<std::string> engine_name =
+      engine.is_none() ? std::nullopt : std::optional<std::string>(text_or(engine, {}, "engine"));
+  EngineChoice choice = engine_choice(default_engine(engine_name, density_map.has_value() || bounded), resolution,
+                                      coverage, cone, device, pixel_work);
   check_engine_choice(choice);
-  const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
-  const std::uint64_t seed = seed_value(seed_arg);
+  const int iterations = whole_or<int>(iterations_arg, kDefaultIterations, "iterations", 0, kMaxIterations);
+  const std::uint64_t seed = seed_or(seed_arg, kDefaultSeed);
   // 0: not given (points are); "sets" 0: one set of shape (N, 2).
-  const long long count = whole<long long>(count_arg, "count", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
-  const long long sets = whole<long long>(sets_arg, "sets", 0, kMaxSets);
+  const long long count =
+      whole_or<long long>(count_arg, 0, "count", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
+  const long long sets = whole_or<long long>(sets_arg, 0, "sets", 0, kMaxSets);
+  const double tolerance = real_or(tolerance_arg, 0.0, "tolerance");
+  const double weight_exponent = real_or(weight_exponent_arg, kDefaultWeightExponent, "weight_exponent");
   check_non_negative("tolerance", tolerance);
   bluetile::check_weight_exponent(weight_exponent, "weight_exponent");
   // The map is stretched over the unit square, as `relax --density-map` stretches it; random
@@ -119,6 +126,9 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
         density_grid(array_arg(*density_map, "density_map", ArrayKind::density), "density_map"));
     weight = std::make_shared<bluetile::DensityGrid>(bluetile::weight_for_point_density(*density, weight_exponent));
   }
+  // Read (not yet checked) before the checks between arguments: a wrong type is named first.
+  const std::optional<AnyArray> points_array =
+      points_arg ? std::optional(array_arg(*points_arg, "points", ArrayKind::points)) : std::nullopt;
   if (points_arg.has_value() == (count != 0)) throw nb::value_error("give either points or count");
   if (sets != 0 && points_arg) throw nb::value_error("sets: only with count (an array of shape (K, N, 2) has its sets)");
   // Refused where they would change nothing, as the tool refuses --gamma without a map.
@@ -130,7 +140,7 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
                            " weights the cells by a density_map: give one").c_str());
   PointSets input;
   if (points_arg) {
-    input = point_sets(array_arg(*points_arg, "points", ArrayKind::points), "points");
+    input = point_sets(*points_array, "points");
   } else {
     // As the tool's relax --count --sets: refused at once with the estimate, not a MemoryError
     // after seconds of work.
@@ -145,7 +155,7 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
     }
   }
   const std::size_t n = input.sets[0].size();
-  const auto fixed = whole<std::size_t>(fixed_arg, "fixed", 0, n, "0 to " + std::to_string(n) + " (the points)");
+  const auto fixed = whole_or<std::size_t>(fixed_arg, 0, "fixed", 0, n, "0 to " + std::to_string(n) + " (the points)");
 
   bluetile::LloydResult result;
   std::vector<bluetile::Scene> scenes;
@@ -174,22 +184,26 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
 }
 
 nb::object stipple(const ArrayArg& density_map, const Whole& count, const Whole& iterations_arg, const Whole& seed,
-                   double tolerance, bool periodic, double weight_exponent, const std::string& engine,
-                   const Whole& resolution, const std::string& coverage, const std::string& cone,
-                   const std::string& device, const std::string& pixel_work, bool info) {
-  EngineChoice choice{engine, resolution_arg(resolution), coverage, cone, device, pixel_work};
+                   const Real& tolerance_arg, const Flag& periodic, const Real& weight_exponent_arg, const Text& engine,
+                   const Whole& resolution, const Text& coverage, const Text& cone, const Text& device,
+                   const Text& pixel_work, const Flag& info_arg) {
+  EngineChoice choice =
+      engine_choice(text_or(engine, "exact", "engine"), resolution, coverage, cone, device, pixel_work);
   check_engine_choice(choice);
+  const bool info = flag_or(info_arg, false, "info");
   bluetile::StippleStart start;
   start.count = whole<std::size_t>(count, "count", 1, kMaxCount);
   bluetile::check_memory(static_cast<double>(start.count) * bluetile::kRelaxBytesPerSite,
                          "count=" + std::to_string(start.count));  // as the tool's stipple --count
-  const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
+  const int iterations = whole_or<int>(iterations_arg, kDefaultStippleIterations, "iterations", 0, kMaxIterations);
+  const double tolerance = real_or(tolerance_arg, 0.0, "tolerance");
+  const double weight_exponent = real_or(weight_exponent_arg, kDefaultWeightExponent, "weight_exponent");
   check_non_negative("tolerance", tolerance);
   bluetile::check_weight_exponent(weight_exponent, "weight_exponent");
   const bluetile::DensityGrid map =
       density_grid(array_arg(density_map, "density_map", ArrayKind::density), "density_map");
-  start.seed = seed_value(seed);
-  start.periodic = periodic;
+  start.seed = seed_or(seed, kDefaultSeed);
+  start.periodic = flag_or(periodic, false, "periodic");
   start.weight_exponent = weight_exponent;
   bluetile::Scene scene;
   bluetile::LloydResult result;
@@ -212,10 +226,10 @@ nb::object stipple(const ArrayArg& density_map, const Whole& count, const Whole&
   return nb::make_tuple(points, d);
 }
 
-nb::tuple centroids(const ArrayArg& points, const std::string& engine, const Whole& resolution,
-                    const std::string& coverage, const std::string& cone, const std::string& device,
-                    const std::string& pixel_work) {
-  EngineChoice choice{engine, resolution_arg(resolution), coverage, cone, device, pixel_work};
+nb::tuple centroids(const ArrayArg& points, const Text& engine, const Whole& resolution, const Text& coverage,
+                    const Text& cone, const Text& device, const Text& pixel_work) {
+  EngineChoice choice =
+      engine_choice(text_or(engine, "raster", "engine"), resolution, coverage, cone, device, pixel_work);
   check_engine_choice(choice);
   PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points");
   std::vector<bluetile::SceneCells> cells(input.sets.size());
@@ -239,18 +253,23 @@ nb::tuple centroids(const ArrayArg& points, const std::string& engine, const Who
 }
 
 nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base_levels, const Whole& count_arg,
-                      const Whole& add_arg, double ratio, const Whole& levels_arg, const Whole& iterations_arg,
-                      double tolerance, const Whole& seed, const std::string& placement, const std::string& rank_order,
-                      const std::string& engine, const Whole& resolution, const std::string& coverage,
-                      const std::string& cone, const std::string& device, const std::string& pixel_work) {
-  EngineChoice choice{engine, resolution_arg(resolution), coverage, cone, device, pixel_work};
-  const int iterations = whole<int>(iterations_arg, "iterations", 0, kMaxIterations);
-  const int levels = whole<int>(levels_arg, "levels", 0, 64);
+                      const Whole& add_arg, const Real& ratio_arg, const Whole& levels_arg, const Whole& iterations_arg,
+                      const Real& tolerance_arg, const Whole& seed, const Text& placement_arg, const Text& rank_order_arg,
+                      const Text& engine_arg, const Whole& resolution, const Text& coverage, const Text& cone,
+                      const Text& device, const Text& pixel_work) {
+  const std::string engine = text_or(engine_arg, "raster", "engine");
+  EngineChoice choice = engine_choice(engine, resolution, coverage, cone, device, pixel_work);
+  const int iterations = whole_or<int>(iterations_arg, kDefaultIterations, "iterations", 0, kMaxIterations);
+  const int levels = whole_or<int>(levels_arg, 0, "levels", 0, 64);
   // 0: not given.
-  const long long count = whole<long long>(count_arg, "count", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
-  const long long add = whole<long long>(add_arg, "add", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
+  const long long count =
+      whole_or<long long>(count_arg, 0, "count", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
+  const long long add = whole_or<long long>(add_arg, 0, "add", 0, kMaxCount, "1 to " + std::to_string(kMaxCount));
+  const double tolerance = real_or(tolerance_arg, 0.0, "tolerance"), ratio = real_or(ratio_arg, 0.0, "ratio");
   check_non_negative("tolerance", tolerance);
   check_non_negative("ratio", ratio);
+  const std::string placement = text_or(placement_arg, "gaps", "placement");
+  const std::string rank_order = text_or(rank_order_arg, "voids", "rank_order");
   if (placement != "gaps" && placement != "random")
     throw nb::value_error(("placement: expected one of 'gaps', 'random', got '" + placement + "'").c_str());
   const bluetile::ProgressiveOrder order = bluetile::parse_rank_order(rank_order);
@@ -272,16 +291,20 @@ nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base
   } else {
     check_engine_choice(choice);
   }
+  // Read (not yet checked) before the checks between arguments: a wrong type is named first.
+  const std::optional<AnyArray> base_array =
+      base ? std::optional(array_arg(*base, "base", ArrayKind::points)) : std::nullopt;
+  const std::optional<AnyArray> base_levels_array =
+      base_levels ? std::optional(array_arg(*base_levels, "base_levels", ArrayKind::levels)) : std::nullopt;
   if (base.has_value() == (count != 0)) throw nb::value_error("give either base or count");
   if (add != 0 && ratio != 0.0) throw nb::value_error("give add or ratio, not both");
   bluetile::PointSet set;
   if (base) {
-    PointSets input = point_sets(array_arg(*base, "base", ArrayKind::points), "base");
+    PointSets input = point_sets(*base_array, "base");
     if (input.batched) throw nb::value_error("base: expected shape (N, 2): one set");
     set.points = std::move(input.sets[0]);
     if (base_levels)
-      set.levels = levels_array(array_arg(*base_levels, "base_levels", ArrayKind::levels), set.points.size(),
-                                "base_levels", bluetile::kMaxTableLevel);
+      set.levels = levels_array(*base_levels_array, set.points.size(), "base_levels", bluetile::kMaxTableLevel);
   } else if (base_levels) {
     throw nb::value_error("base_levels: only with base");
   }
@@ -292,7 +315,7 @@ nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base
   options.levels = levels;
   options.iterations = iterations;
   options.tolerance = tolerance;
-  options.seed = seed_value(seed);
+  options.seed = seed_or(seed, kDefaultSeed);
   options.placement = placement == "random" ? bluetile::Placement::random : bluetile::Placement::gaps;
   options.rank_order = order;
   {
@@ -333,10 +356,10 @@ void bind_engines(nb::module_& m) {
                 "seed: int = 1, fixed: int = 0, tolerance: float = 0.0, density_map: numpy.typing.ArrayLike | None = None, "
                 "weight_exponent: float = 2.0, bounded: bool = False, engine: str | None = None, resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
                 "history: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, NDArray]]"),
-        "points"_a = nb::none(), nb::kw_only(), "count"_a = 0, "sets"_a = 0, "iterations"_a = kDefaultIterations,
-        "seed"_a = kDefaultSeed, "fixed"_a = 0, "tolerance"_a = 0.0, "density_map"_a = nb::none(), "weight_exponent"_a = kDefaultWeightExponent,
-        "bounded"_a = false, "engine"_a = nb::none(), "resolution"_a = 0,
-        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto", "history"_a = false,
+        "points"_a = nb::none(), nb::kw_only(), "count"_a.none() = 0, "sets"_a.none() = 0, "iterations"_a.none() = kDefaultIterations,
+        "seed"_a.none() = kDefaultSeed, "fixed"_a.none() = 0, "tolerance"_a.none() = 0.0, "density_map"_a = nb::none(), "weight_exponent"_a.none() = kDefaultWeightExponent,
+        "bounded"_a.none() = false, "engine"_a = nb::none(), "resolution"_a.none() = 0,
+        "coverage"_a.none() = "area", "cone"_a.none() = "quad", "device"_a.none() = "", "pixel_work"_a.none() = "auto", "history"_a.none() = false,
         R"(Lloyd relaxation, as ``bluetile relax``.
 
 Start from ``points`` (shape (N, 2), or (K, N, 2) for K sets relaxed each on its own) or from
@@ -366,9 +389,9 @@ The same seed gives the same bits as the tool. Releases the GIL while it runs.)"
                 "tolerance: float = 0.0, periodic: bool = False, weight_exponent: float = 2.0, engine: str = 'exact', "
                 "resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto', "
                 "info: bool = False) -> NDArray[numpy.float64] | tuple[NDArray[numpy.float64], dict[str, float | int]]"),
-        "density_map"_a, nb::kw_only(), "count"_a, "iterations"_a = 50, "seed"_a = 1, "tolerance"_a = 0.0,
-        "periodic"_a = false, "weight_exponent"_a = 2.0, "engine"_a = "exact", "resolution"_a = 0,
-        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto", "info"_a = false,
+        "density_map"_a.none(), nb::kw_only(), "count"_a.none(), "iterations"_a.none() = kDefaultStippleIterations, "seed"_a.none() = kDefaultSeed, "tolerance"_a.none() = 0.0,
+        "periodic"_a.none() = false, "weight_exponent"_a.none() = 2.0, "engine"_a.none() = "exact", "resolution"_a.none() = 0,
+        "coverage"_a.none() = "area", "cone"_a.none() = "quad", "device"_a.none() = "", "pixel_work"_a.none() = "auto", "info"_a.none() = false,
         R"(A stipple drawing by weighted Lloyd relaxation (Secord 2002), as ``bluetile stipple``.
 
 ``density_map``: a 2-D array of densities, row 0 at the top (for a grey image with dark meaning
@@ -383,8 +406,8 @@ that just touch where the map is densest, the tool's default) and iterations).)"
         nb::sig("def centroids(points: numpy.typing.ArrayLike, *, engine: str = 'raster', resolution: int = 0, "
                 "coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
                 "-> tuple[NDArray[numpy.float64], NDArray[numpy.float64]]"),
-        "points"_a, nb::kw_only(), "engine"_a = "raster", "resolution"_a = 0,
-        "coverage"_a = "area", "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto",
+        "points"_a.none(), nb::kw_only(), "engine"_a.none() = "raster", "resolution"_a.none() = 0,
+        "coverage"_a.none() = "area", "cone"_a.none() = "quad", "device"_a.none() = "", "pixel_work"_a.none() = "auto",
         R"(Cell centroids and areas of every point, as ``bluetile centroids``.
 
 Returns (centroids, areas): shapes (N, 2) and (N,) for points of shape (N, 2), or (K, N, 2) and
@@ -397,9 +420,9 @@ Returns (centroids, areas): shapes (N, 2) and (N,) for points of shape (N, 2), o
                 "tolerance: float = 0.0, seed: int = 1, placement: str = 'gaps', rank_order: str = 'voids', engine: str = 'raster', resolution: int = 0, coverage: str = 'area', cone: str = 'quad', device: str = '', pixel_work: str = 'auto') "
                 "-> tuple[NDArray[numpy.float64], NDArray[numpy.int32]]"),
         "base"_a = nb::none(), "base_levels"_a = nb::none(), nb::kw_only(),
-        "count"_a = 0, "add"_a = 0, "ratio"_a = 0.0, "levels"_a = 0, "iterations"_a = kDefaultIterations, "tolerance"_a = 0.0,
-        "seed"_a = 1, "placement"_a = "gaps", "rank_order"_a = "voids", "engine"_a = "raster", "resolution"_a = 0, "coverage"_a = "area",
-        "cone"_a = "quad", "device"_a = "", "pixel_work"_a = "auto",
+        "count"_a.none() = 0, "add"_a.none() = 0, "ratio"_a.none() = 0.0, "levels"_a.none() = 0, "iterations"_a.none() = kDefaultIterations, "tolerance"_a.none() = 0.0,
+        "seed"_a.none() = 1, "placement"_a.none() = "gaps", "rank_order"_a.none() = "voids", "engine"_a.none() = "raster", "resolution"_a.none() = 0, "coverage"_a.none() = "area",
+        "cone"_a.none() = "quad", "device"_a.none() = "", "pixel_work"_a.none() = "auto",
         R"(Hierarchical point sets, as ``bluetile progressive`` (the paper, section 2.1).
 
 From scratch (``count``: level 0 has N relaxed random points, then ``levels`` levels in all,

@@ -41,7 +41,7 @@ NB_MODULE(_core, m) {
       [](const pybluetile::Whole& count) {
         bluetile::set_thread_count(pybluetile::whole<std::size_t>(count, "count", 1, 1024, "1 to 1024 threads"));
       },
-      "count"_a, "Sets the threads the library uses from now on (like --threads); results do not depend on it.");
+      nb::sig("def set_thread_count(count: int) -> None"), "count"_a.none(), "Sets the threads the library uses from now on (like --threads); results do not depend on it.");
 
   pybluetile::bind_engines(m);
   pybluetile::bind_sampling(m);

@@ -19,6 +19,35 @@ using namespace nb::literals;
 
 namespace {
 
+// The comment argument: read with comment_lines().
+class CommentArg : public nb::object {
+  NB_OBJECT_DEFAULT(CommentArg, nb::object, "str | collections.abc.Sequence[str]", detail::any_object)
+};
+
+// A str is one comment line, as one item of a sequence is: the table writer escapes a line break
+// in it (\n), as the tool escapes one in a file name it writes as a comment, so that no comment
+// adds a point or code. None: no comment. Anything else: TypeError naming the argument.
+std::vector<std::string> comment_lines(const CommentArg& comment) {
+  if (comment.is_none()) return {};
+  PyObject* c = comment.ptr();
+  const std::string type = nb::type_name(comment.type()).c_str();
+  if (PyUnicode_Check(c)) return {text_or(nb::borrow<Text>(comment), {}, "comment")};
+  if (!PySequence_Check(c) || PyBytes_Check(c) || PyByteArray_Check(c))
+    throw nb::type_error(("comment: expected a str or a sequence of str, got " + type).c_str());
+  std::vector<std::string> lines;
+  const nb::object items = nb::steal(PySequence_Fast(c, "comment: expected a str or a sequence of str"));
+  if (!items.is_valid()) throw nb::python_error();
+  const Py_ssize_t n = PySequence_Fast_GET_SIZE(items.ptr());
+  for (Py_ssize_t i = 0; i < n; ++i) {
+    const nb::handle item = PySequence_Fast_GET_ITEM(items.ptr(), i);
+    const std::string name = "comment[" + std::to_string(i) + "]";
+    if (!PyUnicode_Check(item.ptr()))
+      throw nb::type_error((name + ": expected a str, got " + nb::type_name(item.type()).c_str()).c_str());
+    lines.push_back(text_or(nb::borrow<Text>(item), {}, name.c_str()));
+  }
+  return lines;
+}
+
 constexpr bluetile::TableFormat kFormats[] = {bluetile::TableFormat::text, bluetile::TableFormat::npy,
                                                bluetile::TableFormat::binary, bluetile::TableFormat::header};
 
@@ -49,9 +78,11 @@ bluetile::TableFormat table_format(const std::string& path, const std::string& f
 }
 
 void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<ArrayArg> levels,
-                const std::string& format, bool float32, const std::string& name,
-                const std::vector<std::string>& comment) {
+                const Text& format_arg, const Flag& float32_arg, const Text& name_arg, const CommentArg& comment_arg) {
   const std::string path = path_text(path_arg, "path");
+  const std::string format = text_or(format_arg, "", "format"), name = text_or(name_arg, "", "name");
+  const bool float32 = flag_or(float32_arg, false, "float32");
+  const std::vector<std::string> comment = comment_lines(comment_arg);
   PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points");
   std::vector<bluetile::PointSet> sets;
   for (auto& s : input.sets) sets.push_back({std::move(s), {}});
@@ -80,8 +111,9 @@ void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<A
   });
 }
 
-nb::list load_table(const PathArg& path_arg, bool levels) {
+nb::list load_table(const PathArg& path_arg, const Flag& levels_arg) {
   const std::string path = path_text(path_arg, "path");
+  const bool levels = flag_or(levels_arg, false, "levels");
   std::vector<bluetile::PointSet> sets;
   {
     nb::gil_scoped_release release;
@@ -105,20 +137,27 @@ nb::list load_table(const PathArg& path_arg, bool levels) {
 }  // namespace
 
 void bind_tables(nb::module_& m) {
-  m.def("save_table", &save_table, "path"_a, "points"_a, nb::kw_only(), "levels"_a = nb::none(), "format"_a = "",
-        "float32"_a = false, "name"_a = "", "comment"_a = std::vector<std::string>{},
+  m.def("save_table", &save_table,
+        nb::sig("def save_table(path: str | os.PathLike[str], points: numpy.typing.ArrayLike, *, "
+                "levels: numpy.typing.ArrayLike | None = None, format: str = '', float32: bool = False, name: str = '', "
+                "comment: str | collections.abc.Sequence[str] | None = None) -> None"),
+        "path"_a.none(), "points"_a.none(), nb::kw_only(), "levels"_a = nb::none(), "format"_a.none() = "",
+        "float32"_a.none() = false, "name"_a.none() = "", "comment"_a = nb::none(),
         R"(Writes point sets as the tool does with ``--output`` (and ``--format``).
 
 ``points``: shape (N, 2) or (K, N, 2); ``levels``: (N,) whole numbers for one set. The format is
 ``format`` ("text", "npy", "binary", "header") or the extension (.txt .dat .pts, .npy, .bpt, .h
 .hpp; anything else is refused). ``float32``: 4-byte values in npy and binary; ``name``: the C
-array of a header (default from the file name); ``comment``: lines at the top (text, header; refused for the others).
+array of a header (default from the file name); ``comment``: a str (one line) or a sequence of
+str (one line each) at the top (text, header; refused for the others); a line break or other
+control character in one is written escaped (\n, \xNN), as the tool writes one in a file name,
+so that a comment adds no point or code.
 The file appears whole or not at all.)");
 
   m.def("load_table", &load_table,
         nb::sig("def load_table(path: str | os.PathLike[str], *, levels: bool = False) "
                 "-> list[NDArray[numpy.float64]] | list[tuple[NDArray[numpy.float64], NDArray[numpy.int32] | None]]"),
-        "path"_a, nb::kw_only(), "levels"_a = false,
+        "path"_a.none(), nb::kw_only(), "levels"_a.none() = false,
         R"(Reads every set of a point file (text, with '#' lines between sets), an .npy file or a
 binary point table, recognised by content. Returns a list of arrays of shape (N, 2), one per set;
 with ``levels=True`` a list of (points, levels) where levels is an (N,) int32 array or None.)");

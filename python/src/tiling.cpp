@@ -75,26 +75,43 @@ bluetile::TileSet load_tile_set(const TileSource& tiles) {
   return bluetile::default_tile_set();
 }
 
-std::string wang_tiles(const std::string& set, const Whole& points_arg, const Whole& iterations_arg,
-                       const Whole& warm_arg, const Whole& levels_arg, double ratio, const std::string& strategy,
-                       const Whole& period_arg, double margin, const Whole& lattice_steps_arg,
-                       const Whole& lattice_steps_per_iteration_arg, double lattice_step, const Whole& seam_steps_arg,
-                       double seam_spacing, double level_seam_spacing, const std::string& rank_order, double void_sigma,
-                       const Whole& seed_arg, const std::string& engine) {
+std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole& iterations_arg, const Whole& warm_arg,
+                       const Whole& levels_arg, const Real& ratio_arg, const Text& strategy_arg, const Whole& period_arg,
+                       const Real& margin_arg, const Whole& lattice_steps_arg,
+                       const Whole& lattice_steps_per_iteration_arg, const Real& lattice_step_arg,
+                       const Whole& seam_steps_arg, const Real& seam_spacing_arg, const Real& level_seam_spacing_arg,
+                       const Text& rank_order_arg, const Real& void_sigma_arg, const Whole& seed_arg,
+                       const Text& engine_arg) {
+  // None: the default, the library's (WangOptions).
+  const bluetile::WangOptions d;
+  const std::string set = text_or(set_arg, std::string(bluetile::tile_set_kind_name(d.kind)), "set");
   const auto kind = bluetile::parse_tile_set_kind(set);
   if (!kind) throw nb::value_error(("set: expected one of " + bluetile::tile_set_kind_list() + ", got '" + set + "'").c_str());
   // The library's ranges (bluetile::validate(WangOptions) checks them again), here so that a
   // value past the library's types gets the same message.
-  const auto points = whole<std::size_t>(points_arg, "points", 1, bluetile::kMaxWangPoints);
-  const int iterations = whole<int>(iterations_arg, "iterations", 0, bluetile::kMaxWangIterations);
-  const int warm = whole<int>(warm_arg, "warm", 0, bluetile::kMaxWangIterations);
-  const int levels = whole<int>(levels_arg, "levels", 1, bluetile::kMaxWangLevels);
-  const int period = whole<int>(period_arg, "period", bluetile::kMinWangPeriod, bluetile::kMaxWangPeriod);
-  const int lattice_steps = whole<int>(lattice_steps_arg, "lattice_steps", 0, bluetile::kMaxLatticeSteps);
-  const int lattice_steps_per_iteration = whole<int>(lattice_steps_per_iteration_arg, "lattice_steps_per_iteration", 0,
-                                                     bluetile::kMaxLatticeStepsPerIteration);
-  const int seam_steps = whole<int>(seam_steps_arg, "seam_steps", 0, bluetile::kMaxSeamSteps);
-  const std::uint64_t seed = seed_value(seed_arg);
+  const auto points = whole_or<std::size_t>(points_arg, d.points, "points", 1, bluetile::kMaxWangPoints);
+  const int iterations = whole_or<int>(iterations_arg, d.level.iterations, "iterations", 0, bluetile::kMaxWangIterations);
+  const int warm = whole_or<int>(warm_arg, d.level.warm_iterations, "warm", 0, bluetile::kMaxWangIterations);
+  const int levels = whole_or<int>(levels_arg, d.levels, "levels", 1, bluetile::kMaxWangLevels);
+  const int period = whole_or<int>(period_arg, d.level.period, "period", bluetile::kMinWangPeriod, bluetile::kMaxWangPeriod);
+  const int lattice_steps =
+      whole_or<int>(lattice_steps_arg, d.level.refine.lattice_iterations, "lattice_steps", 0, bluetile::kMaxLatticeSteps);
+  const int lattice_steps_per_iteration =
+      whole_or<int>(lattice_steps_per_iteration_arg, d.level.refine.lattice_steps_per_iteration,
+                    "lattice_steps_per_iteration", 0, bluetile::kMaxLatticeStepsPerIteration);
+  const int seam_steps =
+      whole_or<int>(seam_steps_arg, d.level.refine.seam_iterations, "seam_steps", 0, bluetile::kMaxSeamSteps);
+  const std::uint64_t seed = seed_or(seed_arg, d.seed);
+  const double ratio = real_or(ratio_arg, d.ratio, "ratio"), margin = real_or(margin_arg, d.level.edge_margin, "margin");
+  const double lattice_step = real_or(lattice_step_arg, d.level.refine.lattice_step, "lattice_step");
+  const double seam_spacing = real_or(seam_spacing_arg, d.level.refine.seam_spacing, "seam_spacing");
+  const double level_seam_spacing =
+      real_or(level_seam_spacing_arg, d.level.refine.later_seam_spacing, "level_seam_spacing");
+  const double void_sigma = real_or(void_sigma_arg, d.level.void_sigma, "void_sigma");
+  const std::string strategy = text_or(strategy_arg, "auto", "strategy");
+  const std::string rank_order =
+      text_or(rank_order_arg, bluetile::wang_rank_order_name(d.level.rank_order), "rank_order");
+  const std::string engine = text_or(engine_arg, "exact", "engine");
   EngineChoice choice;
   choice.engine = engine;
   check_engine_choice(choice);
@@ -160,20 +177,49 @@ nb::dict tile_set(const std::optional<PathArg>& tiles) {
   return out;
 }
 
-nb::object tile(std::tuple<double, double, double, double> region, const std::optional<PathArg>& tiles_arg,
-                double tile_size, double density, const Whole& seed, std::optional<ArrayArg> density_map,
-                double max_density, double count, const std::string& fit, bool columns) {
+// The region argument: read with window_of().
+class RegionArg : public nb::object {
+  NB_OBJECT_DEFAULT(RegionArg, nb::object, "tuple[float, float, float, float]", detail::any_object)
+};
+
+// (x0, y0, x1, y1): a tuple (or another sequence) of 4 numbers; TypeError naming `region` else.
+bluetile::Window window_of(const RegionArg& region) {
+  PyObject* r = region.ptr();
+  const std::string expected = "region: expected a tuple of 4 numbers (x0, y0, x1, y1), got ";
+  if (region.is_none()) throw nb::type_error((expected + "None").c_str());
+  if (!PySequence_Check(r) || PyUnicode_Check(r) || PyBytes_Check(r) || PyByteArray_Check(r))
+    throw nb::type_error((expected + nb::type_name(region.type()).c_str()).c_str());
+  const Py_ssize_t size = PySequence_Size(r);
+  if (size < 0) throw nb::python_error();
+  if (size != 4) throw nb::type_error((expected + std::to_string(size) + " values").c_str());
+  double v[4];
+  for (Py_ssize_t i = 0; i < 4; ++i) {
+    const nb::object item = nb::steal(PySequence_GetItem(r, i));
+    if (!item.is_valid()) throw nb::python_error();
+    const std::string name = "region[" + std::to_string(i) + "]";
+    if (item.is_none()) throw nb::type_error((name + ": expected a number (int or float), got None").c_str());
+    v[i] = real_or(nb::borrow<Real>(item), 0.0, name.c_str());
+  }
+  return {v[0], v[1], v[2], v[3]};
+}
+
+nb::object tile(const RegionArg& region, const std::optional<PathArg>& tiles_arg, const Real& tile_size,
+                const Real& density, const Whole& seed, std::optional<ArrayArg> density_map, const Real& max_density,
+                const Real& count, const Text& fit_arg, const Flag& columns_arg) {
+  const bluetile::Window window = window_of(region);
   const TileSource tiles = tile_source(tiles_arg);
   // The request as `bluetile tile` reads it (tiling/tiling_plan.h); bad values raise
   // pybluetile.Error (a ValueError) naming them.
-  const auto [x0, y0, x1, y1] = region;
+  const auto [x0, y0, x1, y1] = window;
   bluetile::TilingRequest request;
-  request.window = {x0, y0, x1, y1};
-  request.tile_size = tile_size;
-  request.density = density;
-  request.max_density = max_density;
-  request.count = count;
-  request.seed = seed_value(seed);
+  request.window = window;
+  request.tile_size = real_or(tile_size, request.tile_size, "tile_size");
+  request.density = real_or(density, request.density, "density");
+  request.max_density = real_or(max_density, request.max_density, "max_density");
+  request.count = real_or(count, request.count, "count");
+  request.seed = seed_or(seed, request.seed);
+  const std::string fit = text_or(fit_arg, "contain", "fit");
+  const bool columns = flag_or(columns_arg, false, "columns");
   request.fit = bluetile::parse_map_fit(fit);
   // As the tool's --fit without --density-map: refused, not ignored.
   if (!density_map && fit != "contain") throw nb::value_error(("fit='" + fit + "' places a density_map: give one").c_str());
@@ -229,10 +275,10 @@ void bind_tiling(nb::module_& m) {
                 "levels: int = 1, ratio: float = 2.0, strategy: str = 'auto', period: int = 16, margin: float = 0.0, "
                 "lattice_steps: int = 5, lattice_steps_per_iteration: int = 3, lattice_step: float = 0.005, seam_steps: int = 20, seam_spacing: float = 0.8, level_seam_spacing: float = 0.65, "
                 "rank_order: str = 'fill', void_sigma: float = 0.5, seed: int = 1, engine: str = 'exact') -> str"),
-        "set"_a = "wang8", nb::kw_only(), "points"_a = 52, "iterations"_a = 100, "warm"_a = 10, "levels"_a = 1,
-        "ratio"_a = 2.0, "strategy"_a = "auto", "period"_a = 16, "margin"_a = 0.0, "lattice_steps"_a = 5, "lattice_steps_per_iteration"_a = 3, "lattice_step"_a = 0.005, "seam_steps"_a = 20,
-        "seam_spacing"_a = 0.8, "level_seam_spacing"_a = 0.65, "rank_order"_a = "fill", "void_sigma"_a = 0.5,
-        "seed"_a = 1, "engine"_a = "exact",
+        "set"_a.none() = "wang8", nb::kw_only(), "points"_a.none() = 52, "iterations"_a.none() = 100, "warm"_a.none() = 10, "levels"_a.none() = 1,
+        "ratio"_a.none() = 2.0, "strategy"_a.none() = "auto", "period"_a.none() = 16, "margin"_a.none() = 0.0, "lattice_steps"_a.none() = 5, "lattice_steps_per_iteration"_a.none() = 3, "lattice_step"_a.none() = 0.005, "seam_steps"_a.none() = 20,
+        "seam_spacing"_a.none() = 0.8, "level_seam_spacing"_a.none() = 0.65, "rank_order"_a.none() = "fill", "void_sigma"_a.none() = 0.5,
+        "seed"_a.none() = 1, "engine"_a.none() = "exact",
         R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same
 points bit for bit), returned as the text of its tile-set file: write it to a file for
 ``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``.)");
@@ -251,8 +297,8 @@ and a byte-order mark), else a path.)");
                 "max_density: float = 0, count: float = 0, fit: str = 'contain', columns: bool = False) -> "
                 "NDArray[numpy.float64] | "
                 "dict[str, NDArray]"),
-        "region"_a, nb::kw_only(), "tiles"_a = nb::none(), "tile_size"_a = 0.0, "density"_a = 0.0, "seed"_a = 1,
-        "density_map"_a = nb::none(), "max_density"_a = 0.0, "count"_a = 0.0, "fit"_a = "contain", "columns"_a = false,
+        "region"_a.none(), nb::kw_only(), "tiles"_a = nb::none(), "tile_size"_a.none() = 0.0, "density"_a.none() = 0.0, "seed"_a.none() = 1,
+        "density_map"_a = nb::none(), "max_density"_a.none() = 0.0, "count"_a.none() = 0.0, "fit"_a.none() = "contain", "columns"_a.none() = false,
         R"(The points of the window ``region`` = (x0, y0, x1, y1) (half-open) of the aperiodic tiling of
 the plane by a tile set, as ``bluetile tile --region``: the same points on every overlap for the
 same seed. ``tile_size`` (plane units per tile) or ``density`` (points per unit area; the tile
