@@ -424,3 +424,18 @@ def test_requests_past_the_memory_are_refused_at_once_with_the_tools_estimate(to
     # The same estimate as the tool's, in the same words after the request.
     cli = tool("relax", "--count", 10**8, "--sets", 10**7, "--output", tmp_path / "p.txt", check=False)
     assert "--count 100000000 x --sets 10000000 needs about 142.1 PiB of memory, more than the" in cli.stderr
+
+
+def test_save_table_refuses_points_outside_the_torus_as_analysis_does(tmp_path):
+    # x = 1.5 was written as 0.5: another point than the one given.
+    points = np.array([[0.25, 0.25], [1.5, 0.5]])
+    with pytest.raises(ValueError) as analysed:
+        bt.analyze(points)
+    for name in ("t.txt", "t.npy", "t.bpt", "t.h"):
+        with pytest.raises(ValueError) as saved:
+            bt.save_table(tmp_path / name, points)
+        assert str(saved.value) == str(analysed.value), name
+        assert str(saved.value).startswith("points[1]: x = 1.5 is outside [0, 1) (points % 1.0 % 1.0 wraps them")
+        assert not (tmp_path / name).exists()
+    bt.save_table(tmp_path / "t.txt", points % 1.0 % 1.0)
+    assert np.array_equal(bt.load_table(tmp_path / "t.txt")[0], [[0.25, 0.25], [0.5, 0.5]])
