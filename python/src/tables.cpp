@@ -120,6 +120,8 @@ nb::list load_table(const PathArg& path_arg, const Flag& levels_arg) {
     nb::gil_scoped_release release;
     sets = bluetile::read_point_table(path);
   }
+  // As the tool refuses an empty file or one of comments only (`bluetile analyze -i`), not [].
+  if (sets.empty()) throw bluetile::Error(path + ": no points");
   nb::list result;
   for (bluetile::PointSet& set : sets) {
     nb::object points = nb::cast(points_to_numpy({set.points}, false));
@@ -162,7 +164,9 @@ The file appears whole or not at all.)");
         "path"_a.none(), nb::kw_only(), "levels"_a.none() = false,
         R"(Reads every set of a point file (text, with '#' lines between sets), an .npy file or a
 binary point table, recognised by content. Returns a list of arrays of shape (N, 2), one per set;
-with ``levels=True`` a list of (points, levels) where levels is an (N,) int32 array or None.)");
+with ``levels=True`` a list of (points, levels) where levels is an (N,) int32 array or None.
+A file with no points (empty, or comments only) raises pybluetile.Error '<path>: no points', as the
+tool refuses it.)");
 }
 
 }  // namespace pybluetile

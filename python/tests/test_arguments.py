@@ -439,3 +439,15 @@ def test_save_table_refuses_points_outside_the_torus_as_analysis_does(tmp_path):
         assert not (tmp_path / name).exists()
     bt.save_table(tmp_path / "t.txt", points % 1.0 % 1.0)
     assert np.array_equal(bt.load_table(tmp_path / "t.txt")[0], [[0.25, 0.25], [0.5, 0.5]])
+
+
+def test_load_table_refuses_a_file_without_points_as_the_tool_does(tool, tmp_path):
+    # It returned [] where the tool says "no points".
+    for name, text in (("empty.txt", ""), ("comments.txt", "# nothing here\n#\n")):
+        path = tmp_path / name
+        path.write_text(text)
+        with pytest.raises(bt.Error) as caught:
+            bt.load_table(path)
+        assert str(caught.value) == f"{path}: no points"
+        cli = tool("analyze", "--input", path, "--output", tmp_path / "out", check=False)
+        assert cli.returncode != 0 and cli.stderr == f"bluetile: {caught.value}\n"
