@@ -135,6 +135,10 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
                     .later_seam_spacing = level_seam_spacing};
   w.level.rank_order = bluetile::parse_wang_rank_order(rank_order);
   w.level.void_sigma = void_sigma;
+  // validate() writes the limit as "1e+08"; here as it is typed.
+  if (!(ratio > 1.0 && ratio <= bluetile::kMaxWangRatio))
+    throw bluetile::Error("ratio: expected above 1 to " + bluetile::number_text(bluetile::kMaxWangRatio) + ", got " +
+                          bluetile::number_text(ratio));
   bluetile::validate(w);
   std::string text;
   {
@@ -142,7 +146,21 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
     auto e = make_engine(choice);
     w.level.on_iteration = [](const bluetile::WangIteration&) { raise_pending_signals(); };
     w.level.fill.on_round = [](std::size_t, std::size_t) { raise_pending_signals(); };
-    bluetile::TileSet tiles = bluetile::relax_wang_tiles(*e, w);
+    bluetile::TileSet tiles;
+    try {
+      tiles = bluetile::relax_wang_tiles(*e, w);
+    } catch (const bluetile::Error& error) {
+      // The library's message names neither the argument nor what to do. No count is a minimum:
+      // whether a cell outgrows its block depends on the set and the random start (seed 1, the
+      // other defaults: wang8 fails with 1, 3 and 4 points and works with 2 and 5 to 16;
+      // corner16 fails with 8, 9, and 12 at seed 3; wang16 with 10 at seeds 2 to 5).
+      std::string_view message = error.what();
+      if (message.find("reaches beyond its 3x3 block") == std::string_view::npos) throw;
+      message = message.substr(0, message.find(": too few points per tile"));  // said again, by name
+      throw bluetile::Error("points=" + std::to_string(points) + ": too few points per tile for this set and seed: " +
+                            std::string(message) + "; give more points (the default is " + std::to_string(d.points) +
+                            "; how few work depends on the set and the seed)");
+    }
     tiles.header.push_back("made by: pybluetile.wang_tiles(set='" + set + "', points=" + std::to_string(points) +
                            ", iterations=" + std::to_string(iterations) + ", warm=" + std::to_string(warm) +
                            ", levels=" + std::to_string(levels) + ", strategy='" +
@@ -281,7 +299,44 @@ void bind_tiling(nb::module_& m) {
         "seed"_a.none() = 1, "engine"_a.none() = "exact",
         R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same
 points bit for bit), returned as the text of its tile-set file: write it to a file for
-``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``.)");
+``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``. The paper's section 3: every
+tile's points are relaxed by Lloyd's method under the constraints of the tiles that can border it.
+None for any argument means its default. Each argument is the tool's option of the same name
+(``--lattice-steps`` for lattice_steps).
+
+set: the tile set, "wang8" (the paper's: 8 tiles, 2 colours per edge), "wang16" (every edge
+    combination), "corner16" (corner colours) or "corner81" (3 corner colours: 81 tiles).
+points: points per tile in level 0, 1 to 1000000 (default 52). Few points make large cells, and a
+    run in which a cell reaches beyond the 3x3 block of tiles around it is refused, naming
+    ``points``; how few points work depends on the set and the seed (wang8 with seed 1: 2, and 5
+    and up; some corner16 and wang16 runs of 10 to 12 fail).
+iterations: constrained Lloyd iterations per level, 0 to 100000000 (default 100).
+warm: periodic iterations of each tile alone before them, 0 to 100000000 (default 10).
+levels: levels of a hierarchical set that tiles, 1 to 32 (default 1).
+ratio: each level after the first brings a tile's count to round(ratio x count), above 1 up to
+    100000000 (default 2).
+strategy: the neighbour configurations each point is relaxed in: "exact" (every admissible 3x3
+    block), "instances" (random torus tilings of period x period tiles), "rounds" (one block per
+    fitting neighbour) or "auto" (the default: exact, instances for corner81).
+period: instances: the torus tiling's side in tiles, 2 to 1024 (default 16).
+margin: keeps points this far inside their tile, 0 to 0.25 tile units (default 0).
+lattice_steps: lattice decorrelation steps after each level's iterations, which lower the
+    tile-lattice peaks, 0 (none) to 100000 (default 5).
+lattice_steps_per_iteration: lattice steps after each constrained iteration of the second half,
+    0 (none) to 1000 (default 3).
+lattice_step: the largest move of one lattice step, 0.0001 to 0.1 hexagonal spacings (default 0.005).
+seam_steps: repulsion steps after each level's iterations for points closer than the seam spacing
+    to a point they can meet in a tiling, 0 (none) to 100000 (default 20).
+seam_spacing: the seam spacing of level 0, 0.01 to 2 hexagonal spacings of the tile's points
+    (default 0.8).
+level_seam_spacing: the seam spacing of levels 1 and up, 0.01 to 2 (default 0.65).
+rank_order: the progressive order inside each level: "farthest" (greedy farthest point),
+    "voids" (tiled void-and-cluster) or "fill" (the default: levels after the first are not
+    relaxed but filled point by point, each in the deepest void of the points before it).
+void_sigma: voids: the kernel width, 0.1 to 4 hexagonal spacings of the prefix (default 0.5).
+seed: any unsigned 64-bit integer (default 1); the same seed gives the tool's points.
+engine: the centroid engine, "exact" (CPU, the default) or "raster" (Vulkan; on a CPU device such
+    as lavapipe many times slower than exact).)");
 
   m.def("tile_set", &tile_set, nb::sig("def tile_set(tiles: str | bytes | os.PathLike[str] | None = None) -> dict[str, object]"),
         "tiles"_a = nb::none(),

@@ -451,3 +451,27 @@ def test_load_table_refuses_a_file_without_points_as_the_tool_does(tool, tmp_pat
         assert str(caught.value) == f"{path}: no points"
         cli = tool("analyze", "--input", path, "--output", tmp_path / "out", check=False)
         assert cli.returncode != 0 and cli.stderr == f"bluetile: {caught.value}\n"
+
+
+def test_wang_tiles_documents_every_argument():
+    doc = bt.wang_tiles.__doc__
+    names = re.findall(r"(\w+): ", bt.wang_tiles.__nb_signature__[0][0].split("(", 1)[1])
+    assert len(names) == 19
+    for name in names:
+        assert re.search(rf"^{name}: \S", doc, re.M), name
+
+
+def test_wang_tiles_with_too_few_points_names_points():
+    # It said only "a cell of tile 2 reaches beyond its 3x3 block of tiles (radius 1.773116 tiles):
+    # too few points per tile", the tool's words for a run of its --points.
+    with pytest.raises(bt.Error, match=r"^points=4: too few points per tile for this set and seed: a cell of tile 2 "
+                                       r"reaches beyond its 3x3 block of tiles \(radius 1.773116 tiles\); give more "
+                                       r"points \(the default is 52; how few work depends on the set and the seed\)$"):
+        bt.wang_tiles(points=4)
+
+
+def test_wang_tiles_ratio_range_is_written_as_typed():
+    # "expected above 1 to 1e+08, got 1e+09".
+    for ratio, text in ((1e9, "1000000000"), (1.0, "1"), (math.inf, "infinity"), (math.nan, "nan")):
+        with pytest.raises(bt.Error, match=rf"^ratio: expected above 1 to 100000000, got {text}$"):
+            bt.wang_tiles(points=4, levels=2, ratio=ratio)
