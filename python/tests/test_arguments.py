@@ -475,3 +475,27 @@ def test_wang_tiles_ratio_range_is_written_as_typed():
     for ratio, text in ((1e9, "1000000000"), (1.0, "1"), (math.inf, "infinity"), (math.nan, "nan")):
         with pytest.raises(bt.Error, match=rf"^ratio: expected above 1 to 100000000, got {text}$"):
             bt.wang_tiles(points=4, levels=2, ratio=ratio)
+
+
+def test_tile_names_its_own_arguments(tool, tmp_path):
+    # The library's words were the tool's: "max density: expected ...", "max density and count
+    # need a density map", "use a smaller tile size".
+    ones = np.ones((2, 2))
+    cases = [
+        (dict(max_density=-1.0, density_map=ones), r"^max_density: expected a finite number >= 0 \(0: not given\), got -1$"),
+        (dict(tile_size=-0.5), r"^tile_size: expected a finite number >= 0 \(0: not given\), got -0.5$"),
+        (dict(count=math.nan, density_map=ones), r"^count: expected a finite number >= 0 \(0: not given\), got nan$"),
+        (dict(density=-1.0), r"^density: expected a finite number >= 0 \(0: not given\), got -1$"),
+        (dict(max_density=5.0), r"^max_density=5 needs a density_map: give one$"),
+        (dict(count=100.0), r"^count=100 needs a density_map: give one$"),
+        (dict(count=100.0, max_density=5.0, density_map=ones), r"^count and max_density exclude each other: give one$"),
+        (dict(density=5.0, density_map=ones), r"^density is for uniform tilings; with a density_map give max_density or count$"),
+        (dict(tile_size=1.0, density=1e9), r"\): use a smaller tile_size or leave it out$"),
+    ]
+    for kwargs, message in cases:
+        with pytest.raises(ValueError, match=message):
+            bt.tile((0.0, 0.0, 1.0, 1.0), **kwargs)
+    # The tool says the same with its own option names.
+    cli = tool("tile", "--region", 0, 0, 1, 1, "--tile-size", 1, "--density", 1e9, "--output", tmp_path / "t.txt",
+               check=False)
+    assert "use a smaller tile size or leave it out" in cli.stderr
