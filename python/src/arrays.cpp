@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdint>
+#include <cstdlib>
 
 #include "bluetile/core/text.h"
 
@@ -19,6 +20,20 @@ std::string shape_text(const AnyArray& array) {
 template <typename T>
 double element(const AnyArray& array, std::size_t offset) {
   return static_cast<double>(static_cast<const T*>(array.data())[offset]);
+}
+
+// A value of the array as NumPy prints it: in the fewest digits that read back as the same value
+// of its own type, so a float32 -0.1 is "-0.1", not the double's -0.10000000149011612.
+std::string value_text(double v, bool is_float32) {
+  if (!is_float32 || !std::isfinite(v)) return bluetile::shortest_text(v);
+  const float f = static_cast<float>(v);
+  char buffer[32];
+  for (int digits = 1; digits < 9; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
+    if (std::strtof(buffer, nullptr) == f) return buffer;
+  }
+  std::snprintf(buffer, sizeof buffer, "%.9g", v);  // 9 digits read back as any float
+  return buffer;
 }
 
 }  // namespace
@@ -67,16 +82,13 @@ PointSets point_sets(const AnyArray& array, const char* name, bool wrap) {
                                                       static_cast<std::int64_t>(i) * row_stride +
                                                       static_cast<std::int64_t>(c) * column_stride);
         xy[c] = is_double ? element<double>(array, offset) : element<float>(array, offset);
-        if (!std::isfinite(xy[c])) {
-          char value[32];
-          std::snprintf(value, sizeof value, "%g", xy[c]);
-          throw nb::value_error((element_name(k, i) + ": not a finite number '" + value + "'").c_str());
-        }
+        if (!std::isfinite(xy[c]))
+          throw nb::value_error(
+              (element_name(k, i) + ": not a finite number '" + value_text(xy[c], !is_double) + "'").c_str());
       }
       for (std::size_t c = 0; c < 2 && !wrap; ++c)
         if (!(xy[c] >= 0.0 && xy[c] < 1.0)) {
-          char value[32];
-          std::snprintf(value, sizeof value, "%.17g", xy[c]);
+          const std::string value = value_text(xy[c], !is_double);
           throw nb::value_error((element_name(k, i) + ": " + (c == 0 ? "x" : "y") + " = " + value + " is outside [0, 1) (" +
                                  name + " % 1.0 % 1.0 wraps them onto the torus; a single % 1.0 gives 1.0 for a "
                                  "tiny negative)")
@@ -154,7 +166,7 @@ bluetile::DensityGrid density_grid(const AnyArray& a, const char* name) {
       const std::int64_t at = r * a.stride(0) + c * a.stride(1);
       const double v = f64 ? static_cast<const double*>(a.data())[at] : static_cast<const float*>(a.data())[at];
       if (!(v >= 0.0) || !std::isfinite(v))
-        throw nb::value_error((what + ": values must be finite and >= 0, got " + bluetile::shortest_text(v) + " at row " +
+        throw nb::value_error((what + ": values must be finite and >= 0, got " + value_text(v, f32) + " at row " +
                                std::to_string(r) + ", column " + std::to_string(c)).c_str());
       grid.at(c, height - 1 - r) = static_cast<float>(v);  // row 0 at the bottom, y up
     }

@@ -499,3 +499,16 @@ def test_tile_names_its_own_arguments(tool, tmp_path):
     cli = tool("tile", "--region", 0, 0, 1, 1, "--tile-size", 1, "--density", 1e9, "--output", tmp_path / "t.txt",
                check=False)
     assert "use a smaller tile size or leave it out" in cli.stderr
+
+
+def test_float32_values_in_messages_are_the_float32s_shortest():
+    # -0.1 as float32 was quoted as -0.10000000149011612, the double it widens to.
+    with pytest.raises(ValueError, match=r"^density_map: values must be finite and >= 0, got -0.1 at row 0, column 0$"):
+        bt.relax(count=5, density_map=np.array([[-0.1, 1.0]], dtype=np.float32))
+    with pytest.raises(ValueError, match=r"^points\[0\]: x = 1.1 is outside \[0, 1\)"):
+        bt.analyze(np.array([[1.1, 0.5], [0.25, 0.25]], dtype=np.float32))
+    # float64 values keep their own shortest form, every digit it needs.
+    with pytest.raises(ValueError, match=r"^points\[0\]: y = 1.0000000000000002 is outside \[0, 1\)"):
+        bt.analyze(np.array([[0.5, 1.0 + 2**-52], [0.25, 0.25]]))
+    with pytest.raises(ValueError, match=r"^points\[0\]: x = -1e-17 is outside \[0, 1\)"):
+        bt.analyze(np.array([[-1e-17, 0.5], [0.25, 0.25]]))
