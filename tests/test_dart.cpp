@@ -3,8 +3,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
+#include <vector>
 
 #include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/core/cancel_check.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/sampling/dart_throwing.h"
@@ -72,6 +75,27 @@ TEST(DartThrowing, ExactCountAndSameSeedSamePoints) {
   EXPECT_EQ(throw_darts(o).points.size(), 1u);
   o.count = 2;
   EXPECT_EQ(throw_darts(o).points.size(), 2u);
+}
+
+TEST(DartThrowing, ACancelCheckEndsARun) {
+  // A run of 20000 points draws far more than one check's worth of candidates; the check throws
+  // at its first call, the run ends with it.
+  DartOptions o;
+  o.count = 20000;
+  std::size_t calls = 0;
+  {
+    CancelCheck check([&] {
+      ++calls;
+      throw std::runtime_error("cancelled");
+    });
+    EXPECT_THROW(throw_darts(o), std::runtime_error);
+  }
+  EXPECT_EQ(calls, 1u);
+  // Checked but not cancelled: the same points as without a check.
+  const std::vector<Point> unchecked = throw_darts(o).points;
+  CancelCheck count_only([&] { ++calls; });
+  EXPECT_EQ(throw_darts(o).points, unchecked);
+  EXPECT_GT(calls, 10u);
 }
 
 TEST(DartThrowing, RejectsBadOptions) {

@@ -1,7 +1,8 @@
 // The thread pool (parallel.h): every item visited exactly once in chunks of the grain asked,
 // whatever the thread count and however the chunks fall on the threads (each thread's own
 // segment first, then stealing), the first exception rethrown and the rest of the work stopped,
-// nested loops run on the calling thread.
+// nested loops run on the calling thread; a CancelCheck runs on the calling thread between its
+// chunks, and what it throws ends the loop.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -13,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "bluetile/core/cancel_check.h"
 #include "bluetile/core/parallel.h"
 
 namespace bluetile {
@@ -129,6 +131,66 @@ TEST(Parallel, NestedLoopsRunOnTheCallingThread) {
   });
   EXPECT_EQ(nested_off_thread.load(), 0u);
   EXPECT_EQ(nested_items.load(), 8u * 50u);
+}
+
+TEST(Parallel, ACancelCheckRunsOnTheCallingThreadAndWhatItThrowsEndsTheLoop) {
+  ThreadCountGuard guard;
+  set_thread_count(2);
+  const auto caller = std::this_thread::get_id();
+  std::atomic<std::size_t> checks{0}, off_thread{0};
+  {
+    CancelCheck check([&] {
+      ++checks;
+      if (std::this_thread::get_id() != caller) ++off_thread;
+    });
+    std::atomic<std::size_t> items{0};
+    parallel_for(400, 1, [&](std::size_t begin, std::size_t end) {
+      std::this_thread::sleep_for(std::chrono::microseconds(20));
+      items += end - begin;
+    });
+    EXPECT_EQ(items.load(), 400u);  // checking changes nothing else
+    EXPECT_GT(checks.load(), 0u);
+    EXPECT_EQ(off_thread.load(), 0u);
+    const std::size_t before = checks.load();
+    cancellation_point();
+    EXPECT_EQ(checks.load(), before + 1);
+  }
+  // Gone with its object: neither the loops nor cancellation_point() call it.
+  const std::size_t after = checks.load();
+  parallel_for(400, 1, [](std::size_t, std::size_t) {});
+  cancellation_point();
+  EXPECT_EQ(checks.load(), after);
+
+  // A check that throws ends the loop with its exception, most chunks not run (each takes 50 us:
+  // all would take 100 ms), and the pool works after it.
+  std::atomic<std::size_t> chunks_run{0};
+  {
+    std::size_t calls = 0;
+    CancelCheck check([&] {
+      if (++calls == 3) throw std::runtime_error("cancelled");
+    });
+    EXPECT_THROW(parallel_for(2000, 1,
+                              [&](std::size_t, std::size_t) {
+                                ++chunks_run;
+                                std::this_thread::sleep_for(std::chrono::microseconds(50));
+                              }),
+                 std::runtime_error);
+  }
+  EXPECT_LT(chunks_run.load(), 1000u);
+  std::atomic<std::size_t> sum{0};
+  parallel_for(1000, 7, [&](std::size_t begin, std::size_t end) { sum += end - begin; });
+  EXPECT_EQ(sum.load(), 1000u);
+
+  // Nested: the inner check replaces the outer one while it lives.
+  std::size_t outer_calls = 0, inner_calls = 0;
+  CancelCheck outer([&] { ++outer_calls; });
+  {
+    CancelCheck inner([&] { ++inner_calls; });
+    cancellation_point();
+  }
+  cancellation_point();
+  EXPECT_EQ(inner_calls, 1u);
+  EXPECT_EQ(outer_calls, 1u);
 }
 
 }  // namespace

@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <stdexcept>
 #include <tuple>
 
+#include "bluetile/core/cancel_check.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/tiling/density_thinning.h"
@@ -77,6 +79,20 @@ TEST(Tiler, WindowMatchesBruteForceWithAndWithoutThinning) {
     EXPECT_EQ(fast, slow);
     EXPECT_GT(fast.size(), 50u);
   }
+}
+
+TEST(Tiler, ACancelCheckEndsAWindowBetweenRows) {
+  Tiler tiler(make_test_tile_set(TileSetKind::wang8, 6, 1), 17, 0.75);
+  const Window w{-3.3, -1.05, 4.2, 2.6};
+  const std::size_t unchecked = tiler.tiled_points(w).size();
+  std::size_t rows = 0;
+  {
+    CancelCheck count([&] { ++rows; });
+    EXPECT_EQ(tiler.tiled_points(w).size(), unchecked);  // checking changes nothing
+  }
+  EXPECT_EQ(rows, static_cast<std::size_t>(tiler.cells(w).rows()));
+  CancelCheck cancel([] { throw std::runtime_error("cancelled"); });
+  EXPECT_THROW(tiler.tiled_points(w), std::runtime_error);
 }
 
 TEST(Tiler, OverlappingWindowsAgreeBitForBit) {

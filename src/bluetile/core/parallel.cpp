@@ -14,8 +14,10 @@
 #include <string_view>
 #include <system_error>
 #include <thread>
+#include <utility>
 #include <vector>
 
+#include "bluetile/core/cancel_check.h"
 #include "bluetile/core/error.h"
 
 namespace bluetile {
@@ -46,6 +48,7 @@ std::size_t default_thread_count() {
 
 std::atomic<std::size_t> configured_threads{0};
 thread_local bool inside_parallel_for = false;
+thread_local const std::function<void()>* cancel_check = nullptr;  // the innermost CancelCheck's
 
 // How long a thread that ran out of work polls before it sleeps on a condition variable: a
 // woken thread starts 50-60 us late on the 2-core VM of docs/BENCHMARKS.md ("Two threads at
@@ -222,6 +225,16 @@ std::size_t thread_count() {
 
 void set_thread_count(std::size_t count) { configured_threads = std::max<std::size_t>(1, count); }
 
+CancelCheck::CancelCheck(std::function<void()> check) : check_(std::move(check)), previous_(cancel_check) {
+  cancel_check = &check_;
+}
+
+CancelCheck::~CancelCheck() { cancel_check = previous_; }
+
+void cancellation_point() {
+  if (cancel_check != nullptr) (*cancel_check)();
+}
+
 void parallel_for(std::size_t count, std::size_t grain,
                   const std::function<void(std::size_t, std::size_t)>& body) {
   if (count == 0) return;
@@ -232,7 +245,12 @@ void parallel_for(std::size_t count, std::size_t grain,
     body(0, count);
     return;
   }
+  // The caller's check, between the chunks the caller runs (a worker thread has none of its own):
+  // what it throws stops the loop as a chunk's error does.
+  const std::function<void()>* check = cancel_check;
+  const std::thread::id caller = std::this_thread::get_id();
   std::function<void(std::size_t)> chunk_body = [&](std::size_t chunk) {
+    if (check != nullptr && std::this_thread::get_id() == caller) (*check)();
     std::size_t begin = chunk * grain;
     body(begin, std::min(count, begin + grain));
   };

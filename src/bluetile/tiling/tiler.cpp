@@ -5,6 +5,7 @@
 #include <numeric>
 #include <string>
 
+#include "bluetile/core/cancel_check.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/text.h"
 #include "bluetile/tiling/density_thinning.h"
@@ -131,11 +132,13 @@ void Tiler::for_each_cell(const Window& window, const CellRange& range, const Th
                           const std::function<void(const CellPoints&)>& visit) const {
   std::vector<Point> positions(max_points_);
   std::vector<std::uint32_t> ranks(max_points_);
-  for (std::int64_t j = range.j0; j < range.j1; ++j)
+  for (std::int64_t j = range.j0; j < range.j1; ++j) {
+    cancellation_point();  // a row: 10^4 cells of a window of 10^8 (the limit) take about 1 ms
     for (std::int64_t i = range.i0; i < range.i1; ++i) {
       CellPoints cell = cell_points(i, j, window, thinning, positions.data(), ranks.data());
       if (!cell.positions.empty()) visit(cell);
     }
+  }
 }
 
 CellPoints Tiler::cell_points(std::int64_t i, std::int64_t j, const Window& window, const Thinning* thinning,
