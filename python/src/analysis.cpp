@@ -134,6 +134,7 @@ void bind_analysis(nb::module_& m) {
         bluetile::Summary summary;
         {
           nb::gil_scoped_release release;
+          SignalChecks signal_checks;  // Ctrl-C inside the loops
           summary = bluetile::summarize(input.sets, options);
         }
         return summary_dict(std::move(summary));
@@ -168,6 +169,7 @@ bin_width: the annulus width.)");
         bluetile::Periodogram p;
         {
           nb::gil_scoped_release release;
+          SignalChecks signal_checks;  // Ctrl-C inside the loops
           p = bluetile::compute_periodogram(input.sets[0], f);
         }
         return periodogram_array(std::move(p));
@@ -191,6 +193,7 @@ White noise gives about 1; P(0) = N. size: F, even (0: 2 floor(5 sqrt(N))).)");
         std::vector<bluetile::Annulus> radial;
         {
           nb::gil_scoped_release release;
+          SignalChecks signal_checks;  // Ctrl-C inside the loops
           std::vector<bluetile::Periodogram> each;
           for (const auto& set : input.sets) {
             const int f = size ? size : bluetile::default_periodogram_size(set.size());
@@ -214,6 +217,7 @@ anisotropy_db (10 log10 of variance / power^2; white noise about 0 dB) and count
         std::vector<double> d;
         {
           nb::gil_scoped_release release;
+          SignalChecks signal_checks;  // Ctrl-C inside the loops
           d = bluetile::nearest_neighbour_distances(input.sets[0]);
         }
         const std::size_t n = d.size();

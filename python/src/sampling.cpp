@@ -54,6 +54,7 @@ of ``bluetile relax --count N --seed S``, bit for bit.)");
         bluetile::DartResult r;
         {
           nb::gil_scoped_release release;
+          SignalChecks signal_checks;  // Ctrl-C inside the loops
           r = bluetile::throw_darts(o);
         }
         nb::object points = nb::cast(points_to_numpy({r.points}, false));

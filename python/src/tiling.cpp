@@ -143,6 +143,7 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
   std::string text;
   {
     nb::gil_scoped_release release;
+    SignalChecks signal_checks;  // Ctrl-C inside the loops
     auto e = make_engine(choice);
     w.level.on_iteration = [](const bluetile::WangIteration&) { raise_pending_signals(); };
     w.level.fill.on_round = [](std::size_t, std::size_t) { raise_pending_signals(); };
@@ -276,6 +277,7 @@ nb::object tile(const RegionArg& region, const std::optional<PathArg>& tiles_arg
   std::vector<bluetile::TiledPoint> points;
   {
     nb::gil_scoped_release release;
+    SignalChecks signal_checks;  // Ctrl-C inside the loops
     bluetile::TilingPlan plan;
     try {
       plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request);

@@ -458,6 +458,10 @@ def test_an_interrupt_during_the_first_call_is_keyboard_interrupt(tmp_path):
 @pytest.mark.parametrize("call", [
     lambda: bt.relax(count=100000, iterations=100000, engine="exact"),
     lambda: bt.progressive(count=50000, levels=3, iterations=100000, engine="exact"),
+    # Calls without iterations ran to their end (psa's RDF spectrum: about 8 minutes on 2 cores;
+    # dart: minutes): the library's loops now run Python's signal handlers now and then.
+    lambda: bt.analyze(np.random.default_rng(7).random((300000, 2))),
+    lambda: bt.dart(5 * 10**6),
 ])
 def test_ctrl_c_ends_a_long_call(call):
     # Long calls ran to their last iteration before a Ctrl-C was seen. Python's own handler is
