@@ -12,6 +12,7 @@
 #include <set>
 #include <stdexcept>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "bluetile/core/cancel_check.h"
@@ -191,6 +192,33 @@ TEST(Parallel, ACancelCheckRunsOnTheCallingThreadAndWhatItThrowsEndsTheLoop) {
   cancellation_point();
   EXPECT_EQ(inner_calls, 1u);
   EXPECT_EQ(outer_calls, 1u);
+}
+
+TEST(Parallel, OnOneThreadACancelCheckRunsBetweenTheChunksWhichMatchAParallelRun) {
+  // One thread ran the loop as one call and never reached the check: Python's Ctrl-C waited for
+  // the whole loop under BLUETILE_THREADS=1.
+  ThreadCountGuard guard;
+  set_thread_count(1);
+  std::vector<std::pair<std::size_t, std::size_t>> ranges;
+  std::size_t checks = 0;
+  {
+    CancelCheck check([&] { ++checks; });
+    parallel_for(10, 4, [&](std::size_t begin, std::size_t end) { ranges.emplace_back(begin, end); });
+  }
+  const std::vector<std::pair<std::size_t, std::size_t>> chunks{{0, 4}, {4, 8}, {8, 10}};
+  EXPECT_EQ(ranges, chunks);
+  EXPECT_EQ(checks, 3u);
+  // Without a check, one call, as before.
+  ranges.clear();
+  parallel_for(10, 4, [&](std::size_t begin, std::size_t end) { ranges.emplace_back(begin, end); });
+  EXPECT_EQ(ranges, (std::vector<std::pair<std::size_t, std::size_t>>{{0, 10}}));
+  // A check that throws stops the loop before the next chunk.
+  std::size_t run = 0, calls = 0;
+  CancelCheck check([&] {
+    if (++calls == 2) throw std::runtime_error("cancelled");
+  });
+  EXPECT_THROW(parallel_for(100, 1, [&](std::size_t, std::size_t) { ++run; }), std::runtime_error);
+  EXPECT_EQ(run, 1u);
 }
 
 }  // namespace

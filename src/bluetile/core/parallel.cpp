@@ -241,13 +241,26 @@ void parallel_for(std::size_t count, std::size_t grain,
   grain = std::max<std::size_t>(1, grain);
   std::size_t chunks = (count + grain - 1) / grain;
   std::size_t threads = std::min(thread_count(), chunks);
-  if (threads <= 1 || inside_parallel_for) {
-    body(0, count);
-    return;
-  }
   // The caller's check, between the chunks the caller runs (a worker thread has none of its own):
   // what it throws stops the loop as a chunk's error does.
   const std::function<void()>* check = cancel_check;
+  if (inside_parallel_for) {
+    body(0, count);
+    return;
+  }
+  if (threads <= 1) {
+    // One thread: one call, unless a check waits; then the chunks of a parallel run, in turn
+    // (a body gives the same bits for any chunks, as the thread count may not change them).
+    if (check == nullptr) {
+      body(0, count);
+      return;
+    }
+    for (std::size_t begin = 0; begin < count; begin += grain) {
+      (*check)();
+      body(begin, std::min(count, begin + grain));
+    }
+    return;
+  }
   const std::thread::id caller = std::this_thread::get_id();
   std::function<void(std::size_t)> chunk_body = [&](std::size_t chunk) {
     if (check != nullptr && std::this_thread::get_id() == caller) (*check)();

@@ -20,7 +20,8 @@ void set_thread_count(std::size_t count);
 // Calls body(begin, end) over disjoint ranges that cover [0, count), on up to thread_count()
 // threads including the caller: chunks of `grain` items (the last one may be shorter) when more
 // than one thread takes part; one call body(0, count) on the calling thread when one does (one
-// thread, a single chunk, or a nested call). Returns when all chunks are done; rethrows the
+// thread, a single chunk, or a nested call), except that one thread runs the chunks in turn while
+// a CancelCheck (cancel_check.h) lives on it, so that the check runs between them. Returns when all chunks are done; rethrows the
 // first exception a chunk threw, and hands out no more chunks once one has thrown.
 void parallel_for(std::size_t count, std::size_t grain,
                   const std::function<void(std::size_t, std::size_t)>& body);
