@@ -25,6 +25,7 @@
 #include "bluetile/tiling/seam_check.h"
 #include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/voronoi/exact_engine.h"
+#include "test_raster_support.h"
 #include "test_support.h"
 
 #include <nlohmann/json.hpp>
@@ -666,6 +667,37 @@ TEST(WangCommand, Corner81TakesTheInstancesStrategyUnlessAsked) {
   EXPECT_NE(exact.exit_code, 0);
   EXPECT_NE(exact.err.find("use more points per tile or the instances strategy"), std::string::npos) << exact.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("never.tiles")));
+}
+
+TEST(WangCommand, HeaderRecordsTheRasterSettings) {
+  // The header said "--engine raster" alone, so the command it records did not give the same
+  // points under other --resolution, --coverage or --cone defaults; the exact engine has none.
+  // No iterations: the header is what is checked, and a raster Wang step takes minutes on lavapipe.
+  REQUIRE_VULKAN();
+  test::TempDir dir;
+  const std::string tiles = dir.file("raster.tiles");
+  const std::vector<std::string> wang = {"wang", "--set", "wang8", "--points", "8", "--iterations", "0", "--warm",
+                                         "0", "--seam-steps", "0", "--lattice-steps", "0",
+                                         "--lattice-steps-per-iteration", "0", "--output", tiles};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = wang;
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+  test::CommandResult made = test::run_bluetile(
+      with({"--engine", "raster", "--resolution", "64", "--coverage", "point", "--cone", "fan"}));
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string header = read_tile_set(tiles).header.at(0);
+  EXPECT_EQ(header.substr(header.find(" --engine")), " --engine raster --coverage point --cone fan --resolution 64")
+      << header;
+  made = test::run_bluetile(with({"--engine", "raster"}));
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string defaults = read_tile_set(tiles).header.at(0);
+  EXPECT_EQ(defaults.substr(defaults.find(" --engine")), " --engine raster --coverage area --cone quad") << defaults;
+  made = test::run_bluetile(wang);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string exact = read_tile_set(tiles).header.at(0);
+  EXPECT_EQ(exact.substr(exact.find(" --engine")), " --engine exact") << exact;
 }
 
 TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
