@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -491,9 +492,11 @@ std::vector<std::pair<OutputFile*, const PointSet*>> declare_psa_points(const An
 }
 
 // --by-rank K...: each value a count (2 to N) or a fraction P/Q of the N points (rounded to the
-// nearest count); sorted and distinct. Throws Error naming the value otherwise.
+// nearest count); sorted. Throws Error naming the value otherwise, and naming both values when two
+// give the same prefix (merged without a word before: 1/3 1/3, or 1/3 and 33 of 100 points).
 std::vector<std::size_t> rank_prefixes(const std::vector<std::string>& values, std::size_t n, const std::string& input) {
   std::vector<std::size_t> counts;
+  std::map<std::size_t, std::string> given;  // each prefix and the value that gave it
   const WholeNumber one = whole(1), most = whole(kMaxCount);
   for (const std::string& text : values) {
     WholeNumber value;
@@ -515,10 +518,12 @@ std::vector<std::size_t> rank_prefixes(const std::vector<std::string>& values, s
     if (count < 2)
       throw Error("--by-rank " + text + ": the first " + std::to_string(count) + " of " + std::to_string(n) +
                   " points; a prefix needs at least 2 to analyse" + (count == 1 && text == "1" ? " (the whole set is 1/1)" : ""));
+    if (const auto [at, fresh] = given.emplace(count, text); !fresh)
+      throw Error("--by-rank " + at->second + " and " + text + ": both give the first " + std::to_string(count) + " of " +
+                  std::to_string(n) + " points; give each prefix once");
     counts.push_back(count);
   }
   std::sort(counts.begin(), counts.end());
-  counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
   return counts;
 }
 
