@@ -17,8 +17,9 @@
 # Environment: BLUETILE_BUILD_DIR (default build in the repository; a relative one is taken from
 # the folder you run the script in), BLUETILE_BUILD_TYPE (default Release), BLUETILE_SANITIZE=OFF
 # skips the sanitizer pass of `test` (fuzzing included), BLUETILE_PYTHON=OFF its Python pass (both
-# take ON/on/1/yes/true or OFF/off/0/no/false), BLUETILE_FUZZ_SECONDS (default 10) sets each fuzz
-# target's run.
+# take ON/on/1/yes/true or OFF/off/0/no/false), BLUETILE_FUZZ_SECONDS (default 10, a whole number
+# from 1 to 86400) sets each fuzz target's run. BLUETILE_BUILD_TYPE is one of Release, Debug,
+# RelWithDebInfo and MinSizeRel (any case).
 set -euo pipefail
 
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
@@ -90,10 +91,23 @@ esac
 if [ "$what" = test ]; then
   on_off BLUETILE_SANITIZE ON
   on_off BLUETILE_PYTHON ON
+  # libFuzzer reads 0 as no limit and ignores what is not a number: both would fuzz for ever.
+  fuzz_seconds=${BLUETILE_FUZZ_SECONDS:-10}
+  [[ $fuzz_seconds =~ ^[0-9]{1,5}$ ]] && [ $((10#$fuzz_seconds)) -ge 1 ] && [ $((10#$fuzz_seconds)) -le 86400 ] ||
+    usage_error "BLUETILE_FUZZ_SECONDS='$fuzz_seconds': expected a whole number of seconds from 1 to 86400"
+  fuzz_seconds=$((10#$fuzz_seconds))
 fi
 build_dir=build
 [ -z "${BLUETILE_BUILD_DIR:-}" ] || build_dir=$(absolute "$BLUETILE_BUILD_DIR")
+# CMake takes any build type without a word and builds it with no optimisation flags.
 build_type=${BLUETILE_BUILD_TYPE:-Release}
+case ${build_type,,} in
+  release) build_type=Release ;;
+  debug) build_type=Debug ;;
+  relwithdebinfo) build_type=RelWithDebInfo ;;
+  minsizerel) build_type=MinSizeRel ;;
+  *) usage_error "BLUETILE_BUILD_TYPE='$build_type': expected Release, Debug, RelWithDebInfo or MinSizeRel" ;;
+esac
 cd "$here"
 
 # Packages the library, the tool and its tests need (cairo: PDF output, through a plugin
@@ -180,7 +194,7 @@ fuzz_readers() {
       malloc_limit=8192
       leaks="suppressions=$here/fuzz/density_map.supp"
     fi
-    LSAN_OPTIONS="$leaks" "$dir/bluetile_fuzz_$reader" -max_total_time="${BLUETILE_FUZZ_SECONDS:-10}" -rss_limit_mb=2048 \
+    LSAN_OPTIONS="$leaks" "$dir/bluetile_fuzz_$reader" -max_total_time="$fuzz_seconds" -rss_limit_mb=2048 \
       -malloc_limit_mb="$malloc_limit" -timeout=10 -seed=1 -print_final_stats=1 -artifact_prefix="$dir/" \
       "$scratch/$reader" "fuzz/corpus/$reader" \
       2>"$scratch/$reader.log" || { tail -50 "$scratch/$reader.log" >&2; rm -rf "$scratch"; exit 1; }
@@ -221,7 +235,7 @@ case "$what" in
       echo "setup: tests under address + undefined sanitizers" >&2
       build "$build_dir-sanitize" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBLUETILE_SANITIZE=ON -DBLUETILE_BUILD_BENCH=OFF
       run_tests "$build_dir-sanitize"
-      echo "setup: fuzzing the file readers (libFuzzer, ${BLUETILE_FUZZ_SECONDS:-10} s each)" >&2
+      echo "setup: fuzzing the file readers (libFuzzer, $fuzz_seconds s each)" >&2
       fuzz_readers
     fi
     ;;

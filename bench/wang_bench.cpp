@@ -140,8 +140,8 @@ std::pair<double, double> coherence_split(const TileSet& set, int& mx_out, int& 
   return {best_coherent, best_incoherent};
 }
 
-// Worst and mean over seeds of the defined values (NaN, LF of a plane of at most 4 points, is
-// left out; none defined gives NaN).
+// Worst and mean over seeds of the defined values (NaN, a measure whose band holds no frequency of
+// the plane: tiling_metrics.h, is left out; none defined gives NaN).
 struct Stat {
   std::vector<double> values;
   void add(double v) {
@@ -191,23 +191,24 @@ void quality(const Options& o) {
             st["C_mid"].add(m.coherence_mid);
             st["aniso"].add(m.diffuse_anisotropy_db);
             st["build"].add(build);
-            std::printf("| %s | %zu | %s | %d | %llu | %.3f | %.3f | %.3f | %.3f | %s | %.4f | %.1f | %.2f | %.2f |\n",
+            std::printf("| %s | %zu | %s | %d | %llu | %.3f | %.3f | %.3f | %.3f | %s | %s | %s | %s | %.2f |\n",
                         kind.c_str(), n, strategy.c_str(), period, static_cast<unsigned long long>(seed),
                         top.cross_relative(), top.ratio(), top.within_relative(), m.rho,
-                        measure_text(m.low_frequency, 4).c_str(),
-                        m.coherence_low, m.coherence_mid, m.diffuse_anisotropy_db, build);
+                        measure_text(m.low_frequency, 4).c_str(), measure_text(m.coherence_low, 4).c_str(),
+                        measure_text(m.coherence_mid, 1).c_str(), measure_text(m.diffuse_anisotropy_db, 2).c_str(), build);
             std::fflush(stdout);
           }
         }
         for (auto& [period, st] : stats) {
-          std::printf("| **%s** | **%zu** | **%s** | **%d** | worst | %.3f | %.3f | %.3f | %.3f | %s | %.4f | %.1f | %.2f | %.2f |\n",
+          std::printf("| **%s** | **%zu** | **%s** | **%d** | worst | %.3f | %.3f | %.3f | %.3f | %s | %s | %s | %s | %.2f |\n",
                       kind.c_str(), n, strategy.c_str(), period, st["seamX"].worst_low(), st["X/W"].worst_low(),
                       st["W"].worst_low(), st["rho"].worst_low(), measure_text(st["LF"].worst_high(), 4).c_str(),
-                      st["C_LF"].worst_high(),
-                      st["C_mid"].worst_high(), st["aniso"].worst_high(), st["build"].worst_high());
-          std::printf("| **%s** | **%zu** | **%s** | **%d** | mean | %.3f | %.3f | %.3f | %.3f | %s | %.4f | %.1f | %.2f | %.2f |\n",
+                      measure_text(st["C_LF"].worst_high(), 4).c_str(), measure_text(st["C_mid"].worst_high(), 1).c_str(),
+                      measure_text(st["aniso"].worst_high(), 2).c_str(), st["build"].worst_high());
+          std::printf("| **%s** | **%zu** | **%s** | **%d** | mean | %.3f | %.3f | %.3f | %.3f | %s | %s | %s | %s | %.2f |\n",
                       kind.c_str(), n, strategy.c_str(), period, st["seamX"].mean(), st["X/W"].mean(), st["W"].mean(),
-                      st["rho"].mean(), measure_text(st["LF"].mean(), 4).c_str(), st["C_LF"].mean(), st["C_mid"].mean(), st["aniso"].mean(),
+                      st["rho"].mean(), measure_text(st["LF"].mean(), 4).c_str(), measure_text(st["C_LF"].mean(), 4).c_str(),
+                      measure_text(st["C_mid"].mean(), 1).c_str(), measure_text(st["aniso"].mean(), 2).c_str(),
                       st["build"].mean());
         }
         std::fflush(stdout);
@@ -233,13 +234,13 @@ void quality(const Options& o) {
         rho.add(m.rho);
         lf.add(m.low_frequency);
         an.add(m.diffuse_anisotropy_db);
-        std::printf("| | %zu | %d | %d | %.3f | %s | %.2f |\n", count, o.untiled_iterations, s, m.rho,
-                    measure_text(m.low_frequency, 4).c_str(), m.diffuse_anisotropy_db);
+        std::printf("| | %zu | %d | %d | %.3f | %s | %s |\n", count, o.untiled_iterations, s, m.rho,
+                    measure_text(m.low_frequency, 4).c_str(), measure_text(m.diffuse_anisotropy_db, 2).c_str());
       }
-      std::printf("| worst | %zu | %d | | %.3f | %s | %.2f |\n", count, o.untiled_iterations, rho.worst_low(),
-                  measure_text(lf.worst_high(), 4).c_str(), an.worst_high());
-      std::printf("| mean | %zu | %d | | %.3f | %s | %.2f |\n", count, o.untiled_iterations, rho.mean(),
-                  measure_text(lf.mean(), 4).c_str(), an.mean());
+      std::printf("| worst | %zu | %d | | %.3f | %s | %s |\n", count, o.untiled_iterations, rho.worst_low(),
+                  measure_text(lf.worst_high(), 4).c_str(), measure_text(an.worst_high(), 2).c_str());
+      std::printf("| mean | %zu | %d | | %.3f | %s | %s |\n", count, o.untiled_iterations, rho.mean(),
+                  measure_text(lf.mean(), 4).c_str(), measure_text(an.mean(), 2).c_str());
       std::fflush(stdout);
     }
   }
@@ -279,8 +280,9 @@ void timing(const Options& o) {
 
 // Worst over the seeds of one prefix of the sweep.
 struct SweepWorst {
-  // lf: the largest defined LF (std::fmax leaves NaN out), NaN while there is none.
-  double rho = HUGE_VAL, lf = std::numeric_limits<double>::quiet_NaN(), lattice = 0.0, c_lf = 0.0;
+  // lf, lattice, c_lf: the largest defined value (std::fmax leaves NaN out), NaN while there is none.
+  static constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
+  double rho = HUGE_VAL, lf = kUndefined, lattice = kUndefined, c_lf = kUndefined;
 };
 using SweepKey = std::tuple<std::string, std::string, std::size_t, std::string, std::size_t>;  // set, strategy, n0, order, prefix
 
@@ -362,17 +364,18 @@ void levels(const Options& o) {
               const int level = at == boundaries.end() ? -1 : static_cast<int>(at - boundaries.begin());
               TilingMetrics m = plane_metrics(set, o.periods[0], derive_seed(seed, 1000), static_cast<std::uint32_t>(prefix));
               double seam = level >= 0 ? seams.levels[static_cast<std::size_t>(level)].cross_relative() : 0.0;
-              std::printf("| %s | %zu | %s | %llu | %zu | %s | %.3f | %s | %.1f | %s | %.4f | %.1f |\n", kind.c_str(), n,
+              std::printf("| %s | %zu | %s | %llu | %zu | %s | %.3f | %s | %s | %s | %s | %s |\n", kind.c_str(), n,
                           order.c_str(), static_cast<unsigned long long>(seed), prefix,
                           level >= 0 ? std::to_string(level).c_str() : "", m.rho,
-                          measure_text(m.low_frequency, 4).c_str(), m.lattice_peak,
-                          level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "", m.coherence_low, m.coherence_mid);
+                          measure_text(m.low_frequency, 4).c_str(), measure_text(m.lattice_peak, 1).c_str(),
+                          level >= 0 ? std::to_string(seam).substr(0, 5).c_str() : "",
+                          measure_text(m.coherence_low, 4).c_str(), measure_text(m.coherence_mid, 1).c_str());
               std::fflush(stdout);
               SweepWorst& row = worst[{kind, strategy, n, order, prefix}];
               row.rho = std::min(row.rho, m.rho);
               row.lf = std::fmax(row.lf, m.low_frequency);
-              row.lattice = std::max(row.lattice, m.lattice_peak);
-              row.c_lf = std::max(row.c_lf, m.coherence_low);
+              row.lattice = std::fmax(row.lattice, m.lattice_peak);
+              row.c_lf = std::fmax(row.c_lf, m.coherence_low);
             }
           }
         }
@@ -383,8 +386,9 @@ void levels(const Options& o) {
               "|---|---|---|---|---|---|---|---|---|\n", o.seeds);
   for (const auto& [key, w] : worst) {
     const auto& [kind, strategy, n, order, prefix] = key;
-    std::printf("| %s | %s | %zu | %s | %zu | %.3f | %s | %.1f | %.3f |\n", kind.c_str(), strategy.c_str(), n,
-                order.c_str(), prefix, w.rho, measure_text(w.lf, 4).c_str(), w.lattice, w.c_lf);
+    std::printf("| %s | %s | %zu | %s | %zu | %.3f | %s | %s | %s |\n", kind.c_str(), strategy.c_str(), n,
+                order.c_str(), prefix, w.rho, measure_text(w.lf, 4).c_str(), measure_text(w.lattice, 1).c_str(),
+                measure_text(w.c_lf, 3).c_str());
   }
   if (!o.plot.empty()) plot_sweep(o, worst);
 }

@@ -8,7 +8,9 @@
 #     spelt neither on nor off: "setup.sh: ..." naming it, then the usage, on stderr, nothing on
 #     stdout, exit status 2, and nothing run;
 #   - a relative DIR and BLUETILE_BUILD_DIR are taken from the caller's folder;
-#   - BLUETILE_SANITIZE and BLUETILE_PYTHON take on/1/yes/true and off/0/no/false.
+#   - BLUETILE_SANITIZE and BLUETILE_PYTHON take on/1/yes/true and off/0/no/false;
+#   - BLUETILE_BUILD_TYPE takes CMake's four build types in any case, BLUETILE_FUZZ_SECONDS 1 to
+#     86400; other values are refused as above.
 #
 #   setup_arguments.sh SETUP_SH
 set -u
@@ -98,6 +100,20 @@ for variable in BLUETILE_SANITIZE BLUETILE_PYTHON; do
   done
 done
 
+# The build type and the fuzzing time were passed on unchecked (a typo built without optimisation;
+# libFuzzer runs for ever on 0 and on what is not a number).
+for value in abc Releas "" " " "Release " Debug,Release; do
+  [ -n "$value" ] || continue  # empty: the default
+  env_vars=("BLUETILE_BUILD_TYPE=$value")
+  for command in build test demo; do
+    refused "BLUETILE_BUILD_TYPE='$value': expected Release, Debug, RelWithDebInfo or MinSizeRel" "$command"
+  done
+done
+for value in abc 0 -1 1.5 10s 86401 999999 " 5" 0x10; do
+  env_vars=("BLUETILE_FUZZ_SECONDS=$value")
+  refused "BLUETILE_FUZZ_SECONDS='$value': expected a whole number of seconds from 1 to 86400" test
+done
+
 # A relative DIR and build folder are the caller's.
 fake_build mybuild
 env_vars=(BLUETILE_BUILD_DIR=mybuild)
@@ -117,6 +133,25 @@ for value in ON on 1 yes true True; do
     grep -q -- "-B $work/caller/mybuild-sanitize .*-DBLUETILE_SANITIZE=ON" "$work/calls" ||
       fail "$shown: no sanitizer build: $(cat "$work/calls")"
     grep -q "^fuzz density_map" "$work/calls" || fail "$shown: no fuzzing: $(cat "$work/calls")"
+  fi
+done
+# The build types in any case, spelt for CMake; the fuzzing time as given (leading zeros read as
+# decimal).
+for value in release Release RELEASE debug RelWithDebInfo minsizerel; do
+  env_vars=(BLUETILE_BUILD_DIR=mybuild BLUETILE_BUILD_TYPE="$value")
+  if run 0 build; then
+    case ${value,,} in
+      release) want=Release ;; debug) want=Debug ;; relwithdebinfo) want=RelWithDebInfo ;; minsizerel) want=MinSizeRel ;;
+    esac
+    grep -q -- "-B $work/caller/mybuild .*-DCMAKE_BUILD_TYPE=$want\b" "$work/calls" ||
+      fail "$shown: not built as $want: $(cat "$work/calls")"
+  fi
+done
+for value in 1 08 86400; do
+  env_vars=(BLUETILE_BUILD_DIR=mybuild BLUETILE_SANITIZE=ON BLUETILE_PYTHON=OFF BLUETILE_FUZZ_SECONDS="$value")
+  if run 0 test; then
+    grep -q "fuzzing the file readers (libFuzzer, $((10#$value)) s each)" "$work/err" ||
+      fail "$shown: fuzzed for other than $((10#$value)) s: $(cat "$work/err")"
   fi
 done
 for sanitize in OFF off 0 no false; do

@@ -411,6 +411,25 @@ TEST(Summary, PrefixesOfALeveledSet) {
   EXPECT_THROW(summarize_levels(points, std::vector<int>(3, 0), o), Error);
 }
 
+TEST(Summary, LevelsOutsideTheFileRangeAreRefusedNamingThePointAndTheLevel) {
+  // Level -1 gave a prefix "levels 0..-1" of no points; a level past kMaxLevel one no file holds.
+  const std::vector<Point> points = square_lattice(4);
+  for (int bad : {-1, kMaxLevel + 1, std::numeric_limits<int>::min()}) {
+    std::vector<int> levels(points.size(), 0);
+    levels[5] = bad;
+    try {
+      summarize_levels(points, levels, SummaryOptions{});
+      ADD_FAILURE() << "level " << bad << " was taken";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), "point 5: level must be an integer from 0 to " + std::to_string(kMaxLevel) +
+                                           ", got " + std::to_string(bad));
+    }
+  }
+  std::vector<int> levels(points.size(), 0);
+  levels[3] = kMaxLevel;  // the largest is taken
+  EXPECT_EQ(summarize_levels(points, levels, SummaryOptions{}).size(), 2u);
+}
+
 // --- the command line --------------------------------------------------------------------
 
 std::string write_points(const test::TempDir& dir, const std::string& name, const std::vector<Point>& points) {

@@ -16,12 +16,12 @@ namespace {
 TEST(AnalyzeByRank, PrefixesOfAHandMadeRankedSet) {
   test::TempDir dir;
   const std::string ranked = BLUETILE_TEST_DATA "/ranks_square.txt";
-  auto r = test::run_bluetile({"analyze", "-i", ranked, "-o", dir.file("ranks"), "--by-rank", "4", "1/2", "1/1", "16",
+  auto r = test::run_bluetile({"analyze", "-i", ranked, "-o", dir.file("ranks"), "--by-rank", "4", "1/2", "1/1",
                                "--image-size", "64"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const nlohmann::json stats = nlohmann::json::parse(test::read_text(dir.file("ranks/stats.json")));
   EXPECT_EQ(stats["mode"], "by-rank");
-  ASSERT_EQ(stats["ranks"].size(), 3u);  // 1/1 and 16 are one prefix
+  ASSERT_EQ(stats["ranks"].size(), 3u);
   const double nn_min[] = {0.5, 0.25, 0.125};
   const std::size_t counts[] = {4, 8, 16};
   // LF: no frequency with 0 < |f|^2 < 1 for 4 points, so no mean: null (it was 0, which reads as
@@ -88,6 +88,11 @@ TEST(AnalyzeByRank, BadPrefixesAreRefusedBeforeAnyOutput) {
       {{"3/2"}, "--by-rank 3/2: a fraction of the points must be at most 1"},
       {{"0/4"}, "--by-rank 0/4: not a fraction P/Q"},
       {{"half"}, "--by-rank half: not a count or a fraction P/Q"},
+      // Two values giving one prefix were merged without a word.
+      {{"1/3", "1/3"}, "--by-rank 1/3 and 1/3: both give the first 5 of 16 points; give each prefix once"},
+      {{"16", "4", "1/1"}, "--by-rank 16 and 1/1: both give the first 16 of 16 points; give each prefix once"},
+      {{"1/4", "2/8"}, "--by-rank 1/4 and 2/8: both give the first 4 of 16 points"},
+      {{"5/16", "1/3"}, "--by-rank 5/16 and 1/3: both give the first 5 of 16 points"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args = {"analyze", "-i", ranked, "-o", dir.file("out"), "--by-rank"};

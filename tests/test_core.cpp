@@ -2,11 +2,30 @@
 
 #include <cmath>
 
+#include "bluetile/core/error.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 #include "bluetile/core/torus.h"
 
 namespace bluetile {
 namespace {
+
+TEST(Text, CsvFieldsAreEmptyOnlyWhereUndefinedIsAllowed) {
+  // csv_number writes the empty field for an undefined value (analyze's anisotropy of annulus 0);
+  // a field that must hold a number (radial.csv's power, rdf.csv's g) went the same way.
+  EXPECT_EQ(csv_number(0.25, 10), "0.25");
+  EXPECT_EQ(csv_number(std::nan(""), 10), "");
+  EXPECT_EQ(csv_defined_number(0.25, 10, "radial.csv: row 2, power"), "0.25");
+  for (double bad : {std::nan(""), HUGE_VAL}) {
+    try {
+      csv_defined_number(bad, 10, "radial.csv: row 2, power");
+      ADD_FAILURE() << bad << " was written";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()),
+                "radial.csv: row 2, power is " + number_text(bad) + ", where it must be a finite number: not written");
+    }
+  }
+}
 
 TEST(Torus, WrapCoordinate) {
   EXPECT_EQ(wrap_coordinate(0.0, 1.0), 0.0);

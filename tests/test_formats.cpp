@@ -176,6 +176,15 @@ TEST(Formats, HeaderLiteralsAreExactFloats) {
             "t.h: '2x' is not a C identifier (letters, digits, '_')");
   EXPECT_EQ(table_name_for_path("7.h"), "points_7");
   EXPECT_EQ(table_name_for_path("--.h"), "bluetile_points");
+  // Letters outside ASCII were dropped without a word: "ünï.h" named the array 'n'.
+  EXPECT_EQ(error_of([&] { encode(TableFormat::header, sets, {}, "dir/ünï.h"); }),
+            "dir/ünï.h: the file name holds letters outside ASCII, which a C name cannot, so the array would be 'n'; "
+            "name the array (--name, or name= in Python)");
+  EXPECT_EQ(error_of([&] { checked_table_name("tables/größe.h", ""); }),
+            "tables/größe.h: the file name holds letters outside ASCII, which a C name cannot, so the array would be "
+            "'gr_e'; name the array (--name, or name= in Python)");
+  EXPECT_EQ(checked_table_name("ünï/points.h", ""), "points");  // the folder is no part of the name
+  EXPECT_EQ(checked_table_name("ünï.h", "uni"), "uni");
 }
 
 TEST(Formats, SetsOfDifferentSizesNeedText) {
@@ -192,6 +201,94 @@ TEST(Formats, PointsThatAreNotFiniteAreNeverWritten) {
   for (TableFormat format : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header})
     EXPECT_EQ(error_of([&] { write_point_table(format, sets, {}, "t", [](std::string_view) {}); }),
               "t: set 1, point 2 (" + exact_text(sets[1].points[2].x) + ", nan) is not finite: no reader would take it back");
+}
+
+TEST(Formats, TableValuesThatAreNotFiniteAreNeverWritten) {
+  // Any table (centroids: cx cy area) went through write_table and write_text_table unchecked: a
+  // NaN or infinity was written, as "nan" in text and headers, and readers refused the file.
+  // Now refused before any byte, naming the set, the row and the column.
+  for (double bad : {std::nan(""), HUGE_VAL, -HUGE_VAL}) {
+    TableView table;
+    table.sets = 2;
+    table.columns = 3;
+    table.column_names = "cx cy area";
+    table.rows = [](std::size_t) { return std::size_t{3}; };
+    table.value = [bad](std::size_t k, std::size_t i, std::size_t c) {
+      return k == 1 && i == 2 && c == 2 ? bad : 0.125 * static_cast<double>(k + i + c);
+    };
+    const std::string message = "c: set 1, row 2: area is " + exact_text(bad) + ", not a finite number: no reader would take it back";
+    std::string bytes;
+    const ByteSink sink = [&](std::string_view piece) { bytes += piece; };
+    for (TableFormat format : {TableFormat::npy, TableFormat::binary, TableFormat::header}) {
+      EXPECT_EQ(error_of([&] { write_table(format, table, {}, "c", sink); }), message);
+      EXPECT_EQ(bytes, "") << table_format_name(format);
+    }
+    EXPECT_EQ(error_of([&] { write_text_table(table, "c", sink); }), message);
+    EXPECT_EQ(bytes, "");
+    // The first column of the first set, for a table whose names are fewer than its columns.
+    table.column_names = "";
+    table.value = [bad](std::size_t, std::size_t, std::size_t) { return bad; };
+    EXPECT_EQ(error_of([&] { write_text_table(table, "c", sink); }),
+              "c: set 0, row 0: column 0 is " + exact_text(bad) + ", not a finite number: no reader would take it back");
+  }
+}
+
+TEST(Formats, ATableOfNamedColumnsIsAStructuredNpyAndNoPointTable) {
+  // centroids' cx cy area went into npy and .bpt as shape (K, N, 3), which the formats define as
+  // x y level: a structured array names its fields instead (same bytes after the header), and a
+  // .bpt, which has no names, is refused.
+  TableView table;
+  table.sets = 2;
+  table.columns = 3;
+  table.column_names = "cx cy area";
+  table.rows = [](std::size_t) { return std::size_t{4}; };
+  table.value = [](std::size_t k, std::size_t i, std::size_t c) { return 0.0625 * static_cast<double>(k * 12 + i * 3 + c); };
+  auto bytes_of = [&](TableFormat format, bool float32) {
+    std::string bytes;
+    write_table(format, table, {.float32 = float32, .name = {}, .comment = {}}, "c",
+                [&](std::string_view piece) { bytes += piece; });
+    return bytes;
+  };
+  for (bool float32 : {false, true}) {
+    const std::string plain = bytes_of(TableFormat::npy, float32);
+    table.named_fields = true;
+    const std::string named = bytes_of(TableFormat::npy, float32);
+    table.named_fields = false;
+    const std::string type = float32 ? "<f4" : "<f8";
+    const std::size_t header = 10 + (static_cast<unsigned char>(named[8]) | static_cast<unsigned char>(named[9]) << 8);
+    const std::string dict = "{'descr': [('cx', '" + type + "'), ('cy', '" + type + "'), ('area', '" + type +
+                             "')], 'fortran_order': False, 'shape': (2, 4), }";
+    EXPECT_EQ(named.substr(10, header - 10), dict + std::string(header - 11 - dict.size(), ' ') + "\n");
+    EXPECT_EQ(header % 64, 0u);
+    EXPECT_EQ(named.back(), plain.back());
+    EXPECT_EQ(named.substr(header), plain.substr(plain.size() - (named.size() - header))) << type;
+    EXPECT_EQ(named.size() - header, 2u * 4u * 3u * (float32 ? 4u : 8u));
+    // Not read back as points.
+    EXPECT_NE(error_of([&] { parse_npy_table(named, "c.npy"); }), "");
+  }
+  table.named_fields = true;
+  std::string bytes;
+  EXPECT_EQ(error_of([&] { write_table(TableFormat::binary, table, {}, "c.bpt", [&](std::string_view b) { bytes += b; }); }),
+            "c.bpt: a bluetile point table's columns are x y or x y level, not cx cy area; write .npy (a field per "
+            "column), text or a C header");
+  EXPECT_EQ(bytes, "");
+  EXPECT_NE(bytes_of(TableFormat::header, false).find("columns cx cy area"), std::string::npos);
+}
+
+TEST(Formats, LevelsNoReaderTakesAreNeverWritten) {
+  // A level of -1 went into every format (a point file's "x y -1", -1.0 in npy), and every
+  // reader then refused the file.
+  for (int bad : {-1, kMaxTableLevel + 1}) {
+    std::vector<PointSet> sets = sample_sets(2, 4, true);
+    sets[1].levels[3] = bad;
+    std::string bytes;
+    for (TableFormat format : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header}) {
+      EXPECT_EQ(error_of([&] { write_point_table(format, sets, {}, "t", [&](std::string_view b) { bytes += b; }); }),
+                "t: set 1, point 3: level " + std::to_string(bad) + " is outside 0 to " + std::to_string(kMaxTableLevel) +
+                    ": no reader would take it back");
+      EXPECT_EQ(bytes, "") << table_format_name(format);
+    }
+  }
 }
 
 TEST(Formats, ReadsNpyInFortranOrderBigEndianAndFloat32) {

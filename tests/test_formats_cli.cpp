@@ -3,7 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
+#include <vector>
+
+#include <sys/stat.h>
 
 #include "bluetile/core/point_table.h"
 #include "test_support.h"
@@ -110,8 +115,95 @@ TEST(FormatsCli, UnknownExtensionsAreRefusedBeforeAnyWork) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.err, "bluetile: --output '" + dir.file("points.png") +
                        "': this output writes .txt .dat .pts (text points), .npy (NumPy), .bpt (point table), .h .hpp "
-                       "(C header), not '.png'; or say --format\n");
+                       "(C header), not '.png'\n");
+  r = run_bluetile({"relax", "-n", "10", "--engine", "exact", "-o", dir.file("points.data")});
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_EQ(r.err, "bluetile: --output '" + dir.file("points.data") +
+                       "': this output writes .txt .dat .pts (text points), .npy (NumPy), .bpt (point table), .h .hpp "
+                       "(C header), not '.data'; or say --format\n");
   EXPECT_TRUE(dir.list().empty());
+}
+
+TEST(FormatsCli, CentroidsAreANamedTableNotPoints) {
+  // centroids -o c.npy wrote cx cy area as (K, N, 3), the shape of x y level points: now NumPy
+  // fields named cx, cy and area; .bpt, which cannot name them, is refused before any work.
+  TempDir dir;
+  const std::string points = dir.write("p.txt", "0.1 0.2\n0.6 0.3\n0.4 0.8\n0.9 0.7\n");
+  ok({"centroids", "-i", points, "--engine", "exact", "-o", dir.file("c.npy")});
+  const std::string npy = read_text(dir.file("c.npy"));
+  EXPECT_NE(npy.find("{'descr': [('cx', '<f8'), ('cy', '<f8'), ('area', '<f8')], 'fortran_order': False, 'shape': (1, 4), }"),
+            std::string::npos)
+      << npy.substr(0, 128);
+  // The same values as the text table.
+  ok({"centroids", "-i", points, "--engine", "exact", "-o", dir.file("c.txt")});
+  const std::string text = read_text(dir.file("c.txt"));
+  std::vector<double> from_text;
+  for (std::size_t at = text.find("\n0"); at != std::string::npos && at + 1 < text.size(); at = text.find('\n', at + 1)) {
+    if (text[at + 1] == '#') continue;
+    char* end = nullptr;
+    const char* p = text.c_str() + at + 1;
+    for (int c = 0; c < 3; ++c, p = end) from_text.push_back(std::strtod(p, &end));
+  }
+  ASSERT_EQ(from_text.size(), 12u) << text;
+  std::vector<double> from_npy(12);
+  std::memcpy(from_npy.data(), npy.data() + npy.size() - 12 * sizeof(double), 12 * sizeof(double));
+  EXPECT_EQ(from_npy, from_text);
+  for (const std::vector<std::string>& more : {std::vector<std::string>{"-o", dir.file("c.bpt")},
+                                               std::vector<std::string>{"--format", "binary", "-o", dir.file("c.data")}}) {
+    std::vector<std::string> args = {"centroids", "-i", points, "--engine", "exact"};
+    args.insert(args.end(), more.begin(), more.end());
+    auto r = run_bluetile(args);
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find(more[0] == "-o" ? "': this output writes .txt .dat .pts (text points), .npy (NumPy), .h .hpp (C header), not '.bpt'\n"
+                                           : "--format binary: a bluetile point table (.bpt) holds x y or x y level"),
+              std::string::npos)
+        << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c.bpt")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c.data")));
+  // Read back, it is refused as no point table.
+  auto r = run_bluetile({"analyze", "-i", dir.file("c.npy"), "-o", dir.file("a")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err.rfind("bluetile: " + dir.file("c.npy") + ": ", 0), 0u) << r.err;
+}
+
+TEST(FormatsCli, AFormatTheNameContradictsIsRefusedBeforeAnyWork) {
+  // --format text -o f.npy wrote text into f.npy (NumPy then refused it); a name another format
+  // owns is refused with --format, a name no format owns, none, "-" and a FIFO take any.
+  TempDir dir;
+  struct Case {
+    std::string name, format, message;
+  };
+  const std::vector<Case> cases = {
+      {"f.npy", "text", "is named as NumPy ('.npy'); give it .txt, .dat, .pts or no extension for text"},
+      {"f.txt", "npy", "is named as text points ('.txt'); give it .npy for npy"},
+      {"f.H", "binary", "is named as C header ('.h'); give it .bpt for binary"},
+      {"f.bpt", "header", "is named as point table ('.bpt'); give it .h or .hpp for header"},
+      {"f.png", "text", "is named as image ('.png'); give it .txt, .dat, .pts or no extension for text"},
+      {"f.tiles", "npy", "is named as tile set ('.tiles'); give it .npy for npy"},
+  };
+  for (const Case& c : cases) {
+    auto r = run_bluetile({"dart", "-n", "10", "--format", c.format, "-o", dir.file(c.name)});
+    EXPECT_EQ(r.exit_code, 1) << c.name;
+    EXPECT_EQ(r.err, "bluetile: --format " + c.format + ": --output '" + dir.file(c.name) + "' " + c.message +
+                         ", or leave --format out\n");
+  }
+  EXPECT_TRUE(dir.list().empty());
+  ok({"dart", "-n", "10", "--format", "npy", "-o", dir.file("f.data")});
+  ok({"dart", "-n", "10", "--format", "npy", "-o", dir.file("npy-points")});
+  ok({"dart", "-n", "10", "--format", "npy", "-o", dir.file("f.NPY")});
+  EXPECT_EQ(read_text(dir.file("f.data")).substr(0, 6), "\x93NUMPY");
+  EXPECT_EQ(read_text(dir.file("npy-points")).substr(0, 6), "\x93NUMPY");
+  auto r = run_bluetile({"dart", "-n", "10", "--format", "npy", "-o", "-"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, 6), "\x93NUMPY");
+  // A FIFO named as text takes npy bytes: its name describes nothing.
+  const std::string fifo = dir.file("pipe.txt");
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  r = test::run_command("cat '" + fifo + "' > '" + dir.file("from-fifo") + "' & '" BLUETILE_BINARY
+                        "' dart -n 10 --format npy -o '" + fifo + "'; status=$?; wait; exit $status");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_text(dir.file("from-fifo")).substr(0, 6), "\x93NUMPY");
 }
 
 TEST(FormatsCli, OptionsOfAnotherFormatAreRefusedBeforeAnyWork) {

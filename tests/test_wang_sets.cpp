@@ -25,6 +25,7 @@
 #include "bluetile/tiling/seam_check.h"
 #include "bluetile/tiling/tile_set_file.h"
 #include "bluetile/voronoi/exact_engine.h"
+#include "test_raster_support.h"
 #include "test_support.h"
 
 #include <nlohmann/json.hpp>
@@ -195,6 +196,69 @@ TEST(TilingMetrics, LowFrequencyIsUndefinedWhenItsBandIsEmpty) {
   EXPECT_NEAR(measure_tiling(five, 0, 0).low_frequency, mean, 1e-12);
 }
 
+// The lattice measures and the anisotropy were 0 where their band is empty, which reads as no
+// lattice peak and no anisotropy at all: NaN there, as LF, and defined wherever the band holds a
+// frequency (the values checked against the definitions in the tests above).
+TEST(TilingMetrics, BandMeasuresAreUndefinedWhenTheirBandIsEmpty) {
+  // M x M copies of one tile of `n` uniform points.
+  auto plane = [](std::size_t n, int period) {
+    const std::vector<Point> tile = test::uniform_points(n, 7);
+    std::vector<Point> points;
+    for (int j = 0; j < period; ++j)
+      for (int i = 0; i < period; ++i)
+        for (Point p : tile) points.push_back({(p.x + i) / period, (p.y + j) / period});
+    return points;
+  };
+  // Untiled: no lattice frequency at all.
+  const TilingMetrics untiled = measure_tiling(test::uniform_points(64, 3), 0, 0);
+  EXPECT_TRUE(std::isnan(untiled.coherence_low)) << untiled.coherence_low;
+  EXPECT_TRUE(std::isnan(untiled.coherence_mid)) << untiled.coherence_mid;
+  EXPECT_TRUE(std::isnan(untiled.lattice_peak)) << untiled.lattice_peak;
+  EXPECT_TRUE(std::isfinite(untiled.diffuse_anisotropy_db));
+  EXPECT_TRUE(std::isfinite(untiled.low_frequency));
+  // One point a tile: no m with 0 < |m| < 1 for the peak; C_LF's and C_mid's bands hold m = (1, 0).
+  const TilingMetrics one = measure_tiling(plane(1, 8), 8, 1);
+  EXPECT_TRUE(std::isnan(one.lattice_peak)) << one.lattice_peak;
+  EXPECT_TRUE(std::isfinite(one.coherence_low));
+  EXPECT_TRUE(std::isfinite(one.coherence_mid));
+  // A 1 x 1 tiling: every frequency is a lattice one, none is left for the anisotropy.
+  const TilingMetrics whole = measure_tiling(plane(32, 1), 1, 1);
+  EXPECT_TRUE(std::isnan(whole.diffuse_anisotropy_db)) << whole.diffuse_anisotropy_db;
+  EXPECT_TRUE(std::isfinite(whole.lattice_peak));
+  // Two points a tile on a 4 x 4 tiling: every band holds frequencies.
+  const TilingMetrics two = measure_tiling(plane(2, 4), 4, 1);
+  for (double v : {two.low_frequency, two.coherence_low, two.coherence_mid, two.lattice_peak, two.diffuse_anisotropy_db})
+    EXPECT_TRUE(std::isfinite(v)) << v;
+}
+
+// wang-check's measures whose band is empty are "-" in its tables and null in stats.json, never
+// 0 or "nan": at --period 4 the prefix of 1 point a tile has no lattice peak, and at --period 1
+// every frequency is a lattice one, leaving the anisotropy none.
+TEST(WangCommand, UndefinedBandMeasuresAreADashAndNull) {
+  test::TempDir dir;
+  const std::string tiles = dir.write("grid.tiles", format_tile_set(grid_set()));
+  test::CommandResult r = test::run_bluetile({"wang-check", tiles, "--period", "4", "--output", dir.file("four")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  nlohmann::json stats = nlohmann::json::parse(test::read_text(dir.file("four/stats.json")));
+  ASSERT_EQ(stats["prefix_sweep"][0]["k"], 1);
+  EXPECT_TRUE(stats["prefix_sweep"][0]["lattice_peak"].is_null()) << stats["prefix_sweep"][0];
+  EXPECT_FALSE(stats["prefix_sweep"][1]["lattice_peak"].is_null()) << stats["prefix_sweep"][1];
+  EXPECT_FALSE(stats["prefix_sweep"][0]["C_LF"].is_null()) << stats["prefix_sweep"][0];
+  // k = 1, N = 16: rho, LF, then the lattice peak "-".
+  EXPECT_NE(r.out.find("\n         1       16   0.931   0.0000         -    8.000 "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("(\"-\": no frequency in the measure's band, null in stats.json"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+  r = test::run_bluetile({"wang-check", tiles, "--period", "1", "--untiled", "--untiled-iterations", "2", "--output",
+                          dir.file("one")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  stats = nlohmann::json::parse(test::read_text(dir.file("one/stats.json")));
+  EXPECT_TRUE(stats["levels"][0]["plane"]["diffuse_anisotropy_db"].is_null()) << stats["levels"][0];
+  EXPECT_FALSE(stats["levels"][0]["plane"]["C_mid"].is_null()) << stats["levels"][0];
+  EXPECT_FALSE(stats["untiled"]["diffuse_anisotropy_db"].is_null()) << stats["untiled"];
+  EXPECT_NE(r.out.find("         -\n"), std::string::npos) << r.out;  // the level row's aniso dB
+  EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
+}
+
 // wang-check's prefix sweep of a 1 x 1 tiling reaches planes of 2 to 4 points: their LF is "-" in
 // the table and null in stats.json, never 0 or "nan".
 TEST(WangCommand, UndefinedLowFrequencyIsADashAndNull) {
@@ -218,7 +282,8 @@ TEST(WangCommand, UndefinedLowFrequencyIsADashAndNull) {
   }
   EXPECT_EQ(undefined, 3u);  // k = 2, 3 and 4 (k = 1 is a single point, left out)
   EXPECT_FALSE(stats["levels"][0]["plane"]["LF"].is_null());
-  EXPECT_NE(r.out.find("(LF \"-\": a plane of at most 4 points, whose band holds no frequency)"), std::string::npos)
+  EXPECT_NE(r.out.find("(\"-\": no frequency in the measure's band, null in stats.json: LF of at most 4 points"),
+            std::string::npos)
       << r.out;
   EXPECT_EQ(r.out.find("nan"), std::string::npos) << r.out;
 }
@@ -666,6 +731,37 @@ TEST(WangCommand, Corner81TakesTheInstancesStrategyUnlessAsked) {
   EXPECT_NE(exact.exit_code, 0);
   EXPECT_NE(exact.err.find("use more points per tile or the instances strategy"), std::string::npos) << exact.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("never.tiles")));
+}
+
+TEST(WangCommand, HeaderRecordsTheRasterSettings) {
+  // The header said "--engine raster" alone, so the command it records did not give the same
+  // points under other --resolution, --coverage or --cone defaults; the exact engine has none.
+  // No iterations: the header is what is checked, and a raster Wang step takes minutes on lavapipe.
+  REQUIRE_VULKAN();
+  test::TempDir dir;
+  const std::string tiles = dir.file("raster.tiles");
+  const std::vector<std::string> wang = {"wang", "--set", "wang8", "--points", "8", "--iterations", "0", "--warm",
+                                         "0", "--seam-steps", "0", "--lattice-steps", "0",
+                                         "--lattice-steps-per-iteration", "0", "--output", tiles};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = wang;
+    args.insert(args.end(), more.begin(), more.end());
+    return args;
+  };
+  test::CommandResult made = test::run_bluetile(
+      with({"--engine", "raster", "--resolution", "64", "--coverage", "point", "--cone", "fan"}));
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string header = read_tile_set(tiles).header.at(0);
+  EXPECT_EQ(header.substr(header.find(" --engine")), " --engine raster --coverage point --cone fan --resolution 64")
+      << header;
+  made = test::run_bluetile(with({"--engine", "raster"}));
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string defaults = read_tile_set(tiles).header.at(0);
+  EXPECT_EQ(defaults.substr(defaults.find(" --engine")), " --engine raster --coverage area --cone quad") << defaults;
+  made = test::run_bluetile(wang);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string exact = read_tile_set(tiles).header.at(0);
+  EXPECT_EQ(exact.substr(exact.find(" --engine")), " --engine exact") << exact;
 }
 
 TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <set>
@@ -159,19 +160,27 @@ nlohmann::json to_json(const Record& r) {
 
 nlohmann::json summary_json(const Summary& s) { return to_json(summary_record(s)); }
 
-// radial.csv's and rdf.csv's numbers: 10 significant digits, an undefined value (the anisotropy
-// of annulus 0, which holds the one frequency k = 0) an empty field, as stats.json's null.
+// radial.csv's and rdf.csv's numbers: 10 significant digits. The anisotropy alone may be
+// undefined (annulus 0, which holds the one frequency k = 0, or an annulus of no power;
+// radial_power.h): an empty field, as stats.json's null. Every other field must hold a number: a NaN there is refused with the file,
+// its row and column, not written as an empty field that reads as "undefined".
 std::string csv_field(double v) { return csv_number(v, 10); }
+std::string csv_defined(double v, const std::string& file, std::size_t row, const char* column) {
+  return csv_defined_number(v, 10, file + ": row " + std::to_string(row) + ", " + column);
+}
 
 // The same digits in the report's text, "-" where undefined.
 std::string general(double v) { return std::isfinite(v) ? csv_number(v, 10) : "-"; }
 
 std::string radial_csv(const std::vector<Series>& series, bool with_label) {
   std::string text = with_label ? "frequency,power,anisotropy_db,nu,set\n" : "frequency,power,anisotropy_db,nu\n";
+  std::size_t row = 0;  // data rows from 1, as a spreadsheet shows them below the header
   for (const Series& s : series) {
     for (const Annulus& a : s.summary.radial) {
-      text += csv_field(a.frequency) + "," + csv_field(a.power) + "," + csv_field(a.anisotropy_db) + "," +
-              csv_field(s.summary.nu(a.frequency));
+      ++row;
+      text += csv_defined(a.frequency, "radial.csv", row, "frequency") + "," +
+              csv_defined(a.power, "radial.csv", row, "power") + "," + csv_field(a.anisotropy_db) + "," +
+              csv_defined(s.summary.nu(a.frequency), "radial.csv", row, "nu");
       text += with_label ? "," + s.label + "\n" : "\n";
     }
   }
@@ -180,11 +189,14 @@ std::string radial_csv(const std::vector<Series>& series, bool with_label) {
 
 std::string rdf_csv(const std::vector<Series>& series, bool with_label) {
   std::string text = with_label ? "r,r_relative,g,set\n" : "r,r_relative,g\n";
+  std::size_t row = 0;
   for (const Series& s : series) {
     const RadialDistribution& rdf = s.summary.rdf;
     for (std::size_t b = 0; b < rdf.g.size(); ++b) {
-      text += csv_field(rdf.radius(b)) + "," + csv_field(rdf.radius(b) / rdf.hexagonal_spacing) + "," +
-              csv_field(rdf.g[b]);
+      ++row;
+      text += csv_defined(rdf.radius(b), "rdf.csv", row, "r") + "," +
+              csv_defined(rdf.radius(b) / rdf.hexagonal_spacing, "rdf.csv", row, "r_relative") + "," +
+              csv_defined(rdf.g[b], "rdf.csv", row, "g");
       text += with_label ? "," + s.label + "\n" : "\n";
     }
   }
@@ -491,9 +503,11 @@ std::vector<std::pair<OutputFile*, const PointSet*>> declare_psa_points(const An
 }
 
 // --by-rank K...: each value a count (2 to N) or a fraction P/Q of the N points (rounded to the
-// nearest count); sorted and distinct. Throws Error naming the value otherwise.
+// nearest count); sorted. Throws Error naming the value otherwise, and naming both values when two
+// give the same prefix (merged without a word before: 1/3 1/3, or 1/3 and 33 of 100 points).
 std::vector<std::size_t> rank_prefixes(const std::vector<std::string>& values, std::size_t n, const std::string& input) {
   std::vector<std::size_t> counts;
+  std::map<std::size_t, std::string> given;  // each prefix and the value that gave it
   const WholeNumber one = whole(1), most = whole(kMaxCount);
   for (const std::string& text : values) {
     WholeNumber value;
@@ -515,10 +529,12 @@ std::vector<std::size_t> rank_prefixes(const std::vector<std::string>& values, s
     if (count < 2)
       throw Error("--by-rank " + text + ": the first " + std::to_string(count) + " of " + std::to_string(n) +
                   " points; a prefix needs at least 2 to analyse" + (count == 1 && text == "1" ? " (the whole set is 1/1)" : ""));
+    if (const auto [at, fresh] = given.emplace(count, text); !fresh)
+      throw Error("--by-rank " + at->second + " and " + text + ": both give the first " + std::to_string(count) + " of " +
+                  std::to_string(n) + " points; give each prefix once");
     counts.push_back(count);
   }
   std::sort(counts.begin(), counts.end());
-  counts.erase(std::unique(counts.begin(), counts.end()), counts.end());
   return counts;
 }
 

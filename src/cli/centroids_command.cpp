@@ -42,6 +42,7 @@ void run_centroids(const CentroidsOptions& o, const CLI::App& command) {
   table.sets = results.size();
   table.columns = 3;
   table.column_names = "cx cy area";
+  table.named_fields = true;  // not x y level: npy names the fields, .bpt is refused (point_table.h)
   table.rows = [&](std::size_t k) { return results[k].cells.size(); };
   table.value = [&](std::size_t k, std::size_t i, std::size_t c) {
     const Cell& cell = results[k].cells[i];
@@ -66,7 +67,10 @@ void add_centroids_command(CLI::App& app) {
   add_input_option(cmd, "-i,--input", o->input, InputKind::points,
                    "Points: text (each '#'-separated set measured on its own), .npy or .bpt ('-': standard input)")
       ->required();
-  add_point_output_options(cmd, o->output, "Output table of cx cy area");
+  o->output.named_fields = true;  // before the options: they list its formats
+  add_point_output_options(cmd, o->output,
+                           "Output table of cx cy area (npy: a structured array of fields cx, cy, area, shape K x N; "
+                           "not .bpt, whose third column is the level)");
   add_engine_options(cmd, o->engine);
   cmd->callback([o, cmd] {
     refuse_unused_raster_options(*cmd, o->engine, "");

@@ -59,6 +59,14 @@ std::string engine_text(const CentroidEngine& engine, const EngineOptions& optio
          (options.resolution > 0 ? std::to_string(options.resolution) : "from N") + ", " + options.cone + " cones)";
 }
 
+std::string engine_arguments(const CentroidEngine& engine, const EngineOptions& options) {
+  std::string text = "--engine " + std::string(engine.name());
+  if (dynamic_cast<const RasterEngine*>(&engine) == nullptr) return text;
+  text += " --coverage " + options.coverage + " --cone " + options.cone;
+  if (options.resolution > 0) text += " --resolution " + std::to_string(options.resolution);
+  return text;
+}
+
 void note_faster_engine(const CentroidEngine& engine, double site_iterations) {
   const auto* raster = dynamic_cast<const RasterEngine*>(&engine);
   if (raster == nullptr || !raster->cpu_device()) return;

@@ -33,6 +33,11 @@ std::unique_ptr<CentroidEngine> make_engine(const EngineOptions& options);
 // cones)" with the settings that shape its results.
 std::string engine_text(const CentroidEngine& engine, const EngineOptions& options);
 
+// The same settings as the options that give them, for a header that records its command line:
+// "--engine exact", or "--engine raster --coverage area --cone quad" with "--resolution R" when one
+// was given (from N otherwise).
+std::string engine_arguments(const CentroidEngine& engine, const EngineOptions& options);
+
 // Before a long raster job on a CPU device (lavapipe), one line on stderr with its estimated time
 // and the exact engine's for the same cells (which is several times faster there): a user finds
 // the fast path without reading the benchmarks. `site_iterations`: cells measured over the run.

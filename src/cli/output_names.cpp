@@ -71,6 +71,17 @@ OutputFormat output_format(std::string_view option, const std::string& path, std
   throw Error(message);
 }
 
+bool extension_names_a_format(const std::string& extension) {
+  if (extension.empty()) return false;
+  for (OutputFormat format : {OutputFormat::points_text, OutputFormat::points_npy, OutputFormat::points_binary,
+                              OutputFormat::points_header, OutputFormat::raw_columns, OutputFormat::svg,
+                              OutputFormat::image, OutputFormat::pdf, OutputFormat::tile_set}) {
+    const auto names = output_format_extensions(format);
+    if (std::find(names.begin(), names.end(), extension) != names.end()) return true;
+  }
+  return false;
+}
+
 void check_text_output_name(std::string_view option, const std::string& path, std::string_view what) {
   const std::string extension = path == "-" ? "" : file_extension(path);
   const auto text = output_format_extensions(OutputFormat::points_text);

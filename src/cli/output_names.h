@@ -36,12 +36,20 @@ std::span<const std::string_view> output_format_extensions(OutputFormat format);
 inline constexpr OutputFormat kPointTableFormats[] = {OutputFormat::points_text, OutputFormat::points_npy,
                                                       OutputFormat::points_binary, OutputFormat::points_header};
 
+// A table that is no point table (centroids' cx cy area): the point-table formats but binary,
+// whose columns are x y or x y level (TableView::named_fields).
+inline constexpr OutputFormat kNamedTableFormats[] = {OutputFormat::points_text, OutputFormat::points_npy,
+                                                      OutputFormat::points_header};
+
 // The format `path`, given to the output option `option`, is written in: the first of `accepted`
 // whose extensions hold the path's; "-" and a name without an extension the first of `accepted`.
 // Throws Error("<option> '<path>': ...") listing every accepted extension otherwise;
 // `alternative` (e.g. "or say --format") ends that message when not empty.
 OutputFormat output_format(std::string_view option, const std::string& path, std::span<const OutputFormat> accepted,
                            std::string_view alternative = {});
+
+// Whether `extension` (as file_extension gives it; not "") names one of the formats above.
+bool extension_names_a_format(const std::string& extension);
 
 // For an output of one text format (a CSV log, psa's point text) that takes any other name:
 // refuses an extension that names one of the formats above other than text points (.npy, .svg,

@@ -1,5 +1,9 @@
 #include "cli/point_output.h"
 
+#include <algorithm>
+
+#include <sys/stat.h>
+
 #include "bluetile/core/error.h"
 #include "cli/file_options.h"
 #include "cli/output_names.h"
@@ -9,21 +13,56 @@ namespace {
 
 bool one_file_each(const std::string& output) { return output.find("{}") != std::string::npos; }
 
-// --format, else the output-name rule (cli/output_names.h).
+// --format, else the output-name rule (cli/output_names.h). The hint to say --format is for names
+// no format owns (points.data); --format is refused for one another format owns (points.png).
 TableFormat format_of(const std::string& path, const PointOutputOptions& options) {
   if (!options.format.empty()) return table_format_for(path, options.format);
-  return table_format_of(output_format("--output", path, kPointTableFormats, "or say --format"));
+  const bool owned = path != "-" && extension_names_a_format(file_extension(path));
+  return table_format_of(output_format("--output", path, options.named_fields ? std::span<const OutputFormat>(kNamedTableFormats)
+                                                                              : std::span<const OutputFormat>(kPointTableFormats),
+                                       owned ? "" : "or say --format"));
+}
+
+// --format against the name: a file whose extension names another format would hold what its name
+// denies (--format text -o f.npy wrote text into f.npy, which NumPy then refused). A name without
+// an extension or with one no format has takes any format; so do "-" and special files (a FIFO,
+// a device), which a name does not describe.
+void check_format_agrees(const std::string& path, TableFormat format, const PointOutputOptions& options) {
+  if (options.format.empty() || path == "-") return;
+  struct stat status {};
+  if (::stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode)) return;
+  const std::string extension = file_extension(path);
+  if (extension.empty()) return;
+  for (OutputFormat named : {OutputFormat::points_text, OutputFormat::points_npy, OutputFormat::points_binary,
+                             OutputFormat::points_header, OutputFormat::raw_columns, OutputFormat::svg,
+                             OutputFormat::image, OutputFormat::pdf, OutputFormat::tile_set}) {
+    const auto names = output_format_extensions(named);
+    if (std::find(names.begin(), names.end(), extension) == names.end()) continue;
+    if (named == output_format_of(format)) return;
+    std::vector<std::string> fitting;  // ".txt, .dat, .pts or no extension"
+    for (std::string_view name : table_format_extensions(format)) fitting.push_back(name.empty() ? "no extension" : std::string(name));
+    std::string list;
+    for (std::size_t i = 0; i < fitting.size(); ++i)
+      list += (i == 0 ? "" : i + 1 == fitting.size() ? " or " : ", ") + fitting[i];
+    throw Error("--format " + options.format + ": --output '" + path + "' is named as " +
+                std::string(output_format_label(named)) + " ('" + extension + "'); give it " + list + " for " +
+                options.format + ", or leave --format out");
+  }
 }
 
 // --float32 and --name change only some formats; given for another, they would be ignored without
 // a word, so they are refused before any work.
 void check_format_options(const std::string& path, TableFormat format, const PointOutputOptions& options) {
+  check_format_agrees(path, format, options);
   const std::string is = "--output '" + path + "' is " + std::string(table_format_name(format));
   if (options.float32 && format != TableFormat::npy && format != TableFormat::binary)
     throw Error("--float32: " + is + "; 4-byte floats are for npy and binary outputs");
   if (!options.name.empty() && format != TableFormat::header)
     throw Error("--name '" + options.name + "': " + is + "; the array name is for header outputs (.h, .hpp)");
   if (format == TableFormat::header) checked_table_name(path, options.name);
+  if (format == TableFormat::binary && options.named_fields)
+    throw Error("--format binary: a bluetile point table (.bpt) holds x y or x y level, which this table is not; "
+                "write npy (a field per column), text or header");
 }
 
 // A file of one set, of several written one file each, says which it holds: the header
@@ -47,8 +86,10 @@ TableView single_set(const TableView& table, std::size_t set) {
 
 void add_point_output_options(CLI::App* command, PointOutputOptions& options, const std::string& what, bool required,
                               bool several_sets) {
+  const std::span<const OutputFormat> formats =
+      options.named_fields ? std::span<const OutputFormat>(kNamedTableFormats) : std::span<const OutputFormat>(kPointTableFormats);
   CLI::Option* output = add_output_option(
-      command, "-o,--output", options.output, {.formats = kPointTableFormats, .standard_output = true},
+      command, "-o,--output", options.output, {.formats = formats, .standard_output = true},
       several_sets ? what + " (every {} becomes the set index: one file per set)" : what);
   if (required) output->required();
   command->add_option("--format", options.format,
@@ -122,7 +163,7 @@ void PointOutput::write_one(OutputFile& file, const TableView& table, std::span<
       write_table(format, table, w, file.path(), sink);
     } else {
       sink(format_points(PointSet{}, header));
-      write_text_table(table, sink);
+      write_text_table(table, file.path(), sink);
     }
   });
 }

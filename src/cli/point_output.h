@@ -25,6 +25,10 @@ struct PointOutputOptions {
   std::string format;  // empty: by extension
   bool float32 = false;
   std::string name;  // C header: the array's name
+  // A table that is no point table (centroids' cx cy area): TableView::named_fields; its formats
+  // are kNamedTableFormats (no binary), and --format binary is refused when declared. Set it
+  // before add_point_output_options.
+  bool named_fields = false;
 };
 
 // Adds -o/--output (required unless `required` is false), --format, --float32 and --name; `what`

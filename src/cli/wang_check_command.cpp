@@ -35,17 +35,20 @@
 namespace bluetile::cli {
 namespace {
 
-// LF is undefined (NaN) for planes of at most 4 points: "-" in the tables, null in stats.json.
-std::string metrics_row(const std::string& label, const TilingMetrics& m, bool tiled) {
+// A measure whose band holds no frequency is undefined (NaN, tiling_metrics.h): "-" in the
+// tables, null in stats.json. LF of planes of at most 4 points, the lattice peak of one point a
+// tile, the anisotropy of a 1 x 1 tiling; C_LF and C_mid of the untiled plane.
+std::string metrics_row(const std::string& label, const TilingMetrics& m) {
   char row[256];
-  const std::string lf = measure_text(m.low_frequency, 5);
-  if (tiled)
-    std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8s %8.5f %8.2f %9.2f\n", label.c_str(), m.count, m.rho,
-                  lf.c_str(), m.coherence_low, m.coherence_mid, m.diffuse_anisotropy_db);
-  else
-    std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8s %8s %8s %9.2f\n", label.c_str(), m.count, m.rho, lf.c_str(),
-                  "-", "-", m.diffuse_anisotropy_db);
+  std::snprintf(row, sizeof row, "  %-28s %8zu %7.4f %8s %8s %8s %9s\n", label.c_str(), m.count, m.rho,
+                measure_text(m.low_frequency, 5).c_str(), measure_text(m.coherence_low, 5).c_str(),
+                measure_text(m.coherence_mid, 2).c_str(), measure_text(m.diffuse_anisotropy_db, 2).c_str());
   return row;
+}
+
+bool any_undefined(const TilingMetrics& m) {
+  return std::isnan(m.low_frequency) || std::isnan(m.coherence_low) || std::isnan(m.coherence_mid) ||
+         std::isnan(m.lattice_peak) || std::isnan(m.diffuse_anisotropy_db);
 }
 
 nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
@@ -121,7 +124,7 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
   // The plane of the first k ranks of every tile, each measured once (level boundaries are in
   // the sweep too).
   std::map<std::size_t, TilingMetrics> measured;
-  bool undefined_lf = false;  // some row's LF is "-"
+  bool undefined = false;  // some tiled row holds a "-"
   auto metrics_at = [&](std::size_t k) -> const TilingMetrics& {
     auto found = measured.find(k);
     if (found != measured.end()) return found->second;
@@ -131,14 +134,14 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
     // tile the per-tile sum (tiled_periodogram) takes minutes a prefix, this a second.
     Periodogram periodogram = compute_periodogram(p.points, tiling_periodogram_size(p.points.size(), o.period));
     const TilingMetrics& m = measured.emplace(k, measure_tiling(p.points, periodogram, o.period, tiles)).first->second;
-    undefined_lf = undefined_lf || std::isnan(m.low_frequency);
+    undefined = undefined || any_undefined(m);
     return m;
   };
   nlohmann::json levels_json = nlohmann::json::array();
   std::size_t total = 0;
   for (const SeamLevel& level : seams.levels) {
     const TilingMetrics& m = metrics_at(level.points_per_tile);
-    std::printf("%s", metrics_row("levels 0-" + std::to_string(level.level), m, true).c_str());
+    std::printf("%s", metrics_row("levels 0-" + std::to_string(level.level), m).c_str());
     levels_json.push_back({{"level", level.level},
                            {"points_per_tile", level.points_per_tile},
                            {"seam_min", level.cross_min},
@@ -150,10 +153,10 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
                             {{"N", m.count},
                              {"rho", m.rho},
                              {"LF", number(m.low_frequency)},
-                             {"C_LF", m.coherence_low},
-                             {"C_mid", m.coherence_mid},
-                             {"lattice_peak", m.lattice_peak},
-                             {"diffuse_anisotropy_db", m.diffuse_anisotropy_db}}}});
+                             {"C_LF", number(m.coherence_low)},
+                             {"C_mid", number(m.coherence_mid)},
+                             {"lattice_peak", number(m.lattice_peak)},
+                             {"diffuse_anisotropy_db", number(m.diffuse_anisotropy_db)}}}});
     total = level.points_per_tile;
   }
   // The prefix sweep: the first k points by rank of every tile, k at fixed fractions of the top
@@ -167,10 +170,12 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
   for (const std::size_t k : sweep) {
     if (k * static_cast<std::size_t>(o.period) * static_cast<std::size_t>(o.period) < 2) continue;
     const TilingMetrics& m = metrics_at(k);
-    std::printf("  %8zu %8zu %7.3f %8s %9.2f %8.3f %8.3f\n", k, m.count, m.rho, measure_text(m.low_frequency, 4).c_str(),
-                m.lattice_peak, m.coherence_low, m.coherence_mid);
+    std::printf("  %8zu %8zu %7.3f %8s %9s %8s %8s\n", k, m.count, m.rho, measure_text(m.low_frequency, 4).c_str(),
+                measure_text(m.lattice_peak, 2).c_str(), measure_text(m.coherence_low, 3).c_str(),
+                measure_text(m.coherence_mid, 3).c_str());
     sweep_json.push_back({{"k", k}, {"N", m.count}, {"rho", m.rho}, {"LF", number(m.low_frequency)},
-                          {"lattice_peak", m.lattice_peak}, {"C_LF", m.coherence_low}, {"C_mid", m.coherence_mid}});
+                          {"lattice_peak", number(m.lattice_peak)}, {"C_LF", number(m.coherence_low)},
+                          {"C_mid", number(m.coherence_mid)}});
   }
   nlohmann::json stats = {{"input", input_name(o.input)},
                           {"set", tile_set_kind_name(set.kind)},
@@ -196,18 +201,20 @@ void run_check(const CheckOptions& o, const CLI::App& command) {
     progress.finish();
     untiled = scene.sites;
     TilingMetrics m = measure_tiling(untiled, 0, 1);
-    std::printf("%s", metrics_row("untiled Lloyd, " + std::to_string(o.untiled_iterations) + " iterations", m, false).c_str());
+    std::printf("%s", metrics_row("untiled Lloyd, " + std::to_string(o.untiled_iterations) + " iterations", m).c_str());
     stats["untiled"] = {{"iterations", o.untiled_iterations},
                         {"N", m.count},
                         {"rho", m.rho},
                         {"LF", number(m.low_frequency)},
-                        {"diffuse_anisotropy_db", m.diffuse_anisotropy_db}};
+                        {"diffuse_anisotropy_db", number(m.diffuse_anisotropy_db)}};
   }
   std::printf("  (rho: min NN distance / hexagonal spacing; LF: mean periodogram for 0 < |k| < 0.5 sqrt(N);\n"
               "   C_LF, C_mid: tile-lattice coherence for M = %d; anisotropy: mean over annuli 0.5-1.6 sqrt(N),\n"
               "   lattice frequencies left out; lattice: mean periodogram at k = M m, 0 < |k| < sqrt(N))\n",
               o.period);
-  if (undefined_lf) std::printf("  (LF \"-\": a plane of at most 4 points, whose band holds no frequency)\n");
+  if (undefined)
+    std::printf("  (\"-\": no frequency in the measure's band, null in stats.json: LF of at most 4 points, lattice of\n"
+                "   1 point a tile, aniso dB where every frequency of its annuli is a lattice one, as at --period 1)\n");
 
   if (o.output.empty()) return;
   file("stats.json").write(stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n");

@@ -159,7 +159,8 @@ void run_wang(const WangCommandOptions& o) {
   }
   command << " --rank-order " << o.rank_order;
   if (o.rank_order == "voids") command << " --void-sigma " << o.void_sigma;
-  command << " --seed " << o.seed << " --engine " << engine->name();
+  // The raster settings too: they shape the points (the header was "--engine raster" alone).
+  command << " --seed " << o.seed << " " << engine_arguments(*engine, o.engine);
   set.header = {"made by: " + command.str()};
   validate_tile_set(set);
   output.write(format_tile_set(set));

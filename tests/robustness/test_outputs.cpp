@@ -279,14 +279,17 @@ TEST(Outputs, ImagesACommandReadsAreInputsToo) {
   const std::string map = dir.file("m.png");
   write_image_file(map, 4, 4, 1, std::vector<std::uint8_t>(16, 100));
   const std::string before = read_text(map);
-  for (const char* flag : {"--id-image", "-o"}) {
-    std::vector<std::string> args = {"--density-map", map, flag, map};
-    if (std::string(flag) == "-o")
-      args.insert(args.end(), {"--format", "text"});
-    else
-      args.insert(args.end(), {"-o", dir.file("p.txt")});
-    expect_failure(run(relax(args)), map + ": is the same file as the input " + map);
-  }
+  expect_failure(run(relax({"--density-map", map, "--id-image", map, "-o", dir.file("p.txt")})),
+                 map + ": is the same file as the input " + map);
+  // -o m.png is refused by its name, --format or not (output_names.h); under a name of no format,
+  // a hard link to the map is still the map.
+  expect_failure(run(relax({"--density-map", map, "-o", map, "--format", "text"})),
+                 "--format text: --output '" + map + "' is named as image ('.png'); give it .txt, .dat, .pts or no "
+                 "extension for text, or leave --format out");
+  const std::string points_link = dir.file("m-points");
+  std::filesystem::create_hard_link(map, points_link);
+  expect_failure(run(relax({"--density-map", map, "-o", points_link})), points_link + ": is the same file as the input " + map);
+  std::filesystem::remove(points_link);
   // A log named .png is refused by its name first (output_names.h); under a log's name, a hard
   // link to the map is still the map.
   const std::string link = dir.file("m.csv");

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/point_file.h"
 #include "bluetile/voronoi/exact_engine.h"
 
 namespace bluetile {
@@ -145,6 +146,12 @@ Summary summarize(std::span<const std::vector<Point>> sets, const SummaryOptions
 std::vector<LevelSummary> summarize_levels(std::span<const Point> points, std::span<const int> levels,
                                            const SummaryOptions& options) {
   if (levels.size() != points.size()) throw Error("the analysis by level needs a level column (x y level) on every point");
+  // A level outside a point file's range would give a prefix "levels 0..-1" or a count no file
+  // can hold; refused as the readers refuse it (point_file.h).
+  for (std::size_t i = 0; i < levels.size(); ++i)
+    if (levels[i] < 0 || levels[i] > kMaxLevel)
+      throw Error("point " + std::to_string(i) + ": level must be an integer from 0 to " + std::to_string(kMaxLevel) +
+                  ", got " + std::to_string(levels[i]));
   std::vector<int> distinct(levels.begin(), levels.end());
   std::sort(distinct.begin(), distinct.end());
   distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());

@@ -100,8 +100,8 @@ double summary_memory_bytes(std::size_t count, std::size_t sets, int size);
 // For a leveled set: the summary of each prefix, points with level <= l, for every level l
 // present (sorted). Each prefix gets its own natural periodogram size (default_periodogram_size
 // of its count) unless options.size fixes one for all; on the normalised axis nu the curves
-// overlay either way. Throws Error when `levels` does not match `points` or a prefix has fewer
-// than two points.
+// overlay either way. Throws Error when `levels` does not match `points`, a level is outside 0 to
+// kMaxLevel (naming the point and the level), or a prefix has fewer than two points.
 struct LevelSummary {
   int level = 0;
   Summary summary;

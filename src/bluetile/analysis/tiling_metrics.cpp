@@ -63,6 +63,9 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
 
   double low_sum = 0.0, lattice_sum = 0.0;
   std::size_t low_count = 0, lattice_count = 0;
+  // A maximum over an empty band is undefined (NaN), not 0; fmax keeps the first value met.
+  constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
+  m.coherence_low = m.coherence_mid = kUndefined;
   const int first_annulus = static_cast<int>(std::ceil(0.5 * root));  // the mid band's start
   const int end_annulus = static_cast<int>(std::floor(kAnisotropyBandEnd * root));  // annuli [i, i+1) below it
   const std::size_t annuli = static_cast<std::size_t>(std::max(0, end_annulus - first_annulus));
@@ -82,9 +85,9 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
           ++lattice_count;
         }
         const std::int64_t mx = kx / period, my = ky / period;
-        if (in_coherence_low_band(mx * mx + my * my)) m.coherence_low = std::max(m.coherence_low, p / lattice_scale);
+        if (in_coherence_low_band(mx * mx + my * my)) m.coherence_low = std::fmax(m.coherence_low, p / lattice_scale);
         if (in_mid_band(k2, points.size()))
-          m.coherence_mid = std::max(m.coherence_mid, p / lattice_scale);
+          m.coherence_mid = std::fmax(m.coherence_mid, p / lattice_scale);
         continue;  // lattice frequencies stay out of the diffuse anisotropy
       }
       const int annulus = static_cast<int>(std::floor(std::sqrt(static_cast<double>(k2))));
@@ -96,8 +99,8 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
       }
     }
   }
-  m.low_frequency = low_count ? low_sum / static_cast<double>(low_count) : std::numeric_limits<double>::quiet_NaN();
-  m.lattice_peak = lattice_count ? lattice_sum / static_cast<double>(lattice_count) : 0.0;
+  m.low_frequency = low_count ? low_sum / static_cast<double>(low_count) : kUndefined;
+  m.lattice_peak = lattice_count ? lattice_sum / static_cast<double>(lattice_count) : kUndefined;
   double db_sum = 0.0;
   std::size_t db_count = 0;
   for (std::size_t i = 0; i < annuli; ++i) {
@@ -109,7 +112,7 @@ TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& p
     db_sum += 10.0 * std::log10(variance / (mean * mean));
     ++db_count;
   }
-  m.diffuse_anisotropy_db = db_count ? db_sum / static_cast<double>(db_count) : 0.0;
+  m.diffuse_anisotropy_db = db_count ? db_sum / static_cast<double>(db_count) : kUndefined;
   return m;
 }
 

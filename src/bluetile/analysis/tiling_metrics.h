@@ -3,15 +3,19 @@
 // section 5). For N points on the unit torus:
 //  - rho: the global minimum nearest-neighbour distance over the hexagonal spacing
 //    sqrt(2 / (sqrt(3) N)) (Lagae and Dutré's relative radius, psa's global mindist);
-//  - LF: the mean periodogram over integer k with 0 < |k| < 0.5 sqrt(N) (white noise 1); NaN
-//    (undefined, not 0: an empty band has no mean) for N <= 4, whose band holds no frequency;
+//  - LF: the mean periodogram over integer k with 0 < |k| < 0.5 sqrt(N) (white noise 1);
 //  - lattice coherence of an M x M tiling of a T-tile set, at the tile lattice frequencies
 //    k = M m: C_LF = max over 0 < |m|^2 <= 5 of P(M m) / (M^2 / T), and C_mid = max of the same
 //    over 0.5 sqrt(N) <= |k| < 1.5 sqrt(N) (P(M m) M^2 / T is |sum over the T tiles' points of
 //    exp(-2 pi i m.x)|^2 / (T n) when every tile occurs equally often);
 //  - tile-lattice peak: the mean of P(M m) over 0 < |M m| < sqrt(N) (untiled sets about 1);
 //  - diffuse anisotropy: the mean over width-1 annuli with 0.5 sqrt(N) <= |k| < 1.6 sqrt(N) of the
-//    annulus anisotropy in dB, the lattice frequencies left out.
+//    annulus anisotropy in dB, the lattice frequencies left out (annuli of fewer than two
+//    frequencies, or of no variance, too).
+// Each is NaN (undefined, not 0: an empty band has no mean or maximum) where its band holds no
+// frequency: LF for N <= 4; C_LF, C_mid and the peak for an untiled set, the peak for one point a
+// tile (|m| < 1 holds no m); the anisotropy when every annulus is left out (a 1 x 1 tiling: every
+// frequency is a lattice one).
 #pragma once
 
 #include <cstddef>
@@ -39,10 +43,11 @@ inline bool in_coherence_low_band(std::int64_t m2) { return m2 > 0 && m2 <= 5; }
 struct TilingMetrics {
   std::size_t count = 0;  // N
   double rho = 0.0;
-  double low_frequency = 0.0;       // LF (NaN for N <= 4: no frequency in its band)
-  double coherence_low = 0.0;       // C_LF (0 for an untiled set)
-  double coherence_mid = 0.0;       // C_mid (0 for an untiled set)
-  double lattice_peak = 0.0;        // mean P over k = M m, 0 < |k| < sqrt(N) (0 for an untiled set)
+  // NaN where the band is empty (above): LF for N <= 4, the lattice measures of an untiled set.
+  double low_frequency = 0.0;       // LF
+  double coherence_low = 0.0;       // C_LF
+  double coherence_mid = 0.0;       // C_mid
+  double lattice_peak = 0.0;        // mean P over k = M m, 0 < |k| < sqrt(N)
   double diffuse_anisotropy_db = 0.0;
 };
 
@@ -60,8 +65,8 @@ int tiling_metrics_periodogram_size(std::size_t count);
 
 // Metrics of `points` (N >= 2, unit torus) from their periodogram (at least
 // tiling_metrics_periodogram_size(N) wide). `period` M and `tile_count` T describe the tiling;
-// period 0 means an untiled set (no lattice frequencies, C_LF = C_mid = 0). Throws Error when the
-// periodogram is too small.
+// period 0 means an untiled set (no lattice frequencies: C_LF, C_mid and the peak NaN). Throws
+// Error when the periodogram is too small.
 TilingMetrics measure_tiling(std::span<const Point> points, const Periodogram& periodogram, int period, int tile_count);
 
 // The same, computing the periodogram: by the direct sum for an untiled set (period 0).

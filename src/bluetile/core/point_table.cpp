@@ -72,6 +72,37 @@ float table_float(double value) {
   return f;
 }
 
+// The names of a table's columns, one per column ("column c" where the names run short).
+std::vector<std::string> column_names(const TableView& table) {
+  std::vector<std::string> names;
+  std::size_t at = 0;
+  while (at < table.column_names.size()) {
+    const std::size_t end = std::min(table.column_names.find(' ', at), table.column_names.size());
+    if (end > at) names.push_back(table.column_names.substr(at, end - at));
+    at = end + 1;
+  }
+  names.resize(std::max(names.size(), table.columns));
+  for (std::size_t c = 0; c < table.columns; ++c)
+    if (names[c].empty()) names[c] = "column " + std::to_string(c);
+  names.resize(table.columns);
+  return names;
+}
+
+// Before any byte: a NaN or infinity in a table (a centroid of a broken cell, say) was written as
+// it came, and every reader then refused the file or took "nan" for a value.
+void check_values(const TableView& table, const std::string& path) {
+  for (std::size_t k = 0; k < table.sets; ++k) {
+    const std::size_t rows = table.rows(k);
+    for (std::size_t i = 0; i < rows; ++i)
+      for (std::size_t c = 0; c < table.columns; ++c) {
+        const double v = table.value(k, i, c);
+        if (std::isfinite(v)) continue;
+        throw Error(path + ": set " + std::to_string(k) + ", row " + std::to_string(i) + ": " + column_names(table)[c] + " is " +
+                    exact_text(v) + ", not a finite number: no reader would take it back");
+      }
+  }
+}
+
 std::size_t common_rows(const TableView& table, const std::string& path, TableFormat format) {
   if (table.sets == 0) return 0;
   std::size_t rows = table.rows(0);
@@ -100,9 +131,18 @@ void write_values(ChunkedWriter& out, const TableView& table, std::size_t rows) 
 }
 
 void write_npy(ChunkedWriter& out, const TableView& table, std::size_t rows, bool float32) {
-  std::string dict = "{'descr': '" + std::string(float32 ? "<f4" : "<f8") + "', 'fortran_order': False, 'shape': (" +
-                     std::to_string(table.sets) + ", " + std::to_string(rows) + ", " + std::to_string(table.columns) +
-                     "), }";
+  const std::string type = float32 ? "<f4" : "<f8";
+  std::string dict;
+  if (table.named_fields) {
+    // One record of named floats per row: the same bytes after the header as (K, N, C).
+    std::string fields;
+    for (const std::string& name : column_names(table)) fields += (fields.empty() ? "" : ", ") + ("('" + name + "', '" + type + "')");
+    dict = "{'descr': [" + fields + "], 'fortran_order': False, 'shape': (" + std::to_string(table.sets) + ", " +
+           std::to_string(rows) + "), }";
+  } else {
+    dict = "{'descr': '" + type + "', 'fortran_order': False, 'shape': (" + std::to_string(table.sets) + ", " +
+           std::to_string(rows) + ", " + std::to_string(table.columns) + "), }";
+  }
   // Version 1.0: magic, 2 version bytes, a 2-byte header length; the data starts at a multiple
   // of 64 bytes and the header ends with a newline.
   std::size_t unpadded = sizeof kNpyMagic + 2 + 2 + dict.size() + 1;
@@ -420,7 +460,8 @@ TableView point_sets_table(std::span<const PointSet> sets) {
   return view;
 }
 
-void write_text_table(const TableView& table, const ByteSink& sink) {
+void write_text_table(const TableView& table, const std::string& path, const ByteSink& sink) {
+  check_values(table, path);
   ChunkedWriter out(sink);
   char value[32];
   for (std::size_t k = 0; k < table.sets; ++k) {
@@ -440,7 +481,11 @@ void write_table(TableFormat format, const TableView& table, const TableWriteOpt
                  const ByteSink& sink) {
   if (format == TableFormat::text) throw Error(path + ": text tables are written as point files (point_file.h)");
   check_columns(table.columns, path);
+  if (format == TableFormat::binary && table.named_fields)
+    throw Error(path + ": a bluetile point table's columns are x y or x y level, not " + table.column_names +
+                "; write .npy (a field per column), text or a C header");
   const std::size_t rows = common_rows(table, path, format);
+  check_values(table, path);
   ChunkedWriter out(sink);
   switch (format) {
     case TableFormat::npy: write_npy(out, table, rows, options.float32); break;
@@ -460,6 +505,10 @@ void write_point_table(TableFormat format, std::span<const PointSet> sets, const
       if (!std::isfinite(p.x) || !std::isfinite(p.y))
         throw Error(path + ": set " + std::to_string(k) + ", point " + std::to_string(i) + " (" + exact_text(p.x) +
                     ", " + exact_text(p.y) + ") is not finite: no reader would take it back");
+      if (i < sets[k].levels.size() && (sets[k].levels[i] < 0 || sets[k].levels[i] > kMaxTableLevel))
+        throw Error(path + ": set " + std::to_string(k) + ", point " + std::to_string(i) + ": level " +
+                    std::to_string(sets[k].levels[i]) + " is outside 0 to " + std::to_string(kMaxTableLevel) +
+                    ": no reader would take it back");
     }
   if (format != TableFormat::text) {
     write_table(format, point_sets_table(sets), options, path, sink);
@@ -474,7 +523,15 @@ void write_point_table(TableFormat format, std::span<const PointSet> sets, const
 }
 
 std::string checked_table_name(const std::string& path, const std::string& name) {
-  if (name.empty()) return table_name_for_path(path);
+  if (name.empty()) {
+    // Letters outside ASCII cannot be in a C name, and dropping them gave names nobody chose
+    // ("ünï.h" -> "n"); punctuation becomes '_' as the header says.
+    const std::string file = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
+    if (std::any_of(file.begin(), file.end(), [](char c) { return static_cast<unsigned char>(c) >= 0x80; }))
+      throw Error(path + ": the file name holds letters outside ASCII, which a C name cannot, so the array would be '" +
+                  table_name_for_path(path) + "'; name the array (--name, or name= in Python)");
+    return table_name_for_path(path);
+  }
   if (!is_identifier(name)) throw Error(path + ": '" + name + "' is not a C identifier (letters, digits, '_')");
   if (is_keyword(name)) throw Error(path + ": '" + name + "' is a C or C++ keyword, not a name for the array");
   return name;

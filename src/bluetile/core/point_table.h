@@ -64,6 +64,11 @@ struct TableView {
   std::size_t sets = 0;
   std::size_t columns = 2;
   std::string column_names = "x y";  // for the comment of a C header
+  // A table that is no point table (centroids: cx cy area), whose columns a point-table reader
+  // would take for x y level: npy writes it as a structured array, one float field per column
+  // name, shape (K, N), so that NumPy names the columns (c["area"]) and no reader takes it for
+  // points; binary (whose columns are x y or x y level) refuses it.
+  bool named_fields = false;
   std::function<std::size_t(std::size_t set)> rows;
   std::function<double(std::size_t set, std::size_t row, std::size_t column)> value;
 };
@@ -73,8 +78,10 @@ TableView point_sets_table(std::span<const PointSet> sets);
 
 // Text of a table: a '# set k' line before each set when there are several (UTK's convention),
 // one row a line, values with 17 significant digits. Point sets have their own writer
-// (write_points, point_file.h); this one is for other tables (centroids: cx cy area).
-void write_text_table(const TableView& table, const ByteSink& sink);
+// (write_points, point_file.h); this one is for other tables (centroids: cx cy area). Throws
+// Error("<path>: set k, row i: <column> is nan, ...") before any byte for a value that is not
+// finite.
+void write_text_table(const TableView& table, const std::string& path, const ByteSink& sink);
 
 struct TableWriteOptions {
   bool float32 = false;  // npy and binary: 4-byte floats instead of 8 (header: always float)
@@ -86,7 +93,8 @@ struct TableWriteOptions {
 
 // Writes `table` in a binary or code format (npy, binary, header; text goes through
 // point_file.h). Every set must have the same number of rows. `path` names the output in
-// messages and gives the header's default name. Throws Error("<path>: <what>").
+// messages and gives the header's default name. Throws Error("<path>: <what>"), before any byte,
+// for a value that is not finite (as write_text_table) and sets of different sizes.
 void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options,
                  const std::string& path, const ByteSink& sink);
 
@@ -102,7 +110,9 @@ std::string table_name_for_path(const std::string& path);
 
 // The array name a C header output at `path` gets: `name`, or table_name_for_path when empty.
 // Throws Error("<path>: '<name>' is not a C identifier ...") for a name that is not one or is a C
-// or C++ keyword; commands call it when they declare the output, before any work.
+// or C++ keyword, and when `name` is empty and the file name holds bytes outside ASCII (letters a
+// C name cannot hold, which table_name_for_path drops); commands call it when they declare the
+// output, before any work.
 std::string checked_table_name(const std::string& path, const std::string& name);
 
 // Reads every set of a file in any readable format, recognised by its first bytes: npy,

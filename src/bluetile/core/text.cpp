@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "bluetile/core/error.h"
+
 namespace bluetile {
 
 std::string exact_text(double v) {
@@ -55,6 +57,12 @@ std::string csv_number(double v, int digits) {
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
   return buffer;
+}
+
+std::string csv_defined_number(double v, int digits, const std::string& what) {
+  if (!std::isfinite(v))
+    throw Error(what + " is " + number_text(v) + ", where it must be a finite number: not written");
+  return csv_number(v, digits);
 }
 
 std::string lower_case(std::string s) {

@@ -35,6 +35,10 @@ std::string measure_text(double v, int decimals);
 // missing value, stats.json's null) where `v` is undefined (NaN or infinite).
 std::string csv_number(double v, int digits);
 
+// The same for a field that must hold a value: throws Error("<what> is nan: ...") where `v` is
+// not finite, rather than writing the empty field that reads as "undefined".
+std::string csv_defined_number(double v, int digits, const std::string& what);
+
 // `s` in ASCII lower case (file extensions, device names).
 std::string lower_case(std::string s);
 
