@@ -64,6 +64,28 @@ TEST(PointFile, OutOfRangeRefusedWhenAskedAndDomainDeclared) {
   EXPECT_EQ(sets[1].declared_boundary, Boundary::bounded);
 }
 
+TEST(PointFile, DomainLinesWithATypoAreRefusedNotTakenForComments) {
+  // "# domain bounde" was a comment: the set was analysed on the torus without a word.
+  const std::string fix =
+      " is not a domain line: write '# domain periodic' or '# domain bounded' alone on the line (or reword the "
+      "comment)";
+  EXPECT_EQ(parse_error("# domain bounde\n0.1 0.2\n"), "pts.txt:1: '# domain bounde'" + fix);
+  EXPECT_EQ(parse_error("# made by hand\n#  domain periodic extra \n0.1 0.2\n"),
+            "pts.txt:2: '# domain periodic extra'" + fix);
+  EXPECT_EQ(parse_error("# Domain: Bounded\n0.1 0.2\n"), "pts.txt:1: '# Domain: Bounded'" + fix);
+  EXPECT_EQ(parse_error("0.1 0.2\n# domain periodc\n"), "pts.txt:2: '# domain periodc'" + fix);
+  EXPECT_EQ(parse_error("0.1 0.2 # domain boundd\n"), "");  // after a point: a comment on the point
+  // Prose about the domain stays a comment.
+  for (const char* prose : {"# domain square\n", "# domain bounds 0 0 64 64\n", "# domain [0, 64)^2\n", "# domain\n",
+                            "# the domain is bounded\n"}) {
+    PointSet set = parse_points(std::string(prose) + "0.1 0.2\n", "x");
+    EXPECT_FALSE(set.declared_boundary) << prose;
+    EXPECT_EQ(set.points.size(), 1u) << prose;
+  }
+  // In a file of several sets too, where a '#' line also ends a set.
+  EXPECT_THROW(parse_point_sets("# set 0\n0.1 0.2\n# domain bounded.\n0.3 0.4\n", "x"), Error);
+}
+
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 nan\n"), "pts.txt:2: not a finite number 'nan'");
   EXPECT_EQ(parse_error("0.1 0.2\ninf 0.3\n"), "pts.txt:2: not a finite number 'inf'");

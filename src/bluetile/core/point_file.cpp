@@ -1,5 +1,6 @@
 #include "bluetile/core/point_file.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -167,13 +168,50 @@ class SetParser {
   std::size_t count_line_ = 0;
 };
 
+// Single-character edits between a and b (Levenshtein), for telling a typo from prose.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
 // The boundary a comment declares ("domain periodic" / "domain bounded"), if it is such a line.
-std::optional<Boundary> declared_boundary(std::string_view comment) {
+// A comment that looks meant as one but is not ("domain bounde", "Domain Bounded", "domain
+// periodic extra") is an error: read as a comment, it left the set on the default torus without a
+// word. Prose that merely starts with "domain" ("domain [0, 64)^2") stays a comment.
+std::optional<Boundary> declared_boundary(std::string_view comment, const LineError& fail) {
   Tokens words = split_whitespace(comment);
-  if (words.count != 2 || words.kept[0] != "domain") return std::nullopt;
-  if (words.kept[1] == "periodic") return Boundary::periodic;
-  if (words.kept[1] == "bounded") return Boundary::bounded;
-  return std::nullopt;
+  if (words.count == 0) return std::nullopt;
+  if (words.count == 2 && words.kept[0] == "domain") {
+    if (words.kept[1] == "periodic") return Boundary::periodic;
+    if (words.kept[1] == "bounded") return Boundary::bounded;
+  }
+  // Any case, a ':' after "domain", words after the boundary, or one word that is a typo of one
+  // or two letters ("bounde", "periodc"; "domain bounds 0 0 64 64" is prose).
+  std::string first = lower_case(std::string(words.kept[0]));
+  if (!first.empty() && first.back() == ':') first.pop_back();
+  if (first != "domain" || words.count < 2) return std::nullopt;
+  const std::string second = lower_case(std::string(words.kept[1]));
+  constexpr std::size_t kTypoEdits = 2;
+  const bool boundary_word = second == "periodic" || second == "bounded";
+  const bool typo = words.count == 2 && (edit_distance(second, "periodic") <= kTypoEdits ||
+                                         edit_distance(second, "bounded") <= kTypoEdits);
+  if (!boundary_word && !typo) return std::nullopt;
+  std::string_view shown = comment;
+  while (!shown.empty() && is_blank(shown.front())) shown.remove_prefix(1);
+  while (!shown.empty() && is_blank(shown.back())) shown.remove_suffix(1);
+  fail(quote("# " + std::string(shown)) +
+       " is not a domain line: write '# domain periodic' or '# domain bounded' alone on the line (or reword the "
+       "comment)");
 }
 
 }  // namespace
@@ -276,7 +314,7 @@ class PointTextParser::Impl {
     std::string_view data = text.substr(0, hash);
     const bool comment_line = hash != std::string_view::npos && split_whitespace(data).count == 0;
     if (comment_line) {
-      const std::optional<Boundary> boundary = declared_boundary(text.substr(hash + 1));
+      const std::optional<Boundary> boundary = declared_boundary(text.substr(hash + 1), LineError(name_, number_));
       if (several_) {  // a '#' line ends a set (UTK's convention)
         if (!parser_.empty()) sets_.push_back(parser_.finish());
         if (boundary) parser_.declare(boundary);
