@@ -335,6 +335,32 @@ TEST(Formats, DamagedRpsFilesGiveClearErrors) {
   EXPECT_NE(error_of([] { read_rps_file("/nonexistent/x.rps"); }).find("/nonexistent/x.rps"), std::string::npos);
 }
 
+TEST(Formats, CsvIsReadByItsExtensionWithPandasAndRIndexColumns) {
+  // relax -i and progressive -i read a .csv as text ("expected 'x y'"), and the index column that
+  // pandas' to_csv and R's write.csv add by default was "an empty field" everywhere.
+  test::TempDir dir;
+  const std::vector<Point> points{{0.25, 0.5}, {0.75, 0.125}};
+  for (const char* csv : {"x,y\n0.25,0.5\n0.75,0.125\n", ",x,y\n0,0.25,0.5\n1,0.75,0.125\n",
+                          "\xEF\xBB\xBF\"\",\"x\",\"y\"\r\n\"1\",0.25,0.5\r\n\"2\",0.75,0.125", "# x,y\n2.5e-01,5e-1\n+.75,0.125\n"}) {
+    std::vector<PointSet> sets = read_point_table(dir.write("p.csv", csv));
+    ASSERT_EQ(sets.size(), 1u) << csv;
+    EXPECT_EQ(sets[0].points, points) << csv;
+    EXPECT_EQ(parse_csv_points(csv, "p.csv")[0].points, points) << csv;
+  }
+  EXPECT_EQ(read_point_table(dir.write("l.CSV", ",X,Y,Level\n7,0.25,0.5,0\n8,0.75,0.125,1\n"))[0].levels,
+            (std::vector<int>{0, 1}));
+  auto csv_error = [](const std::string& text) { return error_of([&] { parse_csv_points(text, "p.csv"); }); };
+  const std::string header_fix =
+      "a CSV's header names the columns x,y or x,y,level (an unnamed first column, pandas' or R's index, is "
+      "skipped); in pandas: df[['x', 'y']].to_csv(path, index=False)";
+  EXPECT_EQ(csv_error("px,py\n0.25,0.5\n"), "p.csv:1: " + header_fix + ", got 'px,py'");
+  EXPECT_EQ(csv_error("# made by pandas\nid,x,y\n0,0.25,0.5\n"), "p.csv:2: " + header_fix + ", got 'id,x,y'");
+  EXPECT_EQ(csv_error(",x,y\n0,0.25,0.5\n0.75\n"),
+            "p.csv:3: expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed), got '0.75'");
+  EXPECT_EQ(csv_error(",x,y\n0,0.25,\n"), "p.csv:2: an empty field, got '0,0.25,'");
+  EXPECT_EQ(csv_error("nan,0.5\n"), "p.csv:1: not a finite number 'nan'");  // a number, not a header
+}
+
 TEST(Formats, FilesAreRecognisedByTheirFirstBytes) {
   test::TempDir dir;
   std::vector<PointSet> sets = sample_sets(2, 10, true);

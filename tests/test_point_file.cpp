@@ -86,6 +86,17 @@ TEST(PointFile, DomainLinesWithATypoAreRefusedNotTakenForComments) {
   EXPECT_THROW(parse_point_sets("# set 0\n0.1 0.2\n# domain bounded.\n0.3 0.4\n", "x"), Error);
 }
 
+TEST(PointFile, CommaSeparatedLinesSayHowCsvIsRead) {
+  // A CSV given as text was "expected 'x y' or 'x y level'" and no more.
+  const std::string hint = " (comma-separated values: a file named .csv is read as CSV)";
+  EXPECT_EQ(parse_error("0.5,0.25\n"), "pts.txt:1: expected 'x y' or 'x y level', got '0.5,0.25'" + hint);
+  EXPECT_EQ(parse_error("x,y\n0.5,0.25\n"), "pts.txt:1: expected 'x y' or 'x y level', got 'x,y'" + hint);
+  EXPECT_EQ(parse_error("0.5, 0.25\n"), "pts.txt:1: not a number '0.5,'" + hint);
+  EXPECT_EQ(parse_error("0, 0.5, 0.25, 1\n"),
+            "pts.txt:1: expected 'x y' or 'x y level', got 4 columns: '0, 0.5, 0.25, 1'" + hint);
+  EXPECT_EQ(parse_error("0.5 x\n"), "pts.txt:1: not a number 'x'");  // no comma, no hint
+}
+
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 nan\n"), "pts.txt:2: not a finite number 'nan'");
   EXPECT_EQ(parse_error("0.1 0.2\ninf 0.3\n"), "pts.txt:2: not a finite number 'inf'");

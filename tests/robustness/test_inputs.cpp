@@ -138,5 +138,32 @@ TEST(Inputs, EnvironmentIsCheckedNotIgnored) {
   EXPECT_EQ(entries(dir.path()), (Names{"icd.json", "o.txt", "t.txt", "t1.txt"}));
 }
 
+TEST(Inputs, CsvFromPandasIsReadByEveryCommand) {
+  TempDir dir;
+  // pandas' to_csv (index and all, CRLF as on Windows) and the same points as text: relax -i read
+  // the .csv as text ("expected 'x y' ..., got ',x,y'"); analyze refused the index ("an empty field").
+  dir.write("pandas.csv", ",x,y\r\n0,0.25,0.5\r\n1,0.75,0.5\r\n2,0.5,0.875\r\n");
+  dir.write("same.txt", "0.25 0.5\n0.75 0.5\n0.5 0.875\n");
+  auto points_of = [&](const std::string& command, const std::string& input) {
+    Outcome r = run({command, "-i", dir.file(input), "--engine", "exact", "-o", "-"});
+    EXPECT_EQ(r.exit_code, 0) << command << " " << input << ": " << r.err;
+    return r.out.substr(r.out.find('\n') + 1);  // the header names the input
+  };
+  for (const char* command : {"relax", "centroids"}) {
+    const std::string from_csv = points_of(command, "pandas.csv");
+    EXPECT_EQ(from_csv, points_of(command, "same.txt")) << command;
+    EXPECT_FALSE(from_csv.empty()) << command;
+  }
+  Outcome a = run({"analyze", "-i", dir.file("pandas.csv"), "-o", dir.file("a"), "--no-centroids"});
+  EXPECT_EQ(a.exit_code, 0) << a.err;
+  // A CSV under another name says how it would be read.
+  dir.write("comma.txt", "x,y\n0.25,0.5\n");
+  expect_failure(run({"relax", "-i", dir.file("comma.txt"), "--engine", "exact", "-o", dir.file("o.txt")}),
+                 dir.file("comma.txt") +
+                     ":1: expected 'x y' or 'x y level', got 'x,y' (comma-separated values: a file named .csv is read "
+                     "as CSV)");
+  EXPECT_EQ(entries(dir.path()).size(), 4u + 12u);  // the inputs, a/ and its 11 files
+}
+
 }  // namespace
 }  // namespace bluetile::robustness

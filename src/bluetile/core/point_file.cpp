@@ -73,13 +73,18 @@ class LineError {
   std::size_t line_;
 };
 
-double parse_coordinate(std::string_view token, const LineError& fail) {
+// Said after a text line that holds a comma: a CSV given where text is read.
+constexpr std::string_view kCommaHint = " (comma-separated values: a file named .csv is read as CSV)";
+
+// `hint` follows the message of a token that is no number.
+double parse_coordinate(std::string_view token, const LineError& fail, std::string_view hint = {}) {
   double value = 0.0;
   // A leading '+', as C, Python and NumPy write and read it (from_chars takes only '-').
   std::string_view digits = token;
   if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+') digits.remove_prefix(1);
   auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (end != digits.data() + digits.size() || ec == std::errc::invalid_argument) fail("not a number " + quote(token));
+  if (end != digits.data() + digits.size() || ec == std::errc::invalid_argument)
+    fail("not a number " + quote(token) + std::string(hint));
   if (ec == std::errc::result_out_of_range) {
     // Out of range both ways: a number too small for a double (1e-330) is 0, one too large is an
     // error. strtod tells them apart (the tool keeps the C locale's decimal point).
@@ -105,6 +110,7 @@ class SetParser {
 
   void data_line(std::string_view line, std::size_t number) {
     LineError fail(name_, number);
+    const std::string_view hint = line.find(',') != std::string_view::npos ? kCommaHint : std::string_view{};
     Tokens tokens = split_whitespace(line);
     if (tokens.count == 0) return;
     if (tokens.count == 1) {
@@ -115,11 +121,12 @@ class SetParser {
         count_line_ = number;
         return;
       }
-      fail("expected 'x y' or 'x y level', got " + quote(line));
+      fail("expected 'x y' or 'x y level', got " + quote(line) + std::string(hint));
     }
     if (tokens.count > 3)
-      fail("expected 'x y' or 'x y level', got " + std::to_string(tokens.count) + " columns: " + quote(line));
-    Point p{parse_coordinate(tokens.kept[0], fail), parse_coordinate(tokens.kept[1], fail)};
+      fail("expected 'x y' or 'x y level', got " + std::to_string(tokens.count) + " columns: " + quote(line) +
+           std::string(hint));
+    Point p{parse_coordinate(tokens.kept[0], fail, hint), parse_coordinate(tokens.kept[1], fail, hint)};
     bool has_level = tokens.count == 3;
     if (set_.points.empty()) {
       levels_seen_ = has_level;

@@ -648,6 +648,8 @@ std::vector<PointSet> parse_stream_table(const std::string& bytes, const std::st
 
 std::vector<PointSet> read_point_table(const std::string& path) {
   if (path != "-" && is_rps_path(path)) return {read_rps_file(path)};
+  // By its extension, as analyze reads it: its lines were text's "expected 'x y'".
+  if (path != "-" && file_extension(path) == ".csv") return same_columns(parse_csv_points(read_input(path), path), path);
   struct stat status {};
   if (path == "-" || (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)))
     return parse_stream_table(read_input(path), input_name(path), {});
@@ -681,14 +683,36 @@ std::vector<std::string_view> csv_fields(std::string_view line) {
   }
 }
 
-bool is_csv_header(const std::vector<std::string_view>& fields) {
-  auto name = [](std::string_view field) {
-    if (field.size() >= 2 && (field.front() == '"' || field.front() == '\'') && field.back() == field.front())
-      field = field.substr(1, field.size() - 2);
-    return lower_case(std::string(field));
-  };
+// A header field's name: unquoted (R quotes them), lower case.
+std::string csv_name(std::string_view field) {
+  if (field.size() >= 2 && (field.front() == '"' || field.front() == '\'') && field.back() == field.front())
+    field = field.substr(1, field.size() - 2);
+  return lower_case(std::string(field));
+}
+
+// Whether `fields` name the columns x,y or x,y,level.
+bool names_point_columns(std::span<const std::string_view> fields) {
   if (fields.size() != 2 && fields.size() != 3) return false;
-  return name(fields[0]) == "x" && name(fields[1]) == "y" && (fields.size() == 2 || name(fields[2]) == "level");
+  return csv_name(fields[0]) == "x" && csv_name(fields[1]) == "y" && (fields.size() == 2 || csv_name(fields[2]) == "level");
+}
+
+// What a first line of a CSV is: the columns x,y[,level]; the same after an unnamed first column
+// (the index pandas' to_csv and R's write.csv write by default, skipped in every row); another
+// header (a field that is a name, not a number); or data.
+enum class CsvFirstLine { columns, index_and_columns, other_header, data };
+
+CsvFirstLine csv_first_line(const std::vector<std::string_view>& fields) {
+  if (names_point_columns(fields)) return CsvFirstLine::columns;
+  if (fields.size() > 1 && csv_name(fields[0]).empty() && names_point_columns(std::span(fields).subspan(1)))
+    return CsvFirstLine::index_and_columns;
+  for (std::string_view field : fields) {
+    const std::string name = csv_name(field);
+    if (name == "nan" || name == "inf" || name == "infinity") continue;  // refused as numbers, with their line
+    if (!field.empty() && (std::isalpha(static_cast<unsigned char>(field.front())) || field.front() == '"' ||
+                           field.front() == '\''))
+      return CsvFirstLine::other_header;
+  }
+  return CsvFirstLine::data;
 }
 
 }  // namespace
@@ -701,6 +725,7 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
   PointTextParser parser(name, true, options);
   std::size_t number = 0;
   bool data_seen = false;
+  bool index_column = false;  // the header's first column is unnamed: an index, skipped
   while (!text.empty()) {
     const std::size_t end = text.find('\n');
     const std::string_view line = text.substr(0, end);
@@ -711,18 +736,30 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
       parser.feed(std::string(line) + "\n");
       continue;
     }
-    const std::vector<std::string_view> fields = csv_fields(body);
+    std::vector<std::string_view> fields = csv_fields(body);
     auto fail = [&](const std::string& what) {
       const std::string shown(body.substr(0, 40));
       throw Error(name + ":" + std::to_string(number) + ": " + what + ", got '" + shown + (body.size() > 40 ? "...'" : "'"));
     };
-    if (!data_seen && is_csv_header(fields)) {
-      parser.feed("# " + std::string(body) + "\n");  // the header, as a comment: line numbers stay
+    if (!data_seen) {
       data_seen = true;
-      continue;
+      const CsvFirstLine first = csv_first_line(fields);
+      if (first == CsvFirstLine::other_header)
+        fail("a CSV's header names the columns x,y or x,y,level (an unnamed first column, pandas' or R's index, "
+             "is skipped); in pandas: df[['x', 'y']].to_csv(path, index=False)");
+      if (first != CsvFirstLine::data) {
+        index_column = first == CsvFirstLine::index_and_columns;
+        parser.feed("# " + std::string(body) + "\n");  // the header, as a comment: line numbers stay
+        continue;
+      }
     }
-    data_seen = true;
-    if (fields.size() != 2 && fields.size() != 3) fail("expected 'x,y' or 'x,y,level' (comma-separated)");
+    if (index_column) {
+      if (fields.size() < 2) fail("expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed)");
+      fields.erase(fields.begin());
+    }
+    if (fields.size() != 2 && fields.size() != 3)
+      fail(index_column ? "expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed)"
+                        : "expected 'x,y' or 'x,y,level' (comma-separated)");
     std::string converted;
     for (std::string_view field : fields) {
       if (field.empty()) fail("an empty field");
