@@ -64,7 +64,7 @@ void add_centroids_command(CLI::App& app) {
   auto o = std::make_shared<CentroidsOptions>();
   CLI::App* cmd = app.add_subcommand("centroids", "Write the Voronoi cell centroid and area of every point (cx cy area)");
   add_input_option(cmd, "-i,--input", o->input, InputKind::points,
-                   "Points: text (each '#'-separated set measured on its own), .npy or .bpt ('-': standard input)")
+                   "Points: text (each '#'-separated set measured on its own), .npy, .bpt or .csv ('-': standard input)")
       ->required();
   add_point_output_options(cmd, o->output, "Output table of cx cy area");
   add_engine_options(cmd, o->engine);
