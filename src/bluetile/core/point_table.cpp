@@ -293,6 +293,12 @@ class NpyHeader {
     return std::string(text_.substr(at + 1, end - at - 1));
   }
 
+  // Whether the value is a list (a structured dtype's fields: [('x', '<f8'), ...]).
+  bool is_list(std::string_view key) {
+    std::size_t at = value_start(key);
+    return at < text_.size() && text_[at] == '[';
+  }
+
   bool bool_value(std::string_view key) {
     std::size_t at = value_start(key);
     if (text_.substr(at, 4) == "True") return true;
@@ -350,6 +356,14 @@ std::string read_bytes(const std::string& path) { return read_input(path); }
 
 bool starts_with(std::string_view bytes, const char* magic, std::size_t size) {
   return bytes.size() >= size && std::memcmp(bytes.data(), magic, size) == 0;
+}
+
+// A zip archive's first bytes: NumPy's savez writes one (.npz) of .npy files.
+constexpr char kZipMagic[4] = {'P', 'K', '\x03', '\x04'};
+
+[[noreturn]] void refuse_zip(const std::string& name) {
+  throw Error(name + ": a zip archive (numpy.savez writes .npz), not a point table: save one array with "
+                     "numpy.save('points.npy', a)");
 }
 
 }  // namespace
@@ -549,17 +563,27 @@ std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string&
   }
   if (bytes.size() - header_start < header_size) throw Error(name + ": .npy file cut short in its header");
   NpyHeader header(bytes.substr(header_start, header_size), name);
+  // A well-formed file of another kind of array is refused saying how NumPy makes the one read
+  // here (they were "bad .npy header").
+  if (header.is_list("descr"))
+    throw Error(name + ": a structured array (named fields); expected plain float64 or float32 values: save "
+                       "numpy.stack([a['x'], a['y']], axis=-1)");
   const std::string descr = header.string_value("descr");
   const bool fortran = header.bool_value("fortran_order");
   std::vector<std::uint64_t> shape = header.tuple_value("shape");
 
   if (descr.size() != 3 || (descr[0] != '<' && descr[0] != '>' && descr[0] != '=' && descr[0] != '|') ||
       descr[1] != 'f' || (descr[2] != '4' && descr[2] != '8'))
-    header.fail("dtype '" + descr + "'; expected float64 ('<f8') or float32 ('<f4')");
+    throw Error(name + ": values of dtype '" + descr + "'; expected float64 ('<f8') or float32 ('<f4'): save " +
+                "a.astype(numpy.float64)");
   const bool big_endian = descr[0] == '>' || (descr[0] != '<' && std::endian::native == std::endian::big);
   const std::size_t value_bytes = descr[2] == '4' ? 4 : 8;
+  if (shape.size() == 1)
+    throw Error(name + ": shape (" + std::to_string(shape[0]) +
+                ",) is one-dimensional; expected (N, 2), (N, 3) or (K, N, C): save a.reshape(-1, 2) for x y pairs");
   if (shape.size() == 2) shape.insert(shape.begin(), 1);
-  if (shape.size() != 3) header.fail("shape has " + std::to_string(shape.size()) + " dimensions; expected (N, C) or (K, N, C)");
+  if (shape.size() != 3)
+    throw Error(name + ": shape of " + std::to_string(shape.size()) + " dimensions; expected (N, C) or (K, N, C)");
   const std::uint64_t sets = shape[0], rows = shape[1], columns = shape[2];
   check_columns(columns, name);
   std::size_t payload = payload_bytes(sets, rows, columns, value_bytes, name);
@@ -641,6 +665,7 @@ std::vector<PointSet> parse_stream_table(const std::string& bytes, const std::st
   std::string_view head(bytes);
   if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(bytes, name, options);
   if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(bytes, name, options);
+  if (starts_with(head, kZipMagic, sizeof kZipMagic)) refuse_zip(name);
   return same_columns(parse_point_sets(bytes, name, options), name);
 }
 
@@ -662,6 +687,7 @@ std::vector<PointSet> read_point_table(const std::string& path) {
   std::string_view head(start, sizeof start);
   if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(read_bytes(path), path);
   if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(read_bytes(path), path);
+  if (starts_with(head, kZipMagic, sizeof kZipMagic)) refuse_zip(path);
   return read_text_table(path);
 }
 
@@ -779,6 +805,7 @@ std::vector<PointSet> read_points_by_extension(const std::string& path, const Re
   else if (extension == ".bpt") sets = parse_binary_table(read_input(path), input_name(path), options);
   else if (extension == ".csv") sets = parse_csv_points(read_input(path), input_name(path), options);
   else if (extension == ".rps") sets = {read_rps_file(path, options)};
+  else if (extension == ".npz") refuse_zip(path);
   else if (path == "-") sets = parse_stream_table(read_input(path), input_name(path), options);  // by content
   else sets = read_point_sets(path, options);
   return same_columns(std::move(sets), path);

@@ -109,7 +109,9 @@ std::string checked_table_name(const std::string& path, const std::string& name)
 // binary, psa's .rps and CSV (parse_csv_points) by their extensions, else text (point_file.h;
 // sets apart at '#' lines, UTK's convention). Throws
 // Error("<path>: <what>") for a damaged file: short, wrong magic, sizes that do not match,
-// unknown value types, non-finite values, levels that are not whole numbers.
+// unknown value types, non-finite values, levels that are not whole numbers; and for a zip archive
+// (NumPy's .npz), an npy of other values (integers, a structured or one-dimensional array), saying
+// how NumPy saves the array read here.
 std::vector<PointSet> read_point_table(const std::string& path);
 
 // The same decoders over bytes in memory; `name` stands for the file in messages.
