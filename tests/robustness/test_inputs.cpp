@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bluetile/io/image_file.h"
 #include "robustness_support.h"
 #include "test_support.h"
 
@@ -163,6 +164,33 @@ TEST(Inputs, CsvFromPandasIsReadByEveryCommand) {
                      ":1: expected 'x y' or 'x y level', got 'x,y' (comma-separated values: a file named .csv is read "
                      "as CSV)");
   EXPECT_EQ(entries(dir.path()).size(), 4u + 12u);  // the inputs, a/ and its 11 files
+}
+
+TEST(Inputs, AnUnusableTmpdirIsNamed) {
+  // An image that is no regular file (a pipe here) is copied to a temporary file: a TMPDIR naming
+  // no folder was "internal error: filesystem error: temp_directory_path: No such file or
+  // directory", and an empty one the same (empty is unset, as for BLUETILE_THREADS).
+  TempDir dir;
+  write_image_file(dir.file("map.png"), 2, 2, 1, std::vector<std::uint8_t>{50, 100, 150, 200});
+  Invocation piped{{"relax", "-n", "20", "-k", "1", "--engine", "exact", "--density-map", "/dev/stdin", "-o",
+                    dir.file("o.txt")}};
+  piped.wrapper = {"/bin/sh", "-c", "cat \"$MAP\" | \"$0\" \"$@\""};
+  piped.environment = {{"MAP", dir.file("map.png")}, {"TMPDIR", dir.file("gone")}};
+  expect_failure(run(piped), "/dev/stdin: not a regular file, so read into a temporary copy, but TMPDIR '" +
+                                 dir.file("gone") +
+                                 "' is not a folder (No such file or directory): set TMPDIR to a writable folder, or "
+                                 "unset it for /tmp");
+  piped.environment = {{"MAP", dir.file("map.png")}, {"TMPDIR", dir.file("map.png")}};
+  EXPECT_NE(run(piped).err.find("' is not a folder (Not a directory)"), std::string::npos);
+  EXPECT_EQ(entries(dir.path()), Names{"map.png"});
+  piped.environment = {{"MAP", dir.file("map.png")}, {"TMPDIR", ""}};
+  Outcome r = run(piped);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  fs::create_directory(dir.file("tmp"));
+  piped.environment = {{"MAP", dir.file("map.png")}, {"TMPDIR", dir.file("tmp")}};
+  r = run(piped);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(entries(dir.path()), (Names{"map.png", "o.txt", "tmp/"}));  // the copy removed
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -347,9 +348,11 @@ void OutputFile::write_through_path(const std::function<void(const std::string&)
     return;
   }
   // A device or descriptor: write a private temporary file, then copy its bytes.
-  std::string pattern = (fs::temp_directory_path() / ("bluetile-" + unique_suffix() + "-XXXXXX")).string();
+  const std::string folder =
+      temporary_folder(path_ + ": written to a temporary file first (its format is written to files only)");
+  std::string pattern = (fs::path(folder) / ("bluetile-" + unique_suffix() + "-XXXXXX")).string();
   if (!make_registered_staging(pattern, [&] { return mkdtemp(pattern.data()) != nullptr; }))
-    fail(path_, "cannot make a temporary folder", errno);
+    fail(path_, "cannot make a temporary folder in '" + folder + "'", errno);
   auto remove_temporary = [&] {
     std::error_code ignored;
     fs::remove_all(pattern, ignored);
@@ -381,6 +384,17 @@ void OutputFile::write_through_path(const std::function<void(const std::string&)
     throw;
   }
   remove_temporary();
+}
+
+std::string temporary_folder(const std::string& why) {
+  const char* value = std::getenv("TMPDIR");
+  if (value == nullptr || *value == '\0') return "/tmp";
+  struct stat status {};
+  const int err = stat(value, &status) == 0 ? (S_ISDIR(status.st_mode) ? 0 : ENOTDIR) : errno;
+  if (err != 0)
+    throw Error(why + ", but TMPDIR '" + std::string(value) + "' is not a folder (" + reason(err) +
+                "): set TMPDIR to a writable folder, or unset it for /tmp");
+  return value;
 }
 
 // ---- OutputSet -----------------------------------------------------------------------------
