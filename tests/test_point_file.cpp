@@ -1,9 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+
+#include <langinfo.h>
+#include <locale.h>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/core/text.h"
 #include "test_support.h"
 
@@ -95,6 +100,55 @@ TEST(PointFile, CommaSeparatedLinesSayHowCsvIsRead) {
   EXPECT_EQ(parse_error("0, 0.5, 0.25, 1\n"),
             "pts.txt:1: expected 'x y' or 'x y level', got 4 columns: '0, 0.5, 0.25, 1'" + hint);
   EXPECT_EQ(parse_error("0.5 x\n"), "pts.txt:1: not a number 'x'");  // no comma, no hint
+}
+
+// A locale whose decimal point is a comma: one the system has, else de_DE made with localedef in
+// `folder`; 0 when neither can be had.
+locale_t comma_locale(const std::string& folder) {
+  auto comma = [](locale_t l) { return l != static_cast<locale_t>(0) && std::string(nl_langinfo_l(RADIXCHAR, l)) == ","; };
+  for (const char* name : {"de_DE.UTF-8", "de_DE.utf8", "fr_FR.UTF-8", "fr_FR.utf8", "de_DE", "fr_FR"}) {
+    locale_t l = newlocale(LC_ALL_MASK, name, static_cast<locale_t>(0));
+    if (comma(l)) return l;
+    if (l) freelocale(l);
+  }
+  if (test::run_command("localedef -i de_DE -f UTF-8 '" + folder + "/de_DE.UTF-8' 2>/dev/null").exit_code != 0)
+    return static_cast<locale_t>(0);
+  setenv("LOCPATH", folder.c_str(), 1);
+  locale_t l = newlocale(LC_ALL_MASK, "de_DE.UTF-8", static_cast<locale_t>(0));
+  unsetenv("LOCPATH");
+  if (comma(l)) return l;
+  if (l) freelocale(l);
+  return static_cast<locale_t>(0);
+}
+
+TEST(PointFile, NumbersAreWrittenAndReadWithAPointWhateverTheLocale) {
+  // Under a program's German locale (Python's locale.setlocale(LC_ALL, '')), point files were
+  // written "0,5 0,25", which no reader took back, and CSV fields "0,5" split in two.
+  TempDir dir;
+  const locale_t comma = comma_locale(dir.path());
+  if (comma == static_cast<locale_t>(0)) GTEST_SKIP() << "no locale with a decimal comma, and localedef cannot make one";
+  const locale_t before = uselocale(comma);
+  char check[16];
+  std::snprintf(check, sizeof check, "%.1f", 0.5);
+  const std::string seen = check;
+  const PointSet set{{{0.5, 0.25}, {0.125, 0.75}}, {0, 1}, {}};
+  const std::string text = format_points(set);
+  write_point_file(dir.file("p.txt"), set);
+  const std::string written = test::read_text(dir.file("p.txt"));
+  std::string table;
+  write_point_table(TableFormat::header, std::vector<PointSet>{set}, {}, "t.h", [&](std::string_view b) { table += b; });
+  const std::string csv = csv_number(0.5, 6), exact = exact_text(0.5), fixed = fixed_text(0.5, 2);
+  const std::string range = read_range_text(0, ReadOptions{.wrap = false, .domain = CoordinateBox{0.5, 0, 1.5, 1}});
+  const PointSet tiny = parse_points("1.5e-330 0.5\n", "x");
+  uselocale(before);
+  freelocale(comma);
+  ASSERT_EQ(seen, "0,5") << "the locale made has no decimal comma";
+  EXPECT_EQ(text, "0.5 0.25 0\n0.125 0.75 1\n");
+  EXPECT_EQ(written, text);
+  EXPECT_NE(table.find("{0.5f, 0.25f, 0.0f},"), std::string::npos) << table;
+  EXPECT_EQ(csv + " " + exact + " " + fixed, "0.5 0.5 0.50");
+  EXPECT_EQ(range, "[0.5, 1.5)");
+  EXPECT_EQ(tiny.points, (std::vector<Point>{{0.0, 0.5}}));  // 1.5e-330 is 0, not "out of range"
 }
 
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {

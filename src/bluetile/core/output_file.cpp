@@ -25,6 +25,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/input_file.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace fs = std::filesystem;
@@ -274,6 +275,7 @@ void OutputStream::print(const char* format, ...) {
   // Room for any one formatted line of ours; longer text takes the slow path below.
   constexpr std::size_t kRoom = 512;
   if (kBufferSize - buffered_ < kRoom) flush();
+  const ClassicNumbers classic;  // "0.5", whatever locale a program embedding the library set
   va_list args;
   va_start(args, format);
   int n = std::vsnprintf(buffer_.get() + buffered_, kBufferSize - buffered_, format, args);

@@ -88,6 +88,7 @@ double parse_coordinate(std::string_view token, const LineError& fail, std::stri
   if (ec == std::errc::result_out_of_range) {
     // Out of range both ways: a number too small for a double (1e-330) is 0, one too large is an
     // error. strtod tells them apart (the tool keeps the C locale's decimal point).
+    const ClassicNumbers classic;
     const double nearest = std::strtod(std::string(digits).c_str(), nullptr);
     if (!(std::abs(nearest) < 1.0)) fail("coordinate out of range " + quote(token));
     value = nearest;
@@ -241,6 +242,7 @@ Point place_read_point(Point read, const ReadOptions& options, int& outside) {
 
 std::string read_range_text(int axis, const ReadOptions& options) {
   const CoordinateBox box = options.domain.value_or(CoordinateBox{});
+  const ClassicNumbers classic;
   char text[80];
   std::snprintf(text, sizeof text, "[%.17g, %.17g)", axis == 0 ? box.x0 : box.y0, axis == 0 ? box.x1 : box.y1);
   return text;
@@ -408,6 +410,7 @@ void write_points(OutputStream& out, const PointSet& set, const std::vector<std:
 std::string format_points(const PointSet& set, const std::vector<std::string>& header) {
   std::string text;
   for (const auto& line : header) text += "# " + comment_line(line) + "\n";
+  const ClassicNumbers classic;
   char buffer[96];
   for (std::size_t i = 0; i < set.points.size(); ++i) {
     int n = set.has_levels() ? std::snprintf(buffer, sizeof buffer, "%.17g %.17g %d\n", set.points[i].x, set.points[i].y,

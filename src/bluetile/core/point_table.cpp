@@ -161,6 +161,7 @@ bool is_keyword(std::string_view name) {
 // A float literal that reads back as exactly `f`: 9 significant digits, with a '.' or an
 // exponent so that the 'f' suffix makes a valid literal.
 void float_literal(float f, char* text, std::size_t size) {
+  const ClassicNumbers classic;
   int len = std::snprintf(text, size, "%.9g", static_cast<double>(f));
   if (!std::strpbrk(text, ".e")) len += std::snprintf(text + len, size - static_cast<std::size_t>(len), ".0");
   std::snprintf(text + len, size - static_cast<std::size_t>(len), "f");
@@ -249,6 +250,7 @@ class SetBuilder {
 
  private:
   static std::string format_value(double value) {
+    const ClassicNumbers classic;
     char text[32];
     std::snprintf(text, sizeof text, "%.17g", value);
     return text;
@@ -436,6 +438,7 @@ TableView point_sets_table(std::span<const PointSet> sets) {
 
 void write_text_table(const TableView& table, const ByteSink& sink) {
   ChunkedWriter out(sink);
+  const ClassicNumbers classic;
   char value[32];
   for (std::size_t k = 0; k < table.sets; ++k) {
     if (table.sets > 1) out.write("# set " + std::to_string(k) + "\n");
@@ -614,6 +617,7 @@ PointSet parse_rps_points(std::string_view bytes, const std::string& name, const
     throw Error(name + ": " + std::to_string(bytes.size()) +
                 " bytes is not a whole number of points (.rps holds 8-byte pairs of float32 x y)");
   PointSet set;
+  const ClassicNumbers classic;  // the values its messages quote
   const std::size_t count = bytes.size() / kPointBytes;
   set.points.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
