@@ -775,8 +775,10 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
       data_seen = true;
       const CsvFirstLine first = csv_first_line(fields);
       if (first == CsvFirstLine::other_header)
-        fail("a CSV's header names the columns x,y or x,y,level (an unnamed first column, pandas' or R's index, "
-             "is skipped); in pandas: df[['x', 'y']].to_csv(path, index=False)");
+        throw Error(name + ":" + std::to_string(number) + ": header '" + std::string(body.substr(0, 40)) +
+                    (body.size() > 40 ? "...'" : "'") +
+                    " names other columns: a CSV's header names x,y or x,y,level (an unnamed first column, pandas' "
+                    "or R's index, is skipped); in pandas: df[['x', 'y']].to_csv(path, index=False)");
       if (first != CsvFirstLine::data) {
         index_column = first == CsvFirstLine::index_and_columns;
         parser.feed("# " + std::string(body) + "\n");  // the header, as a comment: line numbers stay
