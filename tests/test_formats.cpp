@@ -370,6 +370,7 @@ TEST(Formats, CsvIsReadByItsExtensionWithPandasAndRIndexColumns) {
             "p.csv:3: expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed), got '0.75'");
   EXPECT_EQ(csv_error(",x,y\n0,0.25,\n"), "p.csv:2: an empty field, got '0,0.25,'");
   EXPECT_EQ(csv_error("nan,0.5\n"), "p.csv:1: not a finite number 'nan'");  // a number, not a header
+  EXPECT_EQ(csv_error(std::string("\xFF\xFEx\0,\0y\0\r\0\n\0", 12)).substr(0, 22), "p.csv: UTF-16 text (Wi");
 }
 
 TEST(Formats, NumpyArchivesAreRefusedSayingHowToSaveOneArray) {

@@ -186,6 +186,27 @@ TEST(PointFile, ByteOrderMarkIsSkippedAtTheStartOnly) {
   EXPECT_EQ(parse_error("\xEF\xBB"), "pts.txt:1: expected 'x y' or 'x y level', got '\xEF\xBB'");
 }
 
+TEST(PointFile, Utf16TextSaysHowToSaveItAsUtf8) {
+  // Windows PowerShell's "> points.txt" writes UTF-16: it was "binary data (NUL byte)".
+  const std::string fix = "pts.txt: UTF-16 text (Windows PowerShell's '>' and Out-File write it); point files are "
+                          "UTF-8: save it with Out-File -Encoding utf8 (or Set-Content)";
+  const std::string little("\xFF\xFE" "0\0.\0" "5\0 \0" "0\0\r\0\n\0", 16);
+  EXPECT_EQ(parse_error(little), fix);
+  EXPECT_EQ(parse_error(std::string("\xFE\xFF\0" "0\0.\0" "5", 8)), fix);
+  for (std::size_t step : {1, 2, 3}) {  // cut anywhere, as read from a pipe
+    PointTextParser parser("pts.txt", false);
+    std::string message;
+    try {
+      for (std::size_t at = 0; at < little.size(); at += step) parser.feed(std::string_view(little).substr(at, step));
+      parser.finish();
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_EQ(message, fix) << step;
+  }
+  EXPECT_EQ(parse_error("\xFF"), "pts.txt:1: expected 'x y' or 'x y level', got '\xFF'");  // too short to tell
+}
+
 TEST(PointFile, PiecesCutAnywhereParseAsTheWhole) {
   const std::string text = "\xEF\xBB\xBF# set 0\r\n3\n0.1 0.2 0\n0.3 0.4 1 # c\n\n0.5 0.6 1\n# set 1\n0.7 0.8 2";
   const std::vector<PointSet> whole = parse_point_sets(text, "x");

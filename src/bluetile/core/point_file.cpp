@@ -259,8 +259,17 @@ class PointTextParser::Impl {
     if (at_start_) {
       // A UTF-8 byte-order mark (some editors write one) is not part of the first line.
       static constexpr std::string_view kBom = "\xEF\xBB\xBF";
+      // UTF-16's, either byte order: Windows PowerShell's '>' and Out-File write it. Its NUL bytes
+      // were "binary data (NUL byte): not a point file".
+      static constexpr std::string_view kUtf16Little = "\xFF\xFE", kUtf16Big = "\xFE\xFF";
       carry_.append(chunk);
       if (carry_.size() < kBom.size() && kBom.substr(0, carry_.size()) == carry_) return;  // undecided yet
+      if (carry_.size() < kUtf16Little.size() && (carry_ == kUtf16Little.substr(0, 1) || carry_ == kUtf16Big.substr(0, 1)))
+        return;
+      const std::string_view head(carry_);
+      if (head.substr(0, 2) == kUtf16Little || head.substr(0, 2) == kUtf16Big)
+        throw Error(name_ + ": UTF-16 text (Windows PowerShell's '>' and Out-File write it); point files are UTF-8: "
+                            "save it with Out-File -Encoding utf8 (or Set-Content)");
       at_start_ = false;
       std::string text = std::move(carry_);
       carry_.clear();
