@@ -370,6 +370,12 @@ TEST(Formats, CsvIsReadByItsExtensionWithPandasAndRIndexColumns) {
             "p.csv:3: expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed), got '0.75'");
   EXPECT_EQ(csv_error(",x,y\n0,0.25,\n"), "p.csv:2: an empty field, got '0,0.25,'");
   EXPECT_EQ(csv_error("nan,0.5\n"), "p.csv:1: not a finite number 'nan'");  // a number, not a header
+  // A spreadsheet's export in a decimal-comma locale was "header 'x;y'" or "an empty field".
+  const std::string semicolons = "fields separated by ';' (a spreadsheet's export where the decimal point is a comma); "
+                                 "a CSV here has ',' between fields and '.' in numbers";
+  EXPECT_EQ(csv_error("x;y\n0,5;0,25\n"), "p.csv:1: " + semicolons + ", got 'x;y'");
+  EXPECT_EQ(csv_error("0,5;0,25\n"), "p.csv:1: " + semicolons + ", got '0,5;0,25'");
+  EXPECT_EQ(csv_error("0,5;0,25;1\n"), "p.csv:1: " + semicolons + ", got '0,5;0,25;1'");
   EXPECT_EQ(csv_error(std::string("\xFF\xFEx\0,\0y\0\r\0\n\0", 12)).substr(0, 22), "p.csv: UTF-16 text (Wi");
 }
 

@@ -771,6 +771,11 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
       const std::string shown(body.substr(0, 40));
       throw Error(name + ":" + std::to_string(number) + ": " + what + ", got '" + shown + (body.size() > 40 ? "...'" : "'"));
     };
+    // A spreadsheet in a locale with a decimal comma exports "0,5;0,25" (was "not a number '5;0'"); no
+    // field of ours holds a ';'.
+    if (body.find(';') != std::string_view::npos)
+      fail("fields separated by ';' (a spreadsheet's export where the decimal point is a comma); a CSV here has "
+           "',' between fields and '.' in numbers");
     if (!data_seen) {
       data_seen = true;
       const CsvFirstLine first = csv_first_line(fields);
