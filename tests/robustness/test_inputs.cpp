@@ -166,6 +166,22 @@ TEST(Inputs, CsvFromPandasIsReadByEveryCommand) {
   EXPECT_EQ(entries(dir.path()).size(), 4u + 12u);  // the inputs, a/ and its 11 files
 }
 
+TEST(Inputs, AnalyzeFromReadsWhatInputReads) {
+  // analyze --from read every file as text: an .npy was "binary data (NUL byte)", a pandas CSV
+  // "expected 'x y'".
+  TempDir dir;
+  dir.write("p.csv", ",x,y\n0,0.25,0.5\n1,0.75,0.5\n2,0.5,0.875\n3,0.125,0.125\n");
+  dir.write("q.txt", "0.25 0.5\n0.75 0.5\n0.5 0.875\n0.125 0.125\n");
+  for (const char* from : {"p.csv", "q.txt"}) {
+    Outcome r = run({"analyze", "-i", dir.file("q.txt"), "--from", dir.file(from), "-o", dir.file(std::string("a-") + from),
+                     "--no-centroids", "--no-psa-measures", "--no-discrepancy"});
+    EXPECT_EQ(r.exit_code, 0) << from << ": " << r.err;
+  }
+  dir.write("two.csv", "x,y\n0.25,0.5\n0.75,0.5\n# set 1\n0.5,0.875\n0.125,0.125\n");
+  expect_failure(run({"analyze", "-i", dir.file("q.txt"), "--from", dir.file("two.csv"), "-o", dir.file("b")}),
+                 dir.file("two.csv") + ": holds 2 sets; --from needs one");
+}
+
 TEST(Inputs, AnUnusableTmpdirIsNamed) {
   // An image that is no regular file (a pipe here) is copied to a temporary file: a TMPDIR naming
   // no folder was "internal error: filesystem error: temp_directory_path: No such file or
