@@ -328,10 +328,21 @@ TEST(Formats, DamagedNpyFilesGiveClearErrors) {
   for (double v : {0.1, 0.2, 0.3, 0.4}) append(data, v);
   auto npy_error = [](const std::string& bytes) { return error_of([&] { parse_npy_table(bytes, "d.npy"); }); };
   EXPECT_EQ(npy_error("not numpy"), "d.npy: not a .npy file (wrong magic)");
+  // Arrays NumPy writes well but of another kind say how to save the one read here (they were
+  // "bad .npy header: dtype '<i8'" and "shape has 1 dimensions").
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<i8', 'fortran_order': False, 'shape': (2, 2), }", data)),
-            "d.npy: bad .npy header: dtype '<i8'; expected float64 ('<f8') or float32 ('<f4')");
+            "d.npy: values of dtype '<i8'; expected float64 ('<f8') or float32 ('<f4'): save a.astype(numpy.float64)");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '|O', 'fortran_order': False, 'shape': (2, 2), }", data)),
+            "d.npy: values of dtype '|O'; expected float64 ('<f8') or float32 ('<f4'): save a.astype(numpy.float64)");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (4,), }", data)),
+            "d.npy: shape (4,) is one-dimensional; expected (N, 2), (N, 3) or (K, N, C): save a.reshape(-1, 2) for "
+            "x y pairs");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': [('x', '<f8'), ('y', '<f8')], 'fortran_order': False, 'shape': (2,), }",
+                                  data)),
+            "d.npy: a structured array (named fields); expected plain float64 or float32 values: save "
+            "numpy.stack([a['x'], a['y']], axis=-1)");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 1, 2, 2), }", data)),
-            "d.npy: bad .npy header: shape has 4 dimensions; expected (N, C) or (K, N, C)");
+            "d.npy: shape of 4 dimensions; expected (N, C) or (K, N, C)");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (4, 1), }", data)),
             "d.npy: 1 columns per point; expected 2 (x y) or 3 (x y level)");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }", data)),
@@ -430,6 +441,50 @@ TEST(Formats, DamagedRpsFilesGiveClearErrors) {
                 .find("inf.rps: point 1: not a finite number"),
             std::string::npos);
   EXPECT_NE(error_of([] { read_rps_file("/nonexistent/x.rps"); }).find("/nonexistent/x.rps"), std::string::npos);
+}
+
+TEST(Formats, CsvIsReadByItsExtensionWithPandasAndRIndexColumns) {
+  // relax -i and progressive -i read a .csv as text ("expected 'x y'"), and the index column that
+  // pandas' to_csv and R's write.csv add by default was "an empty field" everywhere.
+  test::TempDir dir;
+  const std::vector<Point> points{{0.25, 0.5}, {0.75, 0.125}};
+  for (const char* csv : {"x,y\n0.25,0.5\n0.75,0.125\n", ",x,y\n0,0.25,0.5\n1,0.75,0.125\n",
+                          "\xEF\xBB\xBF\"\",\"x\",\"y\"\r\n\"1\",0.25,0.5\r\n\"2\",0.75,0.125", "# x,y\n2.5e-01,5e-1\n+.75,0.125\n"}) {
+    std::vector<PointSet> sets = read_point_table(dir.write("p.csv", csv));
+    ASSERT_EQ(sets.size(), 1u) << csv;
+    EXPECT_EQ(sets[0].points, points) << csv;
+    EXPECT_EQ(parse_csv_points(csv, "p.csv")[0].points, points) << csv;
+  }
+  EXPECT_EQ(read_point_table(dir.write("l.CSV", ",X,Y,Level\n7,0.25,0.5,0\n8,0.75,0.125,1\n"))[0].levels,
+            (std::vector<int>{0, 1}));
+  auto csv_error = [](const std::string& text) { return error_of([&] { parse_csv_points(text, "p.csv"); }); };
+  const std::string header_fix =
+      " names other columns: a CSV's header names x,y or x,y,level (an unnamed first column, pandas' or R's index, "
+      "is skipped); in pandas: df[['x', 'y']].to_csv(path, index=False)";
+  EXPECT_EQ(csv_error("px,py\n0.25,0.5\n"), "p.csv:1: header 'px,py'" + header_fix);
+  EXPECT_EQ(csv_error("# made by pandas\nid,x,y\n0,0.25,0.5\n"), "p.csv:2: header 'id,x,y'" + header_fix);
+  EXPECT_EQ(csv_error(",x,y\n0,0.25,0.5\n0.75\n"),
+            "p.csv:3: expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed), got '0.75'");
+  EXPECT_EQ(csv_error(",x,y\n0,0.25,\n"), "p.csv:2: an empty field, got '0,0.25,'");
+  EXPECT_EQ(csv_error("nan,0.5\n"), "p.csv:1: not a finite number 'nan'");  // a number, not a header
+  // A spreadsheet's export in a decimal-comma locale was "header 'x;y'" or "an empty field".
+  const std::string semicolons = "fields separated by ';' (a spreadsheet's export where the decimal point is a comma); "
+                                 "a CSV here has ',' between fields and '.' in numbers";
+  EXPECT_EQ(csv_error("x;y\n0,5;0,25\n"), "p.csv:1: " + semicolons + ", got 'x;y'");
+  EXPECT_EQ(csv_error("0,5;0,25\n"), "p.csv:1: " + semicolons + ", got '0,5;0,25'");
+  EXPECT_EQ(csv_error("0,5;0,25;1\n"), "p.csv:1: " + semicolons + ", got '0,5;0,25;1'");
+  EXPECT_EQ(csv_error(std::string("\xFF\xFEx\0,\0y\0\r\0\n\0", 12)).substr(0, 22), "p.csv: UTF-16 text (Wi");
+}
+
+TEST(Formats, NumpyArchivesAreRefusedSayingHowToSaveOneArray) {
+  // numpy.savez's .npz was "binary data (NUL byte): not a point file".
+  test::TempDir dir;
+  const std::string zip = std::string("PK\x03\x04\x14\x00\x00\x00\x00\x00", 10) + "arr_0.npy";
+  const std::string fix = ": a zip archive (numpy.savez writes .npz), not a point table: save one array with "
+                          "numpy.save('points.npy', a)";
+  EXPECT_EQ(error_of([&] { read_point_table(dir.write("z.npz", zip)); }), dir.file("z.npz") + fix);
+  EXPECT_EQ(error_of([&] { read_point_table(dir.write("z.data", zip)); }), dir.file("z.data") + fix);
+  EXPECT_EQ(error_of([&] { read_points_by_extension(dir.file("z.npz")); }), dir.file("z.npz") + fix);
 }
 
 TEST(Formats, FilesAreRecognisedByTheirFirstBytes) {

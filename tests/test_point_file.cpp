@@ -1,9 +1,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdlib>
+
+#include <langinfo.h>
+#include <locale.h>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/core/text.h"
 #include "test_support.h"
 
@@ -64,6 +69,88 @@ TEST(PointFile, OutOfRangeRefusedWhenAskedAndDomainDeclared) {
   EXPECT_EQ(sets[1].declared_boundary, Boundary::bounded);
 }
 
+TEST(PointFile, DomainLinesWithATypoAreRefusedNotTakenForComments) {
+  // "# domain bounde" was a comment: the set was analysed on the torus without a word.
+  const std::string fix =
+      " is not a domain line: write '# domain periodic' or '# domain bounded' alone on the line (or reword the "
+      "comment)";
+  EXPECT_EQ(parse_error("# domain bounde\n0.1 0.2\n"), "pts.txt:1: '# domain bounde'" + fix);
+  EXPECT_EQ(parse_error("# made by hand\n#  domain periodic extra \n0.1 0.2\n"),
+            "pts.txt:2: '# domain periodic extra'" + fix);
+  EXPECT_EQ(parse_error("# Domain: Bounded\n0.1 0.2\n"), "pts.txt:1: '# Domain: Bounded'" + fix);
+  EXPECT_EQ(parse_error("0.1 0.2\n# domain periodc\n"), "pts.txt:2: '# domain periodc'" + fix);
+  EXPECT_EQ(parse_error("0.1 0.2 # domain boundd\n"), "");  // after a point: a comment on the point
+  // Prose about the domain stays a comment.
+  for (const char* prose : {"# domain square\n", "# domain bounds 0 0 64 64\n", "# domain [0, 64)^2\n", "# domain\n",
+                            "# the domain is bounded\n"}) {
+    PointSet set = parse_points(std::string(prose) + "0.1 0.2\n", "x");
+    EXPECT_FALSE(set.declared_boundary) << prose;
+    EXPECT_EQ(set.points.size(), 1u) << prose;
+  }
+  // In a file of several sets too, where a '#' line also ends a set.
+  EXPECT_THROW(parse_point_sets("# set 0\n0.1 0.2\n# domain bounded.\n0.3 0.4\n", "x"), Error);
+}
+
+TEST(PointFile, CommaSeparatedLinesSayHowCsvIsRead) {
+  // A CSV given as text was "expected 'x y' or 'x y level'" and no more.
+  const std::string hint = " (comma-separated values: a file named .csv is read as CSV)";
+  EXPECT_EQ(parse_error("0.5,0.25\n"), "pts.txt:1: expected 'x y' or 'x y level', got '0.5,0.25'" + hint);
+  EXPECT_EQ(parse_error("x,y\n0.5,0.25\n"), "pts.txt:1: expected 'x y' or 'x y level', got 'x,y'" + hint);
+  EXPECT_EQ(parse_error("0.5, 0.25\n"), "pts.txt:1: not a number '0.5,'" + hint);
+  EXPECT_EQ(parse_error("0, 0.5, 0.25, 1\n"),
+            "pts.txt:1: expected 'x y' or 'x y level', got 4 columns: '0, 0.5, 0.25, 1'" + hint);
+  EXPECT_EQ(parse_error("0.5 x\n"), "pts.txt:1: not a number 'x'");  // no comma, no hint
+}
+
+// A locale whose decimal point is a comma: one the system has, else de_DE made with localedef in
+// `folder`; 0 when neither can be had.
+locale_t comma_locale(const std::string& folder) {
+  auto comma = [](locale_t l) { return l != static_cast<locale_t>(0) && std::string(nl_langinfo_l(RADIXCHAR, l)) == ","; };
+  for (const char* name : {"de_DE.UTF-8", "de_DE.utf8", "fr_FR.UTF-8", "fr_FR.utf8", "de_DE", "fr_FR"}) {
+    locale_t l = newlocale(LC_ALL_MASK, name, static_cast<locale_t>(0));
+    if (comma(l)) return l;
+    if (l) freelocale(l);
+  }
+  if (test::run_command("localedef -i de_DE -f UTF-8 '" + folder + "/de_DE.UTF-8' 2>/dev/null").exit_code != 0)
+    return static_cast<locale_t>(0);
+  setenv("LOCPATH", folder.c_str(), 1);
+  locale_t l = newlocale(LC_ALL_MASK, "de_DE.UTF-8", static_cast<locale_t>(0));
+  unsetenv("LOCPATH");
+  if (comma(l)) return l;
+  if (l) freelocale(l);
+  return static_cast<locale_t>(0);
+}
+
+TEST(PointFile, NumbersAreWrittenAndReadWithAPointWhateverTheLocale) {
+  // Under a program's German locale (Python's locale.setlocale(LC_ALL, '')), point files were
+  // written "0,5 0,25", which no reader took back, and CSV fields "0,5" split in two.
+  TempDir dir;
+  const locale_t comma = comma_locale(dir.path());
+  if (comma == static_cast<locale_t>(0)) GTEST_SKIP() << "no locale with a decimal comma, and localedef cannot make one";
+  const locale_t before = uselocale(comma);
+  char check[16];
+  std::snprintf(check, sizeof check, "%.1f", 0.5);
+  const std::string seen = check;
+  const PointSet set{{{0.5, 0.25}, {0.125, 0.75}}, {0, 1}, {}};
+  const std::string text = format_points(set);
+  write_point_file(dir.file("p.txt"), set);
+  const std::string written = test::read_text(dir.file("p.txt"));
+  std::string table;
+  write_point_table(TableFormat::header, std::vector<PointSet>{set}, {}, "t.h", [&](std::string_view b) { table += b; });
+  const std::string csv = csv_number(0.5, 6), exact = exact_text(0.5), fixed = fixed_text(0.5, 2);
+  const std::string range = read_range_text(0, ReadOptions{.wrap = false, .domain = CoordinateBox{0.5, 0, 1.5, 1}});
+  const PointSet tiny = parse_points("1.5e-330 0.5\n", "x");
+  uselocale(before);
+  freelocale(comma);
+  ASSERT_EQ(seen, "0,5") << "the locale made has no decimal comma";
+  EXPECT_EQ(text, "0.5 0.25 0\n0.125 0.75 1\n");
+  EXPECT_EQ(written, text);
+  EXPECT_NE(table.find("{0.5f, 0.25f, 0.0f},"), std::string::npos) << table;
+  EXPECT_EQ(csv + " " + exact + " " + fixed, "0.5 0.5 0.50");
+  EXPECT_EQ(range, "[0.5, 1.5)");
+  EXPECT_EQ(tiny.points, (std::vector<Point>{{0.0, 0.5}}));  // 1.5e-330 is 0, not "out of range"
+}
+
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 nan\n"), "pts.txt:2: not a finite number 'nan'");
   EXPECT_EQ(parse_error("0.1 0.2\ninf 0.3\n"), "pts.txt:2: not a finite number 'inf'");
@@ -97,6 +184,27 @@ TEST(PointFile, ByteOrderMarkIsSkippedAtTheStartOnly) {
   EXPECT_EQ(parse_error("0.1 0.2\n\xEF\xBB\xBF" "0.3 0.4\n"), "pts.txt:2: not a number '\xEF\xBB\xBF" "0.3'");
   EXPECT_TRUE(parse_points("\xEF\xBB\xBF", "x").points.empty());
   EXPECT_EQ(parse_error("\xEF\xBB"), "pts.txt:1: expected 'x y' or 'x y level', got '\xEF\xBB'");
+}
+
+TEST(PointFile, Utf16TextSaysHowToSaveItAsUtf8) {
+  // Windows PowerShell's "> points.txt" writes UTF-16: it was "binary data (NUL byte)".
+  const std::string fix = "pts.txt: UTF-16 text (Windows PowerShell's '>' and Out-File write it); point files are "
+                          "UTF-8: save it with Out-File -Encoding utf8 (or Set-Content)";
+  const std::string little("\xFF\xFE" "0\0.\0" "5\0 \0" "0\0\r\0\n\0", 16);
+  EXPECT_EQ(parse_error(little), fix);
+  EXPECT_EQ(parse_error(std::string("\xFE\xFF\0" "0\0.\0" "5", 8)), fix);
+  for (std::size_t step : {1, 2, 3}) {  // cut anywhere, as read from a pipe
+    PointTextParser parser("pts.txt", false);
+    std::string message;
+    try {
+      for (std::size_t at = 0; at < little.size(); at += step) parser.feed(std::string_view(little).substr(at, step));
+      parser.finish();
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_EQ(message, fix) << step;
+  }
+  EXPECT_EQ(parse_error("\xFF"), "pts.txt:1: expected 'x y' or 'x y level', got '\xFF'");  // too short to tell
 }
 
 TEST(PointFile, PiecesCutAnywhereParseAsTheWhole) {

@@ -706,7 +706,17 @@ AnalyzeInputs read_inputs(const AnalyzeOptions& o) {
     throw Error("--cells draws periodic Voronoi cells: not for a bounded set");
   if (!o.from.empty()) {
     try {
-      in.from = read_point_file(o.from, read).points;
+      // A table or CSV by its extension, as --input (an .npy was "binary data (NUL byte)"); text as
+      // one set, its '#' lines comments.
+      const std::string extension = o.from == "-" ? "" : file_extension(o.from);
+      if (extension == ".npy" || extension == ".bpt" || extension == ".csv" || extension == ".rps") {
+        std::vector<PointSet> sets = read_points_by_extension(o.from, read);
+        if (sets.size() != 1)
+          throw Error(o.from + ": holds " + std::to_string(sets.size()) + " sets; --from needs one");
+        in.from = std::move(sets[0].points);
+      } else {
+        in.from = read_point_file(o.from, read).points;
+      }
     } catch (const Error& e) {
       throw Error(append_wrap_hint(e.what()));
     }

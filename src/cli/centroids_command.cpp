@@ -65,7 +65,7 @@ void add_centroids_command(CLI::App& app) {
   auto o = std::make_shared<CentroidsOptions>();
   CLI::App* cmd = app.add_subcommand("centroids", "Write the Voronoi cell centroid and area of every point (cx cy area)");
   add_input_option(cmd, "-i,--input", o->input, InputKind::points,
-                   "Points: text (each '#'-separated set measured on its own), .npy or .bpt ('-': standard input)")
+                   "Points: text (each '#'-separated set measured on its own), .npy, .bpt or .csv ('-': standard input)")
       ->required();
   o->output.named_fields = true;  // before the options: they list its formats
   add_point_output_options(cmd, o->output,

@@ -1,4 +1,5 @@
-// Progress on stderr, only when stderr is a terminal: batch runs and logs stay quiet.
+// Progress on stderr, only when stderr is a terminal: batch runs and logs stay quiet. One line,
+// cut to the terminal's width, redrawn in place (without escape sequences under TERM=dumb).
 #pragma once
 
 #include <chrono>
@@ -23,10 +24,16 @@ class Progress {
   void finish();
 
  private:
+  // Shows `line` in place of the one before, cut to the terminal's width.
+  void draw(std::string line);
+
   std::string label_;
   long long total_;
   bool enabled_;
   bool drawn_ = false;
+  std::size_t columns_ = 80;  // the terminal's width
+  bool dumb_ = false;         // TERM=dumb or unset: no escape sequences
+  std::size_t shown_ = 0;     // dumb_: the length of the line on screen
   std::chrono::steady_clock::time_point start_;
   std::chrono::steady_clock::time_point last_draw_{};
 };

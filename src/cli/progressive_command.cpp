@@ -161,8 +161,8 @@ void add_progressive_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "progressive", "Hierarchical point sets: add levels of points relaxed around the fixed earlier levels");
   auto* input = add_input_option(cmd, "-i,--input", o->input, InputKind::points,
-                                 "Base points, kept bit for bit: text (each '#'-separated set gets its own levels), .npy "
-                                 "or .bpt ('-': standard input)");
+                                 "Base points, kept bit for bit: text (each '#'-separated set gets its own levels), .npy, "
+                                 ".bpt or .csv ('-': standard input)");
   auto* count = add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount,
                                    "Build from scratch: level 0 has N points (relaxed random points; with --rank-order "
                                    "voids the first N of a stage of at least 64, see there)");

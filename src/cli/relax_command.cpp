@@ -161,8 +161,8 @@ void add_relax_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand("relax", "Relax a random (--count) or given (--input) point set by Lloyd's method");
   auto* count = add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount, "Number of random points to start from");
   auto* input = add_input_option(cmd, "-i,--input", o->input, InputKind::points,
-                                 "Points to start from: text (each '#'-separated set relaxed on its own), .npy or .bpt "
-                                 "('-': standard input)");
+                                 "Points to start from: text (each '#'-separated set relaxed on its own), .npy, .bpt "
+                                 "or .csv ('-': standard input)");
   count->excludes(input);
   input->excludes(count);
   add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "bluetile/io/image_file.h"
 #include "robustness_support.h"
 #include "test_support.h"
 
@@ -136,6 +137,76 @@ TEST(Inputs, EnvironmentIsCheckedNotIgnored) {
   EXPECT_NE(o.err.find(dir.file("icd.json")), std::string::npos) << o.err;
   EXPECT_EQ(o.err.find("--resolution"), std::string::npos) << o.err;
   EXPECT_EQ(entries(dir.path()), (Names{"icd.json", "o.txt", "t.txt", "t1.txt"}));
+}
+
+TEST(Inputs, CsvFromPandasIsReadByEveryCommand) {
+  TempDir dir;
+  // pandas' to_csv (index and all, CRLF as on Windows) and the same points as text: relax -i read
+  // the .csv as text ("expected 'x y' ..., got ',x,y'"); analyze refused the index ("an empty field").
+  dir.write("pandas.csv", ",x,y\r\n0,0.25,0.5\r\n1,0.75,0.5\r\n2,0.5,0.875\r\n");
+  dir.write("same.txt", "0.25 0.5\n0.75 0.5\n0.5 0.875\n");
+  auto points_of = [&](const std::string& command, const std::string& input) {
+    Outcome r = run({command, "-i", dir.file(input), "--engine", "exact", "-o", "-"});
+    EXPECT_EQ(r.exit_code, 0) << command << " " << input << ": " << r.err;
+    return r.out.substr(r.out.find('\n') + 1);  // the header names the input
+  };
+  for (const char* command : {"relax", "centroids"}) {
+    const std::string from_csv = points_of(command, "pandas.csv");
+    EXPECT_EQ(from_csv, points_of(command, "same.txt")) << command;
+    EXPECT_FALSE(from_csv.empty()) << command;
+  }
+  Outcome a = run({"analyze", "-i", dir.file("pandas.csv"), "-o", dir.file("a"), "--no-centroids"});
+  EXPECT_EQ(a.exit_code, 0) << a.err;
+  // A CSV under another name says how it would be read.
+  dir.write("comma.txt", "x,y\n0.25,0.5\n");
+  expect_failure(run({"relax", "-i", dir.file("comma.txt"), "--engine", "exact", "-o", dir.file("o.txt")}),
+                 dir.file("comma.txt") +
+                     ":1: expected 'x y' or 'x y level', got 'x,y' (comma-separated values: a file named .csv is read "
+                     "as CSV)");
+  EXPECT_EQ(entries(dir.path()).size(), 4u + 12u);  // the inputs, a/ and its 11 files
+}
+
+TEST(Inputs, AnalyzeFromReadsWhatInputReads) {
+  // analyze --from read every file as text: an .npy was "binary data (NUL byte)", a pandas CSV
+  // "expected 'x y'".
+  TempDir dir;
+  dir.write("p.csv", ",x,y\n0,0.25,0.5\n1,0.75,0.5\n2,0.5,0.875\n3,0.125,0.125\n");
+  dir.write("q.txt", "0.25 0.5\n0.75 0.5\n0.5 0.875\n0.125 0.125\n");
+  for (const char* from : {"p.csv", "q.txt"}) {
+    Outcome r = run({"analyze", "-i", dir.file("q.txt"), "--from", dir.file(from), "-o", dir.file(std::string("a-") + from),
+                     "--no-centroids", "--no-psa-measures", "--no-discrepancy"});
+    EXPECT_EQ(r.exit_code, 0) << from << ": " << r.err;
+  }
+  dir.write("two.csv", "x,y\n0.25,0.5\n0.75,0.5\n# set 1\n0.5,0.875\n0.125,0.125\n");
+  expect_failure(run({"analyze", "-i", dir.file("q.txt"), "--from", dir.file("two.csv"), "-o", dir.file("b")}),
+                 dir.file("two.csv") + ": holds 2 sets; --from needs one");
+}
+
+TEST(Inputs, AnUnusableTmpdirIsNamed) {
+  // An image that is no regular file (a pipe here) is copied to a temporary file: a TMPDIR naming
+  // no folder was "internal error: filesystem error: temp_directory_path: No such file or
+  // directory", and an empty one the same (empty is unset, as for BLUETILE_THREADS).
+  TempDir dir;
+  write_image_file(dir.file("map.png"), 2, 2, 1, std::vector<std::uint8_t>{50, 100, 150, 200});
+  Invocation piped{{"relax", "-n", "20", "-k", "1", "--engine", "exact", "--density-map", "/dev/stdin", "-o",
+                    dir.file("o.txt")}};
+  piped.wrapper = {"/bin/sh", "-c", "cat \"$MAP\" | \"$0\" \"$@\""};
+  piped.environment = {{"MAP", dir.file("map.png")}, {"TMPDIR", dir.file("gone")}};
+  expect_failure(run(piped), "/dev/stdin: not a regular file, so read into a temporary copy, but TMPDIR '" +
+                                 dir.file("gone") +
+                                 "' is not a folder (No such file or directory): set TMPDIR to a writable folder, or "
+                                 "unset it for /tmp");
+  piped.environment = {{"MAP", dir.file("map.png")}, {"TMPDIR", dir.file("map.png")}};
+  EXPECT_NE(run(piped).err.find("' is not a folder (Not a directory)"), std::string::npos);
+  EXPECT_EQ(entries(dir.path()), Names{"map.png"});
+  piped.environment = {{"MAP", dir.file("map.png")}, {"TMPDIR", ""}};
+  Outcome r = run(piped);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  fs::create_directory(dir.file("tmp"));
+  piped.environment = {{"MAP", dir.file("map.png")}, {"TMPDIR", dir.file("tmp")}};
+  r = run(piped);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(entries(dir.path()), (Names{"map.png", "o.txt", "tmp/"}));  // the copy removed
 }
 
 }  // namespace

@@ -27,11 +27,16 @@ struct TerminalRun {
   std::string terminal;  // what the tool wrote to its stderr, a terminal
 };
 
-// Runs the tool with stderr on a new pseudo-terminal and stdin, stdout on files; kills it after
-// `seconds`.
-TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder, int seconds) {
+// Runs the tool with stderr on a new pseudo-terminal (`columns` wide; 0: size unset) and stdin,
+// stdout on files, with `environment` set (an empty value unsets); kills it after `seconds`.
+TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder, int seconds,
+                            unsigned short columns = 0,
+                            const std::vector<std::pair<std::string, std::string>>& environment = {}) {
   int master = -1, slave = -1;
-  if (openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) ADD_FAILURE() << "openpty failed";
+  winsize size{};
+  size.ws_row = 24;
+  size.ws_col = columns;
+  if (openpty(&master, &slave, nullptr, nullptr, columns > 0 ? &size : nullptr) != 0) ADD_FAILURE() << "openpty failed";
   std::vector<char*> argv;
   std::string program = BLUETILE_BINARY;
   argv.push_back(program.data());
@@ -47,6 +52,10 @@ TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std
     dup2(in, STDIN_FILENO);
     dup2(out, STDOUT_FILENO);
     dup2(slave, STDERR_FILENO);
+    for (const auto& [name, value] : environment) {
+      if (value.empty()) unsetenv(name.c_str());
+      else setenv(name.c_str(), value.c_str(), 1);
+    }
     execv(argv[0], argv.data());
     _exit(127);
   }
@@ -80,7 +89,7 @@ TEST(Progress, ATerminalSeesTotalsAndTheTimeLeft) {
   // has passed, whatever the machine's speed.
   TerminalRun terminal = run_on_terminal(
       {"relax", "--count", "20000", "--iterations", "100000", "--engine", "exact", "-o", dir.file("points.txt")},
-      dir.path(), 4);
+      dir.path(), 4, 0, {{"COLUMNS", ""}});  // 80 columns, whatever the test's own terminal
   EXPECT_TRUE(std::regex_search(terminal.terminal,
                                 std::regex(R"(relax [0-9]+/100000, about [0-9.]+ (s|min|h|days) left)")))
       << terminal.terminal;
@@ -93,6 +102,46 @@ TEST(Progress, ATerminalSeesTotalsAndTheTimeLeft) {
   Outcome piped = run(job);
   EXPECT_EQ(piped.exit_code, 0) << piped.err;
   EXPECT_EQ(piped.err, "") << "progress is for terminals only";
+}
+
+// The lines drawn on a terminal: what lies between carriage returns and line feeds.
+std::vector<std::string> drawn_lines(const std::string& terminal) {
+  std::vector<std::string> lines;
+  std::string line;
+  for (char c : terminal) {
+    if (c == '\r' || c == '\n') {
+      if (!line.empty()) lines.push_back(line);
+      line.clear();
+    } else {
+      line += c;
+    }
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+TEST(Progress, TheLineFitsTheTerminalAndADumbOneGetsNoEscapes) {
+  // The line was as long as its text: on a terminal narrower than that it wrapped, and every
+  // redraw left a row behind; under TERM=dumb (Emacs' shell) each redraw showed "^[[K".
+  test::TempDir dir;
+  const std::vector<std::string> job = {"relax", "--count", "300", "--iterations", "6", "--engine", "exact",
+                                        "-o", dir.file("small.txt")};
+  for (unsigned short columns : {20, 0}) {
+    TerminalRun narrow = run_on_terminal(job, dir.path(), 60, columns, {{"TERM", "dumb"}, {"COLUMNS", "30"}});
+    EXPECT_EQ(narrow.exit_code, 0) << narrow.terminal;
+    EXPECT_EQ(narrow.terminal.find('\033'), std::string::npos) << narrow.terminal;
+    const std::size_t width = columns > 0 ? columns : 30;  // the window's size, else COLUMNS
+    const std::vector<std::string> lines = drawn_lines(narrow.terminal);
+    EXPECT_NE(narrow.terminal.find("relax 6/6"), std::string::npos) << narrow.terminal;
+    for (const std::string& line : lines) EXPECT_LT(line.size(), width) << "'" << line << "'";
+  }
+  // A terminal that takes escapes still gets the erase-line sequence, and the width holds too.
+  TerminalRun xterm = run_on_terminal(job, dir.path(), 60, 20, {{"TERM", "xterm"}});
+  EXPECT_NE(xterm.terminal.find("\r\033[Krelax 6/6"), std::string::npos) << xterm.terminal;
+  for (std::string line : drawn_lines(xterm.terminal)) {
+    if (line.rfind("\033[K", 0) == 0) line.erase(0, 3);
+    EXPECT_LT(line.size(), 20u) << "'" << line << "'";
+  }
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <csignal>
 #include <cstdarg>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
@@ -24,6 +25,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/input_file.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace fs = std::filesystem;
@@ -273,6 +275,7 @@ void OutputStream::print(const char* format, ...) {
   // Room for any one formatted line of ours; longer text takes the slow path below.
   constexpr std::size_t kRoom = 512;
   if (kBufferSize - buffered_ < kRoom) flush();
+  const ClassicNumbers classic;  // "0.5", whatever locale a program embedding the library set
   va_list args;
   va_start(args, format);
   int n = std::vsnprintf(buffer_.get() + buffered_, kBufferSize - buffered_, format, args);
@@ -347,9 +350,11 @@ void OutputFile::write_through_path(const std::function<void(const std::string&)
     return;
   }
   // A device or descriptor: write a private temporary file, then copy its bytes.
-  std::string pattern = (fs::temp_directory_path() / ("bluetile-" + unique_suffix() + "-XXXXXX")).string();
+  const std::string folder =
+      temporary_folder(path_ + ": written to a temporary file first (its format is written to files only)");
+  std::string pattern = (fs::path(folder) / ("bluetile-" + unique_suffix() + "-XXXXXX")).string();
   if (!make_registered_staging(pattern, [&] { return mkdtemp(pattern.data()) != nullptr; }))
-    fail(path_, "cannot make a temporary folder", errno);
+    fail(path_, "cannot make a temporary folder in '" + folder + "'", errno);
   auto remove_temporary = [&] {
     std::error_code ignored;
     fs::remove_all(pattern, ignored);
@@ -381,6 +386,17 @@ void OutputFile::write_through_path(const std::function<void(const std::string&)
     throw;
   }
   remove_temporary();
+}
+
+std::string temporary_folder(const std::string& why) {
+  const char* value = std::getenv("TMPDIR");
+  if (value == nullptr || *value == '\0') return "/tmp";
+  struct stat status {};
+  const int err = stat(value, &status) == 0 ? (S_ISDIR(status.st_mode) ? 0 : ENOTDIR) : errno;
+  if (err != 0)
+    throw Error(why + ", but TMPDIR '" + std::string(value) + "' is not a folder (" + reason(err) +
+                "): set TMPDIR to a writable folder, or unset it for /tmp");
+  return value;
 }
 
 // ---- OutputSet -----------------------------------------------------------------------------

@@ -166,6 +166,12 @@ class OutputSet {
   bool published_ = false;
 };
 
+// The folder for private temporary files (an image read from a FIFO, a format written through a
+// path to a device): $TMPDIR when it is set and not empty, else /tmp. Throws Error("<why>, but
+// TMPDIR '<value>' is not a folder (<reason>): ...") when it names anything else (a stale TMPDIR
+// was "internal error: filesystem error: temp_directory_path: No such file or directory").
+std::string temporary_folder(const std::string& why);
+
 // One output on its own: declares it, writes it, publishes it.
 void write_output(const std::string& path, const OutputWriter& writer, OutputOptions options = {});
 void write_output(const std::string& path, std::string_view text, OutputOptions options = {});

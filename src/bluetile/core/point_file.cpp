@@ -1,5 +1,6 @@
 #include "bluetile/core/point_file.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -72,16 +73,22 @@ class LineError {
   std::size_t line_;
 };
 
-double parse_coordinate(std::string_view token, const LineError& fail) {
+// Said after a text line that holds a comma: a CSV given where text is read.
+constexpr std::string_view kCommaHint = " (comma-separated values: a file named .csv is read as CSV)";
+
+// `hint` follows the message of a token that is no number.
+double parse_coordinate(std::string_view token, const LineError& fail, std::string_view hint = {}) {
   double value = 0.0;
   // A leading '+', as C, Python and NumPy write and read it (from_chars takes only '-').
   std::string_view digits = token;
   if (digits.size() > 1 && digits[0] == '+' && digits[1] != '-' && digits[1] != '+') digits.remove_prefix(1);
   auto [end, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (end != digits.data() + digits.size() || ec == std::errc::invalid_argument) fail("not a number " + quote(token));
+  if (end != digits.data() + digits.size() || ec == std::errc::invalid_argument)
+    fail("not a number " + quote(token) + std::string(hint));
   if (ec == std::errc::result_out_of_range) {
     // Out of range both ways: a number too small for a double (1e-330) is 0, one too large is an
     // error. strtod tells them apart (the tool keeps the C locale's decimal point).
+    const ClassicNumbers classic;
     const double nearest = std::strtod(std::string(digits).c_str(), nullptr);
     if (!(std::abs(nearest) < 1.0)) fail("coordinate out of range " + quote(token));
     value = nearest;
@@ -104,6 +111,7 @@ class SetParser {
 
   void data_line(std::string_view line, std::size_t number) {
     LineError fail(name_, number);
+    const std::string_view hint = line.find(',') != std::string_view::npos ? kCommaHint : std::string_view{};
     Tokens tokens = split_whitespace(line);
     if (tokens.count == 0) return;
     if (tokens.count == 1) {
@@ -114,11 +122,12 @@ class SetParser {
         count_line_ = number;
         return;
       }
-      fail("expected 'x y' or 'x y level', got " + quote(line));
+      fail("expected 'x y' or 'x y level', got " + quote(line) + std::string(hint));
     }
     if (tokens.count > 3)
-      fail("expected 'x y' or 'x y level', got " + std::to_string(tokens.count) + " columns: " + quote(line));
-    Point p{parse_coordinate(tokens.kept[0], fail), parse_coordinate(tokens.kept[1], fail)};
+      fail("expected 'x y' or 'x y level', got " + std::to_string(tokens.count) + " columns: " + quote(line) +
+           std::string(hint));
+    Point p{parse_coordinate(tokens.kept[0], fail, hint), parse_coordinate(tokens.kept[1], fail, hint)};
     bool has_level = tokens.count == 3;
     if (set_.points.empty()) {
       levels_seen_ = has_level;
@@ -167,13 +176,50 @@ class SetParser {
   std::size_t count_line_ = 0;
 };
 
+// Single-character edits between a and b (Levenshtein), for telling a typo from prose.
+std::size_t edit_distance(std::string_view a, std::string_view b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
 // The boundary a comment declares ("domain periodic" / "domain bounded"), if it is such a line.
-std::optional<Boundary> declared_boundary(std::string_view comment) {
+// A comment that looks meant as one but is not ("domain bounde", "Domain Bounded", "domain
+// periodic extra") is an error: read as a comment, it left the set on the default torus without a
+// word. Prose that merely starts with "domain" ("domain [0, 64)^2") stays a comment.
+std::optional<Boundary> declared_boundary(std::string_view comment, const LineError& fail) {
   Tokens words = split_whitespace(comment);
-  if (words.count != 2 || words.kept[0] != "domain") return std::nullopt;
-  if (words.kept[1] == "periodic") return Boundary::periodic;
-  if (words.kept[1] == "bounded") return Boundary::bounded;
-  return std::nullopt;
+  if (words.count == 0) return std::nullopt;
+  if (words.count == 2 && words.kept[0] == "domain") {
+    if (words.kept[1] == "periodic") return Boundary::periodic;
+    if (words.kept[1] == "bounded") return Boundary::bounded;
+  }
+  // Any case, a ':' after "domain", words after the boundary, or one word that is a typo of one
+  // or two letters ("bounde", "periodc"; "domain bounds 0 0 64 64" is prose).
+  std::string first = lower_case(std::string(words.kept[0]));
+  if (!first.empty() && first.back() == ':') first.pop_back();
+  if (first != "domain" || words.count < 2) return std::nullopt;
+  const std::string second = lower_case(std::string(words.kept[1]));
+  constexpr std::size_t kTypoEdits = 2;
+  const bool boundary_word = second == "periodic" || second == "bounded";
+  const bool typo = words.count == 2 && (edit_distance(second, "periodic") <= kTypoEdits ||
+                                         edit_distance(second, "bounded") <= kTypoEdits);
+  if (!boundary_word && !typo) return std::nullopt;
+  std::string_view shown = comment;
+  while (!shown.empty() && is_blank(shown.front())) shown.remove_prefix(1);
+  while (!shown.empty() && is_blank(shown.back())) shown.remove_suffix(1);
+  fail(quote("# " + std::string(shown)) +
+       " is not a domain line: write '# domain periodic' or '# domain bounded' alone on the line (or reword the "
+       "comment)");
 }
 
 }  // namespace
@@ -196,6 +242,7 @@ Point place_read_point(Point read, const ReadOptions& options, int& outside) {
 
 std::string read_range_text(int axis, const ReadOptions& options) {
   const CoordinateBox box = options.domain.value_or(CoordinateBox{});
+  const ClassicNumbers classic;
   char text[80];
   std::snprintf(text, sizeof text, "[%.17g, %.17g)", axis == 0 ? box.x0 : box.y0, axis == 0 ? box.x1 : box.y1);
   return text;
@@ -212,8 +259,17 @@ class PointTextParser::Impl {
     if (at_start_) {
       // A UTF-8 byte-order mark (some editors write one) is not part of the first line.
       static constexpr std::string_view kBom = "\xEF\xBB\xBF";
+      // UTF-16's, either byte order: Windows PowerShell's '>' and Out-File write it. Its NUL bytes
+      // were "binary data (NUL byte): not a point file".
+      static constexpr std::string_view kUtf16Little = "\xFF\xFE", kUtf16Big = "\xFE\xFF";
       carry_.append(chunk);
       if (carry_.size() < kBom.size() && kBom.substr(0, carry_.size()) == carry_) return;  // undecided yet
+      if (carry_.size() < kUtf16Little.size() && (carry_ == kUtf16Little.substr(0, 1) || carry_ == kUtf16Big.substr(0, 1)))
+        return;
+      const std::string_view head(carry_);
+      if (head.substr(0, 2) == kUtf16Little || head.substr(0, 2) == kUtf16Big)
+        throw Error(name_ + ": UTF-16 text (Windows PowerShell's '>' and Out-File write it); point files are UTF-8: "
+                            "save it with Out-File -Encoding utf8 (or Set-Content)");
       at_start_ = false;
       std::string text = std::move(carry_);
       carry_.clear();
@@ -276,7 +332,7 @@ class PointTextParser::Impl {
     std::string_view data = text.substr(0, hash);
     const bool comment_line = hash != std::string_view::npos && split_whitespace(data).count == 0;
     if (comment_line) {
-      const std::optional<Boundary> boundary = declared_boundary(text.substr(hash + 1));
+      const std::optional<Boundary> boundary = declared_boundary(text.substr(hash + 1), LineError(name_, number_));
       if (several_) {  // a '#' line ends a set (UTK's convention)
         if (!parser_.empty()) sets_.push_back(parser_.finish());
         if (boundary) parser_.declare(boundary);
@@ -363,6 +419,7 @@ void write_points(OutputStream& out, const PointSet& set, const std::vector<std:
 std::string format_points(const PointSet& set, const std::vector<std::string>& header) {
   std::string text;
   for (const auto& line : header) text += "# " + comment_line(line) + "\n";
+  const ClassicNumbers classic;
   char buffer[96];
   for (std::size_t i = 0; i < set.points.size(); ++i) {
     int n = set.has_levels() ? std::snprintf(buffer, sizeof buffer, "%.17g %.17g %d\n", set.points[i].x, set.points[i].y,

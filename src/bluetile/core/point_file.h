@@ -3,8 +3,10 @@
 // integer is a point count (psa's convention) and is checked. Coordinates outside [0,1) are
 // wrapped onto the unit torus (or refused, see ReadOptions); NaN, infinity and malformed lines
 // are errors naming the file and line. A comment line "# domain periodic" or "# domain bounded"
-// says how the sets after it were made (analysis measures bounded sets in the plain square). A
-// UTF-8 byte-order mark at the start is skipped. Written with 17 significant digits so every
+// says how the sets after it were made (analysis measures bounded sets in the plain square); a
+// comment that looks meant as one but is not ("# domain bounde", "# Domain: bounded", "# domain
+// periodic extra") is an error naming the line. A UTF-8 byte-order mark at the start is skipped; a
+// line that is no point and holds a comma is refused with a hint that a .csv is read as CSV. Written with 17 significant digits so every
 // double round-trips.
 //
 // Reading streams the file in chunks (memory: the points, not the text). Any failure, a

@@ -201,6 +201,7 @@ bool is_keyword(std::string_view name) {
 // A float literal that reads back as exactly `f`: 9 significant digits, with a '.' or an
 // exponent so that the 'f' suffix makes a valid literal.
 void float_literal(float f, char* text, std::size_t size) {
+  const ClassicNumbers classic;
   int len = std::snprintf(text, size, "%.9g", static_cast<double>(f));
   if (!std::strpbrk(text, ".e")) len += std::snprintf(text + len, size - static_cast<std::size_t>(len), ".0");
   std::snprintf(text + len, size - static_cast<std::size_t>(len), "f");
@@ -289,6 +290,7 @@ class SetBuilder {
 
  private:
   static std::string format_value(double value) {
+    const ClassicNumbers classic;
     char text[32];
     std::snprintf(text, sizeof text, "%.17g", value);
     return text;
@@ -331,6 +333,12 @@ class NpyHeader {
     std::size_t end = text_.find(quote, at + 1);
     if (end == std::string_view::npos) fail("unterminated string");
     return std::string(text_.substr(at + 1, end - at - 1));
+  }
+
+  // Whether the value is a list (a structured dtype's fields: [('x', '<f8'), ...]).
+  bool is_list(std::string_view key) {
+    std::size_t at = value_start(key);
+    return at < text_.size() && text_[at] == '[';
   }
 
   bool bool_value(std::string_view key) {
@@ -390,6 +398,14 @@ std::string read_bytes(const std::string& path) { return read_input(path); }
 
 bool starts_with(std::string_view bytes, const char* magic, std::size_t size) {
   return bytes.size() >= size && std::memcmp(bytes.data(), magic, size) == 0;
+}
+
+// A zip archive's first bytes: NumPy's savez writes one (.npz) of .npy files.
+constexpr char kZipMagic[4] = {'P', 'K', '\x03', '\x04'};
+
+[[noreturn]] void refuse_zip(const std::string& name) {
+  throw Error(name + ": a zip archive (numpy.savez writes .npz), not a point table: save one array with "
+                     "numpy.save('points.npy', a)");
 }
 
 }  // namespace
@@ -463,6 +479,7 @@ TableView point_sets_table(std::span<const PointSet> sets) {
 void write_text_table(const TableView& table, const std::string& path, const ByteSink& sink) {
   check_values(table, path);
   ChunkedWriter out(sink);
+  const ClassicNumbers classic;
   char value[32];
   for (std::size_t k = 0; k < table.sets; ++k) {
     if (table.sets > 1) out.write("# set " + std::to_string(k) + "\n");
@@ -606,17 +623,27 @@ std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string&
   }
   if (bytes.size() - header_start < header_size) throw Error(name + ": .npy file cut short in its header");
   NpyHeader header(bytes.substr(header_start, header_size), name);
+  // A well-formed file of another kind of array is refused saying how NumPy makes the one read
+  // here (they were "bad .npy header").
+  if (header.is_list("descr"))
+    throw Error(name + ": a structured array (named fields); expected plain float64 or float32 values: save "
+                       "numpy.stack([a['x'], a['y']], axis=-1)");
   const std::string descr = header.string_value("descr");
   const bool fortran = header.bool_value("fortran_order");
   std::vector<std::uint64_t> shape = header.tuple_value("shape");
 
   if (descr.size() != 3 || (descr[0] != '<' && descr[0] != '>' && descr[0] != '=' && descr[0] != '|') ||
       descr[1] != 'f' || (descr[2] != '4' && descr[2] != '8'))
-    header.fail("dtype '" + descr + "'; expected float64 ('<f8') or float32 ('<f4')");
+    throw Error(name + ": values of dtype '" + descr + "'; expected float64 ('<f8') or float32 ('<f4'): save " +
+                "a.astype(numpy.float64)");
   const bool big_endian = descr[0] == '>' || (descr[0] != '<' && std::endian::native == std::endian::big);
   const std::size_t value_bytes = descr[2] == '4' ? 4 : 8;
+  if (shape.size() == 1)
+    throw Error(name + ": shape (" + std::to_string(shape[0]) +
+                ",) is one-dimensional; expected (N, 2), (N, 3) or (K, N, C): save a.reshape(-1, 2) for x y pairs");
   if (shape.size() == 2) shape.insert(shape.begin(), 1);
-  if (shape.size() != 3) header.fail("shape has " + std::to_string(shape.size()) + " dimensions; expected (N, C) or (K, N, C)");
+  if (shape.size() != 3)
+    throw Error(name + ": shape of " + std::to_string(shape.size()) + " dimensions; expected (N, C) or (K, N, C)");
   const std::uint64_t sets = shape[0], rows = shape[1], columns = shape[2];
   check_columns(columns, name);
   std::size_t payload = payload_bytes(sets, rows, columns, value_bytes, name);
@@ -647,6 +674,7 @@ PointSet parse_rps_points(std::string_view bytes, const std::string& name, const
     throw Error(name + ": " + std::to_string(bytes.size()) +
                 " bytes is not a whole number of points (.rps holds 8-byte pairs of float32 x y)");
   PointSet set;
+  const ClassicNumbers classic;  // the values its messages quote
   const std::size_t count = bytes.size() / kPointBytes;
   set.points.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
@@ -698,6 +726,7 @@ std::vector<PointSet> parse_stream_table(const std::string& bytes, const std::st
   std::string_view head(bytes);
   if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(bytes, name, options);
   if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(bytes, name, options);
+  if (starts_with(head, kZipMagic, sizeof kZipMagic)) refuse_zip(name);
   return same_columns(parse_point_sets(bytes, name, options), name);
 }
 
@@ -705,6 +734,8 @@ std::vector<PointSet> parse_stream_table(const std::string& bytes, const std::st
 
 std::vector<PointSet> read_point_table(const std::string& path) {
   if (path != "-" && is_rps_path(path)) return {read_rps_file(path)};
+  // By its extension, as analyze reads it: its lines were text's "expected 'x y'".
+  if (path != "-" && file_extension(path) == ".csv") return same_columns(parse_csv_points(read_input(path), path), path);
   struct stat status {};
   if (path == "-" || (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)))
     return parse_stream_table(read_input(path), input_name(path), {});
@@ -717,6 +748,7 @@ std::vector<PointSet> read_point_table(const std::string& path) {
   std::string_view head(start, sizeof start);
   if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(read_bytes(path), path);
   if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(read_bytes(path), path);
+  if (starts_with(head, kZipMagic, sizeof kZipMagic)) refuse_zip(path);
   return read_text_table(path);
 }
 
@@ -738,14 +770,36 @@ std::vector<std::string_view> csv_fields(std::string_view line) {
   }
 }
 
-bool is_csv_header(const std::vector<std::string_view>& fields) {
-  auto name = [](std::string_view field) {
-    if (field.size() >= 2 && (field.front() == '"' || field.front() == '\'') && field.back() == field.front())
-      field = field.substr(1, field.size() - 2);
-    return lower_case(std::string(field));
-  };
+// A header field's name: unquoted (R quotes them), lower case.
+std::string csv_name(std::string_view field) {
+  if (field.size() >= 2 && (field.front() == '"' || field.front() == '\'') && field.back() == field.front())
+    field = field.substr(1, field.size() - 2);
+  return lower_case(std::string(field));
+}
+
+// Whether `fields` name the columns x,y or x,y,level.
+bool names_point_columns(std::span<const std::string_view> fields) {
   if (fields.size() != 2 && fields.size() != 3) return false;
-  return name(fields[0]) == "x" && name(fields[1]) == "y" && (fields.size() == 2 || name(fields[2]) == "level");
+  return csv_name(fields[0]) == "x" && csv_name(fields[1]) == "y" && (fields.size() == 2 || csv_name(fields[2]) == "level");
+}
+
+// What a first line of a CSV is: the columns x,y[,level]; the same after an unnamed first column
+// (the index pandas' to_csv and R's write.csv write by default, skipped in every row); another
+// header (a field that is a name, not a number); or data.
+enum class CsvFirstLine { columns, index_and_columns, other_header, data };
+
+CsvFirstLine csv_first_line(const std::vector<std::string_view>& fields) {
+  if (names_point_columns(fields)) return CsvFirstLine::columns;
+  if (fields.size() > 1 && csv_name(fields[0]).empty() && names_point_columns(std::span(fields).subspan(1)))
+    return CsvFirstLine::index_and_columns;
+  for (std::string_view field : fields) {
+    const std::string name = csv_name(field);
+    if (name == "nan" || name == "inf" || name == "infinity") continue;  // refused as numbers, with their line
+    if (!field.empty() && (std::isalpha(static_cast<unsigned char>(field.front())) || field.front() == '"' ||
+                           field.front() == '\''))
+      return CsvFirstLine::other_header;
+  }
+  return CsvFirstLine::data;
 }
 
 }  // namespace
@@ -758,6 +812,7 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
   PointTextParser parser(name, true, options);
   std::size_t number = 0;
   bool data_seen = false;
+  bool index_column = false;  // the header's first column is unnamed: an index, skipped
   while (!text.empty()) {
     const std::size_t end = text.find('\n');
     const std::string_view line = text.substr(0, end);
@@ -768,18 +823,37 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
       parser.feed(std::string(line) + "\n");
       continue;
     }
-    const std::vector<std::string_view> fields = csv_fields(body);
+    std::vector<std::string_view> fields = csv_fields(body);
     auto fail = [&](const std::string& what) {
       const std::string shown(body.substr(0, 40));
       throw Error(name + ":" + std::to_string(number) + ": " + what + ", got '" + shown + (body.size() > 40 ? "...'" : "'"));
     };
-    if (!data_seen && is_csv_header(fields)) {
-      parser.feed("# " + std::string(body) + "\n");  // the header, as a comment: line numbers stay
+    // A spreadsheet in a locale with a decimal comma exports "0,5;0,25" (was "not a number '5;0'"); no
+    // field of ours holds a ';'.
+    if (body.find(';') != std::string_view::npos)
+      fail("fields separated by ';' (a spreadsheet's export where the decimal point is a comma); a CSV here has "
+           "',' between fields and '.' in numbers");
+    if (!data_seen) {
       data_seen = true;
-      continue;
+      const CsvFirstLine first = csv_first_line(fields);
+      if (first == CsvFirstLine::other_header)
+        throw Error(name + ":" + std::to_string(number) + ": header '" + std::string(body.substr(0, 40)) +
+                    (body.size() > 40 ? "...'" : "'") +
+                    " names other columns: a CSV's header names x,y or x,y,level (an unnamed first column, pandas' "
+                    "or R's index, is skipped); in pandas: df[['x', 'y']].to_csv(path, index=False)");
+      if (first != CsvFirstLine::data) {
+        index_column = first == CsvFirstLine::index_and_columns;
+        parser.feed("# " + std::string(body) + "\n");  // the header, as a comment: line numbers stay
+        continue;
+      }
     }
-    data_seen = true;
-    if (fields.size() != 2 && fields.size() != 3) fail("expected 'x,y' or 'x,y,level' (comma-separated)");
+    if (index_column) {
+      if (fields.size() < 2) fail("expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed)");
+      fields.erase(fields.begin());
+    }
+    if (fields.size() != 2 && fields.size() != 3)
+      fail(index_column ? "expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed)"
+                        : "expected 'x,y' or 'x,y,level' (comma-separated)");
     std::string converted;
     for (std::string_view field : fields) {
       if (field.empty()) fail("an empty field");
@@ -799,6 +873,7 @@ std::vector<PointSet> read_points_by_extension(const std::string& path, const Re
   else if (extension == ".bpt") sets = parse_binary_table(read_input(path), input_name(path), options);
   else if (extension == ".csv") sets = parse_csv_points(read_input(path), input_name(path), options);
   else if (extension == ".rps") sets = {read_rps_file(path, options)};
+  else if (extension == ".npz") refuse_zip(path);
   else if (path == "-") sets = parse_stream_table(read_input(path), input_name(path), options);  // by content
   else sets = read_point_sets(path, options);
   return same_columns(std::move(sets), path);

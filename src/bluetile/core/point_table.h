@@ -116,9 +116,12 @@ std::string table_name_for_path(const std::string& path);
 std::string checked_table_name(const std::string& path, const std::string& name);
 
 // Reads every set of a file in any readable format, recognised by its first bytes: npy,
-// binary, psa's .rps by its extension, else text (point_file.h; sets apart at '#' lines, UTK's convention). Throws
+// binary, psa's .rps and CSV (parse_csv_points) by their extensions, else text (point_file.h;
+// sets apart at '#' lines, UTK's convention). Throws
 // Error("<path>: <what>") for a damaged file: short, wrong magic, sizes that do not match,
-// unknown value types, non-finite values, levels that are not whole numbers.
+// unknown value types, non-finite values, levels that are not whole numbers; and for a zip archive
+// (NumPy's .npz), an npy of other values (integers, a structured or one-dimensional array), saying
+// how NumPy saves the array read here.
 std::vector<PointSet> read_point_table(const std::string& path);
 
 // The same decoders over bytes in memory; `name` stands for the file in messages.
@@ -128,10 +131,12 @@ std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string&
 std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::string& name,
                                          const ReadOptions& options = {});
 
-// Comma-separated points: an optional header line "x,y" or "x,y,level" (any case), then one point
-// a line, "x,y" or "x,y,level"; '#' lines separate sets and comment, as in text. Throws
+// Comma-separated points: an optional header line "x,y" or "x,y,level" (any case, names may be
+// quoted), then one point a line, "x,y" or "x,y,level"; '#' lines separate sets and comment, as
+// in text. A header whose first column is unnamed (",x,y": the index pandas' to_csv and R's
+// write.csv add by default) makes the first field of every row an index, skipped. Throws
 // Error("<name>:<line>: ...") naming the value for an empty or malformed field, a wrong column
-// count and everything the text format refuses.
+// count, a header naming other columns, and everything the text format refuses.
 std::vector<PointSet> parse_csv_points(std::string_view text, const std::string& name, const ReadOptions& options = {});
 
 // Every set of a file in the format its extension names (any case): .npy, .bpt, .csv, .rps, and

@@ -10,12 +10,14 @@
 namespace bluetile {
 
 std::string exact_text(double v) {
+  const ClassicNumbers classic;
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.17g", v);
   return buffer;
 }
 
 std::string shortest_text(double v) {
+  const ClassicNumbers classic;
   char buffer[32];
   for (int digits = 1; digits < 17; ++digits) {
     std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
@@ -25,6 +27,7 @@ std::string shortest_text(double v) {
 }
 
 std::string number_text(double v) {
+  const ClassicNumbers classic;
   if (std::isinf(v)) return v > 0 ? "infinity" : "-infinity";
   if (v == std::floor(v) && std::fabs(v) < 1e15) {
     char buffer[32];
@@ -35,6 +38,7 @@ std::string number_text(double v) {
 }
 
 std::string count_text(double v) {
+  const ClassicNumbers classic;
   char text[40];
   std::snprintf(text, sizeof text, v < 1e18 ? "%.0f" : "%.3g", v);
   return text;
@@ -45,6 +49,7 @@ std::string counted(long long n, std::string_view noun) {
 }
 
 std::string fixed_text(double v, int decimals) {
+  const ClassicNumbers classic;
   char buffer[352];  // %f of the largest double is 309 digits, plus the decimals asked for
   std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
   return buffer;
@@ -53,6 +58,7 @@ std::string fixed_text(double v, int decimals) {
 std::string measure_text(double v, int decimals) { return std::isfinite(v) ? fixed_text(v, decimals) : "-"; }
 
 std::string csv_number(double v, int digits) {
+  const ClassicNumbers classic;
   if (!std::isfinite(v)) return "";
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
@@ -64,6 +70,20 @@ std::string csv_defined_number(double v, int digits, const std::string& what) {
     throw Error(what + " is " + number_text(v) + ", where it must be a finite number: not written");
   return csv_number(v, digits);
 }
+
+namespace {
+
+// The C locale, made once and never freed (threads may hold it until they end).
+locale_t classic_locale() {
+  static const locale_t classic = newlocale(LC_ALL_MASK, "C", static_cast<locale_t>(0));
+  return classic;
+}
+
+}  // namespace
+
+// Where newlocale failed (no memory at the first call), uselocale(0) only asks, and changes nothing.
+ClassicNumbers::ClassicNumbers() : previous_(uselocale(classic_locale())) {}
+ClassicNumbers::~ClassicNumbers() { uselocale(previous_); }
 
 std::string lower_case(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));

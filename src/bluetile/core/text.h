@@ -4,6 +4,8 @@
 #include <string>
 #include <string_view>
 
+#include <locale.h>
+
 namespace bluetile {
 
 // `v` with 17 significant digits ("%.17g"): reads back as the same double.
@@ -38,6 +40,22 @@ std::string csv_number(double v, int digits);
 // The same for a field that must hold a value: throws Error("<what> is nan: ...") where `v` is
 // not finite, rather than writing the empty field that reads as "undefined".
 std::string csv_defined_number(double v, int digits, const std::string& what);
+
+// While it lives, the printf and strtod families in the calling thread read and write numbers
+// with a '.', whatever locale the program set: under Python's locale.setlocale(LC_ALL, '') in a
+// German locale the library wrote point files as "0,5 0,25", which no reader takes, and CSV
+// fields that split in two. Every number the library formats goes through one (the functions
+// above hold their own). Nests; costs two thread-local stores.
+class ClassicNumbers {
+ public:
+  ClassicNumbers();
+  ~ClassicNumbers();
+  ClassicNumbers(const ClassicNumbers&) = delete;
+  ClassicNumbers& operator=(const ClassicNumbers&) = delete;
+
+ private:
+  locale_t previous_;
+};
 
 // `s` in ASCII lower case (file extensions, device names).
 std::string lower_case(std::string s);

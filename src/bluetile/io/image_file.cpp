@@ -273,11 +273,12 @@ namespace {
 // removed with the object.
 class TemporaryCopy {
  public:
-  TemporaryCopy(const std::string& bytes, const std::string& like) {
+  TemporaryCopy(const std::string& folder, const std::string& bytes, const std::string& like) {
     const std::string extension = std::filesystem::path(like).extension().string();
-    std::string pattern = (std::filesystem::temp_directory_path() / "bluetile-image-XXXXXX").string() + extension;
+    std::string pattern = (std::filesystem::path(folder) / "bluetile-image-XXXXXX").string() + extension;
     const int fd = mkstemps(pattern.data(), static_cast<int>(extension.size()));
-    if (fd < 0) throw Error(like + ": cannot copy the image to a temporary file: " + std::strerror(errno));
+    if (fd < 0)
+      throw Error(like + ": cannot copy the image to a temporary file in '" + folder + "': " + std::strerror(errno));
     path_ = pattern;
     std::size_t written = 0;
     while (written < bytes.size()) {
@@ -349,7 +350,9 @@ ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
   // OpenImageIO would say it knows no format for a folder's name.
   if (found && S_ISDIR(status.st_mode)) throw Error(path + ": is a folder, not an image");
   if (found && !S_ISREG(status.st_mode)) {
-    const TemporaryCopy copy(read_input(path), path);
+    // Before the input is read: a FIFO's bytes are not lost to a TMPDIR that cannot take them.
+    const std::string folder = temporary_folder(path + ": not a regular file, so read into a temporary copy");
+    const TemporaryCopy copy(folder, read_input(path), path);
     return read_regular_image(copy.path(), path, max_pixels);
   }
   return read_regular_image(path, path, max_pixels);

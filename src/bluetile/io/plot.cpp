@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -25,6 +26,7 @@ double nice_step(double span, int target) {
 std::string tick_label(double v, double step) {
   int decimals = std::max(0, static_cast<int>(-std::floor(std::log10(step) + 1e-9)));
   if (std::abs(v) < 0.5 * step * 1e-6) v = 0.0;  // no "-0"
+  const ClassicNumbers classic;
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
   return buffer;
@@ -200,6 +202,7 @@ void paint_plot(const Plot& plot, Painter& painter, double width, double height)
   };
   auto x_tick_label = [&](double t) {
     if (!plot.log_x) return tick_label(t, x_step);
+    const ClassicNumbers classic;
     char buffer[32];
     std::snprintf(buffer, sizeof buffer, "%g", t);
     return std::string(buffer);

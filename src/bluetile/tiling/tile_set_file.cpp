@@ -281,6 +281,7 @@ std::string format_tile_set(const TileSet& set) {
   text += '\n';
   for (const std::string& line : set.header) text += line.empty() ? "#\n" : "# " + comment_line(line) + "\n";
   text += "# set " + std::string(tile_set_kind_name(set.kind)) + " colours " + std::to_string(rules.colour_count()) + "\n";
+  const ClassicNumbers classic;
   char buffer[128];
   for (std::size_t id = 0; id < set.tiles.size(); ++id) {
     const Tile& tile = set.tiles[id];

@@ -221,6 +221,7 @@ std::string tile_grid_comment(const Tiler& tiler, const Window& window, bool nor
     oy = (std::floor(window.y0 / s) * s - window.y0) / h;
     sx = s / w, sy = s / h;
   }
+  const ClassicNumbers classic;
   char text[160];
   std::snprintf(text, sizeof text, "%s %.17g %.17g %.17g %.17g", kTileGridPrefix, ox, oy, sx, sy);
   return text;
