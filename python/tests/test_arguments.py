@@ -105,9 +105,10 @@ def test_the_wrapping_the_refusal_suggests_is_accepted():
 
 
 def test_messages_quoting_bytes_that_are_not_utf8_keep_their_text(tmp_path):
-    # The Error had no message at all: its text quoted the file's bytes \xff\xfe.
+    # The Error had no message at all: its text quoted the file's bytes \xff\xfe (which now read
+    # as UTF-16's byte order mark, with their own message: \xff\xff is no encoding's).
     path = tmp_path / "b.txt"
-    path.write_bytes(b"\xff\xfe0.1 0.2\n")
+    path.write_bytes(b"\xff\xff0.1 0.2\n")
     with pytest.raises(bt.Error) as caught:
         bt.load_table(str(path))
     assert str(caught.value) == f"{path}:1: not a number '\ufffd\ufffd0.1'"

@@ -625,9 +625,16 @@ std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string&
   NpyHeader header(bytes.substr(header_start, header_size), name);
   // A well-formed file of another kind of array is refused saying how NumPy makes the one read
   // here (they were "bad .npy header").
-  if (header.is_list("descr"))
-    throw Error(name + ": a structured array (named fields); expected plain float64 or float32 values: save "
-                       "numpy.stack([a['x'], a['y']], axis=-1)");
+  if (header.is_list("descr")) {
+    // `bluetile centroids` writes its cx cy area tables so: name their fields in the hint.
+    const std::string_view text = std::string_view(bytes).substr(header_start, header_size);
+    const bool centroids = text.find("('cx'") != std::string_view::npos && text.find("('cy'") != std::string_view::npos;
+    const char* x = centroids ? "cx" : "x";
+    const char* y = centroids ? "cy" : "y";
+    throw Error(name + ": a structured array (named fields" + (centroids ? " cx, cy, area: centroids" : "") +
+                "); expected plain float64 or float32 values: save numpy.stack([a['" + x + "'], a['" + y +
+                "']], axis=-1)");
+  }
   const std::string descr = header.string_value("descr");
   const bool fortran = header.bool_value("fortran_order");
   std::vector<std::uint64_t> shape = header.tuple_value("shape");
