@@ -38,7 +38,7 @@ double bin_width_of(const Real& bin_width_arg) {
 
 // Refused outside [0, 1), as `bluetile analyze` refuses them.
 PointSets analysed_sets(const ArrayArg& points) {
-  PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", false);
+  PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", OutsideTorus::refuse);
   if (input.sets[0].size() < 2) throw nb::value_error("points: analysis needs at least 2 points per set");
   return input;
 }
@@ -212,7 +212,7 @@ anisotropy_db (10 log10 of variance / power^2; white noise about 0 dB) and count
   m.def(
       "nearest_neighbour_distances",
       [](const ArrayArg& points) {
-        PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", false);
+        PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", OutsideTorus::refuse);
         if (input.batched) throw nb::value_error("points: expected shape (N, 2)");
         std::vector<double> d;
         {

@@ -51,7 +51,7 @@ std::string dtype_name(nb::dlpack::dtype dtype) {
   return kind + std::to_string(dtype.bits);
 }
 
-PointSets point_sets(const AnyArray& array, const char* name, bool wrap) {
+PointSets point_sets(const AnyArray& array, const char* name, OutsideTorus outside) {
   const bool is_double = array.dtype() == nb::dtype<double>();
   if (!is_double && array.dtype() != nb::dtype<float>())
     throw nb::type_error((std::string(name) + ": expected float64 (or float32) values, got " +
@@ -86,7 +86,7 @@ PointSets point_sets(const AnyArray& array, const char* name, bool wrap) {
           throw nb::value_error(
               (element_name(k, i) + ": not a finite number '" + value_text(xy[c], !is_double) + "'").c_str());
       }
-      for (std::size_t c = 0; c < 2 && !wrap; ++c)
+      for (std::size_t c = 0; c < 2 && outside == OutsideTorus::refuse; ++c)
         if (!(xy[c] >= 0.0 && xy[c] < 1.0)) {
           const std::string value = value_text(xy[c], !is_double);
           throw nb::value_error((element_name(k, i) + ": " + (c == 0 ? "x" : "y") + " = " + value + " is outside [0, 1) (" +
@@ -94,7 +94,8 @@ PointSets point_sets(const AnyArray& array, const char* name, bool wrap) {
                                  "tiny negative)")
                                     .c_str());
         }
-      points[i] = bluetile::wrap_point({xy[0], xy[1]}, bluetile::Domain{});
+      points[i] = outside == OutsideTorus::keep ? bluetile::Point{xy[0], xy[1]}
+                                                : bluetile::wrap_point({xy[0], xy[1]}, bluetile::Domain{});
     }
   }
   return result;

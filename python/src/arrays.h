@@ -26,11 +26,16 @@ struct PointSets {
   bool batched = false;  // the array had shape (K, N, 2); else (N, 2), one set
 };
 
-// float64 or float32 values, shape (N, 2) or (K, N, 2) with N >= 1, every value finite;
-// coordinates outside [0, 1) are wrapped onto the torus, as `relax` wraps point files, or, with
-// `wrap` false, refused, as `analyze` refuses them (wrapping (1, 1) onto (0, 0) would measure a
-// pair that is not there). Throws TypeError (dtype) or ValueError (shape, values) naming `name`.
-PointSets point_sets(const AnyArray& array, const char* name, bool wrap = true);
+// What point_sets does with a coordinate outside [0, 1).
+enum class OutsideTorus {
+  wrap,    // wrapped onto the torus, as `relax` wraps point files
+  refuse,  // refused, as `analyze` refuses them (wrapping (1, 1) onto (0, 0) would measure a pair that is not there)
+  keep,    // kept as given: a table to be saved holds plane coordinates too, as `bluetile tile` writes them
+};
+
+// float64 or float32 values, shape (N, 2) or (K, N, 2) with N >= 1, every value finite, placed
+// as `outside` says. Throws TypeError (dtype) or ValueError (shape, values) naming `name`.
+PointSets point_sets(const AnyArray& array, const char* name, OutsideTorus outside = OutsideTorus::wrap);
 
 // Whole numbers (any integer dtype) of shape (N,), each in [0, max].
 std::vector<int> levels_array(const AnyArray& array, std::size_t count, const char* name, int max);

@@ -83,8 +83,9 @@ void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<A
   const std::string format = text_or(format_arg, "", "format"), name = text_or(name_arg, "", "name");
   const bool float32 = flag_or(float32_arg, false, "float32");
   const std::vector<std::string> comment = comment_lines(comment_arg);
-  // Refused outside [0, 1) as analysis refuses them: wrapping 1.5 to 0.5 wrote another point.
-  PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", false);
+  // Written as given, as `bluetile tile` writes plane coordinates: wrapping 1.5 to 0.5 wrote
+  // another point.
+  PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points", OutsideTorus::keep);
   std::vector<bluetile::PointSet> sets;
   for (auto& s : input.sets) sets.push_back({std::move(s), {}});
   if (levels) {
@@ -154,8 +155,9 @@ void bind_tables(nb::module_& m) {
 array of a header (default from the file name); ``comment``: a str (one line) or a sequence of
 str (one line each) at the top (text, header; refused for the others); a line break or other
 control character in one is written escaped (\n, \xNN), as the tool writes one in a file name,
-so that a comment adds no point or code. Coordinates must lie in [0, 1), as for analysis
-(``points % 1.0 % 1.0`` wraps others; they were wrapped silently before).
+so that a comment adds no point or code. Coordinates are written as given, outside [0, 1) too
+(``tile``'s plane coordinates, as ``bluetile tile`` writes them); ``load_table`` places what it
+reads on the unit torus, wrapping such coordinates, as ``bluetile relax -i`` does.
 The file appears whole or not at all.)");
 
   m.def("load_table", &load_table,

@@ -427,19 +427,26 @@ def test_requests_past_the_memory_are_refused_at_once_with_the_tools_estimate(to
     assert "--count 100000000 x --sets 10000000 needs about 142.1 PiB of memory, more than the" in cli.stderr
 
 
-def test_save_table_refuses_points_outside_the_torus_as_analysis_does(tmp_path):
-    # x = 1.5 was written as 0.5: another point than the one given.
-    points = np.array([[0.25, 0.25], [1.5, 0.5]])
-    with pytest.raises(ValueError) as analysed:
-        bt.analyze(points)
+def test_save_table_writes_coordinates_as_given_like_the_tools_tile(tool, tmp_path):
+    # x = 1.5 was written as 0.5: another point than the one given. tile()'s plane coordinates
+    # are saved as they are, in the bytes `bluetile tile` writes for them.
+    points = np.array([[0.25, 0.25], [1.5, 0.5], [-2.0, 3.25]])
     for name in ("t.txt", "t.npy", "t.bpt", "t.h"):
-        with pytest.raises(ValueError) as saved:
-            bt.save_table(tmp_path / name, points)
-        assert str(saved.value) == str(analysed.value), name
-        assert str(saved.value).startswith("points[1]: x = 1.5 is outside [0, 1) (points % 1.0 % 1.0 wraps them")
-        assert not (tmp_path / name).exists()
-    bt.save_table(tmp_path / "t.txt", points % 1.0 % 1.0)
-    assert np.array_equal(bt.load_table(tmp_path / "t.txt")[0], [[0.25, 0.25], [0.5, 0.5]])
+        bt.save_table(tmp_path / name, points)
+    text = (tmp_path / "t.txt").read_text().splitlines()
+    assert text == ["0.25 0.25", "1.5 0.5", "-2 3.25"]
+    npy = (tmp_path / "t.npy").read_bytes()
+    assert np.frombuffer(npy[-6 * 8:], dtype="<f8").tolist() == points.ravel().tolist()
+    plane = bt.tile((0.0, 0.0, 3.0, 2.0), density=4)
+    assert plane.max() > 1.0
+    bt.save_table(tmp_path / "plane.txt", plane)
+    tool("tile", "--region", "0", "0", "3", "2", "--density", "4", "-o", tmp_path / "tool.txt")
+    tool_rows = [l for l in (tmp_path / "tool.txt").read_text().splitlines() if not l.startswith("#")]
+    assert (tmp_path / "plane.txt").read_text().splitlines() == tool_rows
+    # Read back, they are placed on the torus, as relax -i places them; analysis refuses them as given.
+    assert np.array_equal(bt.load_table(tmp_path / "t.txt")[0], points % 1.0 % 1.0)
+    with pytest.raises(ValueError, match=r"^points\[1\]: x = 1.5 is outside \[0, 1\)"):
+        bt.analyze(points)
 
 
 def test_load_table_refuses_a_file_without_points_as_the_tool_does(tool, tmp_path):
