@@ -151,6 +151,18 @@ TEST(PointFile, NumbersAreWrittenAndReadWithAPointWhateverTheLocale) {
   EXPECT_EQ(tiny.points, (std::vector<Point>{{0.0, 0.5}}));  // 1.5e-330 is 0, not "out of range"
 }
 
+TEST(PointFile, DomainCommentsOfWordsNearABoundaryStayComments) {
+  // "# domain aperiodic" (a tiling of the plane), "# domain unbounded" and "# domain bounds" are
+  // words of their own a letter or two from "periodic" or "bounded"; they were refused as typos.
+  for (const char* prose : {"# domain aperiodic\n", "# domain Unbounded\n", "# domain bounds\n", "# domain rounded\n",
+                            "# domain founded\n", "# domain bound\n", "# domain period\n"}) {
+    EXPECT_EQ(parse_error(std::string(prose) + "0.1 0.2\n"), "") << prose;
+    PointSet set = parse_points(std::string(prose) + "0.1 0.2\n", "x");
+    EXPECT_FALSE(set.declared_boundary) << prose;
+  }
+  EXPECT_NE(parse_error("# domain aperiodc\n0.1 0.2\n"), "");  // a typo of neither word is still one
+}
+
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 nan\n"), "pts.txt:2: not a finite number 'nan'");
   EXPECT_EQ(parse_error("0.1 0.2\ninf 0.3\n"), "pts.txt:2: not a finite number 'inf'");

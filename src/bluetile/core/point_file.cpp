@@ -211,8 +211,12 @@ std::optional<Boundary> declared_boundary(std::string_view comment, const LineEr
   const std::string second = lower_case(std::string(words.kept[1]));
   constexpr std::size_t kTypoEdits = 2;
   const bool boundary_word = second == "periodic" || second == "bounded";
-  const bool typo = words.count == 2 && (edit_distance(second, "periodic") <= kTypoEdits ||
-                                         edit_distance(second, "bounded") <= kTypoEdits);
+  // Words a letter or two from a boundary that mean something of their own ("# domain aperiodic":
+  // a tiling of the plane; "# domain unbounded") are prose, not typos.
+  constexpr std::string_view kWords[] = {"aperiodic", "unbounded", "bounds", "rounded", "founded", "bound", "period"};
+  const bool word = std::find(std::begin(kWords), std::end(kWords), second) != std::end(kWords);
+  const bool typo = words.count == 2 && !word &&
+                    (edit_distance(second, "periodic") <= kTypoEdits || edit_distance(second, "bounded") <= kTypoEdits);
   if (!boundary_word && !typo) return std::nullopt;
   std::string_view shown = comment;
   while (!shown.empty() && is_blank(shown.front())) shown.remove_prefix(1);
