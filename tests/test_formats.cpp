@@ -476,6 +476,28 @@ TEST(Formats, CsvIsReadByItsExtensionWithPandasAndRIndexColumns) {
   EXPECT_EQ(csv_error(std::string("\xFF\xFEx\0,\0y\0\r\0\n\0", 12)).substr(0, 22), "p.csv: UTF-16 text (Wi");
 }
 
+TEST(Formats, CsvOfQuotedNumbersTrailingCommasOrBlankSeparatedTextIsRead) {
+  // Quoted numbers (Python's csv.QUOTE_ALL) were "header names other columns" or "not a number
+  // '"0.25"'"; a ',' ending every line "an empty field"; and the text points `relax --format text
+  // -o points.csv` writes (read as text before .csv was read as CSV) "expected 'x,y'".
+  test::TempDir dir;
+  const std::vector<Point> points{{0.25, 0.5}, {0.75, 0.125}};
+  for (const char* csv : {"\"0.25\",\"0.5\"\n\"0.75\",\"0.125\"\n", "\"x\",\"y\"\n\" 0.25\",\"0.5\"\n\"0.75\",\"0.125\"\n",
+                          "x,y,\n0.25,0.5,\n0.75,0.125,\n", "0.25,0.5,\r\n0.75,0.125,\r\n",
+                          "# bluetile relax: 2 points, seed 1\n0.25 0.5\n0.75\t0.125 # a, b\n",
+                          "\xEF\xBB\xBF" "0.25 0.5\r\n0.75 0.125\r\n"}) {
+    std::vector<PointSet> sets = read_point_table(dir.write("p.csv", csv));
+    ASSERT_EQ(sets.size(), 1u) << csv;
+    EXPECT_EQ(sets[0].points, points) << csv;
+    EXPECT_EQ(read_points_by_extension(dir.file("p.csv"))[0].points, points) << csv;
+  }
+  auto csv_error = [](const std::string& text) { return error_of([&] { parse_csv_points(text, "p.csv"); }); };
+  // A ',' ending some lines only is an empty field, as is a comma-separated file with a blank one.
+  EXPECT_EQ(csv_error("0.25,0.5\n0.75,0.125,\n"), "p.csv:2: an empty field, got '0.75,0.125,'");
+  EXPECT_EQ(csv_error("0.25,0.5\n0.75 0.125\n"), "p.csv:2: expected 'x,y' or 'x,y,level' (comma-separated), got '0.75 0.125'");
+  EXPECT_EQ(csv_error("0.25;0.5\n").substr(0, 33), "p.csv:1: fields separated by ';' ");
+}
+
 TEST(Formats, NumpyArchivesAreRefusedSayingHowToSaveOneArray) {
   // numpy.savez's .npz was "binary data (NUL byte): not a point file".
   test::TempDir dir;

@@ -777,6 +777,12 @@ std::vector<std::string_view> csv_fields(std::string_view line) {
   }
 }
 
+// A field without the quotes a CSV writer may put around any value (Python's csv.QUOTE_ALL).
+std::string_view unquoted(std::string_view field) {
+  if (field.size() >= 2 && field.front() == '"' && field.back() == '"') return trimmed(field.substr(1, field.size() - 2));
+  return field;
+}
+
 // A header field's name: unquoted (R quotes them), lower case.
 std::string csv_name(std::string_view field) {
   if (field.size() >= 2 && (field.front() == '"' || field.front() == '\'') && field.back() == field.front())
@@ -802,11 +808,29 @@ CsvFirstLine csv_first_line(const std::vector<std::string_view>& fields) {
   for (std::string_view field : fields) {
     const std::string name = csv_name(field);
     if (name == "nan" || name == "inf" || name == "infinity") continue;  // refused as numbers, with their line
-    if (!field.empty() && (std::isalpha(static_cast<unsigned char>(field.front())) || field.front() == '"' ||
-                           field.front() == '\''))
+    const std::string_view inner = unquoted(field);  // "0.25" quoted is a number
+    if (!inner.empty() && (std::isalpha(static_cast<unsigned char>(inner.front())) || inner.front() == '"' ||
+                           inner.front() == '\''))
       return CsvFirstLine::other_header;
   }
   return CsvFirstLine::data;
+}
+
+// Whether the lines holding data (before any '#') hold blanks between their values and no ',' or
+// ';': bluetile's text points in a file named .csv (relax --format text -o points.csv writes
+// them, as does '> points.csv'), which no line of a CSV can be.
+bool blank_separated(std::string_view text) {
+  bool data = false;
+  while (!text.empty()) {
+    const std::size_t end = text.find('\n');
+    std::string_view line = text.substr(0, end);
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+    line = trimmed(line.substr(0, line.find('#')));
+    if (line.empty()) continue;
+    if (line.find_first_of(",;") != std::string_view::npos) return false;
+    data = true;
+  }
+  return data;
 }
 
 }  // namespace
@@ -815,11 +839,13 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
   // Each line becomes the text format's "x y [level]" and goes through its parser, which checks
   // the numbers, ranges and levels and counts the lines: one reader of points, not two.
   static constexpr std::string_view kBom = "\xEF\xBB\xBF";
+  if (blank_separated(text)) return parse_point_sets(text, name, options);
   if (text.substr(0, kBom.size()) == kBom) text.remove_prefix(kBom.size());
   PointTextParser parser(name, true, options);
   std::size_t number = 0;
   bool data_seen = false;
   bool index_column = false;  // the header's first column is unnamed: an index, skipped
+  bool trailing_comma = false;  // the first line ends with ',': so does every line, no field after it
   while (!text.empty()) {
     const std::size_t end = text.find('\n');
     const std::string_view line = text.substr(0, end);
@@ -831,6 +857,10 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
       continue;
     }
     std::vector<std::string_view> fields = csv_fields(body);
+    // A ',' ending every line, the first one's included (some spreadsheets write one): no field
+    // after it. Where the first line has none, an empty last field is an error as any.
+    if (!data_seen) trailing_comma = fields.size() > 1 && body.back() == ',';
+    if (trailing_comma && fields.size() > 1 && body.back() == ',') fields.pop_back();
     auto fail = [&](const std::string& what) {
       const std::string shown(body.substr(0, 40));
       throw Error(name + ":" + std::to_string(number) + ": " + what + ", got '" + shown + (body.size() > 40 ? "...'" : "'"));
@@ -863,6 +893,7 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
                         : "expected 'x,y' or 'x,y,level' (comma-separated)");
     std::string converted;
     for (std::string_view field : fields) {
+      field = unquoted(field);
       if (field.empty()) fail("an empty field");
       if (field.find_first_of(" \t") != std::string_view::npos) fail("a field holding a blank");
       converted += std::string(field) + " ";
