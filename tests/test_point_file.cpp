@@ -163,6 +163,17 @@ TEST(PointFile, DomainCommentsOfWordsNearABoundaryStayComments) {
   EXPECT_NE(parse_error("# domain aperiodc\n0.1 0.2\n"), "");  // a typo of neither word is still one
 }
 
+TEST(PointFile, ACHeaderSaysItIsOneNotCommaSeparatedValues) {
+  // A .h that --format header writes, given as points, was "got 15 columns: ... (comma-separated
+  // values: a file named .csv is read as CSV)".
+  const std::string fix =
+      ": a C header (bluetile writes one for --format header) is compiled in, not read back; read the points from the "
+      "text, .npy or .bpt file it was made from";
+  EXPECT_EQ(parse_error("// bluetile dart: 4 points, seed 1\nstatic const double p[1][1][2] = {{{0.5, 0.5}}};\n"),
+            "pts.txt:1: a C or C++ source line '// bluetile dart: 4 points, seed 1'" + fix);
+  EXPECT_EQ(parse_error("/* points */\n"), "pts.txt:1: a C or C++ source line '/* points */'" + fix);
+}
+
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 nan\n"), "pts.txt:2: not a finite number 'nan'");
   EXPECT_EQ(parse_error("0.1 0.2\ninf 0.3\n"), "pts.txt:2: not a finite number 'inf'");

@@ -114,6 +114,12 @@ class SetParser {
     const std::string_view hint = line.find(',') != std::string_view::npos ? kCommaHint : std::string_view{};
     Tokens tokens = split_whitespace(line);
     if (tokens.count == 0) return;
+    // A C header (--format header, save_table's .h) begins with a '//' comment; its commas drew the
+    // CSV hint, which fits it not.
+    if (tokens.kept[0].substr(0, 2) == "//" || tokens.kept[0].substr(0, 2) == "/*")
+      fail("a C or C++ source line " + quote(line) +
+           ": a C header (bluetile writes one for --format header) is compiled in, not read back; read the points from "
+           "the text, .npy or .bpt file it was made from");
     if (tokens.count == 1) {
       long long count = 0;
       if (set_.points.empty() && count_line_ == 0 && parse_integer(tokens.kept[0], count)) {
