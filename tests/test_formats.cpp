@@ -496,6 +496,14 @@ TEST(Formats, CsvOfQuotedNumbersTrailingCommasOrBlankSeparatedTextIsRead) {
   EXPECT_EQ(csv_error("0.25,0.5\n0.75,0.125,\n"), "p.csv:2: an empty field, got '0.75,0.125,'");
   EXPECT_EQ(csv_error("0.25,0.5\n0.75 0.125\n"), "p.csv:2: expected 'x,y' or 'x,y,level' (comma-separated), got '0.75 0.125'");
   EXPECT_EQ(csv_error("0.25;0.5\n").substr(0, 33), "p.csv:1: fields separated by ';' ");
+  // The tables bluetile writes as .csv say what they are (the advice was pandas' df[['x', 'y']]).
+  EXPECT_EQ(csv_error("frequency,power,anisotropy_db,nu\n0,64,,0\n"),
+            "p.csv:1: header 'frequency,power,anisotropy_db,nu': bluetile analyze's radial.csv (radial power by "
+            "frequency), not points; give the point file that was analysed or relaxed");
+  EXPECT_EQ(csv_error("r,r_relative,g,set\n").substr(0, 58), "p.csv:1: header 'r,r_relative,g,set': bluetile analyze's r");
+  EXPECT_EQ(csv_error("iteration,energy,max_displacement\n"),
+            "p.csv:1: header 'iteration,energy,max_displacement': a --log of bluetile relax or stipple (energy and "
+            "displacement by iteration), not points; give the point file that was analysed or relaxed");
 }
 
 TEST(Formats, NumpyArchivesAreRefusedSayingHowToSaveOneArray) {

@@ -873,11 +873,23 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
     if (!data_seen) {
       data_seen = true;
       const CsvFirstLine first = csv_first_line(fields);
-      if (first == CsvFirstLine::other_header)
-        throw Error(name + ":" + std::to_string(number) + ": header '" + std::string(body.substr(0, 40)) +
-                    (body.size() > 40 ? "...'" : "'") +
+      if (first == CsvFirstLine::other_header) {
+        // The tables bluetile itself writes as .csv, by their first column: the pandas advice that
+        // follows fits them not.
+        const std::string column = csv_name(fields[0]);
+        const std::string_view own = column == "frequency" ? "bluetile analyze's radial.csv (radial power by frequency)"
+                                     : column == "r"       ? "bluetile analyze's rdf.csv (the radial distribution function)"
+                                     : column == "iteration"
+                                         ? "a --log of bluetile relax or stipple (energy and displacement by iteration)"
+                                         : "";
+        const std::string header = "header '" + std::string(body.substr(0, 40)) + (body.size() > 40 ? "...'" : "'");
+        if (!own.empty())
+          throw Error(name + ":" + std::to_string(number) + ": " + header + ": " + std::string(own) +
+                      ", not points; give the point file that was analysed or relaxed");
+        throw Error(name + ":" + std::to_string(number) + ": " + header +
                     " names other columns: a CSV's header names x,y or x,y,level (an unnamed first column, pandas' "
                     "or R's index, is skipped); in pandas: df[['x', 'y']].to_csv(path, index=False)");
+      }
       if (first != CsvFirstLine::data) {
         index_column = first == CsvFirstLine::index_and_columns;
         parser.feed("# " + std::string(body) + "\n");  // the header, as a comment: line numbers stay
