@@ -225,6 +225,29 @@ TEST(PointFile, PiecesCutAnywhereParseAsTheWhole) {
   }
 }
 
+TEST(PointFile, ALoneCarriageReturnEndsALineAsCrLfDoes) {
+  // Classic Mac OS line ends: the file was one line ("got 4 columns: '0.1 0.20.3 0.4'").
+  const std::string mac = "# by hand\r3\r0.1 0.2 0\r0.3 0.4 1\r\r0.5 0.6 1\r";
+  const std::string unix_text = "# by hand\n3\n0.1 0.2 0\n0.3 0.4 1\n\n0.5 0.6 1\n";
+  const std::string windows = "# by hand\r\n3\r\n0.1 0.2 0\r\n0.3 0.4 1\r\n\r\n0.5 0.6 1\r\n";
+  const PointSet expected = parse_points(unix_text, "x");
+  ASSERT_EQ(expected.points.size(), 3u);
+  for (const std::string& text : {mac, windows}) {
+    for (std::size_t step : {1, 2, 3, 7, 64}) {  // a "\r\n" cut between chunks is one line end
+      PointTextParser parser("x", false);
+      for (std::size_t at = 0; at < text.size(); at += step) parser.feed(std::string_view(text).substr(at, step));
+      std::vector<PointSet> sets = parser.finish();
+      ASSERT_EQ(sets.size(), 1u);
+      EXPECT_EQ(sets[0].points, expected.points) << step;
+      EXPECT_EQ(sets[0].levels, expected.levels) << step;
+      EXPECT_EQ(parser.lines(), 6u) << step;
+    }
+  }
+  // Lines are counted as an editor shows them, whichever ends they have.
+  EXPECT_EQ(parse_error("0.1 0.2\r0.3 x\r"), "pts.txt:2: not a number 'x'");
+  EXPECT_EQ(parse_error("0.1 0.2\r\n0.3 x\r\n"), "pts.txt:2: not a number 'x'");
+}
+
 TEST(PointFile, QuotedValuesAreCut) {
   // A 10 MB bad line was quoted whole.
   const std::string long_token(1000, 'z');
