@@ -6,7 +6,9 @@
 #include <langinfo.h>
 #include <locale.h>
 
+#include "bluetile/analysis/radial_power.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/text.h"
@@ -149,6 +151,26 @@ TEST(PointFile, NumbersAreWrittenAndReadWithAPointWhateverTheLocale) {
   EXPECT_EQ(csv + " " + exact + " " + fixed, "0.5 0.5 0.50");
   EXPECT_EQ(range, "[0.5, 1.5)");
   EXPECT_EQ(tiny.points, (std::vector<Point>{{0.0, 0.5}}));  // 1.5e-330 is 0, not "out of range"
+}
+
+TEST(PointFile, MessagesWriteNumbersWithAPointWhateverTheLocale) {
+  // Messages formatted with printf under the program's comma locale said "1,5 MiB" and
+  // "annulus width 10,5".
+  TempDir dir;
+  const locale_t comma = comma_locale(dir.path());
+  if (comma == static_cast<locale_t>(0)) GTEST_SKIP() << "no locale with a decimal comma, and localedef cannot make one";
+  const locale_t before = uselocale(comma);
+  const std::string bytes = format_bytes(1.5 * 1024 * 1024);
+  std::string annulus;
+  try {
+    radial_power(Periodogram{8, std::vector<double>(64, 1.0)}, 10.5);
+  } catch (const Error& e) {
+    annulus = e.what();
+  }
+  uselocale(before);
+  freelocale(comma);
+  EXPECT_EQ(bytes, "1.5 MiB");
+  EXPECT_EQ(annulus, "annulus width 10.5 is wider than half the periodogram size (4)");
 }
 
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {
