@@ -449,7 +449,8 @@ TEST(Formats, CsvIsReadByItsExtensionWithPandasAndRIndexColumns) {
   test::TempDir dir;
   const std::vector<Point> points{{0.25, 0.5}, {0.75, 0.125}};
   for (const char* csv : {"x,y\n0.25,0.5\n0.75,0.125\n", ",x,y\n0,0.25,0.5\n1,0.75,0.125\n",
-                          "\xEF\xBB\xBF\"\",\"x\",\"y\"\r\n\"1\",0.25,0.5\r\n\"2\",0.75,0.125", "# x,y\n2.5e-01,5e-1\n+.75,0.125\n"}) {
+                          "\xEF\xBB\xBF\"\",\"x\",\"y\"\r\n\"1\",0.25,0.5\r\n\"2\",0.75,0.125", "# x,y\n2.5e-01,5e-1\n+.75,0.125\n",
+                          "x,y\r0.25,0.5\r0.75,0.125\r"}) {  // classic Mac OS line ends were one line
     std::vector<PointSet> sets = read_point_table(dir.write("p.csv", csv));
     ASSERT_EQ(sets.size(), 1u) << csv;
     EXPECT_EQ(sets[0].points, points) << csv;
@@ -467,6 +468,8 @@ TEST(Formats, CsvIsReadByItsExtensionWithPandasAndRIndexColumns) {
             "p.csv:3: expected 'index,x,y' or 'index,x,y,level' (the header's first column is unnamed), got '0.75'");
   EXPECT_EQ(csv_error(",x,y\n0,0.25,\n"), "p.csv:2: an empty field, got '0,0.25,'");
   EXPECT_EQ(csv_error("nan,0.5\n"), "p.csv:1: not a finite number 'nan'");  // a number, not a header
+  EXPECT_EQ(csv_error("x,y\r0.25,0.5\r0.75\r"), "p.csv:3: expected 'x,y' or 'x,y,level' (comma-separated), got '0.75'");
+  EXPECT_EQ(csv_error("x,y\r\n0.25,0.5\r\n0.75\r\n"), "p.csv:3: expected 'x,y' or 'x,y,level' (comma-separated), got '0.75'");
   // A spreadsheet's export in a decimal-comma locale was "header 'x;y'" or "an empty field".
   const std::string semicolons = "fields separated by ';' (a spreadsheet's export where the decimal point is a comma); "
                                  "a CSV here has ',' between fields and '.' in numbers";

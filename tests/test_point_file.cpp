@@ -6,7 +6,9 @@
 #include <langinfo.h>
 #include <locale.h>
 
+#include "bluetile/analysis/radial_power.h"
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/text.h"
@@ -174,6 +176,26 @@ TEST(PointFile, ACHeaderSaysItIsOneNotCommaSeparatedValues) {
   EXPECT_EQ(parse_error("/* points */\n"), "pts.txt:1: a C or C++ source line '/* points */'" + fix);
 }
 
+TEST(PointFile, MessagesWriteNumbersWithAPointWhateverTheLocale) {
+  // Messages formatted with printf under the program's comma locale said "1,5 MiB" and
+  // "annulus width 10,5".
+  TempDir dir;
+  const locale_t comma = comma_locale(dir.path());
+  if (comma == static_cast<locale_t>(0)) GTEST_SKIP() << "no locale with a decimal comma, and localedef cannot make one";
+  const locale_t before = uselocale(comma);
+  const std::string bytes = format_bytes(1.5 * 1024 * 1024);
+  std::string annulus;
+  try {
+    radial_power(Periodogram{8, std::vector<double>(64, 1.0)}, 10.5);
+  } catch (const Error& e) {
+    annulus = e.what();
+  }
+  uselocale(before);
+  freelocale(comma);
+  EXPECT_EQ(bytes, "1.5 MiB");
+  EXPECT_EQ(annulus, "annulus width 10.5 is wider than half the periodogram size (4)");
+}
+
 TEST(PointFile, MalformedLinesNameFileLineAndValue) {
   EXPECT_EQ(parse_error("0.1 0.2\n0.3 nan\n"), "pts.txt:2: not a finite number 'nan'");
   EXPECT_EQ(parse_error("0.1 0.2\ninf 0.3\n"), "pts.txt:2: not a finite number 'inf'");
@@ -246,6 +268,29 @@ TEST(PointFile, PiecesCutAnywhereParseAsTheWhole) {
       EXPECT_EQ(pieces[k].levels, whole[k].levels) << step;
     }
   }
+}
+
+TEST(PointFile, ALoneCarriageReturnEndsALineAsCrLfDoes) {
+  // Classic Mac OS line ends: the file was one line ("got 4 columns: '0.1 0.20.3 0.4'").
+  const std::string mac = "# by hand\r3\r0.1 0.2 0\r0.3 0.4 1\r\r0.5 0.6 1\r";
+  const std::string unix_text = "# by hand\n3\n0.1 0.2 0\n0.3 0.4 1\n\n0.5 0.6 1\n";
+  const std::string windows = "# by hand\r\n3\r\n0.1 0.2 0\r\n0.3 0.4 1\r\n\r\n0.5 0.6 1\r\n";
+  const PointSet expected = parse_points(unix_text, "x");
+  ASSERT_EQ(expected.points.size(), 3u);
+  for (const std::string& text : {mac, windows}) {
+    for (std::size_t step : {1, 2, 3, 7, 64}) {  // a "\r\n" cut between chunks is one line end
+      PointTextParser parser("x", false);
+      for (std::size_t at = 0; at < text.size(); at += step) parser.feed(std::string_view(text).substr(at, step));
+      std::vector<PointSet> sets = parser.finish();
+      ASSERT_EQ(sets.size(), 1u);
+      EXPECT_EQ(sets[0].points, expected.points) << step;
+      EXPECT_EQ(sets[0].levels, expected.levels) << step;
+      EXPECT_EQ(parser.lines(), 6u) << step;
+    }
+  }
+  // Lines are counted as an editor shows them, whichever ends they have.
+  EXPECT_EQ(parse_error("0.1 0.2\r0.3 x\r"), "pts.txt:2: not a number 'x'");
+  EXPECT_EQ(parse_error("0.1 0.2\r\n0.3 x\r\n"), "pts.txt:2: not a number 'x'");
 }
 
 TEST(PointFile, QuotedValuesAreCut) {

@@ -280,7 +280,18 @@ TEST(TileSet, FilesRoundTripBitForBit) {
       EXPECT_EQ(back.tiles[t].ranks, set.tiles[t].ranks);
     }
     EXPECT_EQ(format_tile_set(back), text);
+    // CR LF and classic Mac OS's lone CR end lines too (a lone CR made the file one line: "not a
+    // tile-set file").
+    std::string crlf, cr;
+    for (char c : text) {
+      crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+      cr += c == '\n' ? '\r' : c;
+    }
+    EXPECT_EQ(format_tile_set(parse_tile_set(crlf, "crlf.tiles")), text);
+    EXPECT_EQ(format_tile_set(parse_tile_set(cr, "cr.tiles")), text);
   }
+  EXPECT_EQ(test::error_of([] { parse_tile_set("# bluetile tiles 1\r# set wang8 colours 2\rx\r", "cr.tiles"); }).substr(0, 12),
+            "cr.tiles:3: ");
   EXPECT_NE(test::read_text(dir.file("corner16.txt")).find("# tile 5 corners 0 1 0 1\n"), std::string::npos);
   EXPECT_NE(test::read_text(dir.file("wang8.txt")).find("# tile 5 1 1 1 0\n"), std::string::npos);
   const std::string corner81 = test::read_text(dir.file("corner81.txt"));

@@ -27,6 +27,7 @@ double element(const AnyArray& array, std::size_t offset) {
 std::string value_text(double v, bool is_float32) {
   if (!is_float32 || !std::isfinite(v)) return bluetile::shortest_text(v);
   const float f = static_cast<float>(v);
+  const bluetile::ClassicNumbers classic;  // "-0.1", not "-0,1", under a comma locale the program set
   char buffer[32];
   for (int digits = 1; digits < 9; ++digits) {
     std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);

@@ -6,6 +6,7 @@ refused by name."""
 import math
 import os
 import re
+import shutil
 import subprocess
 import sys
 import time
@@ -520,3 +521,51 @@ def test_float32_values_in_messages_are_the_float32s_shortest():
         bt.analyze(np.array([[0.5, 1.0 + 2**-52], [0.25, 0.25]]))
     with pytest.raises(ValueError, match=r"^points\[0\]: x = -1e-17 is outside \[0, 1\)"):
         bt.analyze(np.array([[-1e-17, 0.5], [0.25, 0.25]]))
+
+
+def _set_comma_locale(tmp_path):
+    """Sets LC_ALL to a locale whose decimal point is a comma, as an embedding program may
+    (locale.setlocale(locale.LC_ALL, 'de_DE.UTF-8')); one made with localedef where the system
+    has none. Returns False where none can be had."""
+    import locale
+    names = ("de_DE.UTF-8", "de_DE.utf8", "fr_FR.UTF-8", "fr_FR.utf8")
+    for name in names:
+        try:
+            locale.setlocale(locale.LC_ALL, name)
+            if locale.localeconv()["decimal_point"] == ",":
+                return True
+        except locale.Error:
+            pass
+    if shutil.which("localedef") is None:
+        return False
+    made = subprocess.run(["localedef", "-i", "de_DE", "-f", "UTF-8", str(tmp_path / "de_DE.UTF-8")],
+                          capture_output=True, check=False)
+    if made.returncode != 0:
+        return False
+    os.environ["LOCPATH"] = str(tmp_path)
+    try:
+        locale.setlocale(locale.LC_ALL, "de_DE.UTF-8")
+    except locale.Error:
+        return False
+    return locale.localeconv()["decimal_point"] == ","
+
+
+def test_messages_write_numbers_with_a_point_under_a_comma_locale(tmp_path):
+    # A float32 value in a message was "x = 1,5" under the program's German locale.
+    import locale
+    saved = locale.setlocale(locale.LC_ALL)
+    saved_locpath = os.environ.get("LOCPATH")
+    try:
+        if not _set_comma_locale(tmp_path):
+            pytest.skip("no locale with a decimal comma, and localedef cannot make one")
+        points = np.array([[0.25, 0.25], [1.5, 0.5]], dtype=np.float32)
+        with pytest.raises(ValueError) as raised:
+            bt.analyze(points)
+        message = str(raised.value)
+    finally:
+        locale.setlocale(locale.LC_ALL, saved)
+        if saved_locpath is None:
+            os.environ.pop("LOCPATH", None)
+        else:
+            os.environ["LOCPATH"] = saved_locpath
+    assert message.startswith("points[1]: x = 1.5 is outside [0, 1)"), message

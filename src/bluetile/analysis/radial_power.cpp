@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 
@@ -18,6 +19,7 @@ std::vector<Annulus> radial_power(const Periodogram& periodogram, double bin_wid
   if (periodogram.size < 2) throw Error("radial power of an empty periodogram");
   const int half = periodogram.half();
   const double count = annulus_count(periodogram.size, bin_width);
+  const ClassicNumbers classic;
   char width[32];
   std::snprintf(width, sizeof width, "%.17g", bin_width);
   if (count < 1.0)

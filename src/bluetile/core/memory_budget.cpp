@@ -8,6 +8,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/process_limits.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -55,6 +56,7 @@ std::string format_bytes(double bytes) {
     ++unit;
   }
   char text[48];
+  const ClassicNumbers classic;
   std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.1f %s", bytes, units[unit]);
   return text;
 }

@@ -511,6 +511,19 @@ std::size_t OutputSet::staging_folder_for(const std::string& directory, const st
   return folders_.size() - 1;
 }
 
+namespace {
+
+// Binary bytes on a terminal are garbage to the reader and can leave the terminal in a strange
+// state (gzip and zstd refuse the same); text goes there as it would to a file.
+void refuse_binary_on_terminal(int fd, const std::string& path, const OutputOptions& options) {
+  if (options.binary_format.empty() || isatty(fd) != 1) return;
+  ::close(fd);
+  throw Error(path + ": standard output is a terminal, and " + std::string(options.binary_format) +
+              " data is binary: redirect it to a file (> FILE) or pipe it to a program (| ...)");
+}
+
+}  // namespace
+
 OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
   if (published_) throw Error(path + ": output added after publishing");
   if (path.empty()) throw Error("empty output path");
@@ -531,6 +544,7 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
     if (!options.allow_stdout) throw Error("-: this output cannot be standard output");
     int fd = open_descriptor_for_writing(1, "standard output");
     output->stdout_ = true;
+    refuse_binary_on_terminal(fd, path, options);
     struct stat st {};
     fstat(fd, &st);
     return direct(fd, &st);
@@ -552,6 +566,7 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
     case Resolved::Type::descriptor: {
       int fd = open_descriptor_for_writing(r.descriptor, path);
       output->stdout_ = r.descriptor == 1;
+      if (output->stdout_) refuse_binary_on_terminal(fd, path, options);
       struct stat st {};
       fstat(fd, &st);
       return direct(fd, &st);

@@ -315,9 +315,17 @@ class PointTextParser::Impl {
   }
 
  private:
+  // A line ends at "\n", "\r\n" or a lone "\r" (classic Mac OS; its files were one long line).
   void feed_lines(std::string_view chunk) {
     while (!chunk.empty()) {
-      std::size_t end = chunk.find('\n');
+      if (after_cr_) {  // the "\n" of a "\r\n", perhaps in the next chunk
+        after_cr_ = false;
+        if (chunk.front() == '\n') {
+          chunk.remove_prefix(1);
+          continue;
+        }
+      }
+      std::size_t end = chunk.find_first_of("\r\n");
       if (end == std::string_view::npos) {
         carry_.append(chunk);
         return;
@@ -330,6 +338,7 @@ class PointTextParser::Impl {
         carry_.clear();
         line(whole);
       }
+      after_cr_ = chunk[end] == '\r';
       chunk.remove_prefix(end + 1);
     }
   }
@@ -359,6 +368,7 @@ class PointTextParser::Impl {
   std::vector<PointSet> sets_;
   std::string carry_;  // an incomplete line (or, at the start, bytes that may be a byte-order mark)
   bool at_start_ = true;
+  bool after_cr_ = false;  // the last line ended at a "\r"
   std::size_t number_ = 0;
 };
 

@@ -847,9 +847,11 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
   bool index_column = false;  // the header's first column is unnamed: an index, skipped
   bool trailing_comma = false;  // the first line ends with ',': so does every line, no field after it
   while (!text.empty()) {
-    const std::size_t end = text.find('\n');
+    // A line ends at "\n", "\r\n" or a lone "\r" (classic Mac OS), as in point files.
+    const std::size_t end = text.find_first_of("\r\n");
     const std::string_view line = text.substr(0, end);
-    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+    const bool crlf = end != std::string_view::npos && text.substr(end, 2) == "\r\n";
+    text.remove_prefix(end == std::string_view::npos ? text.size() : end + (crlf ? 2 : 1));
     ++number;
     const std::string_view body = trimmed(line);
     if (body.empty() || body.front() == '#') {

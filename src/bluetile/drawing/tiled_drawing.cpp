@@ -7,6 +7,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/io/svg.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -36,6 +37,7 @@ Canvas render_dots(const Tiler& tiler, const Window& window, const Thinning* thi
   const double height = std::max(1.0, std::round(window.height() * scale));
   if (!(height <= kMaxCanvasSide)) {
     char text[200];
+    const ClassicNumbers classic;
     std::snprintf(text, sizeof text,
                   "a render %d pixels wide of a window %.17g x %.17g would be %.0f pixels tall, more than the limit "
                   "of %d",

@@ -7,12 +7,14 @@
 #include <limits>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
 
 std::string number(double v) {
   char text[32];
+  const ClassicNumbers classic;
   std::snprintf(text, sizeof text, "%.9g", v);
   return text;
 }

@@ -1,6 +1,7 @@
 // The OpenImageIO plugin module: the only code that links OpenImageIO (see image_file.h).
 #include "bluetile/io/oiio_plugin.h"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -188,8 +189,12 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const c
   size_t count = static_cast<size_t>(spec.width) * static_cast<size_t>(spec.height) * static_cast<size_t>(spec.nchannels);
   auto* data = static_cast<float*>(std::malloc(count * sizeof(float)));
   if (!data) {
-    char gib[32];
-    std::snprintf(gib, sizeof gib, "%.1f", static_cast<double>(count) * sizeof(float) / (1024.0 * 1024.0 * 1024.0));
+    // Whole tenths in integers: %.1f would write "1,5" under an embedding program's comma locale,
+    // and the module does not link the library's ClassicNumbers.
+    const auto tenths = static_cast<unsigned long long>(
+        std::llround(static_cast<double>(count) * sizeof(float) * 10.0 / (1024.0 * 1024.0 * 1024.0)));
+    char gib[48];
+    std::snprintf(gib, sizeof gib, "%llu.%llu", tenths / 10, tenths % 10);
     return fail("out of memory: its " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels of " +
                     std::to_string(spec.nchannels) + " channel(s) need " + gib + " GiB as 4-byte samples",
                 error, error_size);

@@ -63,6 +63,7 @@ std::size_t grid_side(std::size_t total, int cells_per_spacing) {
     // hexagonal_spacing(N) = sqrt(2 / (sqrt(3) N)) = cells_per_spacing / kMaxGrid at the limit.
     const double limit = 2.0 / std::sqrt(3.0) * std::pow(static_cast<double>(kMaxGrid) / cells_per_spacing, 2.0);
     char most[32];
+    const ClassicNumbers classic;
     std::snprintf(most, sizeof most, "%.3g", limit);
     throw Error("band fill: " + std::to_string(total) + " points per tile or set need a grid of " +
                 std::to_string(static_cast<long long>(side)) + " places a side, more than " + std::to_string(kMaxGrid) +

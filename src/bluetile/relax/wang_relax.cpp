@@ -109,7 +109,7 @@ TileSet empty_tile_set(TileSetKind kind) {
 void add_wang_level(CentroidEngine& engine, TileSet& set, const WangLevelOptions& options) {
   if (options.add == 0) throw Error("a level must add at least one point per tile");
   if (options.edge_margin < 0.0 || options.edge_margin >= 0.5)
-    throw Error("edge margin " + std::to_string(options.edge_margin) + " outside [0, 0.5)");
+    throw Error("edge margin " + shortest_text(options.edge_margin) + " outside [0, 0.5)");
   const TileRules rules(set.kind);
   if (set.tiles.size() != static_cast<std::size_t>(rules.tile_count()))
     throw Error("a " + std::string(tile_set_kind_name(set.kind)) + " set has " + std::to_string(rules.tile_count()) +

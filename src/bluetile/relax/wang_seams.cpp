@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -87,7 +88,7 @@ SeamSpacingResult space_seams(const TileRules& rules, WangPoints& points, const 
   SeamSpacingResult result;
   if (options.iterations <= 0) return result;
   if (!(options.spacing > 0.0) || !std::isfinite(options.spacing))
-    throw Error("seam spacing " + std::to_string(options.spacing) + " must be a positive number of tile units");
+    throw Error("seam spacing " + shortest_text(options.spacing) + " must be a positive number of tile units");
   const std::vector<std::vector<Neighbour>> neighbours = meeting_tiles(rules);
   const double tau = options.spacing;
   const double close_below = tau * (1.0 - 1e-9);

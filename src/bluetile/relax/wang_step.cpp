@@ -10,6 +10,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
 #include "bluetile/core/torus.h"
 #include "bluetile/relax/lloyd.h"
 
@@ -155,7 +156,7 @@ void measure_cropped(CentroidEngine& engine, BlockConfigurations& configurations
           double r = std::max(sums[i].needed_reach, kRegrowFactor * pending_reach[t][m]);
           if (r > kMaxReach) {
             throw Error("a cell of tile " + std::to_string(t) + " reaches beyond its 3x3 block of tiles (radius " +
-                        std::to_string(0.5 * r) + " tiles): too few points per tile");
+                        fixed_text(0.5 * r, 6) + " tiles): too few points per tile");
           }
           pending_reach[t][m] = r;
           ++step.regrown;

@@ -136,12 +136,12 @@ TileSet parse_tile_set(const std::string& text, const std::string& name) {
 
   std::size_t start = 0;
   while (start < text.size()) {
-    std::size_t end = text.find('\n', start);
+    // A line ends at "\n", "\r\n" or a lone "\r" (classic Mac OS), as in point files.
+    std::size_t end = text.find_first_of("\r\n", start);
     if (end == std::string::npos) end = text.size();
     std::string_view line(text.data() + start, end - start);
-    start = end + 1;
+    start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
     ++number;
-    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
     if (line.find('\0') != std::string_view::npos) fail("binary data (NUL byte): not a tile-set file");
     if (number == 1) {
       if (line.substr(0, 3) == "\xEF\xBB\xBF") line.remove_prefix(3);  // a UTF-8 byte-order mark
