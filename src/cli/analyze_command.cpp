@@ -1053,7 +1053,7 @@ void add_analyze_command(CLI::App& app) {
       "Spectrum, radial power, anisotropy, RDF, nu_eff, Omega and nearest-neighbour statistics of point sets (psa's "
       "conventions)");
   add_input_option(cmd, "-i,--input", o->inputs, InputKind::points,
-                   "Point file(s), by extension: .npy, .bpt, .csv (header x,y or x,y,level), psa's .rps, else text; a "
+                   "Point file(s), by extension: .npy, .bpt, .csv (header x,y or x,y,level), psa's .rps, else by content (.npy or .bpt bytes, else text); a "
                    "file may hold several sets (text: separated by '#' lines)")
       ->required();
   add_output_folder_option(cmd, "-o,--output", o->output, "Output folder (created if missing; its parent must exist)")

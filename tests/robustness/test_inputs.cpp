@@ -182,6 +182,25 @@ TEST(Inputs, AnalyzeFromReadsWhatInputReads) {
                  dir.file("two.csv") + ": holds 2 sets; --from needs one");
 }
 
+TEST(Inputs, AnalyzeReadsATableUnderAGenericNameByItsContent) {
+  // An .npy or .bpt saved as points.dat or points.bin was "binary data (NUL byte): not a point
+  // file" for analyze, where relax -i read it by its content.
+  TempDir dir;
+  for (const char* format : {"npy", "binary"}) {
+    const std::string table = dir.file(std::string("p-") + format + (format == std::string("npy") ? ".npy" : ".bpt"));
+    Outcome made = run({"dart", "-n", "16", "--seed", "3", "-o", table});
+    ASSERT_EQ(made.exit_code, 0) << made.err;
+    for (const char* name : {"points.dat", "points.bin", "points"}) {
+      const std::string renamed = dir.file(std::string(format) + "-" + name);
+      std::filesystem::copy_file(table, renamed);
+      Outcome r = run({"analyze", "-i", renamed, "-o", dir.file(std::string("a-") + format + "-" + name), "--no-centroids",
+                       "--no-psa-measures", "--no-discrepancy"});
+      EXPECT_EQ(r.exit_code, 0) << format << " as " << name << ": " << r.err;
+      EXPECT_NE(read_text(dir.file(std::string("a-") + format + "-" + name + "/report.txt")).find("16 points"), std::string::npos);
+    }
+  }
+}
+
 TEST(Inputs, AnUnusableTmpdirIsNamed) {
   // An image that is no regular file (a pipe here) is copied to a temporary file: a TMPDIR naming
   // no folder was "internal error: filesystem error: temp_directory_path: No such file or

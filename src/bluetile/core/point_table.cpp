@@ -725,8 +725,6 @@ std::vector<PointSet> same_columns(std::vector<PointSet> sets, const std::string
   return sets;
 }
 
-std::vector<PointSet> read_text_table(const std::string& path) { return same_columns(read_point_sets(path), path); }
-
 // Standard input, a FIFO or a device is read once: its first bytes, looked at to tell the
 // format, cannot be read again (a second open would wait for another writer).
 std::vector<PointSet> parse_stream_table(const std::string& bytes, const std::string& name, const ReadOptions& options) {
@@ -739,13 +737,14 @@ std::vector<PointSet> parse_stream_table(const std::string& bytes, const std::st
 
 }  // namespace
 
-std::vector<PointSet> read_point_table(const std::string& path) {
-  if (path != "-" && is_rps_path(path)) return {read_rps_file(path)};
-  // By its extension, as analyze reads it: its lines were text's "expected 'x y'".
-  if (path != "-" && file_extension(path) == ".csv") return same_columns(parse_csv_points(read_input(path), path), path);
+namespace {
+
+// A file whose name says nothing of its format, read by its first bytes: an .npy or a .bpt saved
+// as points.dat is read as such (read_points_by_extension read it as text: "binary data").
+std::vector<PointSet> read_by_content(const std::string& path, const ReadOptions& options) {
   struct stat status {};
   if (path == "-" || (stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode) && !S_ISDIR(status.st_mode)))
-    return parse_stream_table(read_input(path), input_name(path), {});
+    return parse_stream_table(read_input(path), input_name(path), options);
   char start[sizeof kBinaryMagic] = {};
   {
     std::ifstream in(path, std::ios::binary);
@@ -753,10 +752,19 @@ std::vector<PointSet> read_point_table(const std::string& path) {
     in.read(start, sizeof start);
   }
   std::string_view head(start, sizeof start);
-  if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(read_bytes(path), path);
-  if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(read_bytes(path), path);
+  if (starts_with(head, kNpyMagic, sizeof kNpyMagic)) return parse_npy_table(read_bytes(path), path, options);
+  if (starts_with(head, kBinaryMagic, 4)) return parse_binary_table(read_bytes(path), path, options);
   if (starts_with(head, kZipMagic, sizeof kZipMagic)) refuse_zip(path);
-  return read_text_table(path);
+  return read_point_sets(path, options);
+}
+
+}  // namespace
+
+std::vector<PointSet> read_point_table(const std::string& path) {
+  if (path != "-" && is_rps_path(path)) return {read_rps_file(path)};
+  // By its extension, as analyze reads it: its lines were text's "expected 'x y'".
+  if (path != "-" && file_extension(path) == ".csv") return same_columns(parse_csv_points(read_input(path), path), path);
+  return same_columns(read_by_content(path, {}), path);
 }
 
 namespace {
@@ -926,8 +934,7 @@ std::vector<PointSet> read_points_by_extension(const std::string& path, const Re
   else if (extension == ".csv") sets = parse_csv_points(read_input(path), input_name(path), options);
   else if (extension == ".rps") sets = {read_rps_file(path, options)};
   else if (extension == ".npz") refuse_zip(path);
-  else if (path == "-") sets = parse_stream_table(read_input(path), input_name(path), options);  // by content
-  else sets = read_point_sets(path, options);
+  else sets = read_by_content(path, options);
   return same_columns(std::move(sets), path);
 }
 

@@ -139,8 +139,9 @@ std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::stri
 // count, a header naming other columns, and everything the text format refuses.
 std::vector<PointSet> parse_csv_points(std::string_view text, const std::string& name, const ReadOptions& options = {});
 
-// Every set of a file in the format its extension names (any case): .npy, .bpt, .csv, .rps, and
-// text for any other (and for "-"); `options` applies to every format. What `bluetile analyze`
+// Every set of a file in the format its extension names (any case): .npy, .bpt, .csv, .rps; any
+// other name (and "-") by its content, as read_point_table: .npy or .bpt by their magic, else
+// text; `options` applies to every format. What `bluetile analyze`
 // reads. Throws Error naming the file (and line or point) like the readers above, and for sets
 // that differ in their columns (levels in some only).
 std::vector<PointSet> read_points_by_extension(const std::string& path, const ReadOptions& options = {});
