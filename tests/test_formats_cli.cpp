@@ -171,7 +171,8 @@ TEST(FormatsCli, CentroidsAreANamedTableNotPoints) {
 
 TEST(FormatsCli, AFormatTheNameContradictsIsRefusedBeforeAnyWork) {
   // --format text -o f.npy wrote text into f.npy (NumPy then refused it); a name another format
-  // owns is refused with --format, a name no format owns, none, "-" and a FIFO take any.
+  // owns is refused with --format, a name no format owns, none, the generic .dat and .bin, "-"
+  // and a FIFO take any.
   TempDir dir;
   struct Case {
     std::string name, format, message;
@@ -196,6 +197,15 @@ TEST(FormatsCli, AFormatTheNameContradictsIsRefusedBeforeAnyWork) {
   ok({"dart", "-n", "10", "--format", "npy", "-o", dir.file("f.NPY")});
   EXPECT_EQ(read_text(dir.file("f.data")).substr(0, 6), "\x93NUMPY");
   EXPECT_EQ(read_text(dir.file("npy-points")).substr(0, 6), "\x93NUMPY");
+  // .dat and .bin are generic names (they were refused for npy and binary, which worked before
+  // the check): written as asked, and read back by their content.
+  ok({"dart", "-n", "10", "--format", "npy", "-o", dir.file("f.dat")});
+  ok({"dart", "-n", "10", "--format", "binary", "-o", dir.file("f.bin")});
+  EXPECT_EQ(read_text(dir.file("f.dat")).substr(0, 6), "\x93NUMPY");
+  EXPECT_EQ(read_text(dir.file("f.bin")).substr(0, 4), "\x89" "BTP");
+  for (const char* name : {"f.dat", "f.bin"})
+    ok({"analyze", "-i", dir.file(name), "-o", dir.file(std::string("a-") + name), "--no-centroids", "--no-psa-measures",
+        "--no-discrepancy"});
   auto r = run_bluetile({"dart", "-n", "10", "--format", "npy", "-o", "-"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.out.substr(0, 6), "\x93NUMPY");

@@ -26,13 +26,14 @@ TableFormat format_of(const std::string& path, const PointOutputOptions& options
 // --format against the name: a file whose extension names another format would hold what its name
 // denies (--format text -o f.npy wrote text into f.npy, which NumPy then refused). A name without
 // an extension or with one no format has takes any format; so do "-" and special files (a FIFO,
-// a device), which a name does not describe.
+// a device), which a name does not describe, and the generic .dat and .bin ("data", "binary"),
+// which scripts give any table (every reader takes a table of any name by its content).
 void check_format_agrees(const std::string& path, TableFormat format, const PointOutputOptions& options) {
   if (options.format.empty() || path == "-") return;
   struct stat status {};
   if (::stat(path.c_str(), &status) == 0 && !S_ISREG(status.st_mode)) return;
   const std::string extension = file_extension(path);
-  if (extension.empty()) return;
+  if (extension.empty() || extension == ".dat" || extension == ".bin") return;
   for (OutputFormat named : {OutputFormat::points_text, OutputFormat::points_npy, OutputFormat::points_binary,
                              OutputFormat::points_header, OutputFormat::raw_columns, OutputFormat::svg,
                              OutputFormat::image, OutputFormat::pdf, OutputFormat::tile_set}) {
