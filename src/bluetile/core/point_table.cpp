@@ -735,10 +735,6 @@ std::vector<PointSet> parse_stream_table(const std::string& bytes, const std::st
   return same_columns(parse_point_sets(bytes, name, options), name);
 }
 
-}  // namespace
-
-namespace {
-
 // A file whose name says nothing of its format, read by its first bytes: an .npy or a .bpt saved
 // as points.dat is read as such (read_points_by_extension read it as text: "binary data").
 std::vector<PointSet> read_by_content(const std::string& path, const ReadOptions& options) {
