@@ -1,13 +1,19 @@
 #include "robustness_support.h"
 
 #include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <stdexcept>
+#include <thread>
 
 #include <fcntl.h>
 #include <grp.h>
+#include <pty.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -136,6 +142,62 @@ std::string find_program(const std::string& name) {
     start = end + 1;
   }
   return "";
+}
+
+TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder, int seconds,
+                            unsigned short columns,
+                            const std::vector<std::pair<std::string, std::string>>& environment,
+                            bool stdout_on_terminal) {
+  int master = -1, slave = -1;
+  winsize size{};
+  size.ws_row = 24;
+  size.ws_col = columns;
+  if (openpty(&master, &slave, nullptr, nullptr, columns > 0 ? &size : nullptr) != 0)
+    throw std::runtime_error("openpty failed");
+  std::vector<char*> argv;
+  std::string program = BLUETILE_BINARY;
+  argv.push_back(program.data());
+  std::vector<std::string> copies = arguments;
+  for (std::string& a : copies) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const std::string out_path = folder + "/stdout.txt", in_path = folder + "/stdin.txt";
+  pid_t pid = fork();
+  if (pid == 0) {
+    close(master);
+    int in = open(in_path.c_str(), O_RDONLY | O_CREAT, 0600);
+    int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
+    dup2(in, STDIN_FILENO);
+    dup2(stdout_on_terminal ? slave : out, STDOUT_FILENO);
+    dup2(slave, STDERR_FILENO);
+    for (const auto& [name, value] : environment) {
+      if (value.empty()) unsetenv(name.c_str());
+      else setenv(name.c_str(), value.c_str(), 1);
+    }
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  close(slave);
+  std::atomic<bool> ended{false};
+  std::thread stop([pid, seconds, &ended] {
+    for (int tenths = 0; tenths < 10 * seconds && !ended; ++tenths)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    if (!ended) kill(pid, SIGKILL);  // not yet collected, so the pid is still the child's
+  });
+  TerminalRun result;
+  char buffer[4096];
+  for (;;) {
+    ssize_t n = read(master, buffer, sizeof buffer);
+    if (n > 0) result.terminal.append(buffer, static_cast<std::size_t>(n));
+    else if (n < 0 && errno == EINTR) continue;
+    else break;  // EIO once the child has closed the terminal
+  }
+  close(master);
+  int status = 0;
+  ended = true;  // the terminal closed: the child has exited or is exiting
+  stop.join();
+  waitpid(pid, &status, 0);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
 }
 
 }  // namespace bluetile::robustness

@@ -50,6 +50,19 @@ class Child {
 Outcome run(const Invocation& run);
 inline Outcome run(std::vector<std::string> arguments) { return run(Invocation{std::move(arguments)}); }
 
+struct TerminalRun {
+  int exit_code = -1;    // -1 when killed
+  std::string terminal;  // what the tool wrote to the terminal
+};
+
+// Runs the tool with stderr (and, with `stdout_on_terminal`, stdout) on a new pseudo-terminal
+// `columns` wide (0: size unset), stdin an empty file in `folder` and stdout otherwise
+// `folder`/stdout.txt, with `environment` set (an empty value unsets); kills it after `seconds`.
+TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder, int seconds,
+                            unsigned short columns = 0,
+                            const std::vector<std::pair<std::string, std::string>>& environment = {},
+                            bool stdout_on_terminal = false);
+
 // Every entry under `folder` (hidden ones and subfolders too), relative, sorted; "name@" for a
 // symbolic link, "name|" for a FIFO, "name%" for a device, "name/" for a folder.
 std::vector<std::string> entries(const std::string& folder);

@@ -2,16 +2,7 @@
 // pseudo-terminal here), absent otherwise.
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <pty.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
-#include <chrono>
-#include <csignal>
-#include <thread>
+#include <cstdint>
 #include <regex>
 #include <string>
 #include <vector>
@@ -21,67 +12,6 @@
 
 namespace bluetile::robustness {
 namespace {
-
-struct TerminalRun {
-  int exit_code = -1;
-  std::string terminal;  // what the tool wrote to its stderr, a terminal
-};
-
-// Runs the tool with stderr on a new pseudo-terminal (`columns` wide; 0: size unset) and stdin,
-// stdout on files, with `environment` set (an empty value unsets); kills it after `seconds`.
-TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder, int seconds,
-                            unsigned short columns = 0,
-                            const std::vector<std::pair<std::string, std::string>>& environment = {}) {
-  int master = -1, slave = -1;
-  winsize size{};
-  size.ws_row = 24;
-  size.ws_col = columns;
-  if (openpty(&master, &slave, nullptr, nullptr, columns > 0 ? &size : nullptr) != 0) ADD_FAILURE() << "openpty failed";
-  std::vector<char*> argv;
-  std::string program = BLUETILE_BINARY;
-  argv.push_back(program.data());
-  std::vector<std::string> copies = arguments;
-  for (std::string& a : copies) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  const std::string out_path = folder + "/stdout.txt", in_path = folder + "/stdin.txt";
-  pid_t pid = fork();
-  if (pid == 0) {
-    close(master);
-    int in = open(in_path.c_str(), O_RDONLY | O_CREAT, 0600);
-    int out = open(out_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
-    dup2(in, STDIN_FILENO);
-    dup2(out, STDOUT_FILENO);
-    dup2(slave, STDERR_FILENO);
-    for (const auto& [name, value] : environment) {
-      if (value.empty()) unsetenv(name.c_str());
-      else setenv(name.c_str(), value.c_str(), 1);
-    }
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  close(slave);
-  std::atomic<bool> ended{false};
-  std::thread stop([pid, seconds, &ended] {
-    for (int tenths = 0; tenths < 10 * seconds && !ended; ++tenths)
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (!ended) kill(pid, SIGKILL);  // not yet collected, so the pid is still the child's
-  });
-  TerminalRun result;
-  char buffer[4096];
-  for (;;) {
-    ssize_t n = read(master, buffer, sizeof buffer);
-    if (n > 0) result.terminal.append(buffer, static_cast<std::size_t>(n));
-    else if (n < 0 && errno == EINTR) continue;
-    else break;  // EIO once the child has closed the terminal
-  }
-  close(master);
-  int status = 0;
-  ended = true;  // the terminal closed: the child has exited or is exiting
-  stop.join();
-  waitpid(pid, &status, 0);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
 
 TEST(Progress, ATerminalSeesTotalsAndTheTimeLeft) {
   test::TempDir dir;
@@ -126,7 +56,7 @@ TEST(Progress, TheLineFitsTheTerminalAndADumbOneGetsNoEscapes) {
   test::TempDir dir;
   const std::vector<std::string> job = {"relax", "--count", "300", "--iterations", "6", "--engine", "exact",
                                         "-o", dir.file("small.txt")};
-  for (unsigned short columns : {20, 0}) {
+  for (const unsigned short columns : {std::uint16_t{20}, std::uint16_t{0}}) {
     TerminalRun narrow = run_on_terminal(job, dir.path(), 60, columns, {{"TERM", "dumb"}, {"COLUMNS", "30"}});
     EXPECT_EQ(narrow.exit_code, 0) << narrow.terminal;
     EXPECT_EQ(narrow.terminal.find('\033'), std::string::npos) << narrow.terminal;

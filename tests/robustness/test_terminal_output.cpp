@@ -2,17 +2,7 @@
 // made here, never the test's own): refused before any work, as gzip does; text still goes there.
 #include <gtest/gtest.h>
 
-#include <fcntl.h>
-#include <pty.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <cerrno>
-#include <chrono>
-#include <csignal>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "robustness_support.h"
@@ -21,57 +11,10 @@
 namespace bluetile::robustness {
 namespace {
 
-struct TerminalRun {
-  int exit_code = -1;
-  std::string terminal;  // what the tool wrote to its stdout and stderr, both the terminal
-};
-
-// Runs the tool with stdout and stderr on a new pseudo-terminal, stdin on /dev/null; kills it
-// after `seconds`.
+// The tool with stdout and stderr on a new pseudo-terminal; killed after `seconds`.
 TerminalRun run_with_terminal_output(const std::vector<std::string>& arguments, int seconds) {
-  int master = -1, slave = -1;
-  if (openpty(&master, &slave, nullptr, nullptr, nullptr) != 0) {
-    ADD_FAILURE() << "openpty failed";
-    return {};
-  }
-  std::vector<char*> argv;
-  std::string program = BLUETILE_BINARY;
-  argv.push_back(program.data());
-  std::vector<std::string> copies = arguments;
-  for (std::string& a : copies) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  pid_t pid = fork();
-  if (pid == 0) {
-    close(master);
-    int in = open("/dev/null", O_RDONLY);
-    dup2(in, STDIN_FILENO);
-    dup2(slave, STDOUT_FILENO);
-    dup2(slave, STDERR_FILENO);
-    execv(argv[0], argv.data());
-    _exit(127);
-  }
-  close(slave);
-  std::atomic<bool> ended{false};
-  std::thread stop([pid, seconds, &ended] {
-    for (int tenths = 0; tenths < 10 * seconds && !ended; ++tenths)
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
-    if (!ended) kill(pid, SIGKILL);  // not yet collected, so the pid is still the child's
-  });
-  TerminalRun result;
-  char buffer[4096];
-  for (;;) {
-    ssize_t n = read(master, buffer, sizeof buffer);
-    if (n > 0) result.terminal.append(buffer, static_cast<std::size_t>(n));
-    else if (n < 0 && errno == EINTR) continue;
-    else break;  // EIO once the child has closed the terminal
-  }
-  close(master);
-  int status = 0;
-  ended = true;
-  stop.join();
-  waitpid(pid, &status, 0);
-  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  test::TempDir folder;
+  return run_on_terminal(arguments, folder.path(), seconds, 0, {}, true);
 }
 
 TEST(TerminalOutput, BinaryPointTablesAreRefusedOnATerminalBeforeAnyWork) {
