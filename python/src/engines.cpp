@@ -144,8 +144,9 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
   } else {
     // As the tool's relax --count --sets: refused at once with the estimate, not a MemoryError
     // after seconds of work.
-    bluetile::check_memory(static_cast<double>(std::max(sets, 1LL)) * static_cast<double>(count) * bluetile::kRelaxBytesPerSite,
-                           "count=" + std::to_string(count) + (sets != 0 ? " x sets=" + std::to_string(sets) : ""));
+    bluetile::check_memory(
+        bluetile::relax_memory_bytes(static_cast<double>(std::max(sets, 1LL)) * static_cast<double>(count), choice.engine),
+        "count=" + std::to_string(count) + (sets != 0 ? " x sets=" + std::to_string(sets) : ""));
     input.batched = sets != 0;
     for (long long k = 0; k < std::max(sets, 1LL); ++k) {
       const auto n = static_cast<std::size_t>(count);
@@ -193,7 +194,7 @@ nb::object stipple(const ArrayArg& density_map, const Whole& count, const Whole&
   const bool info = flag_or(info_arg, false, "info");
   bluetile::StippleStart start;
   start.count = whole<std::size_t>(count, "count", 1, kMaxCount);
-  bluetile::check_memory(static_cast<double>(start.count) * bluetile::kRelaxBytesPerSite,
+  bluetile::check_memory(bluetile::relax_memory_bytes(static_cast<double>(start.count), choice.engine),
                          "count=" + std::to_string(start.count));  // as the tool's stipple --count
   const int iterations = whole_or<int>(iterations_arg, kDefaultStippleIterations, "iterations", 0, kMaxIterations);
   const double tolerance = real_or(tolerance_arg, 0.0, "tolerance");
@@ -328,7 +329,9 @@ nb::tuple progressive(std::optional<ArrayArg> base, std::optional<ArrayArg> base
                             ? bluetile::band_fill_cost(0, static_cast<std::size_t>(total), 1, options.fill).bytes
                             : 0.0;
     const int target_levels = bluetile::count_levels(set) + static_cast<int>(sizes.size());
-    bluetile::check_memory(total * bluetile::kProgressiveBytesPerPoint + fill,
+    // The fill order runs no engine: the points' memory is the exact engine's figure.
+    const std::string engine_memory = order == bluetile::ProgressiveOrder::fill ? "exact" : choice.engine;
+    bluetile::check_memory(bluetile::progressive_memory_bytes(total, engine_memory) + fill,
                            std::to_string(static_cast<long long>(total)) + " points in " + std::to_string(target_levels) +
                                " levels");
   }

@@ -92,7 +92,7 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     fill.places_visited *= static_cast<double>(sets.size());
     fill.bytes *= static_cast<double>(std::min<std::size_t>(sets.size(), thread_count()));
   }
-  check_memory(total * kProgressiveBytesPerPoint + fill.bytes, std::to_string(static_cast<long long>(total)) + " points in " +
+  check_memory(progressive_memory_bytes(total, filled ? "exact" : o.engine.engine) + fill.bytes, std::to_string(static_cast<long long>(total)) + " points in " +
                                                         std::to_string(target_levels) + " levels");
   const double fill_seconds = fill.places_visited * kFillSecondsPerPlace;
   if (fill_seconds >= 60.0)

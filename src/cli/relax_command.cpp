@@ -51,10 +51,6 @@ std::vector<Point> random_points(std::uint64_t seed, std::size_t set, std::size_
 }
 
 void run_relax(RelaxOptions o, const CLI::App& command) {
-  if (o.input.empty()) {
-    check_memory(static_cast<double>(o.sets) * static_cast<double>(o.count) * kRelaxBytesPerSite,
-                 "--count " + std::to_string(o.count) + " x --sets " + std::to_string(o.sets));
-  }
   // The image plugin is loaded, and an image's format checked, before any output is staged.
   if (!o.density_map.empty() || !o.id_image.empty()) load_image_plugin();
   if (!o.id_image.empty()) output_format("--id-image", o.id_image, kImageFormats);
@@ -85,6 +81,11 @@ void run_relax(RelaxOptions o, const CLI::App& command) {
                                  : ", the default with --density-map";
   }
   refuse_unused_raster_options(command, o.engine, why_exact, !o.id_image.empty());
+  // Refused before anything is drawn: the engine, which the estimate depends on, is known now.
+  if (o.input.empty()) {
+    check_memory(relax_memory_bytes(static_cast<double>(o.sets) * static_cast<double>(o.count), o.engine.engine),
+                 "--count " + std::to_string(o.count) + " x --sets " + std::to_string(o.sets));
+  }
   // Every output is declared, and so checked, before any work.
   const std::size_t set_count = o.input.empty() ? static_cast<std::size_t>(o.sets) : inputs.size();
   PointOutput point_output(outputs, o.output, set_count);

@@ -89,7 +89,7 @@ void run_stipple(const StippleOptions& o, const CLI::App& command) {
   if (o.points.output.empty() && o.svg.empty() && o.png.empty())
     throw Error("stipple writes nothing without --output, --svg or --png: say at least one");
   // Refused at once, as relax does, rather than after the start is drawn.
-  check_memory(static_cast<double>(o.count) * kRelaxBytesPerSite, "--count " + std::to_string(o.count));
+  check_memory(relax_memory_bytes(static_cast<double>(o.count), o.engine.engine), "--count " + std::to_string(o.count));
   // Every output is declared, and so checked, before any work; they appear together at the end.
   // The image plugin is loaded, and the render's format checked, before any output is staged.
   if (!o.svg.empty()) output_format("--svg", o.svg, kSvgFormats);

@@ -96,9 +96,11 @@ Child::~Child() {
 Outcome Child::wait() {
   Outcome outcome;
   int status = 0;
-  while (waitpid(pid_, &status, 0) < 0) {
+  rusage usage{};
+  while (wait4(pid_, &status, 0, &usage) < 0) {
   }
   waited_ = true;
+  outcome.max_resident_kib = usage.ru_maxrss;
   if (WIFEXITED(status)) outcome.exit_code = WEXITSTATUS(status);
   if (WIFSIGNALED(status)) outcome.signal = WTERMSIG(status);
   outcome.out = test::read_text(capture_dir_ + "/out");

@@ -30,6 +30,7 @@ struct Invocation {
 struct Outcome {
   int exit_code = -1;  // -1 when ended by a signal
   int signal = 0;      // the signal that ended it, or 0
+  long max_resident_kib = 0;  // its peak resident memory (getrusage's ru_maxrss)
   std::string out, err;
 };
 

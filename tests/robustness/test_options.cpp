@@ -108,18 +108,18 @@ TEST(Options, RunsTooLargeForTheMachineAreRefusedUpFront) {
   // Nothing bounded --count x --sets.
   Outcome r = run({"relax", "-n", "100000000", "--sets", "10000000", "--engine", "exact", "-o", dir.file("o.txt")});
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 x --sets 10000000 needs about 142.1 PiB of memory, more than the ", 0), 0u)
+  EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 x --sets 10000000 needs about 568.4 PiB of memory, more than the ", 0), 0u)
       << r.err;
   if (!sanitized()) {  // ulimit -v stands in for a small machine
     Invocation limited{{"dart", "-n", "100000000", "-o", dir.file("o.txt")}};
     limited.address_space_bytes = 1L << 30;
     r = run(limited);
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 needs about 6.0 GiB of memory, more than the ", 0), 0u) << r.err;
+    EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 needs about 17.9 GiB of memory, more than the ", 0), 0u) << r.err;
     limited.arguments = {"progressive", "-n", "50000000", "--levels", "2", "--engine", "exact", "-o", dir.file("o.txt")};
     r = run(limited);
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_EQ(r.err.rfind("bluetile: 100000000 points in 2 levels needs about 15.6 GiB of memory, more than the ", 0), 0u)
+    EXPECT_EQ(r.err.rfind("bluetile: 100000000 points in 2 levels needs about 60.3 GiB of memory, more than the ", 0), 0u)
         << r.err;
   }
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{});
@@ -202,7 +202,7 @@ TEST(Options, StipplesTooLargeForTheMachineAreRefusedUpFront) {
   limited.address_space_bytes = 1L << 30;
   Outcome r = run(limited);
   EXPECT_EQ(r.exit_code, 1);
-  EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 needs about 14.9 GiB of memory, more than the ", 0), 0u) << r.err;
+  EXPECT_EQ(r.err.rfind("bluetile: --count 100000000 needs about 59.6 GiB of memory, more than the ", 0), 0u) << r.err;
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{"map.png"});
 }
 

@@ -1,7 +1,7 @@
 // What a run will need, checked before it starts: a mistyped count is refused with the estimate
 // instead of running for hours into an out-of-memory kill (the tool) or a bare MemoryError after
 // seconds of work (the Python module). Both front ends call this one check; the estimates live
-// next to what they measure (kRelaxBytesPerSite in relax/lloyd.h, kDartBytesPerPoint in
+// next to what they measure (relax_memory_bytes in relax/lloyd.h, kDartBytesPerPoint in
 // sampling/dart_throwing.h, summary_memory_bytes in analysis/summary.h).
 #pragma once
 

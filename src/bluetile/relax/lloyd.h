@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "bluetile/core/density_grid.h"
@@ -67,10 +68,20 @@ DensityGrid weight_for_point_density(const DensityGrid& target, double exponent 
 inline constexpr double kMaxWeightExponent = 8.0;
 void check_weight_exponent(double exponent, const char* name = "weight exponent");
 
-// Bytes per site of a relaxation, beyond the points themselves: the scene's copy, the cell
-// results, the engine's search grid and per-site state, for up-front checks (core/memory_budget.h).
-// Measured (peak RSS of `relax -n 1000000 -k 2`, both engines, divided by N) and rounded up.
-inline constexpr double kRelaxBytesPerSite = 160.0;
+// The memory of a relaxation of `sites` sites (over all sets) on `engine` ("exact" or "raster",
+// as EngineChoice names them), the points included: the scene's copy, the cell results and the
+// engine's own state (the exact engine's kept triangulation and search grid; the raster engine's
+// device, cones, ID buffer and host pixel work), for up-front checks (core/memory_budget.h).
+// Peak resident memory of `relax -k 2` from 2e5 to 4e6 sites, one set and sets: exact 305-436
+// bytes a site (480 in `progressive`'s levels); raster on lavapipe 80 MB for the device, then
+// 720-914 bytes a site; rounded up with a margin of about a third.
+// (160 bytes a site for both, measured before the exact engine kept its topology, let through
+// runs that then ran out of memory.) The test MemoryEstimates.* holds runs under it.
+inline constexpr double kExactRelaxBytesPerSite = 640.0, kRasterRelaxBytesPerSite = 1024.0;
+inline constexpr double kRasterEngineBytes = 128.0 * 1024 * 1024;
+inline double relax_memory_bytes(double sites, std::string_view engine) {
+  return engine == "exact" ? sites * kExactRelaxBytesPerSite : kRasterEngineBytes + sites * kRasterRelaxBytesPerSite;
+}
 
 // The move of a site to the centroid of its cell, in domain units: the shortest periodic offset
 // on a torus, the plain difference in a bounded rectangle.

@@ -115,9 +115,12 @@ std::vector<PointSet> add_levels(const EngineMaker& new_engine, std::vector<Poin
                                  const HierarchyOptions& options,
                                  const std::function<void(std::size_t done)>& on_base_done = {});
 
-// Bytes per point of a level's relaxation (kRelaxBytesPerSite) plus the levels column, for
-// up-front checks.
-inline constexpr double kProgressiveBytesPerPoint = kRelaxBytesPerSite + 8.0;
+// The memory of `points` points built in levels on `engine`: a relaxation's (relax_memory_bytes)
+// and the levels column, for up-front checks. The fill order runs no engine (the exact engine's
+// figure stands for its points) and adds its grid (band_fill_cost).
+inline double progressive_memory_bytes(double points, std::string_view engine) {
+  return relax_memory_bytes(points, engine) + 8.0 * points;
+}
 
 // The number of points each new level of add_levels adds, checked as add_levels checks them.
 std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const HierarchyOptions& options);
