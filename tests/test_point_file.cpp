@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 
 #include <langinfo.h>
 #include <locale.h>
@@ -91,6 +92,47 @@ TEST(PointFile, DomainLinesWithATypoAreRefusedNotTakenForComments) {
   }
   // In a file of several sets too, where a '#' line also ends a set.
   EXPECT_THROW(parse_point_sets("# set 0\n0.1 0.2\n# domain bounded.\n0.3 0.4\n", "x"), Error);
+}
+
+TEST(PointFile, WritersRefuseACommentTheReaderRefuses) {
+  // save_table(comment=['domain: bounded']) wrote a file that load_table then refused.
+  const PointSet set{{{0.25, 0.5}}, {}, {}};
+  const std::string fix =
+      ", and reading the file back would fail on it: write 'domain periodic' or 'domain bounded' alone (the writer "
+      "adds the '#') to declare the domain, or reword the comment";
+  auto write_error = [&](const std::vector<std::string>& header) -> std::string {
+    try {
+      format_points(set, header);
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_EQ(write_error({"made by hand", "domain: bounded"}),
+            "comment line 2: '# domain: bounded' is not a domain line" + fix);
+  EXPECT_EQ(write_error({"Domain Bounded"}), "comment line 1: '# Domain Bounded' is not a domain line" + fix);
+  EXPECT_EQ(write_error({" domain periodc "}), "comment line 1: '# domain periodc' is not a domain line" + fix);
+  // What the reader takes is written and read back: domain lines, prose, a '#' of its own.
+  for (const std::string line : {"domain bounded", "domain periodic", "domain torus", "domain aperiodic",
+                                 "domain [0, 64)^2", "the domain is bounded", "# domain: bounded", ""}) {
+    const PointSet back = parse_points(format_points(set, {line}), "x");
+    EXPECT_EQ(back.points.size(), 1u) << line;
+  }
+  EXPECT_EQ(parse_points(format_points(set, {"domain bounded"}), "x").declared_boundary, Boundary::bounded);
+  // The streaming writer and the table writer check before any byte.
+  TempDir dir;
+  const std::string path = dir.file("c.txt");
+  EXPECT_THROW(write_point_file(path, set, {"domain: bounded"}), Error);
+  EXPECT_FALSE(std::filesystem::exists(path));
+  std::string bytes;
+  EXPECT_THROW(write_point_table(TableFormat::text, std::vector<PointSet>{set}, {.float32 = false, .name = {},
+                                 .comment = {"domain bounde"}}, "c.txt", [&](std::string_view b) { bytes += b; }),
+               Error);
+  EXPECT_EQ(bytes, "");
+  // A C header's '//' comment is not read back: any line goes.
+  write_point_table(TableFormat::header, std::vector<PointSet>{set}, {.float32 = false, .name = {},
+                    .comment = {"domain: bounded"}}, "c.h", [&](std::string_view b) { bytes += b; });
+  EXPECT_NE(bytes.find("// domain: bounded\n"), std::string::npos);
 }
 
 TEST(PointFile, CommaSeparatedLinesSayHowCsvIsRead) {

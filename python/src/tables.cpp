@@ -103,6 +103,11 @@ void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<A
     throw bluetile::Error("name: " + is + "; the array name is for C headers (.h, .hpp)");
   if (!comment.empty() && f != bluetile::TableFormat::text && f != bluetile::TableFormat::header)
     throw bluetile::Error("comment: " + is + "; comment lines are for text tables and C headers");
+  // A line the reader refuses ('domain: bounded') made a file load_table could not read back; a C
+  // header is not read back, its '//' lines are free.
+  if (f == bluetile::TableFormat::text)
+    for (std::size_t i = 0; i < comment.size(); ++i)
+      bluetile::check_comment_line(comment[i], PyUnicode_Check(comment_arg.ptr()) ? "comment" : "comment[" + std::to_string(i) + "]");
   nb::gil_scoped_release release;
   bluetile::TableWriteOptions options;
   options.float32 = float32;
@@ -155,7 +160,11 @@ void bind_tables(nb::module_& m) {
 array of a header (default from the file name); ``comment``: a str (one line) or a sequence of
 str (one line each) at the top (text, header; refused for the others); a line break or other
 control character in one is written escaped (\n, \xNN), as the tool writes one in a file name,
-so that a comment adds no point or code. Coordinates are written as given, outside [0, 1) too
+so that a comment adds no point or code. In a text table, ``"domain periodic"`` or ``"domain
+bounded"`` alone declares the domain, as the tool's header line does; a line that looks meant as
+one but is not (``"domain: bounded"``, ``"Domain Bounded"``, ``"domain bounde"``), which
+``load_table`` would refuse, raises pybluetile.Error naming it before anything is written.
+Coordinates are written as given, outside [0, 1) too
 (``tile``'s plane coordinates, as ``bluetile tile`` writes them); ``load_table`` places what it
 reads on the unit torus, wrapping such coordinates, as ``bluetile relax -i`` does.
 The file appears whole or not at all.)");

@@ -207,6 +207,26 @@ def test_analyze_averages_sets_and_skips_psa_measures_like_the_tool(tool, tmp_pa
                        {k: v for k, v in stats.items() if k not in TOOL_ONLY_KEYS}, "stats")
 
 
+def test_save_table_refuses_a_comment_load_table_would_refuse(tmp_path):
+    # save_table wrote '# domain: bounded', and load_table then refused its own file.
+    pts = np.array([[0.25, 0.5]])
+    fix = ("is not a domain line, and reading the file back would fail on it: write 'domain periodic' or "
+           "'domain bounded' alone")
+    for comment, name in ((["domain: bounded"], "comment[0]"), ("Domain Bounded", "comment"),
+                          (["made here", "domain bounde"], "comment[1]")):
+        with pytest.raises(bt.Error) as error:
+            bt.save_table(tmp_path / "c.txt", pts, comment=comment)
+        line = comment if isinstance(comment, str) else comment[-1]
+        assert str(error.value).startswith(f"{name}: '# {line}' {fix}"), str(error.value)
+        assert not (tmp_path / "c.txt").exists()
+    # What load_table takes is written: a real domain line (which it reads), prose.
+    bt.save_table(tmp_path / "b.txt", pts, comment=["made here", "domain bounded", "domain torus"])
+    assert np.array_equal(bt.load_table(tmp_path / "b.txt")[0], pts)
+    # A C header is not read back: its '//' comment takes the line.
+    bt.save_table(tmp_path / "c.h", pts, comment=["domain: bounded"])
+    assert "// domain: bounded\n" in (tmp_path / "c.h").read_text()
+
+
 def test_tables_round_trip_and_numpy_reads_them(tmp_path):
     sets = bt.relax(count=64, sets=5, iterations=2, seed=1, engine="exact")
     bt.save_table(str(tmp_path / "t.npy"), sets)

@@ -149,13 +149,21 @@ std::string find_program(const std::string& name) {
 TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder, int seconds,
                             unsigned short columns,
                             const std::vector<std::pair<std::string, std::string>>& environment,
-                            bool stdout_on_terminal) {
+                            bool stdout_on_terminal, const std::string& terminal_link) {
   int master = -1, slave = -1;
   winsize size{};
   size.ws_row = 24;
   size.ws_col = columns;
   if (openpty(&master, &slave, nullptr, nullptr, columns > 0 ? &size : nullptr) != 0)
     throw std::runtime_error("openpty failed");
+  if (!terminal_link.empty()) {
+    const char* name = ttyname(slave);
+    if (name == nullptr || symlink(name, terminal_link.c_str()) != 0) {
+      close(master);
+      close(slave);
+      throw std::runtime_error("cannot link " + terminal_link + " to the pseudo-terminal");
+    }
+  }
   std::vector<char*> argv;
   std::string program = BLUETILE_BINARY;
   argv.push_back(program.data());

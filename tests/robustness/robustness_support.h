@@ -59,10 +59,12 @@ struct TerminalRun {
 // Runs the tool with stderr (and, with `stdout_on_terminal`, stdout) on a new pseudo-terminal
 // `columns` wide (0: size unset), stdin an empty file in `folder` and stdout otherwise
 // `folder`/stdout.txt, with `environment` set (an empty value unsets); kills it after `seconds`.
+// `terminal_link`: a symbolic link made there to the pseudo-terminal (/dev/pts/N), for a path
+// argument that names it.
 TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std::string& folder, int seconds,
                             unsigned short columns = 0,
                             const std::vector<std::pair<std::string, std::string>>& environment = {},
-                            bool stdout_on_terminal = false);
+                            bool stdout_on_terminal = false, const std::string& terminal_link = "");
 
 // Every entry under `folder` (hidden ones and subfolders too), relative, sorted; "name@" for a
 // symbolic link, "name|" for a FIFO, "name%" for a device, "name/" for a folder.

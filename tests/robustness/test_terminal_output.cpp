@@ -1,5 +1,6 @@
-// Binary point tables (.npy, .bpt) to "-" when standard output is a terminal (a pseudo-terminal
-// made here, never the test's own): refused before any work, as gzip does; text still goes there.
+// Binary point tables (.npy, .bpt) to "-" when standard output is a terminal, or to a path that
+// names one (a pseudo-terminal made here, never the test's own): refused before any work, as gzip
+// does; text still goes there.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -34,6 +35,31 @@ TEST(TerminalOutput, BinaryPointTablesAreRefusedOnATerminalBeforeAnyWork) {
       {"relax", "--count", "10", "--iterations", "1", "--format", "npy", "-o", "/dev/stdout"}, 60);
   EXPECT_EQ(named.exit_code, 1) << named.terminal;
   EXPECT_NE(named.terminal.find("/dev/stdout: standard output is a terminal"), std::string::npos) << named.terminal;
+}
+
+TEST(TerminalOutput, BinaryPointTablesAreRefusedOnATerminalNamedByAPath) {
+  // -o /dev/tty --format npy dumped the bytes onto the terminal: only "-" was asked. Here a link
+  // in a temporary folder names the pseudo-terminal; stdout is a file.
+  test::TempDir folder;
+  const std::string link = folder.file("tty");
+  TerminalRun refused = run_on_terminal(
+      {"relax", "--count", "20000", "--iterations", "100000", "--engine", "exact", "--format", "npy", "-o", link},
+      folder.path(), 60, 0, {}, false, link);
+  EXPECT_EQ(refused.exit_code, 1) << refused.terminal;
+  EXPECT_NE(refused.terminal.find("bluetile: " + link + ": is a terminal, and NumPy (.npy) data is binary: write it "
+                                  "to a file or pipe it to a program"),
+            std::string::npos)
+      << refused.terminal;
+  EXPECT_EQ(refused.terminal.find("NUMPY"), std::string::npos) << "no binary byte reached the terminal";
+  EXPECT_EQ(test::read_text(folder.file("stdout.txt")), "");
+  EXPECT_EQ(entries(folder.path()), (std::vector<std::string>{"stdin.txt", "stdout.txt", "tty@"}));
+  // Text to the same path still goes there.
+  test::TempDir other;
+  const std::string text_link = other.file("tty");
+  TerminalRun shown = run_on_terminal({"relax", "--count", "20", "--iterations", "1", "--engine", "exact", "-o", text_link},
+                                      other.path(), 60, 0, {}, false, text_link);
+  EXPECT_EQ(shown.exit_code, 0) << shown.terminal;
+  EXPECT_NE(shown.terminal.find("# bluetile relax: 20 points"), std::string::npos) << shown.terminal;
 }
 
 TEST(TerminalOutput, TextStillGoesToATerminalAndBinaryToAPipe) {

@@ -514,12 +514,16 @@ std::size_t OutputSet::staging_folder_for(const std::string& directory, const st
 namespace {
 
 // Binary bytes on a terminal are garbage to the reader and can leave the terminal in a strange
-// state (gzip and zstd refuse the same); text goes there as it would to a file.
-void refuse_binary_on_terminal(int fd, const std::string& path, const OutputOptions& options) {
+// state (gzip and zstd refuse the same); text goes there as it would to a file. Asked of the
+// descriptor, whatever its name: /dev/tty, /dev/pts/N or a link to one is as much a terminal.
+void refuse_binary_on_terminal(int fd, const std::string& path, bool is_stdout, const OutputOptions& options) {
   if (options.binary_format.empty() || isatty(fd) != 1) return;
   ::close(fd);
-  throw Error(path + ": standard output is a terminal, and " + std::string(options.binary_format) +
-              " data is binary: redirect it to a file (> FILE) or pipe it to a program (| ...)");
+  const std::string binary = std::string(options.binary_format) + " data is binary: ";
+  if (is_stdout)
+    throw Error(path + ": standard output is a terminal, and " + binary +
+                "redirect it to a file (> FILE) or pipe it to a program (| ...)");
+  throw Error(path + ": is a terminal, and " + binary + "write it to a file or pipe it to a program (| ...)");
 }
 
 }  // namespace
@@ -544,7 +548,7 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
     if (!options.allow_stdout) throw Error("-: this output cannot be standard output");
     int fd = open_descriptor_for_writing(1, "standard output");
     output->stdout_ = true;
-    refuse_binary_on_terminal(fd, path, options);
+    refuse_binary_on_terminal(fd, path, true, options);
     struct stat st {};
     fstat(fd, &st);
     return direct(fd, &st);
@@ -566,7 +570,7 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
     case Resolved::Type::descriptor: {
       int fd = open_descriptor_for_writing(r.descriptor, path);
       output->stdout_ = r.descriptor == 1;
-      if (output->stdout_) refuse_binary_on_terminal(fd, path, options);
+      refuse_binary_on_terminal(fd, path, output->stdout_, options);
       struct stat st {};
       fstat(fd, &st);
       return direct(fd, &st);
@@ -577,6 +581,7 @@ OutputFile& OutputSet::add(const std::string& path, OutputOptions options) {
       int fd = fifo ? open_fifo_saying_so(r.path, O_WRONLY | O_NOCTTY | O_CLOEXEC, "a reader")
                     : ::open(r.path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
       if (fd < 0) fail(path, "cannot write", errno);
+      refuse_binary_on_terminal(fd, path, false, options);
       struct stat st {};
       fstat(fd, &st);
       return direct(fd, &st);

@@ -13,8 +13,9 @@
 //   when the output is written, without any atomicity: what was written before a failure stays
 //   written. A FIFO blocks, as for any program, until a reader opens it.
 // - /dev/stdout, /dev/stderr, /dev/fd/N, /proc/self/fd/N: that open descriptor, written directly.
-// - "-", where the caller allows it (OutputOptions::allow_stdout): standard output, directly;
-//   binary bytes (OutputOptions::binary_format) are refused when standard output is a terminal.
+// - "-", where the caller allows it (OutputOptions::allow_stdout): standard output, directly.
+// Binary bytes (OutputOptions::binary_format) are refused when the output opened directly is a
+// terminal: standard output, or any path that names one (/dev/tty, /dev/fd/2, a link to a pty).
 // Refused when declared, before any work, with an Error naming the user's path: a folder; a
 // missing or unwritable parent folder; an existing file the process may not write; the same file
 // as a declared input (add_input) or as another output of the set (by device and inode, through
@@ -98,8 +99,9 @@ using OutputWriter = std::function<void(OutputStream&)>;
 
 struct OutputOptions {
   bool allow_stdout = false;  // "-" means standard output
-  // Not empty for binary bytes (a format name, "NumPy (.npy)"): standard output that is a terminal
-  // is refused when declared, as gzip does, rather than spilling them onto the screen.
+  // Not empty for binary bytes (a format name, "NumPy (.npy)"): an output that is a terminal
+  // (standard output, /dev/tty, any path naming one) is refused when declared, as gzip does,
+  // rather than spilling them onto the screen.
   std::string_view binary_format;
 };
 

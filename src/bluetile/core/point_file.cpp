@@ -198,22 +198,24 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
   return row[b.size()];
 }
 
-// The boundary a comment declares ("domain periodic" / "domain bounded"), if it is such a line.
-// A comment that looks meant as one but is not ("domain bounde", "Domain Bounded", "domain
-// periodic extra") is an error: read as a comment, it left the set on the default torus without a
-// word. Prose that merely starts with "domain" ("domain [0, 64)^2") stays a comment.
-std::optional<Boundary> declared_boundary(std::string_view comment, const LineError& fail) {
+// What a comment (the text after '#') says about the domain. A comment that looks meant as a
+// domain line but is not ("domain bounde", "Domain Bounded", "domain periodic extra") is
+// `malformed`: read as a comment, it left the set on the default torus without a word. Prose that
+// merely starts with "domain" ("domain [0, 64)^2") is `none`, a comment.
+enum class DomainComment { none, periodic, bounded, malformed };
+
+DomainComment classify_comment(std::string_view comment) {
   Tokens words = split_whitespace(comment);
-  if (words.count == 0) return std::nullopt;
+  if (words.count == 0) return DomainComment::none;
   if (words.count == 2 && words.kept[0] == "domain") {
-    if (words.kept[1] == "periodic") return Boundary::periodic;
-    if (words.kept[1] == "bounded") return Boundary::bounded;
+    if (words.kept[1] == "periodic") return DomainComment::periodic;
+    if (words.kept[1] == "bounded") return DomainComment::bounded;
   }
   // Any case, a ':' after "domain", words after the boundary, or one word that is a typo of one
   // or two letters ("bounde", "periodc"; "domain bounds 0 0 64 64" is prose).
   std::string first = lower_case(std::string(words.kept[0]));
   if (!first.empty() && first.back() == ':') first.pop_back();
-  if (first != "domain" || words.count < 2) return std::nullopt;
+  if (first != "domain" || words.count < 2) return DomainComment::none;
   const std::string second = lower_case(std::string(words.kept[1]));
   constexpr std::size_t kTypoEdits = 2;
   const bool boundary_word = second == "periodic" || second == "bounded";
@@ -223,13 +225,27 @@ std::optional<Boundary> declared_boundary(std::string_view comment, const LineEr
   const bool word = std::find(std::begin(kWords), std::end(kWords), second) != std::end(kWords);
   const bool typo = words.count == 2 && !word &&
                     (edit_distance(second, "periodic") <= kTypoEdits || edit_distance(second, "bounded") <= kTypoEdits);
-  if (!boundary_word && !typo) return std::nullopt;
-  std::string_view shown = comment;
-  while (!shown.empty() && is_blank(shown.front())) shown.remove_prefix(1);
-  while (!shown.empty() && is_blank(shown.back())) shown.remove_suffix(1);
-  fail(quote("# " + std::string(shown)) +
-       " is not a domain line: write '# domain periodic' or '# domain bounded' alone on the line (or reword the "
-       "comment)");
+  return boundary_word || typo ? DomainComment::malformed : DomainComment::none;
+}
+
+// "'# domain: bounded' is not a domain line", the line as the reader sees it, for both the
+// reader's message and the writers'.
+std::string not_a_domain_line(std::string_view comment) {
+  while (!comment.empty() && is_blank(comment.front())) comment.remove_prefix(1);
+  while (!comment.empty() && is_blank(comment.back())) comment.remove_suffix(1);
+  return quote("# " + std::string(comment)) + " is not a domain line";
+}
+
+// The boundary a comment declares, if it is a domain line; Error for a malformed one.
+std::optional<Boundary> declared_boundary(std::string_view comment, const LineError& fail) {
+  switch (classify_comment(comment)) {
+    case DomainComment::periodic: return Boundary::periodic;
+    case DomainComment::bounded: return Boundary::bounded;
+    case DomainComment::none: return std::nullopt;
+    case DomainComment::malformed: break;
+  }
+  fail(not_a_domain_line(comment) +
+       ": write '# domain periodic' or '# domain bounded' alone on the line (or reword the comment)");
 }
 
 }  // namespace
@@ -420,7 +436,26 @@ std::vector<PointSet> read_point_sets(const std::string& path, const ReadOptions
   return read(path, true, options);
 }
 
+void check_comment_line(std::string_view line, const std::string& what) {
+  // As written: the reader sees the escaped text after the "#".
+  const std::string written = comment_line(line);
+  if (classify_comment(written) != DomainComment::malformed) return;
+  throw Error(what + ": " + not_a_domain_line(written) +
+              ", and reading the file back would fail on it: write 'domain periodic' or 'domain bounded' alone "
+              "(the writer adds the '#') to declare the domain, or reword the comment");
+}
+
+namespace {
+
+// Before any byte: a header line the reader refuses made a file nobody could read back.
+void check_header(const std::vector<std::string>& header) {
+  for (std::size_t i = 0; i < header.size(); ++i) check_comment_line(header[i], "comment line " + std::to_string(i + 1));
+}
+
+}  // namespace
+
 void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header) {
+  check_header(header);
   for (const auto& line : header) {
     out.write("# ");
     out.write(comment_line(line));
@@ -437,6 +472,7 @@ void write_points(OutputStream& out, const PointSet& set, const std::vector<std:
 }
 
 std::string format_points(const PointSet& set, const std::vector<std::string>& header) {
+  check_header(header);
   std::string text;
   for (const auto& line : header) text += "# " + comment_line(line) + "\n";
   const ClassicNumbers classic;

@@ -101,7 +101,14 @@ class PointTextParser {
   std::unique_ptr<Impl> impl_;
 };
 
+// Throws Error("<what>: '# domain: bounded' is not a domain line, ...") when `line`, written as a
+// comment ("# " + line, as the writers below write it), is one the readers above refuse: a line
+// that looks meant as "domain periodic" or "domain bounded" but is not. Every other line passes
+// ("domain bounded" itself, prose). `what` names the line for the user (Python's "comment").
+void check_comment_line(std::string_view line, const std::string& what);
+
 // Streams a point file: optional header comment lines (each gets "# "), then one point a line.
+// A header line the readers refuse (check_comment_line) throws Error before any byte.
 void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header = {});
 
 // The same text as a string (small sets; large ones stream through write_points).

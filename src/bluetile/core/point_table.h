@@ -100,7 +100,8 @@ void write_table(TableFormat format, const TableView& table, const TableWriteOpt
 
 // Writes point sets in any format: text as point files with a '# set k' line before each set
 // when there are several (UTK's convention), the others by write_table. options.comment: header
-// lines of text and C headers. `path` names the output in messages.
+// lines of text and C headers; in text, one the readers refuse (check_comment_line, point_file.h)
+// throws Error before any byte. `path` names the output in messages.
 void write_point_table(TableFormat format, std::span<const PointSet> sets, const TableWriteOptions& options,
                        const std::string& path, const ByteSink& sink);
 
