@@ -113,9 +113,13 @@ void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<A
   options.float32 = float32;
   options.name = name;
   options.comment = comment;
-  bluetile::write_output(path, [&](bluetile::OutputStream& out) {
-    bluetile::write_point_table(f, sets, options, path, [&](std::string_view bytes) { out.write(bytes); });
-  });
+  // As the tool: npy and binary tables to a terminal (save_table('/dev/tty', ...)) are refused.
+  bluetile::write_output(
+      path,
+      [&](bluetile::OutputStream& out) {
+        bluetile::write_point_table(f, sets, options, path, [&](std::string_view bytes) { out.write(bytes); });
+      },
+      {.binary_format = bluetile::binary_table_format(f)});
 }
 
 nb::list load_table(const PathArg& path_arg, const Flag& levels_arg) {

@@ -227,6 +227,34 @@ def test_save_table_refuses_a_comment_load_table_would_refuse(tmp_path):
     assert "// domain: bounded\n" in (tmp_path / "c.h").read_text()
 
 
+def test_save_table_refuses_binary_tables_on_a_terminal(tmp_path):
+    # save_table('/dev/tty', pts, format='npy') put the binary bytes onto the terminal; the tool
+    # refuses that, and so does the module now. The terminal is a new pseudo-terminal, named by a
+    # link in the temporary folder.
+    controller, terminal = os.openpty()
+    try:
+        link = tmp_path / "tty"
+        link.symlink_to(os.ttyname(terminal))
+        pts = np.array([[0.25, 0.5]])
+        for fmt, words in (("npy", "NumPy (.npy)"), ("binary", "point table (.bpt)")):
+            with pytest.raises(bt.Error) as error:
+                bt.save_table(link, pts, format=fmt)
+            assert str(error.value) == (f"{link}: is a terminal, and {words} data is binary: write it to a file or "
+                                        "pipe it to a program (| ...)")
+        os.set_blocking(controller, False)
+        try:
+            assert os.read(controller, 4096) == b""
+        except BlockingIOError:
+            pass  # nothing was written
+        # Text goes to a terminal as to a file.
+        bt.save_table(link, pts, format="text")
+        time.sleep(0.1)
+        assert b"0.25" in os.read(controller, 4096)
+    finally:
+        os.close(controller)
+        os.close(terminal)
+
+
 def test_tables_round_trip_and_numpy_reads_them(tmp_path):
     sets = bt.relax(count=64, sets=5, iterations=2, seed=1, engine="exact")
     bt.save_table(str(tmp_path / "t.npy"), sets)

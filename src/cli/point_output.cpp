@@ -127,10 +127,7 @@ PointOutput::PointOutput(OutputSet& outputs, const PointOutputOptions& options, 
   if (format == TableFormat::text && sets > 1 && options.output.find('#') != std::string::npos)
     throw Error("--output '" + options.output + "': file names with '#' cannot hold several sets");
   // npy and .bpt are refused on a terminal (--format npy -o - in an interactive shell).
-  std::string_view binary;
-  if (format == TableFormat::npy) binary = "NumPy (.npy)";
-  if (format == TableFormat::binary) binary = "point table (.bpt)";
-  files_.push_back(&outputs.add(options.output, {.allow_stdout = true, .binary_format = binary}));
+  files_.push_back(&outputs.add(options.output, {.allow_stdout = true, .binary_format = binary_table_format(format)}));
 }
 
 void PointOutput::write(std::span<const PointSet> sets, const std::vector<std::string>& header) {

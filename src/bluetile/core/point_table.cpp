@@ -457,6 +457,12 @@ std::string_view table_format_name(TableFormat format) {
   return "text";
 }
 
+std::string_view binary_table_format(TableFormat format) {
+  if (format == TableFormat::npy) return "NumPy (.npy)";
+  if (format == TableFormat::binary) return "point table (.bpt)";
+  return "";
+}
+
 TableView point_sets_table(std::span<const PointSet> sets) {
   bool levels = !sets.empty() && sets[0].has_levels();
   for (std::size_t k = 0; k < sets.size(); ++k) {

@@ -56,6 +56,10 @@ TableFormat table_format_for(const std::string& path, const std::string& request
 // "text", "npy", "binary", "header".
 std::string_view table_format_name(TableFormat format);
 
+// The words for a format whose bytes are binary ("NumPy (.npy)", "point table (.bpt)"), "" for
+// text: OutputOptions::binary_format, so that no front end spills them onto a terminal.
+std::string_view binary_table_format(TableFormat format);
+
 // Receives the bytes of a table in order, in pieces.
 using ByteSink = std::function<void(std::string_view bytes)>;
 
