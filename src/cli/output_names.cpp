@@ -22,6 +22,17 @@ std::string_view output_format_label(OutputFormat format) {
   return "";
 }
 
+std::string_view binary_output_format(OutputFormat format) {
+  switch (format) {
+    case OutputFormat::points_npy: return binary_table_format(TableFormat::npy);
+    case OutputFormat::points_binary: return binary_table_format(TableFormat::binary);
+    case OutputFormat::raw_columns:
+    case OutputFormat::image:
+    case OutputFormat::pdf: return output_format_label(format);
+    default: return "";
+  }
+}
+
 std::span<const std::string_view> output_format_extensions(OutputFormat format) {
   static constexpr std::string_view raw_columns[] = {".bin"};
   static constexpr std::string_view svg[] = {".svg"};

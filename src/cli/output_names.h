@@ -28,6 +28,10 @@ enum class OutputFormat {
 // What a format is called in messages: "text points", "NumPy", ...
 std::string_view output_format_label(OutputFormat format);
 
+// OutputOptions::binary_format for an output in `format`: the words for binary bytes ("NumPy
+// (.npy)", "image", "PDF"), which are refused on a terminal; "" for text (points, SVG, a header).
+std::string_view binary_output_format(OutputFormat format);
+
 // The extensions that name `format`, lower case with their dot, as file_extension gives them
 // ("" stands for a name without one).
 std::span<const std::string_view> output_format_extensions(OutputFormat format);

@@ -96,7 +96,8 @@ void run_relax(RelaxOptions o, const CLI::App& command) {
   if (!o.id_image.empty()) {
     const bool each = o.id_image.find("{}") != std::string::npos;
     for (std::size_t k = 0; k < (each ? set_count : 1); ++k)
-      id_images.push_back(&outputs.add(each ? set_file_name(o.id_image, k, set_count) : o.id_image));
+      id_images.push_back(&outputs.add(each ? set_file_name(o.id_image, k, set_count) : o.id_image,
+                                       {.binary_format = binary_output_format(OutputFormat::image)}));
   }
 
   // The map is stretched over the unit square, whatever its aspect ratio. Random starts follow

@@ -102,7 +102,8 @@ void run_stipple(const StippleOptions& o, const CLI::App& command) {
   std::unique_ptr<PointOutput> points_file =
       o.points.output.empty() ? nullptr : std::make_unique<PointOutput>(outputs, o.points, 1);
   OutputFile* svg_file = o.svg.empty() ? nullptr : &outputs.add(o.svg, {.allow_stdout = true});
-  OutputFile* png_file = o.png.empty() ? nullptr : &outputs.add(o.png);
+  OutputFile* png_file =
+      o.png.empty() ? nullptr : &outputs.add(o.png, {.binary_format = binary_output_format(OutputFormat::image)});
   if (!o.log.empty()) check_text_output_name("--log", o.log, "a CSV log");
   OutputFile* log_file = o.log.empty() ? nullptr : &outputs.add(o.log, {.allow_stdout = true});
   auto map = std::make_shared<DensityGrid>(load_density_map(o.image, density_transfer(o.transfer)));

@@ -186,7 +186,8 @@ void run_tile(const TileOptions& o, const CLI::App& command) {
   add_declared_inputs(outputs, command);
   std::vector<OutputFile*> files;
   for (const std::string& path : o.outputs)
-    files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputFormat::points_text}));
+    files.push_back(&outputs.add(path, {.allow_stdout = output_kind(path) == OutputFormat::points_text,
+                                        .binary_format = binary_output_format(output_kind(path))}));
   // Square to rounding (0.4 - 0.1 and 0.5 - 0.2 differ in the last bit), as fit_map_rectangle
   // takes a map of the region's aspect.
   const double width = o.region[2] - o.region[0], height = o.region[3] - o.region[1];

@@ -62,6 +62,36 @@ TEST(TerminalOutput, BinaryPointTablesAreRefusedOnATerminalNamedByAPath) {
   EXPECT_NE(shown.terminal.find("# bluetile relax: 20 points"), std::string::npos) << shown.terminal;
 }
 
+TEST(TerminalOutput, ImagesAndBinaryColumnsAreRefusedOnATerminalNamedByAPath) {
+  // An ID image, tile's raw columns and a stipple's PNG went onto the terminal as bytes.
+  struct Case {
+    std::vector<std::string> arguments;  // "{}" stands for the link
+    std::string link_name, words;
+  };
+  const std::vector<Case> cases = {
+      {{"relax", "--count", "20", "--iterations", "0", "--engine", "exact", "--id-image", "{}", "-o", "{folder}/p.txt"},
+       "tty",
+       "image"},
+      {{"tile", "--region", "0", "0", "1", "1", "--density", "4", "-o", "{}"}, "tty.bin", "raw float64 columns"},
+      {{"stipple", "--image", "{image}", "-n", "20", "--iterations", "0", "--png", "{}"}, "tty", "image"},
+  };
+  test::TempDir inputs;  // a 2 x 2 grey image for the stipple
+  const std::string image = inputs.write("grey.pgm", std::string("P5 2 2 255\n") + std::string(4, '\x80'));
+  for (const Case& c : cases) {
+    test::TempDir folder;
+    const std::string link = folder.file(c.link_name);
+    std::vector<std::string> arguments;
+    for (const std::string& a : c.arguments)
+      arguments.push_back(a == "{}" ? link : a == "{folder}/p.txt" ? folder.file("p.txt") : a == "{image}" ? image : a);
+    TerminalRun refused = run_on_terminal(arguments, folder.path(), 60, 0, {}, false, link);
+    EXPECT_EQ(refused.exit_code, 1) << refused.terminal;
+    EXPECT_NE(refused.terminal.find("bluetile: " + link + ": is a terminal, and " + c.words + " data is binary"),
+              std::string::npos)
+        << refused.terminal;
+    EXPECT_EQ(entries(folder.path()), (std::vector<std::string>{"stdin.txt", "stdout.txt", c.link_name + "@"}));
+  }
+}
+
 TEST(TerminalOutput, TextStillGoesToATerminalAndBinaryToAPipe) {
   const std::vector<std::string> text = {"relax", "--count", "20", "--iterations", "1", "--engine", "exact", "--seed", "3", "-o", "-"};
   TerminalRun shown = run_with_terminal_output(text, 60);
