@@ -72,9 +72,9 @@ void check_weight_exponent(double exponent, const char* name = "weight exponent"
 // as EngineChoice names them), the points included: the scene's copy, the cell results and the
 // engine's own state (the exact engine's kept triangulation and search grid; the raster engine's
 // device, cones, ID buffer and host pixel work), for up-front checks (core/memory_budget.h).
-// Peak resident memory of `relax -k 2` from 2e5 to 4e6 sites, one set and sets: exact 305-436
-// bytes a site (480 in `progressive`'s levels); raster on lavapipe 80 MB for the device, then
-// 720-914 bytes a site; rounded up with a margin of about a third.
+// Peak resident memory of `relax -k 2` from 2e5 to 4e6 sites, one set and sets: exact 312-447
+// bytes a site (492 in `progressive`'s levels); raster on lavapipe 80 MiB for the device, then
+// 740-935 bytes a site; rounded up with a margin of about a third (docs/BENCHMARKS.md, "Memory").
 // (160 bytes a site for both, measured before the exact engine kept its topology, let through
 // runs that then ran out of memory.) The test MemoryEstimates.* holds runs under it.
 inline constexpr double kExactRelaxBytesPerSite = 640.0, kRasterRelaxBytesPerSite = 1024.0;

@@ -45,7 +45,7 @@ inline constexpr double kMinDartStart = 1e-6, kMaxDartStart = 4.0;
 
 // Bytes per point of a run, for up-front checks (core/memory_budget.h): the points, the
 // acceptance grid and its bookkeeping. Peak resident memory over the points of `dart` from 2e5
-// to 4e6 points: 127-135 bytes, rounded up with a margin (64 before, which let through runs
+// to 4e6 points: 129-138 bytes, rounded up with a margin (64 before, which let through runs
 // that then ran out of memory).
 inline constexpr double kDartBytesPerPoint = 192.0;
 
