@@ -91,6 +91,15 @@ nb::dict history_dict(const std::vector<bluetile::LloydIteration>& history) {
   return d;
 }
 
+// As the tool's relax -i and centroids -i: the cells of the points given, before any work
+// ("relax of 5000000 points needs about ..."); the points themselves are in memory already.
+void check_cells_memory(const PointSets& input, const std::string& engine, const char* function) {
+  std::size_t n = 0;
+  for (const auto& set : input.sets) n += set.size();
+  bluetile::check_memory(bluetile::relax_memory_bytes(static_cast<double>(n), engine),
+                         std::string(function) + " of " + std::to_string(n) + " points");
+}
+
 // As the tool: the raster engine, or the exact one for weighted or bounded cells, which the
 // raster engine computes several times slower (docs/BENCHMARKS.md), unless one is named.
 std::string default_engine(const std::optional<std::string>& engine, bool weighted_or_bounded) {
@@ -141,6 +150,7 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
   PointSets input;
   if (points_arg) {
     input = point_sets(*points_array, "points");
+    check_cells_memory(input, choice.engine, "relax");
   } else {
     // As the tool's relax --count --sets: refused at once with the estimate, not a MemoryError
     // after seconds of work.
@@ -233,6 +243,7 @@ nb::tuple centroids(const ArrayArg& points, const Text& engine, const Whole& res
       engine_choice(text_or(engine, "raster", "engine"), resolution, coverage, cone, device, pixel_work);
   check_engine_choice(choice);
   PointSets input = point_sets(array_arg(points, "points", ArrayKind::points), "points");
+  check_cells_memory(input, choice.engine, "centroids");
   std::vector<bluetile::SceneCells> cells(input.sets.size());
   {
     nb::gil_scoped_release release;

@@ -377,9 +377,12 @@ import numpy as np, pybluetile as bt
 vm = int([l for l in open("/proc/self/status") if l.startswith("VmSize")][0].split()[1]) * 1024
 resource.setrlimit(resource.RLIMIT_AS, (vm + (1 << 30), resource.getrlimit(resource.RLIMIT_AS)[1]))
 p = np.random.default_rng(1).random((1000, 2))
+big = np.random.default_rng(1).random((2 * 10**6, 2))
 calls = {
     "relax": lambda: bt.relax(count=10**8, sets=10**7, iterations=0, engine="exact"),
     "relax_sets": lambda: bt.relax(count=10**6, sets=1000, iterations=0, engine="exact"),
+    "relax_points": lambda: bt.relax(big, iterations=1, engine="exact"),
+    "centroids": lambda: bt.centroids(big, engine="exact"),
     "stipple": lambda: bt.stipple(np.ones((2, 2)), count=10**8),
     "progressive": lambda: bt.progressive(count=10**7, levels=2, engine="exact"),
     "dart": lambda: bt.dart(10**8),
@@ -412,6 +415,8 @@ def test_requests_past_the_memory_are_refused_at_once_with_the_tools_estimate(to
     expected = {
         "relax": r"count=100000000 x sets=10000000 needs about 568\.4 PiB of memory",
         "relax_sets": r"count=1000000 x sets=1000 needs about 596\.0 GiB of memory",
+        "relax_points": r"relax of 2000000 points needs about 1\.2 GiB of memory",
+        "centroids": r"centroids of 2000000 points needs about 1\.2 GiB of memory",
         "stipple": r"count=100000000 needs about 59\.6 GiB of memory",
         "progressive": r"20000000 points in 2 levels needs about 12\.1 GiB of memory",
         "dart": r"count=100000000 needs about 17\.9 GiB of memory",

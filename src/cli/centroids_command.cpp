@@ -25,6 +25,7 @@ void run_centroids(const CentroidsOptions& o, const CLI::App& command) {
   OutputSet outputs;
   add_declared_inputs(outputs, command);
   std::vector<PointSet> sets = read_input_sets(o.input, "centroids");
+  check_cells_memory(sets, o.engine.engine, "centroids", o.input);
   PointOutput output(outputs, o.output, sets.size());
 
   // A bounded set (relax --bounded, stipple) is measured in the unit square, as it was made.

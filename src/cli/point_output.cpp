@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/memory_budget.h"
+#include "bluetile/relax/lloyd.h"
 #include "cli/file_options.h"
 #include "cli/output_names.h"
 
@@ -178,6 +180,19 @@ std::optional<Boundary> declared_domain(const std::vector<PointSet>& sets, const
     if (set.declared_boundary) declared = set.declared_boundary;
   }
   return declared;
+}
+
+std::size_t point_count(const std::vector<PointSet>& sets) {
+  std::size_t n = 0;
+  for (const PointSet& set : sets) n += set.points.size();
+  return n;
+}
+
+void check_cells_memory(const std::vector<PointSet>& sets, const std::string& engine, const std::string& command,
+                        const std::string& path) {
+  const std::size_t n = point_count(sets);
+  check_memory(relax_memory_bytes(static_cast<double>(n), engine),
+               command + " of the " + std::to_string(n) + " points of " + input_name(path));
 }
 
 std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command) {

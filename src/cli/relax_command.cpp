@@ -81,10 +81,13 @@ void run_relax(RelaxOptions o, const CLI::App& command) {
                                  : ", the default with --density-map";
   }
   refuse_unused_raster_options(command, o.engine, why_exact, !o.id_image.empty());
-  // Refused before anything is drawn: the engine, which the estimate depends on, is known now.
+  // Refused before anything is drawn or relaxed: the engine, which the estimate depends on, is
+  // known now. An input's points are in memory already; its relaxation is not.
   if (o.input.empty()) {
     check_memory(relax_memory_bytes(static_cast<double>(o.sets) * static_cast<double>(o.count), o.engine.engine),
                  "--count " + std::to_string(o.count) + " x --sets " + std::to_string(o.sets));
+  } else {
+    check_cells_memory(inputs, o.engine.engine, "relax", o.input);
   }
   // Every output is declared, and so checked, before any work.
   const std::size_t set_count = o.input.empty() ? static_cast<std::size_t>(o.sets) : inputs.size();
