@@ -182,15 +182,10 @@ std::optional<Boundary> declared_domain(const std::vector<PointSet>& sets, const
   return declared;
 }
 
-std::size_t point_count(const std::vector<PointSet>& sets) {
-  std::size_t n = 0;
-  for (const PointSet& set : sets) n += set.points.size();
-  return n;
-}
-
 void check_cells_memory(const std::vector<PointSet>& sets, const std::string& engine, const std::string& command,
                         const std::string& path) {
-  const std::size_t n = point_count(sets);
+  std::size_t n = 0;
+  for (const PointSet& set : sets) n += set.points.size();
   check_memory(relax_memory_bytes(static_cast<double>(n), engine),
                command + " of the " + std::to_string(n) + " points of " + input_name(path));
 }

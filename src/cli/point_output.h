@@ -41,9 +41,8 @@ void add_point_output_options(CLI::App* command, PointOutputOptions& options, co
 // set holds at least one point: `command` is named in the message ("relax needs ...").
 std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command);
 
-// The points of all `sets`, and the up-front memory check of computing their cells with `engine`
-// (relax_memory_bytes): "<command> of the N points of PATH needs about ...".
-std::size_t point_count(const std::vector<PointSet>& sets);
+// The up-front memory check of computing the cells of all `sets` with `engine` (relax_memory_bytes):
+// "<command> of the N points of PATH needs about ...".
 void check_cells_memory(const std::vector<PointSet>& sets, const std::string& engine, const std::string& command,
                         const std::string& path);
 
