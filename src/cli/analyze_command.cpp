@@ -37,6 +37,7 @@
 #include "bluetile/core/text.h"
 #include "bluetile/tiling/tiled_output.h"
 #include "bluetile/drawing/figures.h"
+#include "bluetile/io/image_file.h"
 #include "bluetile/io/pdf.h"
 
 namespace bluetile::cli {
@@ -989,6 +990,10 @@ std::string report_text(const AnalyzeOptions& o, const std::vector<Series>& seri
 void run_analyze(const AnalyzeOptions& o, const CLI::App& command) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   check_options(o);
+  // Its PNGs are drawn at the end: the image plugin is loaded now, so that a limit that leaves it
+  // too little memory is said before the analysis, not after it (README, "What a failed or
+  // interrupted run leaves behind").
+  load_image_plugin();
   const FrequencyAxis axis = o.axis == "integer" ? FrequencyAxis::integer : FrequencyAxis::normalised;
   const std::string format = summary_format(o);
   AnalyzeFiles files;

@@ -22,6 +22,7 @@
 #include "bluetile/core/text.h"
 #include "bluetile/drawing/figures.h"
 #include "bluetile/drawing/tile_set_drawing.h"
+#include "bluetile/io/image_file.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/tiling/seam_check.h"
 #include "bluetile/tiling/tile_set_file.h"
@@ -66,6 +67,9 @@ struct CheckOptions {
 
 void run_check(const CheckOptions& o, const CLI::App& command) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
+  // The output folder's PNGs are drawn at the end: the image plugin is loaded first, as analyze
+  // loads it, so that too little memory for it is said before the measurement.
+  if (!o.output.empty()) load_image_plugin();
   // Every output is declared, and so checked, before any work; they appear together at the end.
   OutputSet outputs;
   add_declared_inputs(outputs, command);

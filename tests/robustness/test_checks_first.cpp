@@ -173,6 +173,35 @@ TEST(ChecksFirst, ALongAnalysisSaysSoAsItStarts) {
                                         "b/spectrum.png", "b/spectrum.svg", "b/stats.json", "large.txt", "small.txt"}));
 }
 
+TEST(ChecksFirst, AnalyzeAndWangCheckLoadTheImagePluginBeforeTheirWork) {
+  // Their PNGs are drawn at the end, and the plugin was loaded only then: under a limit too small
+  // for it, analyze of 50000 points ended in a bare "out of memory" during the analysis (or, with
+  // more room, said the plugin's limit after it), and wang-check printed its seam report first.
+  if (sanitized()) GTEST_SKIP() << "the address sanitizer reserves terabytes of address space: ulimit -v cannot apply";
+  TempDir dir;
+  std::string text;
+  for (int i = 0; i < 50000; ++i) text += std::to_string((i % 211) / 211.0) + " " + std::to_string((i % 239) / 239.0) + "\n";
+  const std::string points = dir.write("points.txt", text);
+  const std::string plugin = "bluetile: cannot load the image plugin libbluetile_oiio.so: OpenImageIO needs about ";
+  Invocation analyze{{"analyze", "-i", points, "-o", dir.file("a"), "--no-psa-measures"}};
+  analyze.address_space_bytes = 200L << 20;
+  Outcome r = run_or_kill(analyze);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind(plugin, 0), 0u) << r.err;
+  TempDir made;  // a small set (4 points a tile) from the tool itself
+  const std::string tiles = made.file("tiles.txt");
+  r = run({"wang", "-n", "4", "-k", "1", "--warm", "0", "--lattice-steps", "0", "--lattice-steps-per-iteration", "0",
+           "--strategy", "rounds", "-o", tiles});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  Invocation check{{"wang-check", tiles, "--period", "4", "-o", dir.file("w")}};
+  check.address_space_bytes = 200L << 20;
+  r = run_or_kill(check);
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_EQ(r.err.rfind(plugin, 0), 0u) << r.err;
+  EXPECT_EQ(r.out, "") << "the seam report came before the refusal";
+  EXPECT_EQ(entries(dir.path()), Names{"points.txt"});
+}
+
 TEST(ChecksFirst, TooLittleMemoryForTheImagePluginOrThreadsIsSaid) {
   // Under ulimit -v 400000-450000 KiB stipple aborted (rc 134) while the image
   // plugin loaded, leaving its staging folder; under 30 MB tile said "internal error: Resource
