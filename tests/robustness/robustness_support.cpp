@@ -210,4 +210,12 @@ TerminalRun run_on_terminal(const std::vector<std::string>& arguments, const std
   return result;
 }
 
+std::string many_points_text(int count) {
+  // (i mod 997, i mod 991) on their grids: distinct for i < 997 * 991, as the coprime moduli make them.
+  std::string text;
+  for (int i = 0; i < count; ++i)
+    text += std::to_string((i % 997) / 997.0) + " " + std::to_string((i % 991) / 991.0) + "\n";
+  return text;
+}
+
 }  // namespace bluetile::robustness

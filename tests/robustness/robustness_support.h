@@ -74,6 +74,9 @@ std::vector<std::string> entries(const std::string& folder);
 // terabytes of address space, so ulimit -v cannot be used).
 bool sanitized();
 
+// A point file of `count` distinct points (up to 988027), for runs sized by their input.
+std::string many_points_text(int count);
+
 // The absolute path of `name` on PATH, or "" when there is none.
 std::string find_program(const std::string& name);
 

@@ -179,9 +179,7 @@ TEST(ChecksFirst, AnalyzeAndWangCheckLoadTheImagePluginBeforeTheirWork) {
   // more room, said the plugin's limit after it), and wang-check printed its seam report first.
   if (sanitized()) GTEST_SKIP() << "the address sanitizer reserves terabytes of address space: ulimit -v cannot apply";
   TempDir dir;
-  std::string text;
-  for (int i = 0; i < 50000; ++i) text += std::to_string((i % 211) / 211.0) + " " + std::to_string((i % 239) / 239.0) + "\n";
-  const std::string points = dir.write("points.txt", text);
+  const std::string points = dir.write("points.txt", many_points_text(50000));
   const std::string plugin = "bluetile: cannot load the image plugin libbluetile_oiio.so: OpenImageIO needs about ";
   Invocation analyze{{"analyze", "-i", points, "-o", dir.file("a"), "--no-psa-measures"}};
   analyze.address_space_bytes = 200L << 20;

@@ -130,9 +130,7 @@ TEST(Options, InputsTooLargeToRelaxAreRefusedUpFront) {
   // 250 MB of address space ended in "out of memory" after the reading, not with the estimate.
   if (sanitized()) GTEST_SKIP() << "the address sanitizer reserves terabytes: ulimit -v cannot be used";
   TempDir dir;
-  std::string text;
-  for (int i = 0; i < 600000; ++i) text += std::to_string((i % 997) / 997.0) + " " + std::to_string((i % 991) / 991.0) + "\n";
-  const std::string input = dir.write("big.txt", text);
+  const std::string input = dir.write("big.txt", many_points_text(600000));
   for (const std::string command : {"relax", "centroids"}) {
     Invocation limited{{command, "-i", input, "--engine", "exact", "-o", dir.file("o.txt")}};
     limited.address_space_bytes = 250L << 20;
