@@ -832,9 +832,7 @@ CsvFirstLine csv_first_line(const std::vector<std::string_view>& fields) {
 bool blank_separated(std::string_view text) {
   bool data = false;
   while (!text.empty()) {
-    const std::size_t end = text.find('\n');
-    std::string_view line = text.substr(0, end);
-    text.remove_prefix(end == std::string_view::npos ? text.size() : end + 1);
+    std::string_view line = next_line(text);
     line = trimmed(line.substr(0, line.find('#')));
     if (line.empty()) continue;
     if (line.find_first_of(",;") != std::string_view::npos) return false;
@@ -857,11 +855,7 @@ std::vector<PointSet> parse_csv_points(std::string_view text, const std::string&
   bool index_column = false;  // the header's first column is unnamed: an index, skipped
   bool trailing_comma = false;  // the first line ends with ',': so does every line, no field after it
   while (!text.empty()) {
-    // A line ends at "\n", "\r\n" or a lone "\r" (classic Mac OS), as in point files.
-    const std::size_t end = text.find_first_of("\r\n");
-    const std::string_view line = text.substr(0, end);
-    const bool crlf = end != std::string_view::npos && text.substr(end, 2) == "\r\n";
-    text.remove_prefix(end == std::string_view::npos ? text.size() : end + (crlf ? 2 : 1));
+    const std::string_view line = next_line(text);
     ++number;
     const std::string_view body = trimmed(line);
     if (body.empty() || body.front() == '#') {

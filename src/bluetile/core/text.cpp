@@ -85,6 +85,14 @@ locale_t classic_locale() {
 ClassicNumbers::ClassicNumbers() : previous_(uselocale(classic_locale())) {}
 ClassicNumbers::~ClassicNumbers() { uselocale(previous_); }
 
+std::string_view next_line(std::string_view& rest) {
+  const std::size_t end = rest.find_first_of("\r\n");
+  const std::string_view line = rest.substr(0, end);
+  if (end == std::string_view::npos) rest = {};
+  else rest.remove_prefix(end + (rest.substr(end, 2) == "\r\n" ? 2 : 1));
+  return line;
+}
+
 std::string lower_case(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return s;

@@ -57,6 +57,11 @@ class ClassicNumbers {
   locale_t previous_;
 };
 
+// The next line of `rest`, which loses it and its end: a line ends at "\n", "\r\n" or a lone
+// "\r" (classic Mac OS), as every text reader here takes it (point files read in chunks do the
+// same in PointTextParser).
+std::string_view next_line(std::string_view& rest);
+
 // `s` in ASCII lower case (file extensions, device names).
 std::string lower_case(std::string s);
 

@@ -134,13 +134,9 @@ TileSet parse_tile_set(const std::string& text, const std::string& name) {
   std::size_t number = 0;
   auto fail = [&](const std::string& what) -> void { throw Error(name + ":" + std::to_string(number) + ": " + what); };
 
-  std::size_t start = 0;
-  while (start < text.size()) {
-    // A line ends at "\n", "\r\n" or a lone "\r" (classic Mac OS), as in point files.
-    std::size_t end = text.find_first_of("\r\n", start);
-    if (end == std::string::npos) end = text.size();
-    std::string_view line(text.data() + start, end - start);
-    start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+  std::string_view unread = text;
+  while (!unread.empty()) {
+    std::string_view line = next_line(unread);
     ++number;
     if (line.find('\0') != std::string_view::npos) fail("binary data (NUL byte): not a tile-set file");
     if (number == 1) {
