@@ -34,7 +34,7 @@ using cli::RealRange;
 // Upper limits shared by the programs; beyond them a value is a typo.
 inline constexpr long long kMaxCount = cli::kMaxCount;  // points, sites, dots
 inline constexpr int kMaxRepeats = 1'000'000;
-inline constexpr int kMaxIterations = cli::kMaxIterations;
+using bluetile::kMaxIterations;
 inline constexpr int kMaxThreads = 1024;  // as the tool's --threads
 inline constexpr std::uint64_t kMaxSeed = UINT64_MAX;
 

@@ -53,13 +53,12 @@ void check_engine_choice(const EngineChoice& choice) {
 
 namespace {
 
-// The tool's limits (relax --count, --sets, --iterations).
-constexpr long long kMaxCount = 100'000'000, kMaxSets = 10'000'000;
-constexpr int kMaxIterations = 100'000'000;
-constexpr int kDefaultIterations = 80;  // relax's and progressive's iterations, as the tool's
-constexpr int kDefaultStippleIterations = 50;
+// The library's limits and defaults, as the tool takes them (relax --count, --sets, --iterations).
+constexpr long long kMaxCount = static_cast<long long>(bluetile::kMaxSetPoints);
+constexpr long long kMaxSets = static_cast<long long>(bluetile::kMaxSets);
+using bluetile::kDefaultIterations, bluetile::kDefaultStippleIterations, bluetile::kDefaultWeightExponent,
+    bluetile::kMaxIterations;
 constexpr std::uint64_t kDefaultSeed = 1;
-constexpr double kDefaultWeightExponent = 2.0;
 
 void check_non_negative(const char* name, double value) {
   if (!(value >= 0.0) || !std::isfinite(value))

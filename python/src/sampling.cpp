@@ -6,6 +6,7 @@
 #include "bindings.h"
 #include "bluetile/core/memory_budget.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/relax/request_limits.h"
 #include "bluetile/sampling/dart_throwing.h"
 
 namespace pybluetile {
@@ -16,9 +17,8 @@ void bind_sampling(nb::module_& m) {
   m.def(
       "random_points",
       [](const Whole& count_arg, const Whole& seed_arg, const Whole& set_arg) {
-        // The tool's limit on a point set (relax --count): past it a bare MemoryError, or swap.
-        constexpr std::size_t kMaxPoints = 100'000'000;
-        const auto count = whole<std::size_t>(count_arg, "count", 0, kMaxPoints);
+        // The limit on a point set (relax --count): past it a bare MemoryError, or swap.
+        const auto count = whole<std::size_t>(count_arg, "count", 0, bluetile::kMaxSetPoints);
         const std::uint64_t seed = seed_or(seed_arg, 1), set = seed_or(set_arg, 0, "set");
         // The points and the array they are copied into: refused at once with the estimate.
         bluetile::check_memory(static_cast<double>(count) * 2.0 * sizeof(bluetile::Point), "count=" + std::to_string(count));

@@ -21,6 +21,7 @@
 #include "bluetile/voronoi/site_grid.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/progressive.h"
+#include "bluetile/relax/request_limits.h"
 #include "bluetile/relax/stipple.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/analysis/bond_order.h"

@@ -16,14 +16,14 @@
 #include <CLI/CLI.hpp>
 
 #include "bluetile/core/text.h"  // number_text, which the messages here use
+#include "bluetile/relax/request_limits.h"
 
 namespace bluetile::cli {
 
-// Limits shared by the subcommands. Beyond them a value is almost surely a typo, and would need
-// tens of GiB or years.
-inline constexpr long long kMaxCount = 100'000'000;     // points in a set
-inline constexpr int kMaxIterations = 100'000'000;      // Lloyd iterations
-inline constexpr long long kMaxSets = 10'000'000;       // sets of one relax run
+// The library's limits of a request (relax/request_limits.h), in the type the options take.
+inline constexpr long long kMaxCount = static_cast<long long>(bluetile::kMaxSetPoints);  // points in a set
+using bluetile::kMaxIterations;                                                           // Lloyd iterations
+inline constexpr long long kMaxSets = static_cast<long long>(bluetile::kMaxSets);         // sets of one relax run
 inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // An integer as a sign and a magnitude, wide enough for every range we accept.

@@ -28,7 +28,7 @@ struct ProgressiveOptions {
   long long add = 0;
   double ratio = 0.0;
   int levels = 0;
-  int iterations = 80;
+  int iterations = kDefaultIterations;
   double tolerance = 0.0;
   std::uint64_t seed = 1;
   std::string placement = "gaps";

@@ -28,7 +28,7 @@ namespace {
 struct RelaxOptions {
   long long count = 0;
   std::string input;
-  int iterations = 80;
+  int iterations = kDefaultIterations;
   std::uint64_t seed = 1;
   long long fixed = 0;
   double tolerance = 0.0;
@@ -40,7 +40,7 @@ struct RelaxOptions {
   std::string density_map;
   bool bounded = false;
   DensityMapOptions transfer;
-  double weight_exponent = 2.0;
+  double weight_exponent = kDefaultWeightExponent;
   EngineOptions engine;
 };
 

@@ -33,7 +33,7 @@ namespace {
 struct StippleOptions {
   std::string image;
   long long count = 0;
-  int iterations = 50;
+  int iterations = kDefaultStippleIterations;
   std::uint64_t seed = 1;
   double tolerance = 0.0;
   bool periodic = false;
@@ -45,7 +45,7 @@ struct StippleOptions {
   std::string log;
   bool verbose = false;
   DensityMapOptions transfer;
-  double weight_exponent = 2.0;
+  double weight_exponent = kDefaultWeightExponent;
   EngineOptions engine;
   StippleDrawingOptions drawing;
 };

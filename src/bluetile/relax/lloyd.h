@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bluetile/core/density_grid.h"
+#include "bluetile/relax/request_limits.h"
 #include "bluetile/voronoi/engine.h"
 
 namespace bluetile {
@@ -34,7 +35,7 @@ struct LloydIteration {
 };
 
 struct LloydOptions {
-  int iterations = 80;
+  int iterations = kDefaultIterations;
   // Stop early once the largest displacement of an iteration is below this (domain units);
   // 0 runs all iterations.
   double tolerance = 0.0;
@@ -64,8 +65,9 @@ struct LloydResult {
 // Throws Error when the exponent is not in [0, kMaxWeightExponent] (past 8 a map's contrast of 10
 // becomes 10^8 between cells, beyond what float texels keep apart); check_weight_exponent names
 // it as `name` (a front end's spelling of the argument).
-DensityGrid weight_for_point_density(const DensityGrid& target, double exponent = 2.0);
+inline constexpr double kDefaultWeightExponent = 2.0;
 inline constexpr double kMaxWeightExponent = 8.0;
+DensityGrid weight_for_point_density(const DensityGrid& target, double exponent = kDefaultWeightExponent);
 void check_weight_exponent(double exponent, const char* name = "weight exponent");
 
 // The memory of a relaxation of `sites` sites (over all sets) on `engine` ("exact" or "raster",

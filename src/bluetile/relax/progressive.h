@@ -53,7 +53,7 @@ inline constexpr std::size_t kMinStagePoints = 64;
 
 struct LevelOptions {
   std::size_t add = 0;  // points to add (>= 1)
-  int iterations = 80;
+  int iterations = kDefaultIterations;
   double tolerance = 0.0;  // see LloydOptions
   std::uint64_t seed = 1;
   Placement placement = Placement::gaps;
@@ -78,7 +78,7 @@ struct HierarchyOptions {
   double ratio = 0.0;
   // Total levels of the result; 0: 4 from scratch, one more than the base has otherwise.
   int levels = 0;
-  int iterations = 80;
+  int iterations = kDefaultIterations;
   double tolerance = 0.0;
   std::uint64_t seed = 1;  // level l places its points with derive_seed(seed, l)
   Placement placement = Placement::gaps;

@@ -10,6 +10,7 @@
 
 #include "bluetile/core/density_grid.h"
 #include "bluetile/core/torus.h"
+#include "bluetile/relax/lloyd.h"
 #include "bluetile/voronoi/engine.h"
 
 namespace bluetile {
@@ -18,7 +19,7 @@ struct StippleStart {
   std::size_t count = 0;        // dots, >= 1
   std::uint64_t seed = 1;       // of the density-proportional start (set 0 of the seed)
   bool periodic = false;        // cells wrap around the picture's edges; else they end at its border
-  double weight_exponent = 2.0;  // cells weighted by map^exponent
+  double weight_exponent = kDefaultWeightExponent;  // cells weighted by map^exponent
 };
 
 // [0, W) x [0, H) with the map's aspect ratio and max(W, H) = 1.
