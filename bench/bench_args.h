@@ -25,6 +25,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bluetile/core/parallel.h"
 #include "cli/numeric_options.h"
 
 namespace bluetile::bench {
@@ -35,7 +36,7 @@ using cli::RealRange;
 inline constexpr long long kMaxCount = cli::kMaxCount;  // points, sites, dots
 inline constexpr int kMaxRepeats = 1'000'000;
 using bluetile::kMaxIterations;
-inline constexpr int kMaxThreads = 1024;  // as the tool's --threads
+inline constexpr int kMaxThreads = static_cast<int>(bluetile::kMaxThreads);
 inline constexpr std::uint64_t kMaxSeed = UINT64_MAX;
 
 // A bad argument, with its whole message ("--repeats '0': out of range; ..."): exit status 2.

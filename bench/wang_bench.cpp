@@ -438,7 +438,7 @@ int main(int argc, char** argv) try {
   auto* untiled_iterations = add_integer(app, "--untiled-iterations", o.untiled_iterations, 0, kMaxIterations,
                                          "quality mode, with --untiled: iterations of the untiled reference");
   auto* plot = app.add_option("--plot", o.plot, "levels mode: the sweep's worst rho and LF against k, as SVG (or .png)");
-  add_integer(app, "--threads", o.threads, 1, kMaxThreads, "Threads")->default_str("all cores");
+  add_integer(app, "--threads", o.threads, 1, bench::kMaxThreads, "Threads")->default_str("all cores");
   if (!parse(app, argc, argv)) return 0;
   for (CLI::Option* option : {prefixes, rank_orders, plot}) check_given(option, o.mode == "levels", "only in levels mode");
   for (CLI::Option* option : {repeats, engines}) check_given(option, o.mode == "time", "only in time mode");

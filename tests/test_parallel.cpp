@@ -11,11 +11,13 @@
 #include <mutex>
 #include <set>
 #include <stdexcept>
+#include <string>
 #include <thread>
 #include <utility>
 #include <vector>
 
 #include "bluetile/core/cancel_check.h"
+#include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
 
 namespace bluetile {
@@ -58,6 +60,26 @@ TEST(Parallel, EveryItemOnceInChunksOfTheGrainForAnyThreadCount) {
       }
     }
   }
+}
+
+TEST(Parallel, ThreadCountsOutsideOneToTheLimitAreRefusedNotClamped) {
+  // 0 was taken as 1 and any count above the limit started that many threads; the front ends
+  // refuse both (--threads, set_thread_count in Python) with this range.
+  ThreadCountGuard guard;
+  set_thread_count(3);
+  for (std::size_t bad : {std::size_t{0}, kMaxThreads + 1, std::size_t{1} << 40}) {
+    try {
+      set_thread_count(bad);
+      ADD_FAILURE() << bad << " threads accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(std::string(e.what()), "thread count " + std::to_string(bad) + ": expected an integer from 1 to 1024");
+    }
+    EXPECT_EQ(thread_count(), 3u) << "a refused count changed the count";
+  }
+  set_thread_count(kMaxThreads);
+  EXPECT_EQ(thread_count(), kMaxThreads);
+  set_thread_count(1);
+  EXPECT_EQ(thread_count(), 1u);
 }
 
 TEST(Parallel, ManyLoopsInARowLoseNoChunk) {

@@ -39,7 +39,8 @@ NB_MODULE(_core, m) {
   m.def(
       "set_thread_count",
       [](const pybluetile::Whole& count) {
-        bluetile::set_thread_count(pybluetile::whole<std::size_t>(count, "count", 1, 1024, "1 to 1024 threads"));
+        bluetile::set_thread_count(pybluetile::whole<std::size_t>(
+            count, "count", 1, bluetile::kMaxThreads, "1 to " + std::to_string(bluetile::kMaxThreads) + " threads"));
       },
       nb::sig("def set_thread_count(count: int) -> None"), "count"_a.none(), "Sets the threads the library uses from now on (like --threads); results do not depend on it.");
 

@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <map>
 
+#include "bluetile/core/parallel.h"
+
 namespace bluetile::cli {
 namespace {
 
@@ -167,7 +169,7 @@ CLI::Option* add_seed_option(CLI::App* command, std::uint64_t& seed, const std::
 }
 
 CLI::Option* add_threads_option(CLI::App* command, int& threads) {
-  return add_integer_option(command, "--threads", threads, 1, 1024,
+  return add_integer_option(command, "--threads", threads, 1, static_cast<int>(kMaxThreads),
                             "CPU threads (default: all cores); output does not depend on it")
       ->default_str("all cores");
 }

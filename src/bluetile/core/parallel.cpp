@@ -23,9 +23,6 @@
 namespace bluetile {
 namespace {
 
-// Beyond any machine we run on; a larger value is a typo.
-constexpr std::size_t kMaxThreads = 1024;
-
 // How many hardware threads the machine has, asked once (see thread_count below).
 std::size_t hardware_threads() {
   static const std::size_t count = std::max(1u, std::thread::hardware_concurrency());
@@ -223,7 +220,11 @@ std::size_t thread_count() {
   return machine_default;
 }
 
-void set_thread_count(std::size_t count) { configured_threads = std::max<std::size_t>(1, count); }
+void set_thread_count(std::size_t count) {
+  if (count < 1 || count > kMaxThreads)
+    throw Error("thread count " + std::to_string(count) + ": expected an integer from 1 to " + std::to_string(kMaxThreads));
+  configured_threads = count;
+}
 
 CancelCheck::CancelCheck(std::function<void()> check) : check_(std::move(check)), previous_(cancel_check) {
   cancel_check = &check_;
