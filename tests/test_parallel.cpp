@@ -5,6 +5,9 @@
 // chunks, and what it throws ends the loop.
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <chrono>
 #include <cstddef>
@@ -112,6 +115,52 @@ TEST(Parallel, UsesMoreThanOneThreadWhenAsked) {
     for (int k = 0; k < 2000 && started.load() < 2; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   });
   EXPECT_EQ(ids.size(), 2u);
+}
+
+TEST(Parallel, AProcessForkedAfterTheWorkersStartedRunsLoopsOnThreadsOfItsOwn) {
+  // Python's multiprocessing forks by default on Linux: the child has the pool but not its
+  // workers, and its first loop waited for them forever.
+  ThreadCountGuard guard;
+  for (std::size_t threads : {2u, 7u}) {
+    set_thread_count(threads);
+    parallel_for(64, 1, [](std::size_t, std::size_t) {});  // the workers are running
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      alarm(60);  // a hang ends the child by SIGALRM, which the parent reports
+      std::vector<std::atomic<int>> visits(1000);
+      std::set<std::thread::id> ids;
+      std::mutex ids_mutex;
+      std::atomic<int> started{0};
+      for (int loop = 0; loop < 100; ++loop)
+        parallel_for(visits.size(), 7, [&](std::size_t begin, std::size_t end) {
+          for (std::size_t i = begin; i < end; ++i) ++visits[i];
+        });
+      // And more than one thread takes part, as in UsesMoreThanOneThreadWhenAsked.
+      parallel_for(2, 1, [&](std::size_t, std::size_t) {
+        {
+          std::lock_guard<std::mutex> lock(ids_mutex);
+          ids.insert(std::this_thread::get_id());
+        }
+        ++started;
+        for (int k = 0; k < 2000 && started.load() < 2; ++k) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+      });
+      bool every_item_100_times = true;
+      for (auto& v : visits) every_item_100_times = every_item_100_times && v.load() == 100;
+      _exit(every_item_100_times && ids.size() == 2 ? 0 : 1);
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    EXPECT_TRUE(WIFEXITED(status)) << threads << " threads: the child ended by signal "
+                                   << (WIFSIGNALED(status) ? WTERMSIG(status) : 0) << " (14: SIGALRM, it hung)";
+    EXPECT_EQ(WIFEXITED(status) ? WEXITSTATUS(status) : -1, 0) << threads << " threads: items missed or one thread ran";
+    // The parent's pool goes on as before.
+    std::atomic<std::size_t> sum{0};
+    parallel_for(100, 3, [&](std::size_t begin, std::size_t end) {
+      for (std::size_t i = begin; i < end; ++i) sum += i;
+    });
+    EXPECT_EQ(sum.load(), 4950u);
+  }
 }
 
 TEST(Parallel, FirstExceptionIsRethrownAndTheRestOfTheWorkStops) {

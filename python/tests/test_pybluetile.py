@@ -387,6 +387,30 @@ def test_the_gil_is_released_while_relaxing():
     assert during > 100, f"the counting thread ran {during} times while relax ran"
 
 
+FORKED_WORKERS = """
+import multiprocessing, sys
+import numpy as np
+import pybluetile as bt
+
+def relaxed(seed):
+    return bt.relax(count=5000, iterations=3, seed=seed, engine="exact")
+
+bt.set_thread_count(2)
+here = [relaxed(seed) for seed in range(4)]  # the library's worker threads are running now
+with multiprocessing.get_context("fork").Pool(2) as pool:
+    there = pool.map_async(relaxed, range(4)).get(timeout=60)
+print("same" if all(np.array_equal(a, b) for a, b in zip(here, there)) else "differ", flush=True)
+"""
+
+
+def test_processes_forked_after_a_call_relax_as_the_parent_does():
+    # multiprocessing's default on Linux forks: the children inherited the library's thread pool
+    # without its threads, and their first call waited for them forever.
+    child = subprocess.run([sys.executable, "-c", FORKED_WORKERS], capture_output=True, text=True, timeout=120)
+    assert child.returncode == 0, child.stderr[-2000:]
+    assert child.stdout == "same\n"
+
+
 def tile_set_body(text):
     """A tile-set file from its '# set' line on: the tiles, without the header that names the maker."""
     return text[text.index("# set "):]

@@ -1,5 +1,7 @@
 #include "bluetile/core/parallel.h"
 
+#include <pthread.h>
+
 #include <algorithm>
 #include <atomic>
 #include <charconv>
@@ -10,6 +12,7 @@
 #include <exception>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <string>
 #include <string_view>
 #include <system_error>
@@ -82,6 +85,14 @@ class Pool {
     return pool;
   }
 
+  // A process forked after the pool started its workers (Python's multiprocessing forks by
+  // default on Linux) has the pool but not their threads: its first loop waited forever for them.
+  // The fork waits for the loop in progress, if any; the child then starts with no workers.
+  Pool() {
+    pthread_atfork([] { instance().lock_for_fork(); }, [] { instance().unlock_after_fork(); },
+                   [] { instance().forget_workers_after_fork(); });
+  }
+
   void run(std::size_t workers_wanted, std::size_t chunks,
            const std::function<void(std::size_t)>& chunk_body) {
     std::lock_guard<std::mutex> one_loop(run_mutex_);
@@ -120,6 +131,31 @@ class Pool {
   }
 
  private:
+  void lock_for_fork() {
+    run_mutex_.lock();
+    mutex_.lock();
+  }
+
+  void unlock_after_fork() {
+    mutex_.unlock();
+    run_mutex_.unlock();
+  }
+
+  // In the child, whose only thread is the one that forked: new locks and condition variables
+  // (the old ones may count waiters that are not there), and the old workers' std::thread handles
+  // dropped without joining or destroying them (either would wait or terminate); the next loop
+  // starts workers of its own.
+  void forget_workers_after_fork() {
+    ::new (&run_mutex_) std::mutex;
+    ::new (&mutex_) std::mutex;
+    ::new (&wake_) std::condition_variable;
+    ::new (&done_) std::condition_variable;
+    ::new (&workers_) std::vector<std::thread>;  // the old buffer is left allocated, on purpose
+    active_workers_ = 0;
+    participants_ = 1;
+    busy_.store(0);
+  }
+
   // Polling only while every thread of the pool has a core of its own: with more threads than
   // cores (BLUETILE_THREADS=7 on 2 cores) a polling thread would take the core of one that works.
   bool polling() const { return polling_.load(std::memory_order_relaxed); }

@@ -2,7 +2,9 @@
 // segment of the range first and then steals what is left of the others', so which thread runs
 // which chunk still varies from run to run: callers must
 // make every chunk's result independent of that (each writes only its own outputs), which is
-// how the engines stay bit-identical whatever the thread count.
+// how the engines stay bit-identical whatever the thread count. A process forked after the pool
+// started (Python's multiprocessing) starts workers of its own at its first loop; the fork
+// waits for a loop in progress on another thread.
 #pragma once
 
 #include <cstddef>
