@@ -35,7 +35,8 @@ NB_MODULE(_core, m) {
       error_type.ptr());
 
   m.def("thread_count", &bluetile::thread_count,
-        "Threads the library uses (default: the cores, or BLUETILE_THREADS). Results do not depend on it.");
+        "Threads the library uses (default: the cores this process may run on, as nproc counts them, or "
+        "BLUETILE_THREADS). Results do not depend on it.");
   m.def(
       "set_thread_count",
       [](const pybluetile::Whole& count) {

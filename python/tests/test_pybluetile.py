@@ -411,6 +411,19 @@ def test_processes_forked_after_a_call_relax_as_the_parent_does():
     assert child.stdout == "same\n"
 
 
+@pytest.mark.skipif(len(os.sched_getaffinity(0)) < 2, reason="one CPU: the affinity and the machine agree")
+def test_the_default_thread_count_is_the_cpus_the_process_may_run_on():
+    # As nproc counts them: taskset, cpusets and batch schedulers restrict the affinity mask.
+    code = ("import os\n"
+            "os.sched_setaffinity(0, {min(os.sched_getaffinity(0))})\n"
+            "import pybluetile as bt\n"
+            "print(bt.thread_count())\n")
+    env = {k: v for k, v in os.environ.items() if k != "BLUETILE_THREADS"}
+    child = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=60, env=env)
+    assert child.returncode == 0, child.stderr[-2000:]
+    assert child.stdout == "1\n"
+
+
 def tile_set_body(text):
     """A tile-set file from its '# set' line on: the tiles, without the header that names the maker."""
     return text[text.index("# set "):]

@@ -170,7 +170,7 @@ CLI::Option* add_seed_option(CLI::App* command, std::uint64_t& seed, const std::
 
 CLI::Option* add_threads_option(CLI::App* command, int& threads) {
   return add_integer_option(command, "--threads", threads, 1, static_cast<int>(kMaxThreads),
-                            "CPU threads (default: all cores); output does not depend on it")
+                            "CPU threads (default: all cores this process may use, as nproc counts them); output does not depend on it")
       ->default_str("all cores");
 }
 

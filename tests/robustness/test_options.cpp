@@ -2,6 +2,8 @@
 // the accepted range, never clamped; whole numbers in scientific notation accepted.
 #include <gtest/gtest.h>
 
+#include <sched.h>
+
 #include "bluetile/io/image_file.h"
 #include "bluetile/io/pdf.h"
 #include "robustness_support.h"
@@ -123,6 +125,29 @@ TEST(Options, RunsTooLargeForTheMachineAreRefusedUpFront) {
         << r.err;
   }
   EXPECT_EQ(entries(dir.path()), std::vector<std::string>{});
+}
+
+TEST(Options, TheDefaultThreadsAreTheCpusTheProcessMayRunOn) {
+  // Under taskset, a cpuset or a batch scheduler the machine's CPU count put threads that poll
+  // for work on one allowed core, 3-5x slower than one thread; the count is the affinity mask's,
+  // as nproc's. analyze's estimate names the count it divides by.
+  cpu_set_t allowed;
+  ASSERT_EQ(sched_getaffinity(0, sizeof allowed, &allowed), 0);
+  int first = 0;
+  while (!CPU_ISSET(first, &allowed)) ++first;
+  const int count = CPU_COUNT(&allowed);
+  TempDir dir;
+  const std::string points = dir.write("p.txt", many_points_text(3000));
+  Invocation analyze{{"analyze", "-i", points, "-o", dir.file("out"), "--time-limit", "0.0001"}};
+  analyze.environment = {{"BLUETILE_THREADS", ""}};  // empty: unset
+  Outcome r = run(analyze);
+  EXPECT_EQ(r.exit_code, 1);
+  const std::string all = count == 1 ? " on 1 thread, " : " on " + std::to_string(count) + " threads, ";
+  EXPECT_NE(r.err.find(all), std::string::npos) << r.err;
+  analyze.wrapper = {"/usr/bin/taskset", "-c", std::to_string(first)};
+  r = run(analyze);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find(" on 1 thread, "), std::string::npos) << r.err;
 }
 
 TEST(Options, InputsTooLargeToRelaxAreRefusedUpFront) {

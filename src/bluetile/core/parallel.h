@@ -15,11 +15,12 @@ namespace bluetile {
 // Beyond any machine we run on; a larger count is a typo.
 inline constexpr std::size_t kMaxThreads = 1024;
 
-// Number of threads used by parallel_for, at least 1. Default: the hardware's core count,
-// or BLUETILE_THREADS from the environment when set and not empty (an integer from 1 to
-// kMaxThreads; anything else throws Error naming it). Both are read at the first call that needs
-// them and kept for the process; set_thread_count changes the count at any time, and throws Error
-// for a count outside [1, kMaxThreads] (the front ends' --threads and threads= take that range).
+// Number of threads used by parallel_for, at least 1. Default: the CPUs this process may run on
+// (its affinity mask, as `nproc` counts them), or BLUETILE_THREADS from the environment when set
+// and not empty (an integer from 1 to kMaxThreads; anything else throws Error naming it). Both are
+// read at the first call that needs them and kept for the process; set_thread_count changes the
+// count at any time, and throws Error for a count outside [1, kMaxThreads] (the front ends'
+// --threads and threads= take that range).
 std::size_t thread_count();
 void set_thread_count(std::size_t count);
 
