@@ -20,6 +20,7 @@ void check_weight_exponent(double exponent, const char* name) {
 
 DensityGrid weight_for_point_density(const DensityGrid& target, double exponent) {
   check_weight_exponent(exponent);
+  check_density_grid(target);  // a negative texel came back squared, a positive weight
   DensityGrid weight = target;
   if (exponent == 1.0) return weight;
   for (float& t : weight.texels) t = exponent == 2.0 ? t * t : static_cast<float>(std::pow(static_cast<double>(t), exponent));

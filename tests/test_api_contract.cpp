@@ -1,0 +1,138 @@
+// The library's public entry points against what a program might pass by mistake: each gives an
+// Error naming the argument and its value, where they crashed (a division by zero, a read past
+// an end), hung, or returned a result of no input. One test per kind of mistake.
+#include <gtest/gtest.h>
+
+#include <climits>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "bluetile/analysis/discrepancy.h"
+#include "bluetile/analysis/nearest_neighbour.h"
+#include "bluetile/analysis/pair_correlation.h"
+#include "bluetile/analysis/periodogram.h"
+#include "bluetile/analysis/radial_power.h"
+#include "bluetile/analysis/spectral_measures.h"
+#include "bluetile/core/density_grid.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
+#include "bluetile/core/rng.h"
+#include "bluetile/relax/lloyd.h"
+#include "bluetile/relax/progressive.h"
+#include "bluetile/relax/stipple.h"
+#include "bluetile/relax/void_order.h"
+#include "bluetile/sampling/density_sampling.h"
+#include "bluetile/sampling/plot_order.h"
+#include "bluetile/voronoi/exact_engine.h"
+#include "test_support.h"
+
+namespace bluetile {
+namespace {
+
+using test::error_of;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// A grid as a program might fill one by hand: its size and its texels apart.
+DensityGrid grid(int width, int height, std::size_t texels, float value = 1.0f) {
+  DensityGrid g;
+  g.width = width;
+  g.height = height;
+  g.texels.assign(texels, value);
+  return g;
+}
+
+DensityGrid with_texel(float value) {
+  DensityGrid g(2, 1, 1.0f);
+  g.texels[1] = value;
+  return g;
+}
+
+// sample_density divided by a width of 0 (SIGFPE), placed points outside the domain from texels
+// beyond the grid's size, and called negative and NaN texels "zero everywhere".
+TEST(ApiContract, DensitySamplingChecksTheGrid) {
+  Rng rng(1);
+  EXPECT_EQ(error_of([&] { sample_density(grid(0, 4, 4), Domain{}, 5, rng); }), "density grid of 0 x 4 texels holds 4 values");
+  EXPECT_EQ(error_of([&] { sample_density(grid(2, 2, 8), Domain{}, 5, rng); }), "density grid of 2 x 2 texels holds 8 values");
+  EXPECT_EQ(error_of([&] { sample_density(with_texel(-1.0f), Domain{}, 5, rng); }),
+            "density texel (1, 0) is -1: densities must be finite and non-negative");
+  EXPECT_EQ(error_of([&] { sample_density(with_texel(NAN), Domain{}, 5, rng); }),
+            "density texel (1, 0) is nan: densities must be finite and non-negative");
+  EXPECT_EQ(error_of([&] { sample_density(with_texel(INFINITY), Domain{}, 5, rng); }),
+            "density texel (1, 0) is inf: densities must be finite and non-negative");
+  EXPECT_EQ(error_of([] { density_random_points(grid(0, 4, 4), 5, 1); }), "density grid of 0 x 4 texels holds 4 values");
+  // What was refused before still is, in its words.
+  EXPECT_EQ(error_of([&] { sample_density(DensityGrid{}, Domain{}, 5, rng); }), "cannot sample an empty density grid");
+  EXPECT_EQ(error_of([&] { sample_density(DensityGrid(2, 2, 0.0f), Domain{}, 5, rng); }),
+            "cannot sample a density that is zero everywhere");
+}
+
+// weight_for_point_density squared a negative texel into a positive weight and took grids of any
+// shape; stipple_domain made a domain of NaN x NaN from a 0 x 0 grid holding texels;
+// stipple_dot_radius read an empty map past its end (SIGSEGV), gave NaN for a map zero everywhere
+// and infinity for no dots; stipple_scene asked for any number of dots' memory.
+TEST(ApiContract, WeightsAndStipplesCheckTheMap) {
+  EXPECT_EQ(error_of([] { weight_for_point_density(with_texel(-3.0f)); }),
+            "density texel (1, 0) is -3: densities must be finite and non-negative");
+  EXPECT_EQ(error_of([] { weight_for_point_density(grid(2, 2, 3)); }), "density grid of 2 x 2 texels holds 3 values");
+  EXPECT_EQ(error_of([] { weight_for_point_density(DensityGrid{}); }), "density grid of 0 x 0 texels holds 0 values");
+  EXPECT_EQ(error_of([] { stipple_domain(grid(0, 0, 4)); }), "density grid of 0 x 0 texels holds 4 values");
+  EXPECT_EQ(error_of([] { stipple_domain(grid(-2, -3, 6)); }), "density grid of -2 x -3 texels holds 6 values");
+  StippleStart start;
+  start.count = 10;
+  EXPECT_EQ(error_of([&] { stipple_scene(grid(2, 2, 3), start); }), "density grid of 2 x 2 texels holds 3 values");
+  start.count = std::size_t{1} << 40;  // std::bad_alloc before
+  EXPECT_EQ(error_of([&] { stipple_scene(DensityGrid(2, 2, 1.0f), start); }),
+            "stipple: count: expected 1 to 100000000, got 1099511627776");
+  EXPECT_EQ(error_of([] { stipple_dot_radius(DensityGrid{}, Domain{}, 10); }), "stipple: the density map is empty");
+  EXPECT_EQ(error_of([] { stipple_dot_radius(DensityGrid(2, 2, 0.0f), Domain{}, 10); }),
+            "stipple: the density map is zero everywhere");
+  EXPECT_EQ(error_of([] { stipple_dot_radius(DensityGrid(2, 2, 1.0f), Domain{}, 0); }),
+            "stipple: the count of dots must be at least 1");
+  EXPECT_EQ(error_of([] { stipple_dot_radius(DensityGrid(2, 2, 1.0f), Domain{{0.0, 1.0}}, 10); }),
+            "stipple: domain 0 x 1 is not a finite positive size");
+  // A good map still gives its radius: half the hexagonal spacing of 10 dots in the unit square.
+  EXPECT_DOUBLE_EQ(stipple_dot_radius(DensityGrid(2, 2, 1.0f), Domain{}, 10), 0.5 * hexagonal_spacing(10.0));
+}
+
+// sample_bilinear asserted (nothing in a release build): an empty grid was read at index 0
+// (SIGSEGV), a grid holding fewer texels than its size past its end, and a NaN coordinate was
+// converted to an integer. DensityGrid(-1, 4) asked for 2^64 texels (std::length_error).
+TEST(ApiContract, GridLookupsAndConstructionCheckTheirArguments) {
+  EXPECT_EQ(error_of([] { sample_bilinear(DensityGrid{}, {0.5, 0.5}); }), "density grid of 0 x 0 texels holds 0 values");
+  EXPECT_EQ(error_of([] { sample_bilinear(grid(2, 2, 1), {0.9, 0.9}); }), "density grid of 2 x 2 texels holds 1 values");
+  EXPECT_EQ(error_of([] { sample_bilinear(DensityGrid(2, 2, 1.0f), {kNaN, 0.5}); }),
+            "density lookup at (nan, 0.5): expected finite coordinates");
+  EXPECT_EQ(error_of([] { DensityGrid(-1, 4); }), "density grid of -1 x 4 texels: expected a width and a height of at least 0");
+  EXPECT_DOUBLE_EQ(sample_bilinear(DensityGrid(2, 2, 3.0f), {0.25, 0.75}), 3.0);
+}
+
+// A zero, negative or NaN domain: nearest_neighbour_distances never ended on a NaN side and gave
+// distances of no domain on a zero one; radial_distribution and sample_density returned results.
+TEST(ApiContract, DomainsMustHaveAFinitePositiveSize) {
+  const std::vector<Point> points = uniform_random_points(50, 1);
+  EXPECT_EQ(error_of([&] { nearest_neighbour_distances(points, Domain{{kNaN, 1.0}}); }),
+            "nearest-neighbour distances: domain nan x 1 is not a finite positive size");
+  EXPECT_EQ(error_of([&] { nearest_neighbour_distances(points, Domain{{0.0, 0.0}}); }),
+            "nearest-neighbour distances: domain 0 x 0 is not a finite positive size");
+  EXPECT_EQ(error_of([&] { nearest_neighbour_stats(points, Domain{{-1.0, 1.0}}); }),
+            "nearest-neighbour distances: domain -1 x 1 is not a finite positive size");
+  EXPECT_EQ(error_of([&] { radial_distribution(points, {}, Domain{{0.0, 0.0}}); }),
+            "radial distribution: domain 0 x 0 is not a finite positive size");
+  Rng rng(1);
+  EXPECT_EQ(error_of([&] { sample_density(DensityGrid(2, 2, 1.0f), Domain{{-1.0, 1.0}}, 5, rng); }),
+            "density sampling: domain -1 x 1 is not a finite positive size");
+  EXPECT_EQ(error_of([&] { sample_density(DensityGrid(2, 2, 1.0f), Domain{{1.0, kInf}}, 5, rng); }),
+            "density sampling: domain 1 x inf is not a finite positive size");
+  // The engines' words are unchanged.
+  ExactEngine engine;
+  EXPECT_EQ(error_of([&] { engine.compute(make_scene(points, Domain{{0.0, 2.0}})); }),
+            "scene: domain 0 x 2 is not a finite positive size");
+}
+
+}  // namespace
+}  // namespace bluetile
