@@ -134,5 +134,12 @@ TEST(ApiContract, DomainsMustHaveAFinitePositiveSize) {
             "scene: domain 0 x 2 is not a finite positive size");
 }
 
+// Rng::below(0) divided by zero (SIGFPE).
+TEST(ApiContract, RandomIntegerBelowZeroIsRefused) {
+  Rng rng(1);
+  EXPECT_EQ(error_of([&] { rng.below(0); }), "bound 0: expected at least 1 (no integer lies in [0, 0))");
+  EXPECT_EQ(rng.below(1), 0u);
+}
+
 }  // namespace
 }  // namespace bluetile
