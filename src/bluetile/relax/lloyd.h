@@ -94,6 +94,8 @@ inline Point lloyd_displacement(const Scene& scene, Point site, const Cell& cell
 
 // Applies one plain Lloyd step: every wanted site of scenes[k] moves to its centroid in
 // cells[k] (the engine's output for those scenes). Returns the step's log, with `iteration` 0.
+// Throws Error, before any site moves, unless there is one SceneCells per scene and one cell per
+// wanted site of it.
 LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneCells> cells);
 
 // The indices of `sites` (all inside `domain`) in the row order of a grid of about one site per
