@@ -160,5 +160,14 @@ TEST(ApiContract, MoveToCentroidsChecksItsCellsFirst) {
             "move_to_centroids: scene 1: wanted sites [0, 40) do not lie inside its 4 sites");
 }
 
+// path_length read dots[order[i]] for any index (SIGSEGV).
+TEST(ApiContract, PathLengthChecksTheOrder) {
+  const std::vector<Point> dots{{0.0, 0.0}, {3.0, 4.0}};
+  const std::vector<std::size_t> bad{0, 1, 1000000};
+  EXPECT_EQ(error_of([&] { path_length(dots, bad); }), "order[2] 1000000: expected an index below 2, the number of dots");
+  const std::vector<std::size_t> good{0, 1};
+  EXPECT_DOUBLE_EQ(path_length(dots, good), 5.0);
+}
+
 }  // namespace
 }  // namespace bluetile
