@@ -169,5 +169,37 @@ TEST(ApiContract, PathLengthChecksTheOrder) {
   EXPECT_DOUBLE_EQ(path_length(dots, good), 5.0);
 }
 
+// Points the measures cannot take: discrepancies gave NaN for a NaN point and figures of no set
+// for one outside [0, 1]^2; rdf_power_spectrum and radial_distribution dropped NaN and infinite
+// points from every bin without a word.
+TEST(ApiContract, AnalysisRefusesPointsItCannotMeasure) {
+  std::vector<Point> points = uniform_random_points(100, 1);
+  points[2] = {kNaN, 0.5};
+  EXPECT_EQ(error_of([&] { discrepancies(points); }), "discrepancies: point 2 is not finite");
+  EXPECT_EQ(error_of([&] { rdf_power_spectrum(points); }), "RDF power spectrum: point 2 is not finite");
+  EXPECT_EQ(error_of([&] { radial_distribution(points); }), "radial distribution: point 2 is not finite");
+  points[2] = {kInf, 0.5};
+  EXPECT_EQ(error_of([&] { rdf_power_spectrum(points); }), "RDF power spectrum: point 2 is not finite");
+  points[2] = {3.0, 0.5};
+  EXPECT_EQ(error_of([&] { discrepancies(points); }), "discrepancies: point 2 (3, 0.5) lies outside [0, 1]^2");
+  // The closed square is the function's domain: 1 is in it.
+  points[2] = {1.0, 0.0};
+  EXPECT_NO_THROW(discrepancies(points));
+}
+
+// A Periodogram filled by hand with fewer values than size^2 was read past its end.
+TEST(ApiContract, PeriodogramsMustHoldTheirValues) {
+  Periodogram short_one;
+  short_one.size = 8;
+  short_one.power.assign(3, 1.0);
+  EXPECT_EQ(error_of([&] { radial_power(short_one); }), "periodogram of size 8 holds 3 values, expected 64");
+  Periodogram full;
+  full.size = 8;
+  full.power.assign(64, 1.0);
+  const std::vector<Periodogram> both{full, short_one};
+  EXPECT_EQ(error_of([&] { average_periodograms(both); }), "periodogram of size 8 holds 3 values, expected 64");
+  EXPECT_EQ(radial_power(full).size(), 4u);
+}
+
 }  // namespace
 }  // namespace bluetile

@@ -211,8 +211,16 @@ Periodogram compute_periodogram_direct(std::span<const Point> points, int size,
   return result;
 }
 
+void check_periodogram_values(const Periodogram& periodogram) {
+  const auto side = static_cast<std::size_t>(std::max(periodogram.size, 0));
+  if (periodogram.size < 0 || periodogram.power.size() != side * side)
+    throw Error("periodogram of size " + std::to_string(periodogram.size) + " holds " +
+                std::to_string(periodogram.power.size()) + " values, expected " + std::to_string(side * side));
+}
+
 Periodogram average_periodograms(std::span<const Periodogram> periodograms) {
   if (periodograms.empty()) throw Error("no periodograms to average");
+  for (const Periodogram& p : periodograms) check_periodogram_values(p);
   Periodogram mean;
   mean.size = periodograms[0].size;
   mean.power.assign(periodograms[0].power.size(), 0.0);
