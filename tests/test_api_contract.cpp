@@ -201,5 +201,38 @@ TEST(ApiContract, PeriodogramsMustHoldTheirValues) {
   EXPECT_EQ(radial_power(full).size(), 4u);
 }
 
+// void_order threw std::length_error for `ranked` beyond the points (an assert in a debug build),
+// and ordered with a kernel width of 0, a negative or NaN one, and NaN points, without a word;
+// add_levels passed its void_sigma on unchecked, after relaxing.
+TEST(ApiContract, VoidOrderChecksItsArguments) {
+  std::vector<Point> points = uniform_random_points(100, 1);
+  EXPECT_EQ(error_of([&] { void_order(std::span<const Point>(points).first(10), 20); }), "ranked 20: expected at most the 10 points");
+  EXPECT_EQ(error_of([&] { void_order(points, 0, 0.0); }), "void_sigma: expected 0.1 to 4 hexagonal spacings, got 0");
+  EXPECT_EQ(error_of([&] { void_order(points, 0, -1.0); }), "void_sigma: expected 0.1 to 4 hexagonal spacings, got -1");
+  EXPECT_EQ(error_of([&] { void_order(points, 0, kNaN); }), "void_sigma: expected 0.1 to 4 hexagonal spacings, got nan");
+  EXPECT_EQ(void_order(points, 0).size(), 100u);
+  points[3] = {kNaN, kNaN};
+  EXPECT_EQ(error_of([&] { void_order(points, 0); }), "void order: point 3 is not finite");
+
+  ExactEngine engine;
+  HierarchyOptions options;
+  options.count = 10;
+  options.levels = 2;
+  options.iterations = 1;
+  options.void_sigma = kNaN;
+  EXPECT_EQ(error_of([&] { add_levels(engine, PointSet{}, options); }), "void_sigma: expected 0.1 to 4 hexagonal spacings, got nan");
+}
+
+// level_size cast an infinite ratio, or one whose level passes 2^64 points, to an integer
+// (undefined; it came back as 18446744073709551606 for 10 points).
+TEST(ApiContract, LevelSizeChecksTheRatio) {
+  EXPECT_EQ(error_of([] { level_size(10, 0, kInf); }), "ratio inf: expected 0 (add points) or a finite ratio above 1");
+  EXPECT_EQ(error_of([] { level_size(10, 0, kNaN); }), "ratio nan: expected 0 (add points) or a finite ratio above 1");
+  EXPECT_EQ(error_of([] { level_size(10, 0, -2.0); }), "ratio -2: expected 0 (add points) or a finite ratio above 1");
+  EXPECT_EQ(error_of([] { level_size(10, 0, 1e300); }), "ratio 1e+300: a set of 10 points would grow past 2^64");
+  EXPECT_EQ(level_size(10, 0, 2.0), 10u);
+  EXPECT_EQ(level_size(10, 7, 0.0), 7u);
+}
+
 }  // namespace
 }  // namespace bluetile

@@ -89,8 +89,13 @@ std::vector<Point> place_new_points(const std::vector<Point>& existing, std::siz
 }
 
 std::size_t level_size(std::size_t total, std::size_t add, double ratio) {
+  // An infinite ratio was cast to an integer (undefined; it came back as a wrapped negative count).
+  if (!std::isfinite(ratio) || ratio < 0.0)
+    throw Error("ratio " + shortest_text(ratio) + ": expected 0 (add points) or a finite ratio above 1");
   if (ratio > 0.0) {
     double target = std::round(ratio * static_cast<double>(total));
+    if (!(target < 0x1p64))
+      throw Error("ratio " + shortest_text(ratio) + ": a set of " + std::to_string(total) + " points would grow past 2^64");
     return target > static_cast<double>(total) ? static_cast<std::size_t>(target) - total : 0;
   }
   return add;
@@ -136,6 +141,8 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
   // Checked here, before any level is placed, as relax_lloyd would check them at the first level.
   check_whole_field("iterations", options.iterations, 0, std::numeric_limits<int>::max());
   check_real_field("tolerance", options.tolerance, 0.0, std::numeric_limits<double>::infinity());
+  if (options.rank_order == ProgressiveOrder::voids)
+    check_real_field("void_sigma", options.void_sigma, kMinVoidSigma, kMaxVoidSigma, " hexagonal spacings");
   const int base_levels = count_levels(base);
   const int target_levels = options.levels ? options.levels : std::max(base_levels + 1, from_scratch ? 4 : 1);
   if (target_levels <= base_levels) {
