@@ -234,5 +234,49 @@ TEST(ApiContract, LevelSizeChecksTheRatio) {
   EXPECT_EQ(level_size(10, 7, 0.0), 7u);
 }
 
+// A level column whose length is not the number of points was read past its end by the writers
+// (format_points, write_point_table, point_sets_table) and by add_level; count_levels gave -3 for a
+// level of -4 and overflowed at INT_MAX; the text writers wrote "nan" that no reader takes back;
+// add_level threw std::length_error for a huge count.
+TEST(ApiContract, PointSetsAreCheckedBeforeUse) {
+  PointSet short_levels;
+  short_levels.points = {{0.5, 0.5}, {0.2, 0.2}};
+  short_levels.levels = {1};
+  EXPECT_EQ(error_of([&] { format_points(short_levels); }), "levels: 1 for 2 points");
+  EXPECT_EQ(error_of([&] { count_levels(short_levels); }), "levels: 1 for 2 points");
+  const std::vector<PointSet> sets{short_levels};
+  std::string bytes;
+  const ByteSink sink = [&](std::string_view b) { bytes += b; };
+  EXPECT_EQ(error_of([&] { write_point_table(TableFormat::npy, sets, {}, "t.npy", sink); }), "t.npy: set 0, levels: 1 for 2 points");
+  EXPECT_EQ(error_of([&] { write_point_table(TableFormat::text, sets, {}, "t.txt", sink); }), "t.txt: set 0, levels: 1 for 2 points");
+  EXPECT_EQ(error_of([&] { point_sets_table(sets); }), "set 0, levels: 1 for 2 points");
+  EXPECT_TRUE(bytes.empty());
+  ExactEngine engine;
+  LevelOptions level;
+  level.add = 5;
+  level.iterations = 1;
+  EXPECT_EQ(error_of([&] { add_level(engine, short_levels, level); }), "levels: 1 for 2 points");
+  level.add = std::size_t{1} << 62;
+  EXPECT_EQ(error_of([&] { add_level(engine, PointSet{}, level); }), "add: expected 1 to 100000000, got 4611686018427387904");
+
+  PointSet odd;
+  odd.points = {{0.5, 0.5}};
+  odd.levels = {-4};
+  EXPECT_EQ(error_of([&] { count_levels(odd); }), "level -4 of point 0: expected 0 to 1000000");
+  EXPECT_EQ(error_of([&] { format_points(odd); }), "point 0: level -4 is outside 0 to 1000000: no reader would take it back");
+  odd.levels = {INT_MAX};
+  EXPECT_EQ(error_of([&] { count_levels(odd); }), "level 2147483647 of point 0: expected 0 to 1000000");
+  odd.levels = {3};
+  EXPECT_EQ(count_levels(odd), 4);
+
+  PointSet nan_point;
+  nan_point.points = {{0.25, 0.5}, {kNaN, 0.5}};
+  EXPECT_EQ(error_of([&] { format_points(nan_point); }), "point 1 (nan, 0.5) is not finite: no reader would take it back");
+  // Outside [0, 1) is written as given (a tiled window's plane coordinates).
+  PointSet plane;
+  plane.points = {{3.5, -0.5}};
+  EXPECT_EQ(format_points(plane), "3.5 -0.5\n");
+}
+
 }  // namespace
 }  // namespace bluetile

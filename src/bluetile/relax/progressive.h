@@ -62,7 +62,8 @@ struct LevelOptions {
 
 // Returns base followed by `add` new points relaxed around the base, which is kept bit for bit.
 // Levels: base points keep theirs (0 when the base has none); new points get one more than the
-// highest base level, or 0 when the base is empty (then this is a plain relaxed set).
+// highest base level, or 0 when the base is empty (then this is a plain relaxed set). Throws Error
+// for add 0 or above kMaxSetPoints, a base count_levels refuses, and as relax_lloyd does.
 PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOptions& options);
 
 // Initial positions of `count` new points among `existing` ones (unit torus).
