@@ -199,6 +199,10 @@ TEST(ApiContract, PeriodogramsMustHoldTheirValues) {
   const std::vector<Periodogram> both{full, short_one};
   EXPECT_EQ(error_of([&] { average_periodograms(both); }), "periodogram of size 8 holds 3 values, expected 64");
   EXPECT_EQ(radial_power(full).size(), 4u);
+  // The default size of a count past 4.6e16 overflowed an int (undefined; 0 in a release build).
+  EXPECT_EQ(error_of([] { default_periodogram_size(SIZE_MAX); }),
+            "count 18446744073709551615: the default periodogram size 2 floor(5 sqrt(N)) passes the largest int");
+  EXPECT_EQ(default_periodogram_size(1000), 316);
 }
 
 // void_order threw std::length_error for `ranked` beyond the points (an assert in a debug build),

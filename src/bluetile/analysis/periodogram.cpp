@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <string>
@@ -113,7 +114,11 @@ void fill_exponentials(double c, int first, int count, double* re, double* im, i
 }  // namespace
 
 int default_periodogram_size(std::size_t count) {
-  return 2 * static_cast<int>(std::floor(5.0 * std::sqrt(static_cast<double>(count))));
+  const double half = std::floor(5.0 * std::sqrt(static_cast<double>(count)));
+  // Past 4.6e16 points the size passed an int: the conversion and the doubling were undefined.
+  if (half > std::numeric_limits<int>::max() / 2)
+    throw Error("count " + std::to_string(count) + ": the default periodogram size 2 floor(5 sqrt(N)) passes the largest int");
+  return 2 * static_cast<int>(half);
 }
 
 Periodogram compute_periodogram(std::span<const Point> points, int size,

@@ -26,7 +26,8 @@ struct Periodogram {
 };
 
 // psa's default F = 2 floor(5 sqrt(N)): frequencies up to 5 sqrt(N), about 2.7 times the
-// frequency of the hexagonal lattice of N points.
+// frequency of the hexagonal lattice of N points. Throws Error for a count whose size passes an int
+// (beyond 4.6e16 points).
 int default_periodogram_size(std::size_t count);
 
 // The periodogram by whichever of the two methods below is faster for N and F: the direct sum
