@@ -162,11 +162,12 @@ TEST(RadialDistribution, BitIdenticalWhateverTheThreadCount) {
   auto points = uniform_points(5000, 3);
   RdfOptions o;
   o.boundary = Boundary::bounded;
+  const std::size_t before = thread_count();
   set_thread_count(1);
   RadialDistribution one = radial_distribution(points, o);
   set_thread_count(4);
   RadialDistribution four = radial_distribution(points, o);
-  set_thread_count(0);
+  set_thread_count(before);
   EXPECT_EQ(one.g, four.g);
 }
 
@@ -216,11 +217,12 @@ TEST(SpectralMeasures, BesselJ0AgreesWithTheStandardLibrary) {
 
 TEST(SpectralMeasures, SameWhateverTheThreadCount) {
   const auto points = uniform_points(900, 5);
+  const std::size_t before = thread_count();
   set_thread_count(1);
   const RdfPowerSpectrum one = rdf_power_spectrum(points);
   set_thread_count(4);
   const RdfPowerSpectrum four = rdf_power_spectrum(points);
-  set_thread_count(0);
+  set_thread_count(before);
   EXPECT_EQ(one.power, four.power);
 }
 

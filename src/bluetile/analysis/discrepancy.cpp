@@ -15,6 +15,7 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -33,6 +34,16 @@ double discrepancy_pairs(std::size_t count) {
 Discrepancies discrepancies(std::span<const Point> points) {
   if (points.empty()) throw Error("discrepancy of an empty point set");
   const std::size_t n = points.size();
+  // The closed forms hold for [0, 1]^2: a NaN made every figure NaN, a point outside gave figures
+  // of no set.
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point p = points[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      throw Error("discrepancies: point " + std::to_string(i) + " is not finite");
+    if (!(p.x >= 0.0 && p.x <= 1.0 && p.y >= 0.0 && p.y <= 1.0))
+      throw Error("discrepancies: point " + std::to_string(i) + " (" + shortest_text(p.x) + ", " + shortest_text(p.y) +
+                  ") lies outside [0, 1]^2");
+  }
   // Coordinates apart, so that the inner loop streams through plain arrays.
   std::vector<double> x(n), y(n), zx(n), zy(n);
   for (std::size_t i = 0; i < n; ++i) {

@@ -20,7 +20,8 @@ struct Discrepancies {
 };
 
 // All four of a set of points in [0, 1]^2, in one pass over the pairs on thread_count()
-// threads; the same bits whatever the thread count. Throws Error for an empty set.
+// threads; the same bits whatever the thread count. Throws Error for an empty set and for a point
+// that is not finite or lies outside [0, 1]^2.
 Discrepancies discrepancies(std::span<const Point> points);
 
 // Pairs the computation visits: its cost (analysis budgets).

@@ -15,6 +15,8 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points
   if (n == 0) throw Error("nearest-neighbour distances need at least one point");
   const bool periodic = boundary == Boundary::periodic;
   if (!periodic && n < 2) throw Error("nearest-neighbour distances in a bounded domain need at least two points");
+  // A NaN side made the ring search below endless; a zero or negative one gave nonsense distances.
+  check_domain(domain, "nearest-neighbour distances");
   // A NaN would never be proved nearest: the ring search below would not end.
   for (std::size_t i = 0; i < n; ++i)
     if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))

@@ -53,8 +53,8 @@ struct RadialDistribution {
   double range() const { return bin_width * static_cast<double>(g.size()); }
 };
 
-// Throws Error for fewer than 2 points, a bad range or bins, or (bounded) points outside the
-// domain rectangle. Same result whatever the thread count.
+// Throws Error for fewer than 2 points, a point that is not finite, a domain check_domain refuses,
+// a bad range or bins, or (bounded) points outside the domain rectangle. Same result whatever the thread count.
 RadialDistribution radial_distribution(std::span<const Point> points, const RdfOptions& options = {},
                                        const Domain& domain = {});
 

@@ -13,6 +13,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <limits>
 #include <mutex>
 #include <numbers>
 #include <string>
@@ -113,7 +114,11 @@ void fill_exponentials(double c, int first, int count, double* re, double* im, i
 }  // namespace
 
 int default_periodogram_size(std::size_t count) {
-  return 2 * static_cast<int>(std::floor(5.0 * std::sqrt(static_cast<double>(count))));
+  const double half = std::floor(5.0 * std::sqrt(static_cast<double>(count)));
+  // Past 4.6e16 points the size passed an int: the conversion and the doubling were undefined.
+  if (half > std::numeric_limits<int>::max() / 2)
+    throw Error("count " + std::to_string(count) + ": the default periodogram size 2 floor(5 sqrt(N)) passes the largest int");
+  return 2 * static_cast<int>(half);
 }
 
 Periodogram compute_periodogram(std::span<const Point> points, int size,
@@ -211,8 +216,16 @@ Periodogram compute_periodogram_direct(std::span<const Point> points, int size,
   return result;
 }
 
+void check_periodogram_values(const Periodogram& periodogram) {
+  const auto side = static_cast<std::size_t>(std::max(periodogram.size, 0));
+  if (periodogram.size < 0 || periodogram.power.size() != side * side)
+    throw Error("periodogram of size " + std::to_string(periodogram.size) + " holds " +
+                std::to_string(periodogram.power.size()) + " values, expected " + std::to_string(side * side));
+}
+
 Periodogram average_periodograms(std::span<const Periodogram> periodograms) {
   if (periodograms.empty()) throw Error("no periodograms to average");
+  for (const Periodogram& p : periodograms) check_periodogram_values(p);
   Periodogram mean;
   mean.size = periodograms[0].size;
   mean.power.assign(periodograms[0].power.size(), 0.0);

@@ -26,7 +26,8 @@ struct Periodogram {
 };
 
 // psa's default F = 2 floor(5 sqrt(N)): frequencies up to 5 sqrt(N), about 2.7 times the
-// frequency of the hexagonal lattice of N points.
+// frequency of the hexagonal lattice of N points. Throws Error for a count whose size passes an int
+// (beyond 4.6e16 points).
 int default_periodogram_size(std::size_t count);
 
 // The periodogram by whichever of the two methods below is faster for N and F: the direct sum
@@ -59,8 +60,13 @@ std::size_t periodogram_nufft_grid(int size);
 // current thread count), for up-front memory checks.
 std::size_t periodogram_memory_bytes(std::size_t count, int size);
 
+// Throws Error unless `periodogram` holds size^2 values (a Periodogram filled by hand with fewer
+// was read past its end).
+void check_periodogram_values(const Periodogram& periodogram);
+
 // Mean of several periodograms of the same size (the usual way spectra are shown: psa
-// --avg). Throws Error when sizes differ or the list is empty.
+// --avg). Throws Error when sizes differ, a periodogram fails check_periodogram_values or the list
+// is empty.
 Periodogram average_periodograms(std::span<const Periodogram> periodograms);
 
 }  // namespace bluetile

@@ -17,6 +17,7 @@ double annulus_count(int size, double bin_width) { return std::floor(static_cast
 std::vector<Annulus> radial_power(const Periodogram& periodogram, double bin_width) {
   if (!(bin_width > 0.0) || !std::isfinite(bin_width)) throw Error("annulus width must be positive");
   if (periodogram.size < 2) throw Error("radial power of an empty periodogram");
+  check_periodogram_values(periodogram);
   const int half = periodogram.half();
   const double count = annulus_count(periodogram.size, bin_width);
   const ClassicNumbers classic;

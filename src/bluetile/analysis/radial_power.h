@@ -29,7 +29,8 @@ inline constexpr double kMaxAnnuli = 1e9;
 double annulus_count(int size, double bin_width);
 
 // Throws Error when bin_width <= 0 or not finite, when it is wider than half the periodogram's
-// size or makes more than kMaxAnnuli annuli (both naming the width), or the periodogram is empty.
+// size or makes more than kMaxAnnuli annuli (both naming the width), or the periodogram is empty
+// or does not hold size^2 values (check_periodogram_values).
 std::vector<Annulus> radial_power(const Periodogram& periodogram, double bin_width = 1.0);
 
 }  // namespace bluetile

@@ -55,7 +55,7 @@ struct RdfPowerSpectrum {
 };
 
 // From one set on the unit torus (coordinates wrapped into [0, 1)). Throws Error for fewer than
-// 2 points. Same result whatever the thread count. Cost: the pairs closer than 0.25 (about
+// 2 points and for a point that is not finite. Same result whatever the thread count. Cost: the pairs closer than 0.25 (about
 // N^2 / 5, as psa's RDF) and B^2 / 2 Bessel functions; N = 16384 takes about 4 s on 2 cores.
 RdfPowerSpectrum rdf_power_spectrum(std::span<const Point> points);
 

@@ -454,8 +454,24 @@ void check_header(const std::vector<std::string>& header) {
 
 }  // namespace
 
+void check_written_points(const PointSet& set, const std::string& what) {
+  if (set.has_levels() && set.levels.size() != set.points.size())
+    throw Error(what + "levels: " + std::to_string(set.levels.size()) + " for " + std::to_string(set.points.size()) +
+                " points");
+  for (std::size_t i = 0; i < set.points.size(); ++i) {
+    const Point p = set.points[i];
+    if (!std::isfinite(p.x) || !std::isfinite(p.y))
+      throw Error(what + "point " + std::to_string(i) + " (" + exact_text(p.x) + ", " + exact_text(p.y) +
+                  ") is not finite: no reader would take it back");
+    if (set.has_levels() && (set.levels[i] < 0 || set.levels[i] > kMaxLevel))
+      throw Error(what + "point " + std::to_string(i) + ": level " + std::to_string(set.levels[i]) + " is outside 0 to " +
+                  std::to_string(kMaxLevel) + ": no reader would take it back");
+  }
+}
+
 void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header) {
   check_header(header);
+  check_written_points(set, out.path() + ": ");
   for (const auto& line : header) {
     out.write("# ");
     out.write(comment_line(line));
@@ -473,6 +489,7 @@ void write_points(OutputStream& out, const PointSet& set, const std::vector<std:
 
 std::string format_points(const PointSet& set, const std::vector<std::string>& header) {
   check_header(header);
+  check_written_points(set, "");
   std::string text;
   for (const auto& line : header) text += "# " + comment_line(line) + "\n";
   const ClassicNumbers classic;

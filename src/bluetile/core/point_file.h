@@ -109,10 +109,18 @@ void check_comment_line(std::string_view line, const std::string& what);
 
 // Streams a point file: optional header comment lines (each gets "# "), then one point a line.
 // A header line the readers refuse (check_comment_line) throws Error before any byte.
+// Throws Error, as check_written_points does (naming the output), before any byte.
 void write_points(OutputStream& out, const PointSet& set, const std::vector<std::string>& header = {});
 
 // The same text as a string (small sets; large ones stream through write_points).
+// Throws Error as check_written_points does.
 std::string format_points(const PointSet& set, const std::vector<std::string>& header = {});
+
+// Throws Error unless a reader would take `set` back: "<what>point 2 (nan, 0.5) is not finite: no
+// reader would take it back", the same for a level outside 0 to kMaxLevel, and "<what>levels: 1
+// for 2 points" for a level column as long as no set (it was read past its end). `what` begins
+// the message ("out.txt: set 1, "; "" for none). The text writers wrote "nan" where they were given one.
+void check_written_points(const PointSet& set, const std::string& what);
 
 // Writes a point file through output_file.h ("-" is standard output).
 void write_point_file(const std::string& path, const PointSet& set,

@@ -469,6 +469,10 @@ TableView point_sets_table(std::span<const PointSet> sets) {
     if (sets[k].has_levels() != levels)
       throw Error("set " + std::to_string(k) + (levels ? " has no levels" : " has levels") + " but set 0 " +
                   (levels ? "has" : "has none") + ": a table has one set of columns");
+    // value() read the level of every row: a shorter column was read past its end.
+    if (levels && sets[k].levels.size() != sets[k].points.size())
+      throw Error("set " + std::to_string(k) + ", levels: " + std::to_string(sets[k].levels.size()) + " for " +
+                  std::to_string(sets[k].points.size()) + " points");
   }
   TableView view;
   view.sets = sets.size();
@@ -523,16 +527,7 @@ void write_point_table(TableFormat format, std::span<const PointSet> sets, const
                        const std::string& path, const ByteSink& sink) {
   // Before any byte: a NaN or infinity was written, and every reader then refused the file.
   for (std::size_t k = 0; k < sets.size(); ++k)
-    for (std::size_t i = 0; i < sets[k].points.size(); ++i) {
-      const Point p = sets[k].points[i];
-      if (!std::isfinite(p.x) || !std::isfinite(p.y))
-        throw Error(path + ": set " + std::to_string(k) + ", point " + std::to_string(i) + " (" + exact_text(p.x) +
-                    ", " + exact_text(p.y) + ") is not finite: no reader would take it back");
-      if (i < sets[k].levels.size() && (sets[k].levels[i] < 0 || sets[k].levels[i] > kMaxTableLevel))
-        throw Error(path + ": set " + std::to_string(k) + ", point " + std::to_string(i) + ": level " +
-                    std::to_string(sets[k].levels[i]) + " is outside 0 to " + std::to_string(kMaxTableLevel) +
-                    ": no reader would take it back");
-    }
+    check_written_points(sets[k], path + ": set " + std::to_string(k) + ", ");
   if (format != TableFormat::text) {
     write_table(format, point_sets_table(sets), options, path, sink);
     return;

@@ -77,7 +77,8 @@ struct TableView {
   std::function<double(std::size_t set, std::size_t row, std::size_t column)> value;
 };
 
-// Columns x y, and level when the sets have levels (all of them or none; Error otherwise).
+// Columns x y, and level when the sets have levels (all of them or none; Error otherwise, and for a
+// level column whose length is not its set's number of points).
 TableView point_sets_table(std::span<const PointSet> sets);
 
 // Text of a table: a '# set k' line before each set when there are several (UTK's convention),

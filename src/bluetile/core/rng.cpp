@@ -1,5 +1,7 @@
 #include "bluetile/core/rng.h"
 
+#include "bluetile/core/error.h"
+
 namespace bluetile {
 namespace {
 
@@ -34,6 +36,7 @@ std::uint64_t Rng::next_u64() {
 double Rng::uniform() { return static_cast<double>(next_u64() >> 11) * 0x1.0p-53; }
 
 std::uint64_t Rng::below(std::uint64_t bound) {
+  if (bound == 0) throw Error("bound 0: expected at least 1 (no integer lies in [0, 0))");
   // Rejection keeps every value equally likely: drop the top partial copy of [0, bound).
   std::uint64_t limit = bound * (UINT64_MAX / bound);
   for (;;) {

@@ -18,7 +18,8 @@ class Rng {
   std::uint64_t next_u64();
   // Uniform in [0, 1) with 53 random bits.
   double uniform();
-  // Uniform integer in [0, bound), bound > 0, without modulo bias.
+  // Uniform integer in [0, bound), bound > 0, without modulo bias. Throws Error for bound 0 (it
+  // divided by zero).
   std::uint64_t below(std::uint64_t bound);
   // Uniform point in the domain.
   Point point(const Domain& domain);

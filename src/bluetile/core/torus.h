@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <string_view>
 
 #include <glm/vec2.hpp>
 
@@ -28,6 +29,11 @@ struct Domain {
 
   double area() const { return size.x * size.y; }
 };
+
+// Throws Error("<what>: domain 0 x 1 is not a finite positive size") unless both sides are finite
+// and positive (a zero, negative or NaN side made NaN points, nonsense distances or endless
+// searches).
+void check_domain(const Domain& domain, std::string_view what);
 
 // x wrapped into [0, period). Exact for values already inside; never returns period itself
 // (a value that would round up to period becomes 0).

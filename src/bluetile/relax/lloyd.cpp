@@ -20,6 +20,7 @@ void check_weight_exponent(double exponent, const char* name) {
 
 DensityGrid weight_for_point_density(const DensityGrid& target, double exponent) {
   check_weight_exponent(exponent);
+  check_density_grid(target);  // a negative texel came back squared, a positive weight
   DensityGrid weight = target;
   if (exponent == 1.0) return weight;
   for (float& t : weight.texels) t = exponent == 2.0 ? t * t : static_cast<float>(std::pow(static_cast<double>(t), exponent));
@@ -55,6 +56,21 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
       displacement += m.displacement;
     }
   };
+  // Checked before any site moves: a shorter `cells` or a scene with fewer cells than wanted sites
+  // was read (and its sites written) past the end.
+  if (cells.size() != scenes.size())
+    throw Error("move_to_centroids: " + std::to_string(scenes.size()) + " scene(s) but cells for " +
+                std::to_string(cells.size()));
+  for (std::size_t k = 0; k < scenes.size(); ++k) {
+    const Scene& scene = scenes[k];
+    if (scene.wanted_begin > scene.wanted_end || scene.wanted_end > scene.sites.size())
+      throw Error("move_to_centroids: scene " + std::to_string(k) + ": wanted sites [" + std::to_string(scene.wanted_begin) +
+                  ", " + std::to_string(scene.wanted_end) + ") do not lie inside its " + std::to_string(scene.sites.size()) +
+                  " sites");
+    if (cells[k].cells.size() != scene.wanted_count())
+      throw Error("move_to_centroids: scene " + std::to_string(k) + " has " + std::to_string(scene.wanted_count()) +
+                  " wanted site(s) but " + std::to_string(cells[k].cells.size()) + " cell(s)");
+  }
   std::vector<Sums> sums;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     Scene& scene = scenes[k];

@@ -64,7 +64,8 @@ struct LloydResult {
 // which the density ratio between regions drifts toward its square root as the set converges.
 // Throws Error when the exponent is not in [0, kMaxWeightExponent] (past 8 a map's contrast of 10
 // becomes 10^8 between cells, beyond what float texels keep apart); check_weight_exponent names
-// it as `name` (a front end's spelling of the argument).
+// it as `name` (a front end's spelling of the argument). weight_for_point_density also throws for a
+// target that check_density_grid refuses (an empty one included).
 inline constexpr double kDefaultWeightExponent = 2.0;
 inline constexpr double kMaxWeightExponent = 8.0;
 DensityGrid weight_for_point_density(const DensityGrid& target, double exponent = kDefaultWeightExponent);
@@ -93,6 +94,8 @@ inline Point lloyd_displacement(const Scene& scene, Point site, const Cell& cell
 
 // Applies one plain Lloyd step: every wanted site of scenes[k] moves to its centroid in
 // cells[k] (the engine's output for those scenes). Returns the step's log, with `iteration` 0.
+// Throws Error, before any site moves, unless there is one SceneCells per scene and one cell per
+// wanted site of it.
 LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneCells> cells);
 
 // The indices of `sites` (all inside `domain`) in the row order of a grid of about one site per

@@ -89,8 +89,13 @@ std::vector<Point> place_new_points(const std::vector<Point>& existing, std::siz
 }
 
 std::size_t level_size(std::size_t total, std::size_t add, double ratio) {
+  // An infinite ratio was cast to an integer (undefined; it came back as a wrapped negative count).
+  if (!std::isfinite(ratio) || ratio < 0.0)
+    throw Error("ratio " + shortest_text(ratio) + ": expected 0 (add points) or a finite ratio above 1");
   if (ratio > 0.0) {
     double target = std::round(ratio * static_cast<double>(total));
+    if (!(target < 0x1p64))
+      throw Error("ratio " + shortest_text(ratio) + ": a set of " + std::to_string(total) + " points would grow past 2^64");
     return target > static_cast<double>(total) ? static_cast<std::size_t>(target) - total : 0;
   }
   return add;
@@ -98,9 +103,10 @@ std::size_t level_size(std::size_t total, std::size_t add, double ratio) {
 
 PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOptions& options) {
   if (options.add == 0) throw Error("nothing to add: the number of new points must be at least 1");
-  int level = 0;
-  if (base.has_levels()) level = *std::max_element(base.levels.begin(), base.levels.end()) + 1;
-  else if (!base.points.empty()) level = 1;
+  // std::length_error after the placement's reserve, not an Error naming it.
+  if (options.add > kMaxSetPoints)
+    throw Error("add: expected 1 to " + std::to_string(kMaxSetPoints) + ", got " + std::to_string(options.add));
+  const int level = count_levels(base);
 
   PointSet result;
   result.points = base.points;
@@ -121,6 +127,14 @@ PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOpti
 }
 
 int count_levels(const PointSet& set) {
+  // A level column shorter or longer than the points, a negative level or one of INT_MAX (whose
+  // + 1 overflowed) gave a count of no set.
+  if (set.has_levels() && set.levels.size() != set.points.size())
+    throw Error("levels: " + std::to_string(set.levels.size()) + " for " + std::to_string(set.points.size()) + " points");
+  for (std::size_t i = 0; i < set.levels.size(); ++i)
+    if (set.levels[i] < 0 || set.levels[i] > kMaxLevel)
+      throw Error("level " + std::to_string(set.levels[i]) + " of point " + std::to_string(i) + ": expected 0 to " +
+                  std::to_string(kMaxLevel));
   if (set.points.empty()) return 0;
   if (!set.has_levels()) return 1;
   return *std::max_element(set.levels.begin(), set.levels.end()) + 1;
@@ -136,6 +150,8 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
   // Checked here, before any level is placed, as relax_lloyd would check them at the first level.
   check_whole_field("iterations", options.iterations, 0, std::numeric_limits<int>::max());
   check_real_field("tolerance", options.tolerance, 0.0, std::numeric_limits<double>::infinity());
+  if (options.rank_order == ProgressiveOrder::voids)
+    check_real_field("void_sigma", options.void_sigma, kMinVoidSigma, kMaxVoidSigma, " hexagonal spacings");
   const int base_levels = count_levels(base);
   const int target_levels = options.levels ? options.levels : std::max(base_levels + 1, from_scratch ? 4 : 1);
   if (target_levels <= base_levels) {

@@ -62,7 +62,8 @@ struct LevelOptions {
 
 // Returns base followed by `add` new points relaxed around the base, which is kept bit for bit.
 // Levels: base points keep theirs (0 when the base has none); new points get one more than the
-// highest base level, or 0 when the base is empty (then this is a plain relaxed set).
+// highest base level, or 0 when the base is empty (then this is a plain relaxed set). Throws Error
+// for add 0 or above kMaxSetPoints, a base count_levels refuses, and as relax_lloyd does.
 PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOptions& options);
 
 // Initial positions of `count` new points among `existing` ones (unit torus).
@@ -130,14 +131,16 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
 // holds at least kMinStagePoints points and at least half the points before it, or at the end.
 std::vector<std::size_t> hierarchy_stages(std::size_t base_count, const std::vector<std::size_t>& level_sizes);
 
-// Levels in a set: 0 when empty, 1 without a level column, else the highest level + 1.
+// Levels in a set: 0 when empty, 1 without a level column, else the highest level + 1. Throws Error
+// for a level column whose length is not the number of points and a level outside 0 to kMaxLevel.
 int count_levels(const PointSet& set);
 
 // A hierarchy larger than this is almost surely a mistyped option, and would need tens of GiB.
 inline constexpr std::size_t kMaxHierarchyPoints = 100'000'000;
 
 // How many points level l (>= 1) adds: `add` each (the paper's N per level), or, with a ratio r > 1,
-// enough to bring the total from `total` to round(r * total).
+// enough to bring the total from `total` to round(r * total). Throws Error for a ratio that is
+// negative or not finite (hierarchy_level_sizes refuses one that adds no point or too many).
 std::size_t level_size(std::size_t total, std::size_t add, double ratio);
 
 }  // namespace bluetile

@@ -22,16 +22,19 @@ struct StippleStart {
   double weight_exponent = kDefaultWeightExponent;  // cells weighted by map^exponent
 };
 
-// [0, W) x [0, H) with the map's aspect ratio and max(W, H) = 1.
+// [0, W) x [0, H) with the map's aspect ratio and max(W, H) = 1. Throws Error for an empty map or
+// one check_density_grid refuses.
 Domain stipple_domain(const DensityGrid& map);
 
 // The scene weighted Lloyd relaxes: `start.count` sites drawn in proportion to `map` over its
 // stipple_domain, the weighted map as the scene's density. Throws Error for an empty map, a map
-// that is zero everywhere, no dots or a weight exponent out of range (check_weight_exponent).
+// that is zero everywhere, no dots or more than kMaxSetPoints, or a weight exponent out of range
+// (check_weight_exponent).
 Scene stipple_scene(const DensityGrid& map, const StippleStart& start);
 
 // Dots that just touch where the map is densest: half the hexagonal spacing of the count that
-// would fill the domain at that density.
+// would fill the domain at that density. Throws Error for a map that is empty, that
+// check_density_grid refuses or that is zero everywhere, a domain check_domain refuses and no dots.
 double stipple_dot_radius(const DensityGrid& map, const Domain& domain, std::size_t count);
 
 }  // namespace bluetile

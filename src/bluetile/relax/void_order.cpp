@@ -4,6 +4,10 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <string>
+
+#include "bluetile/core/error.h"
+#include "bluetile/core/field_checks.h"
 
 namespace bluetile {
 namespace {
@@ -114,7 +118,13 @@ class ChoiceTree {
 }  // namespace
 
 std::vector<std::uint32_t> void_order(std::span<const Point> points, std::size_t ranked, double sigma_factor) {
-  assert(ranked <= points.size());
+  if (ranked > points.size())
+    throw Error("ranked " + std::to_string(ranked) + ": expected at most the " + std::to_string(points.size()) +
+                " points");
+  check_real_field("void_sigma", sigma_factor, kMinVoidSigma, kMaxVoidSigma, " hexagonal spacings");
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
+      throw Error("void order: point " + std::to_string(i) + " is not finite");
   const std::size_t count = points.size() - ranked;
   std::vector<std::uint32_t> order;
   order.reserve(count);

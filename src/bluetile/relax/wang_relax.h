@@ -19,6 +19,7 @@
 #include <string_view>
 
 #include "bluetile/relax/band_fill.h"
+#include "bluetile/relax/void_order.h"
 #include "bluetile/tiling/tile_set.h"
 #include "bluetile/voronoi/engine.h"
 
@@ -117,7 +118,6 @@ inline constexpr double kMaxEdgeMargin = 0.25;  // tile units
 inline constexpr int kMaxLatticeSteps = 100'000, kMaxLatticeStepsPerIteration = 1000, kMaxSeamSteps = 100'000;
 inline constexpr double kMinLatticeStep = 0.0001, kMaxLatticeStep = 0.1;
 inline constexpr double kMinSeamSpacing = 0.01, kMaxSeamSpacing = 2.0;
-inline constexpr double kMinVoidSigma = 0.1, kMaxVoidSigma = 4.0;
 
 // Throws Error naming the first field outside those ranges ("points: expected 1 to 1000000, got
 // 0"), by the Python module's names of the fields.

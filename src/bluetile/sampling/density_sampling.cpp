@@ -9,10 +9,14 @@ namespace bluetile {
 
 std::vector<Point> sample_density(const DensityGrid& density, const Domain& domain, std::size_t count, Rng& rng) {
   if (density.empty()) throw Error("cannot sample an empty density grid");
+  // A grid of 0 columns divided by zero below; more texels than its size put points outside the
+  // domain; negative texels made the cumulative sum fall, NaN ones made it NaN.
+  const bool any_positive = check_density_grid(density);
+  check_domain(domain, "density sampling");
   std::vector<double> cumulative(density.texels.size() + 1, 0.0);
   for (std::size_t k = 0; k < density.texels.size(); ++k) cumulative[k + 1] = cumulative[k] + density.texels[k];
   const double total = cumulative.back();
-  if (!(total > 0.0)) throw Error("cannot sample a density that is zero everywhere");
+  if (!any_positive || !(total > 0.0)) throw Error("cannot sample a density that is zero everywhere");
   // u can round up to the total: it then takes the last texel that has any density.
   std::size_t last = density.texels.size() - 1;
   while (density.texels[last] == 0.0f) --last;

@@ -226,6 +226,10 @@ void two_opt(std::span<const Point> dots, std::vector<std::size_t>& path) {
 }  // namespace
 
 double path_length(std::span<const Point> dots, std::span<const std::size_t> order) {
+  for (std::size_t i = 0; i < order.size(); ++i)
+    if (order[i] >= dots.size())
+      throw Error("order[" + std::to_string(i) + "] " + std::to_string(order[i]) + ": expected an index below " +
+                  std::to_string(dots.size()) + ", the number of dots");
   double length = 0.0;
   for (std::size_t i = 1; i < order.size(); ++i) length += distance(dots[order[i - 1]], dots[order[i]]);
   return length;

@@ -24,7 +24,8 @@ struct PlotOrder {
 // every machine and thread count. Throws Error for a non-finite coordinate.
 PlotOrder plot_order(std::span<const Point> dots);
 
-// Length of the open path through dots[order[0]], dots[order[1]], ...
+// Length of the open path through dots[order[0]], dots[order[1]], ... Throws Error for an index that names
+// no dot (it was read past the end).
 double path_length(std::span<const Point> dots, std::span<const std::size_t> order);
 
 }  // namespace bluetile

@@ -185,28 +185,7 @@ WeightedMoments density_moments(std::span<const Point> polygon, Point origin, co
 
 void check_density(const Scene& scene) {
   if (!scene.density) return;
-  const DensityGrid& d = *scene.density;
-  if (d.width <= 0 || d.height <= 0 || d.texels.size() != static_cast<std::size_t>(d.width) * static_cast<std::size_t>(d.height))
-    throw Error("density grid of " + std::to_string(d.width) + " x " + std::to_string(d.height) + " texels holds " +
-                std::to_string(d.texels.size()) + " values");
-  // One branch-free pass over the bits first (engines check the density on every call, and
-  // this vectorizes): a texel is valid when it is +-0 or its bits, sign clear, lie below those of
-  // infinity. The loop that names the bad texel runs only when there is one.
-  std::uint32_t bad = 0, magnitude = 0;
-  for (const float t : d.texels) {
-    const std::uint32_t u = std::bit_cast<std::uint32_t>(t);
-    bad |= static_cast<std::uint32_t>(u >= 0x7f800000u) & static_cast<std::uint32_t>(u != 0x80000000u);
-    magnitude |= u & 0x7fffffffu;
-  }
-  const bool any_positive = magnitude != 0;  // a valid texel with a magnitude is positive
-  for (std::size_t k = 0; bad != 0 && k < d.texels.size(); ++k) {
-    const float t = d.texels[k];
-    if (!std::isfinite(t) || t < 0.0f)
-      throw Error("density texel (" + std::to_string(k % static_cast<std::size_t>(d.width)) + ", " +
-                  std::to_string(k / static_cast<std::size_t>(d.width)) + ") is " + shortest_text(t) +
-                  ": densities must be finite and non-negative");
-  }
-  if (!any_positive) throw Error("the density is zero everywhere: no cell has a centre of mass");
+  if (!check_density_grid(*scene.density)) throw Error("the density is zero everywhere: no cell has a centre of mass");
 }
 
 bool is_uniform(const DensityGrid& density) {

@@ -66,9 +66,8 @@ bool all_inside_on_threads(std::span<const Point> sites, Point size) {
 }  // namespace
 
 const Scene& validated_scene(const Scene& scene, Scene& storage) {
+  check_domain(scene.domain, "scene");
   const Point size = scene.domain.size;
-  if (!(std::isfinite(size.x) && std::isfinite(size.y) && size.x > 0.0 && size.y > 0.0))
-    throw Error("scene: domain " + exact_text(size.x) + " x " + exact_text(size.y) + " is not a finite positive size");
   if (scene.wanted_begin > scene.wanted_end || scene.wanted_end > scene.sites.size())
     throw Error("scene: wanted sites [" + std::to_string(scene.wanted_begin) + ", " + std::to_string(scene.wanted_end) +
                 ") do not lie inside its " + std::to_string(scene.sites.size()) + " sites");
