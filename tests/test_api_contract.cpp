@@ -71,6 +71,19 @@ TEST(ApiContract, DensitySamplingChecksTheGrid) {
             "cannot sample a density that is zero everywhere");
 }
 
+// The random starts took any count, and a huge one failed with std::length_error or
+// std::bad_alloc, naming nothing; they take what the front ends take (kMaxSetPoints).
+TEST(ApiContract, RandomStartsTakeAtMostTheLimitOfASet) {
+  const std::string expected = " 18446744073709551615: expected at most 100000000 points";
+  const std::size_t huge = std::numeric_limits<std::size_t>::max();
+  EXPECT_EQ(error_of([&] { uniform_random_points(huge, 1); }), "uniform random points: count" + expected);
+  EXPECT_EQ(error_of([&] { density_random_points(DensityGrid(2, 2, 1.0f), huge, 1); }), "density sampling: count" + expected);
+  EXPECT_EQ(error_of([&] { place_new_points({{0.5, 0.5}}, huge, Placement::random, 1); }), "new points: count" + expected);
+  EXPECT_EQ(error_of([&] { place_new_points({{0.5, 0.5}}, kMaxSetPoints + 1, Placement::gaps, 1); }),
+            "new points: count 100000001: expected at most 100000000 points");
+  EXPECT_EQ(uniform_random_points(3, 1).size(), 3u);
+}
+
 // weight_for_point_density squared a negative texel into a positive weight and took grids of any
 // shape; stipple_domain made a domain of NaN x NaN from a 0 x 0 grid holding texels;
 // stipple_dot_radius read an empty map past its end (SIGSEGV), gave NaN for a map zero everywhere

@@ -6,7 +6,7 @@
 #include "bindings.h"
 #include "bluetile/core/memory_budget.h"
 #include "bluetile/core/rng.h"
-#include "bluetile/relax/request_limits.h"
+#include "bluetile/core/request_limits.h"
 #include "bluetile/sampling/dart_throwing.h"
 
 namespace pybluetile {

@@ -16,11 +16,11 @@
 #include <CLI/CLI.hpp>
 
 #include "bluetile/core/text.h"  // number_text, which the messages here use
-#include "bluetile/relax/request_limits.h"
+#include "bluetile/core/request_limits.h"
 
 namespace bluetile::cli {
 
-// The library's limits of a request (relax/request_limits.h), in the type the options take.
+// The library's limits of a request (core/request_limits.h), in the type the options take.
 inline constexpr long long kMaxCount = static_cast<long long>(bluetile::kMaxSetPoints);  // points in a set
 using bluetile::kMaxIterations;                                                           // Lloyd iterations
 inline constexpr long long kMaxSets = static_cast<long long>(bluetile::kMaxSets);         // sets of one relax run

@@ -1,6 +1,7 @@
 #include "bluetile/core/rng.h"
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/request_limits.h"
 
 namespace bluetile {
 namespace {
@@ -59,6 +60,7 @@ std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t index) {
 }
 
 std::vector<Point> uniform_random_points(std::size_t count, std::uint64_t seed, std::uint64_t set) {
+  check_set_points(count, "uniform random points: count");
   Rng rng(derive_seed(seed, set));
   std::vector<Point> points(count);
   for (Point& p : points) p = rng.point(Domain{});

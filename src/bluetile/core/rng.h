@@ -38,7 +38,8 @@ std::uint64_t derive_seed(std::uint64_t seed, std::uint64_t index);
 
 // The random start of set `set` of `bluetile relax --count N --seed S` (and of the Python
 // module's relax): `count` uniform points on the unit torus from Rng(derive_seed(seed, set)),
-// so set k of a batch does not depend on how many sets the batch has.
+// so set k of a batch does not depend on how many sets the batch has. Throws Error above
+// kMaxSetPoints (check_set_points).
 std::vector<Point> uniform_random_points(std::size_t count, std::uint64_t seed, std::uint64_t set = 0);
 
 }  // namespace bluetile

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "bluetile/core/density_grid.h"
-#include "bluetile/relax/request_limits.h"
+#include "bluetile/core/request_limits.h"
 #include "bluetile/voronoi/engine.h"
 
 namespace bluetile {

@@ -8,6 +8,7 @@
 #include "bluetile/core/error.h"
 #include "bluetile/core/field_checks.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/request_limits.h"
 #include "bluetile/core/rng.h"
 #include "bluetile/core/text.h"
 #include "bluetile/relax/void_order.h"
@@ -62,6 +63,7 @@ constexpr int kCandidates = 10;
 
 std::vector<Point> place_new_points(const std::vector<Point>& existing, std::size_t count, Placement placement,
                                     std::uint64_t seed) {
+  check_set_points(count, "new points: count");
   Rng rng(seed);
   std::vector<Point> added;
   added.reserve(count);

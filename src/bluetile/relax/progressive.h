@@ -66,7 +66,8 @@ struct LevelOptions {
 // for add 0 or above kMaxSetPoints, a base count_levels refuses, and as relax_lloyd does.
 PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOptions& options);
 
-// Initial positions of `count` new points among `existing` ones (unit torus).
+// Initial positions of `count` new points among `existing` ones (unit torus). Throws Error above
+// kMaxSetPoints (check_set_points).
 std::vector<Point> place_new_points(const std::vector<Point>& existing, std::size_t count, Placement placement,
                                     std::uint64_t seed);
 

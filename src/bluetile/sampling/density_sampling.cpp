@@ -4,11 +4,13 @@
 #include <cmath>
 
 #include "bluetile/core/error.h"
+#include "bluetile/core/request_limits.h"
 
 namespace bluetile {
 
 std::vector<Point> sample_density(const DensityGrid& density, const Domain& domain, std::size_t count, Rng& rng) {
   if (density.empty()) throw Error("cannot sample an empty density grid");
+  check_set_points(count, "density sampling: count");
   // A grid of 0 columns divided by zero below; more texels than its size put points outside the
   // domain; negative texels made the cumulative sum fall, NaN ones made it NaN.
   const bool any_positive = check_density_grid(density);

@@ -15,7 +15,8 @@ namespace bluetile {
 
 // `count` points in [0,W) x [0,H) of `domain`, the grid laid over it (density_grid.h).
 // Deterministic for a given rng state. Throws Error when the grid is empty or zero everywhere,
-// for a grid check_density_grid refuses and for a domain check_domain refuses.
+// for a grid check_density_grid refuses, for a domain check_domain refuses and above kMaxSetPoints
+// (check_set_points).
 std::vector<Point> sample_density(const DensityGrid& density, const Domain& domain, std::size_t count, Rng& rng);
 
 // Set `set` of seed `seed`, drawn in proportion to `density` over the unit square: the start of
