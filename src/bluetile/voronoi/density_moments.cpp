@@ -17,8 +17,6 @@
 #include "bluetile/voronoi/density_moments.h"
 
 #include <algorithm>
-#include <bit>
-#include <cstdint>
 #include <cmath>
 #include <limits>
 #include <string>
