@@ -19,9 +19,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
 #include <filesystem>
 #include <set>
+#include <thread>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <sys/sysmacros.h>
 #include <unistd.h>
@@ -313,6 +318,56 @@ TEST(Contract, EveryInputOfEveryCommandDamaged) {
     for (Case& k : input_cases(c)) cases.push_back(std::move(k));
   EXPECT_GE(cases.size(), 50u);
   run_cases(cases);
+}
+
+// Writes `bytes` into the FIFO `path` once a reader opens it, while `child` runs; gives up when the
+// child has ended without opening it. A reader that stops early ends the write (EPIPE; SIGPIPE is
+// ignored while the test feeds).
+void feed_fifo(const std::string& path, const std::string& bytes, const std::atomic<bool>& child_done) {
+  int fd = -1;
+  while (fd < 0 && !child_done.load()) {
+    fd = open(path.c_str(), O_WRONLY | O_NONBLOCK);  // ENXIO while no reader has it open
+    if (fd < 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  if (fd < 0) return;
+  fcntl(fd, F_SETFL, fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = write(fd, bytes.data() + done, bytes.size() - done);
+    if (n <= 0) break;
+    done += static_cast<std::size_t>(n);
+  }
+  close(fd);
+}
+
+// Every input of every command given as a named FIFO (mkfifo), fed the sound input once: the run
+// succeeds. analyze opened its input a second time, for the tile grid of a tiled output, and
+// waited for a second writer forever.
+TEST(Contract, EveryInputOfEveryCommandReadFromAFifo) {
+  struct sigaction ignore {}, previous {};
+  ignore.sa_handler = SIG_IGN;
+  sigaction(SIGPIPE, &ignore, &previous);
+  std::size_t inputs = 0;
+  for (const ContractCommand& c : contract_commands()) {
+    for (const FileArgument& in : c.inputs) {
+      if (!in.quick) continue;  // the quick run gives it: the run would not read it otherwise
+      ++inputs;
+      const std::string what = c.name() + " " + in.label() + " from a FIFO";
+      std::unique_ptr<TempDir> dir = folder_for(c);
+      const std::string fifo = dir->file("fifo-" + in.file_name);
+      ASSERT_EQ(mkfifo(fifo.c_str(), 0666), 0) << what;
+      Invocation call{arguments(c, *dir, in.label(), fifo)};
+      call.working_directory = dir->path();
+      std::atomic<bool> child_done{false};
+      Child child(call);
+      std::thread writer(feed_fifo, fifo, read_text(input_path(in, *dir)), std::cref(child_done));
+      const Outcome r = wait_or_kill(child);
+      child_done = true;
+      writer.join();
+      EXPECT_EQ(r.exit_code, 0) << what << ": " << (r.signal == SIGKILL ? "still running after a minute (hung)" : r.err);
+    }
+  }
+  sigaction(SIGPIPE, &previous, nullptr);
+  EXPECT_GE(inputs, 7u);
 }
 
 // A filesystem that fills during the write, as a real one behaves (the temporary file is made,

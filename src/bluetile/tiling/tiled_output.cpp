@@ -1,5 +1,7 @@
 #include "bluetile/tiling/tiled_output.h"
 
+#include <sys/stat.h>
+
 #include <algorithm>
 #include <bit>
 #include <charconv>
@@ -228,6 +230,8 @@ std::string tile_grid_comment(const Tiler& tiler, const Window& window, bool nor
 }
 
 std::optional<TileGrid> read_tile_grid(const std::string& path) {
+  struct stat status {};
+  if (stat(path.c_str(), &status) != 0 || !S_ISREG(status.st_mode)) return std::nullopt;
   std::ifstream in(path, std::ios::binary);
   const std::string prefix = std::string("# ") + kTileGridPrefix + " ";
   // Only the leading comment block: the header `bluetile tile` writes.

@@ -66,6 +66,8 @@ struct TileGrid {
 std::string tile_grid_comment(const Tiler& tiler, const Window& window, bool normalize);
 // The grid a point file declares in its leading comment lines, if it does (files `bluetile
 // tile` wrote); nullopt for any other file, or one that cannot be read (its reader reports that).
+// Only a regular file is opened: a FIFO or a device, read once by the points' reader, would
+// wait here for a second writer (nullopt for them: no grid is drawn).
 std::optional<TileGrid> read_tile_grid(const std::string& path);
 
 }  // namespace bluetile
