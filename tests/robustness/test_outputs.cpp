@@ -7,6 +7,7 @@
 #include <chrono>
 #include <csignal>
 #include <filesystem>
+#include <fstream>
 #include <thread>
 
 #include <fcntl.h>
@@ -434,6 +435,28 @@ TEST(Outputs, InterruptsRemoveStagedFiles) {
     EXPECT_EQ(r.signal, signal_number) << r.err;
     EXPECT_EQ(entries(dir.path()), Names{"pipe|"});
   }
+}
+
+TEST(Outputs, AFolderMadeByAnotherRunMeanwhileIsNamedAndLeftAlone) {
+  // Two runs into one new folder: the second to finish said "cannot create the folder:
+  // Directory not empty". The run is held before its work by an input FIFO nobody writes yet,
+  // while its folder is staged; then the folder appears with a file of another run's.
+  TempDir dir;
+  ASSERT_EQ(run(relax({"-o", dir.file("p.txt")})).exit_code, 0);
+  ASSERT_EQ(mkfifo(dir.file("in.txt").c_str(), 0600), 0);
+  Child child(Invocation{{"analyze", "-i", dir.file("in.txt"), "-o", dir.file("race"), "--no-psa-measures"}});
+  ASSERT_TRUE(wait_until([&] { return entries(dir.path()).size() > 3; }));  // in.txt, p.txt and the staged folder
+  fs::create_directory(dir.file("race"));
+  dir.write("race/other.txt", "another run's\n");
+  {
+    std::ofstream feed(dir.file("in.txt"));
+    feed << read_text(dir.file("p.txt"));
+  }
+  const Outcome r = child.wait();
+  expect_failure(r, dir.file("race") + ": the folder was made by another process while this run worked; nothing was "
+                                       "written to it (run again to write into it)");
+  EXPECT_EQ(entries(dir.path()), (Names{"in.txt|", "p.txt", "race/", "race/other.txt"}));
+  EXPECT_EQ(read_text(dir.file("race/other.txt")), "another run's\n");
 }
 
 TEST(Outputs, SignalsThatWereIgnoredStayIgnored) {

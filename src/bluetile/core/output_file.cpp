@@ -688,6 +688,13 @@ void OutputSet::publish() {
         roll_back();
         lock.unlock();
         discard();
+        // Made (and filled) by another run while this one worked: this run's folder cannot replace
+        // it, and is not merged into a folder that was never checked. "Directory not empty" said
+        // none of that.
+        struct stat now {};
+        if ((err == ENOTEMPTY || err == EEXIST) && stat(folder->target.c_str(), &now) == 0 && S_ISDIR(now.st_mode))
+          throw Error(folder->target + ": the folder was made by another process while this run worked; nothing was "
+                      "written to it (run again to write into it)");
         fail(folder->target, "cannot create the folder", err);
       }
       done.push_back({Step::What::folder, folder->target, {}, folder->staging});
