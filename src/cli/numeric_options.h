@@ -15,8 +15,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bluetile/core/text.h"  // number_text, which the messages here use
 #include "bluetile/core/request_limits.h"
+#include "bluetile/core/text.h"  // number_text, which the messages here use
 
 namespace bluetile::cli {
 

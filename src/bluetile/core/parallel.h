@@ -19,8 +19,8 @@ inline constexpr std::size_t kMaxThreads = 1024;
 // (its affinity mask, as `nproc` counts them), or BLUETILE_THREADS from the environment when set
 // and not empty (an integer from 1 to kMaxThreads; anything else throws Error naming it). Both are
 // read at the first call that needs them and kept for the process; set_thread_count changes the
-// count at any time, and throws Error for a count outside [1, kMaxThreads] (the front ends'
-// --threads and threads= take that range).
+// count at any time, and throws Error for a count outside [1, kMaxThreads] (the range the tool's
+// --threads and Python's set_thread_count take).
 std::size_t thread_count();
 void set_thread_count(std::size_t count);
 
