@@ -18,9 +18,7 @@ std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points
   // A NaN side made the ring search below endless; a zero or negative one gave nonsense distances.
   check_domain(domain, "nearest-neighbour distances");
   // A NaN would never be proved nearest: the ring search below would not end.
-  for (std::size_t i = 0; i < n; ++i)
-    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
-      throw Error("nearest-neighbour distances: point " + std::to_string(i) + " is not finite");
+  check_finite_points(points, "nearest-neighbour distances");
   // Buckets of side >= the typical spacing; rings grow until the nearest found is provably nearest.
   double side = std::sqrt(2.0 * domain.area() / static_cast<double>(n));
   long columns = std::clamp<long>(static_cast<long>(domain.size.x / side), 1, 1 << 14);

@@ -33,9 +33,7 @@ RadialDistribution radial_distribution(std::span<const Point> points, const RdfO
     throw Error("RDF range must be a positive number of hexagonal spacings");
   check_domain(domain, "radial distribution");
   // A NaN point fell out of every bin without a word.
-  for (std::size_t i = 0; i < n; ++i)
-    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
-      throw Error("radial distribution: point " + std::to_string(i) + " is not finite");
+  check_finite_points(points, "radial distribution");
   const bool periodic = options.boundary == Boundary::periodic;
   const double width = domain.size.x, height = domain.size.y;
   if (!periodic) {

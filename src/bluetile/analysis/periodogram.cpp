@@ -147,9 +147,7 @@ Periodogram compute_periodogram_direct(std::span<const Point> points, int size,
   if (size < 2 || size % 2 != 0 || size > 65536)
     throw Error("periodogram size must be even, 2 to 65536, got " + std::to_string(size));
   // As compute_periodogram_nufft: a NaN gave a NaN spectrum without a word.
-  for (std::size_t j = 0; j < points.size(); ++j)
-    if (!std::isfinite(points[j].x) || !std::isfinite(points[j].y))
-      throw Error("periodogram: point " + std::to_string(j) + " is not finite");
+  check_finite_points(points, "periodogram");
   const int half = size / 2;
   const std::size_t n = points.size();
   // Summed: kx in [-F/2, F/2] (one more column than the square, for mirroring), ky in [-F/2, 0].

@@ -73,9 +73,7 @@ RdfPowerSpectrum rdf_power_spectrum(std::span<const Point> points) {
   const std::size_t n = points.size();
   if (n < 2) throw Error("the RDF power spectrum needs at least 2 points, got " + std::to_string(n));
   // A NaN or infinite point cannot be wrapped; it fell out of every bin without a word.
-  for (std::size_t i = 0; i < n; ++i)
-    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
-      throw Error("RDF power spectrum: point " + std::to_string(i) + " is not finite");
+  check_finite_points(points, "RDF power spectrum");
   const std::size_t bins = psa_bins(n);
   const float dr = 0.5f / static_cast<float>(bins);
   // The window is at most 0.25 wide: bins beyond it never count, so pairs are only histogrammed

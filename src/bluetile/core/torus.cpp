@@ -14,4 +14,10 @@ void check_domain(const Domain& domain, std::string_view what) {
                 " is not a finite positive size");
 }
 
+void check_finite_points(std::span<const Point> points, std::string_view what) {
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
+      throw Error(std::string(what) + ": point " + std::to_string(i) + " is not finite");
+}
+
 }  // namespace bluetile

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <span>
 #include <string_view>
 
 #include <glm/vec2.hpp>
@@ -34,6 +35,10 @@ struct Domain {
 // and positive (a zero, negative or NaN side made NaN points, nonsense distances or endless
 // searches).
 void check_domain(const Domain& domain, std::string_view what);
+
+// Throws Error("<what>: point 2 is not finite") for the first point with a NaN or infinite
+// coordinate.
+void check_finite_points(std::span<const Point> points, std::string_view what);
 
 // x wrapped into [0, period). Exact for values already inside; never returns period itself
 // (a value that would round up to period becomes 0).

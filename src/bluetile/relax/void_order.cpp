@@ -122,9 +122,7 @@ std::vector<std::uint32_t> void_order(std::span<const Point> points, std::size_t
     throw Error("ranked " + std::to_string(ranked) + ": expected at most the " + std::to_string(points.size()) +
                 " points");
   check_real_field("void_sigma", sigma_factor, kMinVoidSigma, kMaxVoidSigma, " hexagonal spacings");
-  for (std::size_t i = 0; i < points.size(); ++i)
-    if (!std::isfinite(points[i].x) || !std::isfinite(points[i].y))
-      throw Error("void order: point " + std::to_string(i) + " is not finite");
+  check_finite_points(points, "void order");
   const std::size_t count = points.size() - ranked;
   std::vector<std::uint32_t> order;
   order.reserve(count);
