@@ -425,6 +425,12 @@ int main(int argc, char** argv) try {
            "Seam spacing of level 0, in hexagonal spacings");
   add_real(app, "--level-seam-spacing", o.refine.later_seam_spacing, {kMinSeamSpacing, kMaxSeamSpacing},
            "Seam spacing of levels 1 and up, in hexagonal spacings");
+  add_integer(app, "--filled-lattice-steps", o.refine.filled_lattice_steps, 0, kMaxLatticeSteps,
+              "fill: lattice steps on each filled level (0: none)");
+  add_real(app, "--filled-lattice-spacing", o.refine.filled_lattice_spacing, {kMinSeamSpacing, kMaxSeamSpacing},
+           "fill: the spacing those steps keep, in hexagonal spacings");
+  add_integer(app, "--filled-lattice-up-to", o.refine.filled_lattice_up_to, std::size_t{1}, kMaxWangPoints,
+              "fill: lattice steps only on filled levels of at most this many points per tile");
   add_integer(app, "--levels", o.levels, 1, kMaxWangLevels, "Levels");
   add_real(app, "--ratio", o.ratio, {1.0, kMaxWangRatio, true, false}, "Level ratio");
   auto* prefixes = add_integer(app, "--prefixes", o.prefixes, 0, kMaxRepeats,

@@ -870,7 +870,8 @@ TEST(WangCommand, WritesACheckableSetAndFailsCleanly) {
   for (const auto& [option, value] : std::vector<std::pair<std::string, std::string>>{
            {"--seam-spacing", "5"}, {"--level-seam-spacing", "0"}, {"--seam-steps", "-1"},
            {"--lattice-step", "0.5"}, {"--lattice-steps", "-2"}, {"--lattice-steps-per-iteration", "x"},
-           {"--rank-order", "random"}, {"--void-sigma", "0"}}) {
+           {"--rank-order", "random"}, {"--void-sigma", "0"}, {"--filled-lattice-steps", "-1"},
+           {"--filled-lattice-spacing", "3"}, {"--filled-lattice-up-to", "0"}}) {
     test::CommandResult refused_option =
         test::run_bluetile({"wang", "--points", "4", option, value, "--engine", "exact", "--output", never});
     EXPECT_NE(refused_option.exit_code, 0) << option;

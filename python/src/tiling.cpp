@@ -80,8 +80,9 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
                        const Real& margin_arg, const Whole& lattice_steps_arg,
                        const Whole& lattice_steps_per_iteration_arg, const Real& lattice_step_arg,
                        const Whole& seam_steps_arg, const Real& seam_spacing_arg, const Real& level_seam_spacing_arg,
-                       const Text& rank_order_arg, const Real& void_sigma_arg, const Whole& seed_arg,
-                       const Text& engine_arg) {
+                       const Text& rank_order_arg, const Real& void_sigma_arg, const Whole& filled_lattice_steps_arg,
+                       const Real& filled_lattice_spacing_arg, const Whole& filled_lattice_up_to_arg,
+                       const Whole& seed_arg, const Text& engine_arg) {
   // None: the default, the library's (WangOptions).
   const bluetile::WangOptions d;
   const std::string set = text_or(set_arg, std::string(bluetile::tile_set_kind_name(d.kind)), "set");
@@ -101,12 +102,18 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
                     "lattice_steps_per_iteration", 0, bluetile::kMaxLatticeStepsPerIteration);
   const int seam_steps =
       whole_or<int>(seam_steps_arg, d.level.refine.seam_iterations, "seam_steps", 0, bluetile::kMaxSeamSteps);
+  const int filled_lattice_steps = whole_or<int>(filled_lattice_steps_arg, d.level.refine.filled_lattice_steps,
+                                                 "filled_lattice_steps", 0, bluetile::kMaxLatticeSteps);
+  const auto filled_lattice_up_to = whole_or<std::size_t>(filled_lattice_up_to_arg, d.level.refine.filled_lattice_up_to,
+                                                          "filled_lattice_up_to", 1, bluetile::kMaxWangPoints);
   const std::uint64_t seed = seed_or(seed_arg, d.seed);
   const double ratio = real_or(ratio_arg, d.ratio, "ratio"), margin = real_or(margin_arg, d.level.edge_margin, "margin");
   const double lattice_step = real_or(lattice_step_arg, d.level.refine.lattice_step, "lattice_step");
   const double seam_spacing = real_or(seam_spacing_arg, d.level.refine.seam_spacing, "seam_spacing");
   const double level_seam_spacing =
       real_or(level_seam_spacing_arg, d.level.refine.later_seam_spacing, "level_seam_spacing");
+  const double filled_lattice_spacing =
+      real_or(filled_lattice_spacing_arg, d.level.refine.filled_lattice_spacing, "filled_lattice_spacing");
   const double void_sigma = real_or(void_sigma_arg, d.level.void_sigma, "void_sigma");
   const std::string strategy = text_or(strategy_arg, "auto", "strategy");
   const std::string rank_order =
@@ -132,7 +139,10 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
                     .lattice_step = lattice_step,
                     .seam_iterations = seam_steps,
                     .seam_spacing = seam_spacing,
-                    .later_seam_spacing = level_seam_spacing};
+                    .later_seam_spacing = level_seam_spacing,
+                    .filled_lattice_steps = filled_lattice_steps,
+                    .filled_lattice_spacing = filled_lattice_spacing,
+                    .filled_lattice_up_to = filled_lattice_up_to};
   w.level.rank_order = bluetile::parse_wang_rank_order(rank_order);
   w.level.void_sigma = void_sigma;
   // validate() writes the limit as "1e+08"; here as it is typed.
@@ -167,7 +177,11 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
                            ", levels=" + std::to_string(levels) + ", strategy='" +
                            std::string(bluetile::wang_strategy_name(w.level.strategy)) +
                            "', lattice_steps=" + std::to_string(lattice_steps) +
-                           ", lattice_steps_per_iteration=" + std::to_string(lattice_steps_per_iteration) + ", seam_steps=" + std::to_string(seam_steps) + ", rank_order='" + rank_order + "', seed=" + std::to_string(seed) + ", engine='" + engine + "')");
+                           ", lattice_steps_per_iteration=" + std::to_string(lattice_steps_per_iteration) + ", seam_steps=" + std::to_string(seam_steps) + ", rank_order='" + rank_order + "'" +
+                           (w.level.rank_order == bluetile::RankOrder::fill && levels > 1
+                                ? ", filled_lattice_steps=" + std::to_string(filled_lattice_steps)
+                                : std::string()) +
+                           ", seed=" + std::to_string(seed) + ", engine='" + engine + "')");
     text = bluetile::format_tile_set(tiles);
   }
   return text;
@@ -328,10 +342,13 @@ void bind_tiling(nb::module_& m) {
         nb::sig("def wang_tiles(set: str = 'wang8', *, points: int = 52, iterations: int = 100, warm: int = 10, "
                 "levels: int = 1, ratio: float = 2.0, strategy: str = 'auto', period: int = 16, margin: float = 0.0, "
                 "lattice_steps: int = 5, lattice_steps_per_iteration: int = 3, lattice_step: float = 0.005, seam_steps: int = 20, seam_spacing: float = 0.8, level_seam_spacing: float = 0.65, "
-                "rank_order: str = 'fill', void_sigma: float = 0.5, seed: int = 1, engine: str = 'exact') -> str"),
+                "rank_order: str = 'fill', void_sigma: float = 0.5, filled_lattice_steps: int = 150, "
+                "filled_lattice_spacing: float = 0.62, filled_lattice_up_to: int = 128, seed: int = 1, "
+                "engine: str = 'exact') -> str"),
         "set"_a.none() = "wang8", nb::kw_only(), "points"_a.none() = 52, "iterations"_a.none() = 100, "warm"_a.none() = 10, "levels"_a.none() = 1,
         "ratio"_a.none() = 2.0, "strategy"_a.none() = "auto", "period"_a.none() = 16, "margin"_a.none() = 0.0, "lattice_steps"_a.none() = 5, "lattice_steps_per_iteration"_a.none() = 3, "lattice_step"_a.none() = 0.005, "seam_steps"_a.none() = 20,
         "seam_spacing"_a.none() = 0.8, "level_seam_spacing"_a.none() = 0.65, "rank_order"_a.none() = "fill", "void_sigma"_a.none() = 0.5,
+        "filled_lattice_steps"_a.none() = 150, "filled_lattice_spacing"_a.none() = 0.62, "filled_lattice_up_to"_a.none() = 128,
         "seed"_a.none() = 1, "engine"_a.none() = "exact",
         R"(A Wang-tile sample set relaxed as ``bluetile wang`` relaxes it (the same options, the same
 points bit for bit), returned as the text of its tile-set file: write it to a file for
@@ -370,6 +387,13 @@ rank_order: the progressive order inside each level: "farthest" (greedy farthest
     "voids" (tiled void-and-cluster) or "fill" (the default: levels after the first are not
     relaxed but filled point by point, each in the deepest void of the points before it).
 void_sigma: voids: the kernel width, 0.1 to 4 hexagonal spacings of the prefix (default 0.5).
+filled_lattice_steps: fill: lattice steps on each filled level's points against the tile-lattice
+    peaks of its middle and its boundary, each move kept only where the points keep the filled
+    spacing, 0 (none) to 100000 (default 150).
+filled_lattice_spacing: fill: the spacing those moves keep, 0.01 to 2 hexagonal spacings of the
+    prefix each pair completes (default 0.62).
+filled_lattice_up_to: fill: lattice steps only on filled levels of at most this many points per
+    tile, 1 to 1000000 (default 128; a step costs as the square of the count).
 seed: any unsigned 64-bit integer (default 1); the same seed gives the tool's points.
 engine: the centroid engine, "exact" (CPU, the default) or "raster" (Vulkan; on a CPU device such
     as lavapipe many times slower than exact).)");

@@ -471,7 +471,7 @@ def test_load_table_refuses_a_file_without_points_as_the_tool_does(tool, tmp_pat
 def test_wang_tiles_documents_every_argument():
     doc = bt.wang_tiles.__doc__
     names = re.findall(r"(\w+): ", bt.wang_tiles.__nb_signature__[0][0].split("(", 1)[1])
-    assert len(names) == 19
+    assert len(names) == 22
     for name in names:
         assert re.search(rf"^{name}: \S", doc, re.M), name
 

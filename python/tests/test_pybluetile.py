@@ -459,6 +459,19 @@ def test_wang_tiles_match_the_tool(tool, tmp_path):
     assert tile_set_body(fill) == tile_set_body(out.read_text())
     with pytest.raises(ValueError, match="rank_order"):
         bt.wang_tiles("wang8", points=8, rank_order="random")
+    # The filled levels' lattice steps: the tool's options, the same bits; 0 steps is the fill alone.
+    tool("wang", "--set", "wang8", "--points", 8, "--iterations", 3, "--warm", 2, "--levels", 3, "--ratio", 2,
+         "--filled-lattice-steps", 7, "--filled-lattice-spacing", 0.6, "--filled-lattice-up-to", 16,
+         "--engine", "exact", "--seed", 3, "--output", out)
+    stepped = bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=3, ratio=2, filled_lattice_steps=7,
+                            filled_lattice_spacing=0.6, filled_lattice_up_to=16, seed=3)
+    assert tile_set_body(stepped) == tile_set_body(out.read_text())
+    assert "filled_lattice_steps=7" in stepped
+    alone = bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=3, ratio=2, filled_lattice_steps=0, seed=3)
+    assert tile_set_body(alone) != tile_set_body(stepped)
+    for name, value in (("filled_lattice_steps", -1), ("filled_lattice_spacing", 3.0), ("filled_lattice_up_to", 0)):
+        with pytest.raises(ValueError, match=name):
+            bt.wang_tiles("wang8", points=8, levels=2, **{name: value})
     # corner81: the default strategy is instances for it, as the tool's, and the same bits.
     tool("wang", "--set", "corner81", "--points", 4, "--iterations", 2, "--warm", 1, "--levels", 2, "--seed", 3,
          "--output", out)

@@ -159,6 +159,12 @@ void run_wang(const WangCommandOptions& o) {
   }
   command << " --rank-order " << o.rank_order;
   if (o.rank_order == "voids") command << " --void-sigma " << o.void_sigma;
+  if (o.rank_order == "fill" && o.levels > 1) {
+    command << " --filled-lattice-steps " << r.filled_lattice_steps;
+    if (r.filled_lattice_steps > 0)
+      command << " --filled-lattice-spacing " << r.filled_lattice_spacing << " --filled-lattice-up-to "
+              << r.filled_lattice_up_to;
+  }
   // The raster settings too: they shape the points (the header was "--engine raster" alone).
   command << " --seed " << o.seed << " " << engine_arguments(*engine, o.engine);
   set.header = {"made by: " + command.str()};
@@ -220,6 +226,14 @@ void add_wang_command(CLI::App& app) {
       ->check(CLI::IsMember({"farthest", "voids", "fill"}))
       ->capture_default_str();
   add_real_option(cmd, "--void-sigma", o->void_sigma, {kMinVoidSigma, kMaxVoidSigma}, "voids: kernel width in hexagonal spacings of the prefix");
+  add_integer_option(cmd, "--filled-lattice-steps", o->refine.filled_lattice_steps, 0, kMaxLatticeSteps,
+                     "fill: lattice steps on each filled level's points against the tile-lattice peaks of its middle "
+                     "and its boundary, each move kept only where the points keep the filled spacing (0: none)");
+  add_real_option(cmd, "--filled-lattice-spacing", o->refine.filled_lattice_spacing, {kMinSeamSpacing, kMaxSeamSpacing},
+                  "fill: the spacing those moves keep, in hexagonal spacings of the prefix each pair completes");
+  add_integer_option(cmd, "--filled-lattice-up-to", o->refine.filled_lattice_up_to, std::size_t{1}, kMaxWangPoints,
+                     "fill: lattice steps only on filled levels of at most this many points per tile (a step costs "
+                     "as the square of the count)");
   add_seed_option(cmd, o->seed);
   add_output_option(cmd, "-o,--output", o->output, {.formats = kTileSetFormats, .standard_output = true},
                     "Output tile-set file (.tiles or .txt; - for stdout)")

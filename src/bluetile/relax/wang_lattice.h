@@ -11,8 +11,20 @@
 // (target 20), the metrics' bands in tile units (tiling_metrics.h), each step moving the point
 // that moves most by `step` hexagonal spacings. Only the level's
 // moving points move, inside their tile; the seam spacing step runs after it.
+//
+// Filled levels (the fill order, band_fill.h) are not relaxed, and their points, placed alike in
+// tiles that look alike, repeat across the tiles too: decorrelate_filled_level gives them steps of
+// their own, against the coherence of the level's middle prefix and of its boundary over the whole
+// band the tile-lattice peak reads (0 < |m|^2 < k for a prefix of k), each move kept only where
+// the point keeps its distance from every point it can meet in a tiling. The plane's peak is about
+// (M^2 / T) C + p, p a tile's own periodogram: filled corner81 tiles have C 3-5 times p there
+// (docs/RESULTS.md, "Lattice steps for filled levels").
 #pragma once
 
+#include <span>
+#include <vector>
+
+#include "bluetile/relax/band_fill.h"
 #include "bluetile/relax/wang_step.h"
 
 namespace bluetile {
@@ -34,5 +46,27 @@ struct LatticeCoherence {
 LatticeCoherence lattice_coherence(const TilePoints& tiles);
 
 void decorrelate_lattice(WangPoints& points, const LatticeDecorrelationOptions& options);
+
+// 150 steps of 0.01 hexagonal spacings take corner81's worst lattice peak from 24 to 128 points per
+// tile from 4.2-8.0 to 4.0 at a spacing of 0.62 (docs/RESULTS.md, "Lattice steps for filled
+// levels"); 0.005 leaves 4.4 at 24.
+inline constexpr double kFilledLatticeStep = 0.01;
+
+struct FilledLatticeOptions {
+  int iterations = 0;     // gradient steps (0: none)
+  // A move may not bring a pair closer than this many hexagonal spacings of the prefix that its
+  // later point completes (the fill's own floor is kFillFloor), nor a pair already closer (the
+  // fill's fallback) closer still; such a move is halved, then dropped.
+  double spacing = 0.62;
+};
+
+// Moves points [begin, size) of every tile of `tiles` (all of one size, in rank order) down the
+// gradient of sum over P and m of E_P(m)^4, E the coherence C in excess of independent tiles' (the
+// mean of the tiles' own |F_t(m)|^2 / k), P the level's middle prefix and its boundary, each step
+// moving the point that moves most by kFilledLatticeStep hexagonal spacings of the tile's count.
+// `sources` are the fill's (band_fill.h): where the points of each tile can lie near it. One
+// thread; the same bits every run.
+void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<const std::vector<FillSource>> sources,
+                              const FilledLatticeOptions& options);
 
 }  // namespace bluetile

@@ -75,18 +75,26 @@ std::vector<std::vector<FillSource>> fill_sources(BlockConfigurations& configura
   return sources;
 }
 
-// The fill order's level: new points placed by band-limited void filling, appended in rank order.
+// The fill order's level: new points placed by band-limited void filling, then given the filled
+// levels' lattice steps (up to the level size asked), appended in rank order.
 void fill_wang_level(BlockConfigurations& configurations, TileSet& set, int level, const WangLevelOptions& options) {
   std::vector<std::vector<Point>> tiles;
   for (const Tile& tile : set.tiles) tiles.push_back(tile.points);
   FillOptions fill = options.fill;
   fill.seed = options.seed;
-  const std::vector<std::vector<Point>> added = band_fill(tiles, fill_sources(configurations, tiles.size()), options.add, fill);
+  const std::vector<std::vector<FillSource>> sources = fill_sources(configurations, tiles.size());
+  const std::vector<std::vector<Point>> added = band_fill(tiles, sources, options.add, fill);
+  const std::size_t begin = tiles[0].size();
+  for (std::size_t t = 0; t < tiles.size(); ++t) tiles[t].insert(tiles[t].end(), added[t].begin(), added[t].end());
+  const WangRefinement& refine = options.refine;
+  if (tiles[0].size() <= refine.filled_lattice_up_to)
+    decorrelate_filled_level(tiles, begin, sources,
+                             {.iterations = refine.filled_lattice_steps, .spacing = refine.filled_lattice_spacing});
   for (std::size_t t = 0; t < set.tiles.size(); ++t) {
     Tile& tile = set.tiles[t];
-    for (const Point& p : added[t]) {
+    for (std::size_t i = begin; i < tiles[t].size(); ++i) {
       tile.ranks.push_back(static_cast<std::uint32_t>(tile.points.size()));
-      tile.points.push_back(p);
+      tile.points.push_back(tiles[t][i]);
       tile.levels.push_back(level);
     }
   }
@@ -236,6 +244,11 @@ void validate(const WangOptions& options) {
   check_whole_field("seam_steps", l.refine.seam_iterations, 0, kMaxSeamSteps);
   check_real_field("seam_spacing", l.refine.seam_spacing, kMinSeamSpacing, kMaxSeamSpacing, " hexagonal spacings");
   check_real_field("level_seam_spacing", l.refine.later_seam_spacing, kMinSeamSpacing, kMaxSeamSpacing, " hexagonal spacings");
+  check_whole_field("filled_lattice_steps", l.refine.filled_lattice_steps, 0, kMaxLatticeSteps);
+  check_real_field("filled_lattice_spacing", l.refine.filled_lattice_spacing, kMinSeamSpacing, kMaxSeamSpacing,
+                   " hexagonal spacings");
+  check_whole_field("filled_lattice_up_to", static_cast<long long>(l.refine.filled_lattice_up_to), 1,
+                    static_cast<long long>(kMaxWangPoints));
   check_real_field("void_sigma", l.void_sigma, kMinVoidSigma, kMaxVoidSigma, " hexagonal spacings");
 }
 

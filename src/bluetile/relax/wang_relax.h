@@ -62,6 +62,15 @@ struct WangRefinement {
   int seam_iterations = 20;
   double seam_spacing = 0.80;
   double later_seam_spacing = 0.65;
+  // Lattice steps for the fill order's filled levels (wang_lattice.h, decorrelate_filled_level),
+  // on levels of at most filled_lattice_up_to points per tile (a step costs about T n^2 / 1.5
+  // phases; corner81's peaks from 192 per tile up meet 4 without them). On corner81 they take the
+  // lattice peak from 24 to 128 per tile from 4.2-8.0 to 4.0 or less, at a spacing of 0.62 instead
+  // of the fill's 0.66 and some 10 % more low-frequency power (docs/RESULTS.md, "Lattice steps for
+  // filled levels").
+  int filled_lattice_steps = 150;
+  double filled_lattice_spacing = 0.62;
+  std::size_t filled_lattice_up_to = 128;
 };
 
 struct WangLevelOptions {
@@ -117,7 +126,7 @@ inline constexpr double kMaxWangRatio = 1e8;
 inline constexpr double kMaxEdgeMargin = 0.25;  // tile units
 inline constexpr int kMaxLatticeSteps = 100'000, kMaxLatticeStepsPerIteration = 1000, kMaxSeamSteps = 100'000;
 inline constexpr double kMinLatticeStep = 0.0001, kMaxLatticeStep = 0.1;
-inline constexpr double kMinSeamSpacing = 0.01, kMaxSeamSpacing = 2.0;
+inline constexpr double kMinSeamSpacing = 0.01, kMaxSeamSpacing = 2.0;  // and the filled levels' spacing
 
 // Throws Error naming the first field outside those ranges ("points: expected 1 to 1000000, got
 // 0"), by the Python module's names of the fields.
