@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <sstream>
+#include <tuple>
 
 #include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/point_file.h"
@@ -351,7 +352,8 @@ TEST(TileCommand, DefaultTileSetIsBuiltInAndValid) {
 // d_hex across it). Measured when it was regenerated with filled levels, in hexagonal spacings
 // d_hex = sqrt(2 / (sqrt(3) k)): inside 0.660 at worst, across an edge 0.66 (the fill keeps 0.66
 // of the prefix it completes); the relaxed wang8 set before them had 0.494 inside and 0.575
-// across, the one before that 0.29-0.43 across, so the test fails for both.
+// across, the one before that 0.29-0.43 across, so the test fails for both. Since the filled
+// levels' lattice steps (up to 128 per tile) the boundaries 32 to 128 keep the steps' 0.62.
 TEST(TileCommand, DefaultTileSetHoldsItsLevelsAndSpacing) {
   TileSet set = default_tile_set();
   ASSERT_EQ(set.kind, TileSetKind::corner81);
@@ -403,24 +405,26 @@ TEST(TileCommand, DefaultTileSetHoldsItsLevelsAndSpacing) {
         }
     worst_inside = std::min(worst_inside, inside / d_hex);
     worst_across = std::min(worst_across, across / d_hex);
-    EXPECT_GE(inside / d_hex, 0.65) << "k = " << k;
-    EXPECT_GE(across / d_hex, 0.65) << "k = " << k;
+    const double least = k > 16 && k <= 128 ? 0.615 : 0.65;
+    EXPECT_GE(inside / d_hex, least) << "k = " << k;
+    EXPECT_GE(across / d_hex, least) << "k = " << k;
   }
   std::printf("built-in set, worst over level boundaries: inside %.4f, across an edge %.4f d_hex\n", worst_inside,
               worst_across);
 }
 
 // The tile-lattice peak of the built-in set's plane (a seeded 16 x 16 torus tiling, prefix k =
-// the first k ranks of every tile; docs/RESULTS.md "More tiles: corner81"): measured 7.3 at 64
-// and 3.5 at 512 per tile (tiling seed 1) when corner81 became the built-in set; the wang8 set
-// before it had 19.4 and 18.1, so the test fails for it.
+// the first k ranks of every tile; docs/RESULTS.md "More tiles: corner81" and "Lattice steps for
+// filled levels"): tiling seed 1, 4.05 at 24, 1.71 at 64 and 3.31 at 512 per tile since the
+// filled levels' lattice steps; corner81 without them had 7.7 at 24 and 7.3 at 64, the wang8 set
+// before it 42.2 and 19.4, so the test fails for both.
 TEST(TileCommand, DefaultTileSetKeepsTheTileLatticePeakLow) {
   const TileSet set = default_tile_set();
-  for (const auto& [k, most] : {std::pair<std::uint32_t, double>{64, 10.0}, {512, 4.5}}) {
+  for (const auto& [k, most, rho] : {std::tuple<std::uint32_t, double, double>{24, 5.0, 0.615}, {64, 3.0, 0.615}, {512, 4.0, 0.65}}) {
     const TiledPlane plane = torus_tiling(set, 16, 1, k);
     const TilingMetrics m = measure_tiling(plane.points, 16, static_cast<int>(set.tiles.size()));
     EXPECT_LE(m.lattice_peak, most) << "k = " << k;
-    EXPECT_GE(m.rho, 0.65) << "k = " << k;
+    EXPECT_GE(m.rho, rho) << "k = " << k;
   }
 }
 
