@@ -47,9 +47,9 @@ LatticeCoherence lattice_coherence(const TilePoints& tiles);
 
 void decorrelate_lattice(WangPoints& points, const LatticeDecorrelationOptions& options);
 
-// 150 steps of 0.01 hexagonal spacings take corner81's worst lattice peak from 24 to 128 points per
-// tile from 4.2-8.0 to 4.0 at a spacing of 0.62 (docs/RESULTS.md, "Lattice steps for filled
-// levels"); 0.005 leaves 4.4 at 24.
+// 150 steps of 0.01 hexagonal spacings take corner81's worst lattice peak from 32 to 128 points per
+// tile from 4.2-8.0 to 1.6-2.5, and at 24 from 7.7 to 4.05, at a spacing of 0.62 (docs/RESULTS.md,
+// "Lattice steps for filled levels"); steps of 0.005 left 24 at 4.4 (under the first spacing rule).
 inline constexpr double kFilledLatticeStep = 0.01;
 
 struct FilledLatticeOptions {

@@ -63,11 +63,11 @@ struct WangRefinement {
   double seam_spacing = 0.80;
   double later_seam_spacing = 0.65;
   // Lattice steps for the fill order's filled levels (wang_lattice.h, decorrelate_filled_level),
-  // on levels of at most filled_lattice_up_to points per tile (a step costs about T n^2 / 1.5
+  // on levels of at most filled_lattice_up_to points per tile (a step costs about 1.6 T n^2
   // phases; corner81's peaks from 192 per tile up meet 4 without them). On corner81 they take the
-  // lattice peak from 24 to 128 per tile from 4.2-8.0 to 4.0 or less, at a spacing of 0.62 instead
-  // of the fill's 0.66 and some 10 % more low-frequency power (docs/RESULTS.md, "Lattice steps for
-  // filled levels").
+  // lattice peak from 32 to 128 per tile from 4.2-8.0 to 1.6-2.5 (24 per tile: 7.7 to 4.05), at a
+  // spacing of 0.62 instead of the fill's 0.66 and 2-20 % more low-frequency power (docs/RESULTS.md,
+  // "Lattice steps for filled levels").
   int filled_lattice_steps = 150;
   double filled_lattice_spacing = 0.62;
   std::size_t filled_lattice_up_to = 128;
