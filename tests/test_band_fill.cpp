@@ -345,6 +345,27 @@ TEST(BandFill, FilledLatticeStepsMoveOnlyTheLevelAndKeepTheSpacing) {
   EXPECT_EQ(none, start);
 }
 
+// The filled levels' lattice steps cost as the square of the points per tile (the points times the
+// lattice frequencies below sqrt(n)); a run whose steps take a minute or more says so as it starts
+// (corner81 to 2048 per tile with every level stepped: about 2.4e11 phases, some 16 minutes), and
+// the defaults (levels up to 128) do not.
+TEST(BandFill, LongLatticeStepsSaySoAsTheyStart) {
+  const double ratio = filled_lattice_phases(81, 128, 256, 150) / filled_lattice_phases(81, 64, 128, 150);
+  EXPECT_GT(ratio, 3.5);
+  EXPECT_LT(ratio, 4.5);
+  EXPECT_EQ(filled_lattice_phases(81, 16, 16, 150), 0.0);
+  EXPECT_EQ(filled_lattice_phases(81, 16, 32, 0), 0.0);
+  EXPECT_EQ(filled_lattice_phases(8, 16, 32, 150) * 81.0 / 8.0, filled_lattice_phases(81, 16, 32, 150));
+  TempDir dir;
+  const std::string wang = "timeout 3 '" + std::string(BLUETILE_BINARY) +
+                           "' wang --set corner81 --points 16 --levels 8 --engine exact -o '" + dir.file("set.tiles") + "'";
+  const test::CommandResult all = test::run_command(wang + " --filled-lattice-up-to 2048");
+  EXPECT_NE(all.err.find("bluetile: note: the filled levels' lattice steps compute about"), std::string::npos) << all.err;
+  const test::CommandResult defaults = test::run_command(wang);
+  EXPECT_EQ(defaults.err.find("lattice steps compute"), std::string::npos) << defaults.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("set.tiles")));
+}
+
 // The fill's cost grows as N log N (each new kernel restamps every point so far; the choices
 // read only the blocks of the grid that changed): 100000 points visit about 2e10 places, minutes of
 // work on one thread, which the command says as it starts (and is stopped here right after).

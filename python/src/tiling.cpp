@@ -157,6 +157,7 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
     auto e = make_engine(choice);
     w.level.on_iteration = [](const bluetile::WangIteration&) { raise_pending_signals(); };
     w.level.fill.on_round = [](std::size_t, std::size_t) { raise_pending_signals(); };
+    w.level.on_filled_lattice_step = [](int, int) { raise_pending_signals(); };
     bluetile::TileSet tiles;
     try {
       tiles = bluetile::relax_wang_tiles(*e, w);

@@ -11,6 +11,7 @@
 #include "bluetile/core/memory_budget.h"
 #include "bluetile/core/output_file.h"
 #include "bluetile/relax/progressive.h"
+#include "bluetile/relax/wang_lattice.h"
 #include "bluetile/relax/wang_relax.h"
 #include "bluetile/tiling/seam_check.h"
 #include "bluetile/tiling/tile_set.h"
@@ -116,6 +117,18 @@ void run_wang(const WangCommandOptions& o) {
     if (seconds >= 60.0)
       std::fprintf(stderr, "bluetile: note: the fill order visits about %.2g grid places, about %s on one thread (it grows "
                    "as N log N in the points per tile)\n", fill.places_visited, duration_words(seconds).c_str());
+    double phases = 0.0;
+    for (std::size_t level_count = static_cast<std::size_t>(o.points); level_count < count;) {
+      const std::size_t next = level_count + level_size(level_count, 0, o.ratio);
+      if (next <= o.refine.filled_lattice_up_to)
+        phases += filled_lattice_phases(tiles, level_count, next, o.refine.filled_lattice_steps);
+      level_count = next;
+    }
+    const double step_seconds = phases * kFilledLatticeSecondsPerPhase;
+    if (step_seconds >= 60.0)
+      std::fprintf(stderr, "bluetile: note: the filled levels' lattice steps compute about %.2g phases, about %s on one "
+                   "thread (a step grows as the square of the points per tile; --filled-lattice-up-to limits them)\n",
+                   phases, duration_words(step_seconds).c_str());
   }
 
   auto engine = make_engine(o.engine);
@@ -138,6 +151,11 @@ void run_wang(const WangCommandOptions& o) {
     progress.update(fill_level * per_level + static_cast<long long>(done) * per_level / static_cast<long long>(total),
                     "level " + std::to_string(fill_level) + ": fill");
     if (done == total) ++fill_level;
+  };
+  // A filled level's lattice steps follow its last round: the bar stays at the level's end.
+  w.level.on_filled_lattice_step = [&](int done, int total) {
+    progress.update(static_cast<long long>(fill_level) * (o.warm + o.iterations), "level " + std::to_string(fill_level - 1) + ": lattice steps " +
+                                                             std::to_string(done) + "/" + std::to_string(total));
   };
   TileSet set = relax_wang_tiles(*engine, w);
   progress.finish();

@@ -209,6 +209,30 @@ void decorrelate_lattice(WangPoints& points, const LatticeDecorrelationOptions& 
   }
 }
 
+namespace {
+
+// The peak's band of a prefix of n: integer m in half the plane with 0 < |m|^2 < n.
+std::vector<Frequency> peak_band(std::size_t n) {
+  const int reach = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  std::vector<Frequency> fs;
+  for (int mx = 0; mx <= reach; ++mx)
+    for (int my = -reach; my <= reach; ++my) {
+      if (mx == 0 && my <= 0) continue;
+      if (static_cast<std::size_t>(mx * mx + my * my) < n) fs.push_back({mx, my, 1.0, false});
+    }
+  return fs;
+}
+
+}  // namespace
+
+double filled_lattice_phases(std::size_t tiles, std::size_t begin, std::size_t count, int steps) {
+  if (steps <= 0 || count <= begin) return 0.0;
+  const std::size_t middle = begin + (count - begin + 1) / 2;
+  // Per step: every point's phases into the sums of the prefixes it belongs to, then the level's.
+  const double per_tile = static_cast<double>(count + middle + (count - begin));
+  return static_cast<double>(steps) * static_cast<double>(tiles) * per_tile * static_cast<double>(peak_band(count).size());
+}
+
 void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<const std::vector<FillSource>> sources,
                               const FilledLatticeOptions& options) {
   if (options.iterations <= 0 || tiles.empty() || tiles[0].size() <= begin) return;
@@ -216,16 +240,9 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
   // The level's middle prefix and its boundary, and the peak's band of each: 0 < |m|^2 < k.
   const std::array<std::size_t, 2> prefixes{begin + (moving + 1) / 2, n};
   const int reach = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
-  std::vector<Frequency> fs;
+  const std::vector<Frequency> fs = peak_band(n);
   std::vector<std::size_t> squared;
-  for (int mx = 0; mx <= reach; ++mx)
-    for (int my = -reach; my <= reach; ++my) {
-      if (mx == 0 && my <= 0) continue;
-      const auto m2 = static_cast<std::size_t>(mx * mx + my * my);
-      if (m2 >= n) continue;
-      fs.push_back({mx, my, 1.0, false});
-      squared.push_back(m2);
-    }
+  for (const Frequency& f : fs) squared.push_back(static_cast<std::size_t>(f.mx * f.mx + f.my * f.my));
   const double largest_move = kFilledLatticeStep * hexagonal_spacing(static_cast<double>(n));
   const SpacingCheck check(tiles, sources, options.spacing);
   Phases phases(reach);
@@ -298,6 +315,7 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
           }
         }
       }
+    if (options.on_step) options.on_step(it + 1, options.iterations);
   }
 }
 

@@ -89,7 +89,9 @@ void fill_wang_level(BlockConfigurations& configurations, TileSet& set, int leve
   const WangRefinement& refine = options.refine;
   if (tiles[0].size() <= refine.filled_lattice_up_to)
     decorrelate_filled_level(tiles, begin, sources,
-                             {.iterations = refine.filled_lattice_steps, .spacing = refine.filled_lattice_spacing});
+                             {.iterations = refine.filled_lattice_steps,
+                              .spacing = refine.filled_lattice_spacing,
+                              .on_step = options.on_filled_lattice_step});
   for (std::size_t t = 0; t < set.tiles.size(); ++t) {
     Tile& tile = set.tiles[t];
     for (std::size_t i = begin; i < tiles[t].size(); ++i) {

@@ -94,6 +94,8 @@ struct WangLevelOptions {
   double void_sigma = 0.5;
   FillOptions fill{};  // the fill order's floor, window and grid; its seed is set from `seed`
   std::function<void(const WangIteration&)> on_iteration{};
+  // After each lattice step of a filled level (refine.filled_lattice_steps).
+  std::function<void(int done, int total)> on_filled_lattice_step{};
 };
 
 // An empty set of `kind`: every tile with its colours and no points.
