@@ -101,15 +101,18 @@ void run_wang(const WangCommandOptions& o) {
   check_points_per_tile(o, TileRules(w.kind).tile_count());
   if (w.level.rank_order == RankOrder::fill && o.levels > 1) {
     // The filled levels' grids (the last is the largest) and their time, which grows as N log N in
-    // the points per tile.
+    // the points per tile; the time of their lattice steps, which grows as the square.
     const std::size_t tiles = static_cast<std::size_t>(TileRules(w.kind).tile_count());
     std::size_t count = static_cast<std::size_t>(o.points);
     FillCost fill;
+    double phases = 0.0;
     for (int l = 1; l < o.levels; ++l) {
       const std::size_t add = level_size(count, 0, o.ratio);
       const FillCost level = band_fill_cost(count, add, tiles, w.level.fill);
       fill.bytes = std::max(fill.bytes, level.bytes);
       fill.places_visited += level.places_visited;
+      if (count + add <= o.refine.filled_lattice_up_to)
+        phases += filled_lattice_phases(tiles, count, count + add, o.refine.filled_lattice_steps);
       count += add;
     }
     check_memory(fill.bytes, "filling " + std::to_string(count) + " points per tile");
@@ -117,13 +120,6 @@ void run_wang(const WangCommandOptions& o) {
     if (seconds >= 60.0)
       std::fprintf(stderr, "bluetile: note: the fill order visits about %.2g grid places, about %s on one thread (it grows "
                    "as N log N in the points per tile)\n", fill.places_visited, duration_words(seconds).c_str());
-    double phases = 0.0;
-    for (std::size_t level_count = static_cast<std::size_t>(o.points); level_count < count;) {
-      const std::size_t next = level_count + level_size(level_count, 0, o.ratio);
-      if (next <= o.refine.filled_lattice_up_to)
-        phases += filled_lattice_phases(tiles, level_count, next, o.refine.filled_lattice_steps);
-      level_count = next;
-    }
     const double step_seconds = phases * kFilledLatticeSecondsPerPhase;
     if (step_seconds >= 60.0)
       std::fprintf(stderr, "bluetile: note: the filled levels' lattice steps compute about %.2g phases, about %s on one "
@@ -154,8 +150,9 @@ void run_wang(const WangCommandOptions& o) {
   };
   // A filled level's lattice steps follow its last round: the bar stays at the level's end.
   w.level.on_filled_lattice_step = [&](int done, int total) {
-    progress.update(static_cast<long long>(fill_level) * (o.warm + o.iterations), "level " + std::to_string(fill_level - 1) + ": lattice steps " +
-                                                             std::to_string(done) + "/" + std::to_string(total));
+    progress.update(static_cast<long long>(fill_level) * (o.warm + o.iterations),
+                    "level " + std::to_string(fill_level - 1) + ": lattice steps " + std::to_string(done) + "/" +
+                        std::to_string(total));
   };
   TileSet set = relax_wang_tiles(*engine, w);
   progress.finish();

@@ -36,10 +36,9 @@ Discrepancies discrepancies(std::span<const Point> points) {
   const std::size_t n = points.size();
   // The closed forms hold for [0, 1]^2: a NaN made every figure NaN, a point outside gave figures
   // of no set.
+  check_finite_points(points, "discrepancies");
   for (std::size_t i = 0; i < n; ++i) {
     const Point p = points[i];
-    if (!std::isfinite(p.x) || !std::isfinite(p.y))
-      throw Error("discrepancies: point " + std::to_string(i) + " is not finite");
     if (!(p.x >= 0.0 && p.x <= 1.0 && p.y >= 0.0 && p.y <= 1.0))
       throw Error("discrepancies: point " + std::to_string(i) + " (" + shortest_text(p.x) + ", " + shortest_text(p.y) +
                   ") lies outside [0, 1]^2");

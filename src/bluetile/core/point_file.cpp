@@ -454,10 +454,14 @@ void check_header(const std::vector<std::string>& header) {
 
 }  // namespace
 
-void check_written_points(const PointSet& set, const std::string& what) {
+void check_level_column(const PointSet& set, const std::string& what) {
   if (set.has_levels() && set.levels.size() != set.points.size())
     throw Error(what + "levels: " + std::to_string(set.levels.size()) + " for " + std::to_string(set.points.size()) +
                 " points");
+}
+
+void check_written_points(const PointSet& set, const std::string& what) {
+  check_level_column(set, what);
   for (std::size_t i = 0; i < set.points.size(); ++i) {
     const Point p = set.points[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y))

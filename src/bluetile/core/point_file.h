@@ -116,6 +116,10 @@ void write_points(OutputStream& out, const PointSet& set, const std::vector<std:
 // Throws Error as check_written_points does.
 std::string format_points(const PointSet& set, const std::vector<std::string>& header = {});
 
+// Throws Error("<what>levels: 1 for 2 points") for a level column whose length is neither 0 nor the
+// number of points (what reads a level per point read it past its end).
+void check_level_column(const PointSet& set, const std::string& what);
+
 // Throws Error unless a reader would take `set` back: "<what>point 2 (nan, 0.5) is not finite: no
 // reader would take it back", the same for a level outside 0 to kMaxLevel, and "<what>levels: 1
 // for 2 points" for a level column as long as no set (it was read past its end). `what` begins

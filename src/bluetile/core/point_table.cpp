@@ -470,9 +470,7 @@ TableView point_sets_table(std::span<const PointSet> sets) {
       throw Error("set " + std::to_string(k) + (levels ? " has no levels" : " has levels") + " but set 0 " +
                   (levels ? "has" : "has none") + ": a table has one set of columns");
     // value() read the level of every row: a shorter column was read past its end.
-    if (levels && sets[k].levels.size() != sets[k].points.size())
-      throw Error("set " + std::to_string(k) + ", levels: " + std::to_string(sets[k].levels.size()) + " for " +
-                  std::to_string(sets[k].points.size()) + " points");
+    check_level_column(sets[k], "set " + std::to_string(k) + ", ");
   }
   TableView view;
   view.sets = sets.size();

@@ -131,8 +131,7 @@ PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOpti
 int count_levels(const PointSet& set) {
   // A level column shorter or longer than the points, a negative level or one of INT_MAX (whose
   // + 1 overflowed) gave a count of no set.
-  if (set.has_levels() && set.levels.size() != set.points.size())
-    throw Error("levels: " + std::to_string(set.levels.size()) + " for " + std::to_string(set.points.size()) + " points");
+  check_level_column(set, "");
   for (std::size_t i = 0; i < set.levels.size(); ++i)
     if (set.levels[i] < 0 || set.levels[i] > kMaxLevel)
       throw Error("level " + std::to_string(set.levels[i]) + " of point " + std::to_string(i) + ": expected 0 to " +

@@ -239,13 +239,12 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
   const std::size_t n = tiles[0].size(), moving = n - begin;
   // The level's middle prefix and its boundary, and the peak's band of each: 0 < |m|^2 < k.
   const std::array<std::size_t, 2> prefixes{begin + (moving + 1) / 2, n};
-  const int reach = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   const std::vector<Frequency> fs = peak_band(n);
   std::vector<std::size_t> squared;
   for (const Frequency& f : fs) squared.push_back(static_cast<std::size_t>(f.mx * f.mx + f.my * f.my));
   const double largest_move = kFilledLatticeStep * hexagonal_spacing(static_cast<double>(n));
   const SpacingCheck check(tiles, sources, options.spacing);
-  Phases phases(reach);
+  Phases phases(reach_of(fs));
   std::array<std::vector<Complex>, 2> sums, tile_sums, weights;
   std::array<std::vector<double>, 2> own;
   std::vector<Point> gradient(tiles.size() * moving);

@@ -18,7 +18,7 @@ std::vector<Point> sample_density(const DensityGrid& density, const Domain& doma
   std::vector<double> cumulative(density.texels.size() + 1, 0.0);
   for (std::size_t k = 0; k < density.texels.size(); ++k) cumulative[k + 1] = cumulative[k] + density.texels[k];
   const double total = cumulative.back();
-  if (!any_positive || !(total > 0.0)) throw Error("cannot sample a density that is zero everywhere");
+  if (!any_positive) throw Error("cannot sample a density that is zero everywhere");
   // u can round up to the total: it then takes the last texel that has any density.
   std::size_t last = density.texels.size() - 1;
   while (density.texels[last] == 0.0f) --last;
