@@ -578,3 +578,22 @@ def test_ctrl_c_ends_a_long_call(call):
         assert time.monotonic() - started < 60  # the calls as asked would take hours
     finally:
         signal.signal(signal.SIGINT, previous)
+
+
+def test_ctrl_c_ends_the_filled_levels_lattice_steps():
+    # The steps of a filled level come after its last fill round (whose callback answered Ctrl-C):
+    # asked for 100000 of them (about 2 minutes here), the call now ends within a step. The signal
+    # comes after 4 s, when level 0 and the fill (about 1.5 s) are done.
+    def interrupt():
+        time.sleep(4)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        threading.Thread(target=interrupt).start()
+        started = time.monotonic()
+        with pytest.raises(KeyboardInterrupt):
+            bt.wang_tiles("corner81", points=16, iterations=1, warm=0, levels=2, filled_lattice_steps=100000)
+        assert time.monotonic() - started < 30
+    finally:
+        signal.signal(signal.SIGINT, previous)

@@ -34,6 +34,17 @@ TEST(Progress, ATerminalSeesTotalsAndTheTimeLeft) {
   EXPECT_EQ(piped.err, "") << "progress is for terminals only";
 }
 
+// A filled level's lattice steps come after its last fill round: the line names them (it showed
+// the fill's last round while they ran, which at 2048 points per tile would be minutes).
+TEST(Progress, AWangRunShowsTheFilledLevelsLatticeSteps) {
+  test::TempDir dir;
+  TerminalRun wang = run_on_terminal({"wang", "--set", "wang8", "--points", "8", "--iterations", "2", "--warm", "1",
+                                      "--levels", "3", "--engine", "exact", "-o", dir.file("set.tiles")},
+                                     dir.path(), 60);
+  EXPECT_EQ(wang.exit_code, 0) << wang.terminal;
+  EXPECT_NE(wang.terminal.find("level 2: lattice steps 150/150"), std::string::npos) << wang.terminal;
+}
+
 // The lines drawn on a terminal: what lies between carriage returns and line feeds.
 std::vector<std::string> drawn_lines(const std::string& terminal) {
   std::vector<std::string> lines;
