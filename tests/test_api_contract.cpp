@@ -20,13 +20,17 @@
 #include "bluetile/core/point_file.h"
 #include "bluetile/core/point_table.h"
 #include "bluetile/core/rng.h"
+#include "bluetile/core/text.h"
+#include "bluetile/relax/band_fill.h"
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/relax/stipple.h"
 #include "bluetile/relax/void_order.h"
 #include "bluetile/sampling/density_sampling.h"
 #include "bluetile/sampling/plot_order.h"
+#include "bluetile/tiling/density_thinning.h"
 #include "bluetile/voronoi/exact_engine.h"
+#include "bluetile/voronoi/site_grid.h"
 #include "test_support.h"
 
 namespace bluetile {
@@ -293,6 +297,103 @@ TEST(ApiContract, PointSetsAreCheckedBeforeUse) {
   PointSet plane;
   plane.points = {{3.5, -0.5}};
   EXPECT_EQ(format_points(plane), "3.5 -0.5\n");
+}
+
+// Rng::point drew NaN coordinates for a NaN or zero side (NaN times 0) and 0 for a negative one.
+TEST(ApiContract, RandomPointsNeedADomain) {
+  Rng rng(1);
+  EXPECT_EQ(error_of([&] { rng.point(Domain{{0.0, 1.0}}); }), "random point: domain 0 x 1 is not a finite positive size");
+  EXPECT_EQ(error_of([&] { rng.point(Domain{{kNaN, 1.0}}); }), "random point: domain nan x 1 is not a finite positive size");
+  EXPECT_EQ(error_of([&] { rng.point(Domain{{-2.0, 1.0}}); }), "random point: domain -2 x 1 is not a finite positive size");
+  const Point p = rng.point(Domain{{2.0, 0.5}});
+  EXPECT_TRUE(p.x >= 0.0 && p.x < 2.0 && p.y >= 0.0 && p.y < 0.5);
+}
+
+// Points outside [0, 1)^2 fell into a border bucket of the nearest-neighbour search, the gap
+// placement and the fill, where the searches did not look for them: wrong distances (2 of 200
+// here), places chosen as if the point were elsewhere. On the torus they are now their copy
+// inside; in a bounded domain, or in a tile, they are refused, as NaN points are everywhere.
+TEST(ApiContract, PointsOutsideTheDomainAreWrappedOnTheTorusAndRefusedElsewhere) {
+  const std::vector<Point> inside = uniform_random_points(200, 3);
+  std::vector<Point> outside = inside;
+  for (std::size_t i = 0; i < outside.size(); i += 7) outside[i] += Point{3.0, -2.0};
+  outside[5] += Point{-1.0, 4.0};
+  // Their copies inside: `inside` to rounding (x + 3 - 3 need not be x).
+  std::vector<Point> copies = outside;
+  for (Point& p : copies) p = wrap_point(p, Domain{});
+  const std::vector<double> nearest = nearest_neighbour_distances(outside);
+  const std::vector<double> expected = nearest_neighbour_distances(inside);
+  ASSERT_EQ(nearest.size(), expected.size());
+  for (std::size_t i = 0; i < nearest.size(); ++i) EXPECT_NEAR(nearest[i], expected[i], 1e-12) << "point " << i;
+  EXPECT_EQ(place_new_points(outside, 30, Placement::gaps, 4), place_new_points(copies, 30, Placement::gaps, 4));
+  EXPECT_EQ(band_fill_torus(outside, 20, FillOptions{}), band_fill_torus(copies, 20, FillOptions{}));
+
+  EXPECT_EQ(error_of([&] { nearest_neighbour_distances(outside, Domain{}, Boundary::bounded); }),
+            "nearest-neighbour distances: point 0 (" + shortest_text(outside[0].x) + ", " +
+                shortest_text(outside[0].y) + ") lies outside the bounded domain 1 x 1");
+  const std::vector<std::vector<Point>> tiles{{{0.5, 0.5}, {1.0, 0.25}}};
+  std::vector<std::vector<FillSource>> sources(1);
+  sources[0].push_back({0, Point{0.0, 0.0}, 1.0});
+  EXPECT_EQ(error_of([&] { band_fill(tiles, sources, 3, FillOptions{}); }),
+            "band fill: tile 0, point 1 (1, 0.25) lies outside [0, 1)^2");
+
+  std::vector<Point> with_nan = inside;
+  with_nan[4] = {kNaN, 0.5};
+  EXPECT_EQ(error_of([&] { place_new_points(with_nan, 30, Placement::gaps, 4); }), "new points: point 4 is not finite");
+  EXPECT_EQ(error_of([&] { band_fill_torus(with_nan, 20, FillOptions{}); }), "band fill: point 4 is not finite");
+}
+
+// A bucket size of 0 asked for 2^14 x 2^14 buckets (a gigabyte of bucket starts), NaN for a
+// number of buckets of no value (lround of NaN).
+TEST(ApiContract, SiteGridsNeedAPositiveBucketSize) {
+  const std::vector<Point> sites = uniform_random_points(50, 1);
+  EXPECT_EQ(error_of([&] { SiteGrid(sites, Domain{}, 0.0); }), "site grid: sites per bucket 0: expected a finite positive number");
+  EXPECT_EQ(error_of([&] { SiteGrid(sites, Domain{}, kNaN); }), "site grid: sites per bucket nan: expected a finite positive number");
+  EXPECT_EQ(error_of([&] { SiteGrid(sites, Domain{}, -1.0); }), "site grid: sites per bucket -1: expected a finite positive number");
+  EXPECT_EQ(error_of([&] { SiteGrid(sites, Domain{{kInf, 1.0}}, 2.0); }), "site grid: domain inf x 1 is not a finite positive size");
+  EXPECT_EQ(SiteGrid(sites, Domain{}, 2.0).site_indices().size(), 50u);
+}
+
+// fit_map_rectangle gave the window back for a map of 0 or fewer texels, a NaN rectangle for a
+// NaN window and a line for a window of no width.
+TEST(ApiContract, MapFittingChecksTheMapAndTheWindow) {
+  EXPECT_EQ(error_of([] { fit_map_rectangle(Window{}, 0, 10, MapFit::contain); }), "density map of 0 x 10 texels: expected at least 1 x 1");
+  EXPECT_EQ(error_of([] { fit_map_rectangle(Window{}, -3, 10, MapFit::stretch); }), "density map of -3 x 10 texels: expected at least 1 x 1");
+  EXPECT_EQ(error_of([] { fit_map_rectangle(Window{0, 0, kNaN, 1}, 3, 10, MapFit::contain); }),
+            "map window must be finite with x1 > x0 and y1 > y0");
+  EXPECT_EQ(error_of([] { fit_map_rectangle(Window{0, 0, 0, 1}, 3, 10, MapFit::cover); }),
+            "map window must be finite with x1 > x0 and y1 > y0");
+  const Window fitted = fit_map_rectangle(Window{0, 0, 2, 1}, 1, 1, MapFit::contain);
+  EXPECT_DOUBLE_EQ(fitted.x0, 0.5);
+  EXPECT_DOUBLE_EQ(fitted.x1, 1.5);
+  EXPECT_DOUBLE_EQ(fitted.y1, 1.0);
+}
+
+// The periodogram's memory estimate took any size (17440 bytes for -2) and the normalised
+// frequency divided by a count of 0 (infinity) or an area of 0.
+TEST(ApiContract, SpectralHelpersCheckTheirSizes) {
+  EXPECT_EQ(error_of([] { periodogram_memory_bytes(0, -2); }), "periodogram memory: size -2: expected at least 2");
+  EXPECT_EQ(error_of([] { periodogram_memory_bytes(100, 0); }), "periodogram memory: size 0: expected at least 2");
+  EXPECT_GT(periodogram_memory_bytes(100, 64), 8u * 64 * 64);
+  // Past what compute_periodogram takes, still estimated: the memory checks refuse such planes first.
+  EXPECT_GT(periodogram_memory_bytes(100, 80270), std::size_t{8} * 80270 * 80270);
+  EXPECT_EQ(error_of([] { normalised_frequency(3.0, 0); }), "normalised frequency: no points, so no Nyquist frequency");
+  EXPECT_EQ(error_of([] { normalised_frequency(3.0, 10, 0.0); }), "normalised frequency: area 0 is not a finite positive number");
+  EXPECT_EQ(error_of([] { normalised_frequency(3.0, 10, kNaN); }), "normalised frequency: area nan is not a finite positive number");
+  EXPECT_DOUBLE_EQ(normalised_frequency(5.0, 100), 1.0);
+}
+
+// relax_lloyd over no scenes ran its 80 iterations of nothing and said so.
+TEST(ApiContract, RelaxingNoScenesRunsNoIteration) {
+  ExactEngine engine;
+  std::vector<Scene> none;
+  int calls = 0;
+  LloydOptions options;
+  options.on_iteration = [&](const LloydIteration&) { ++calls; };
+  const LloydResult result = relax_lloyd(engine, none, options);
+  EXPECT_EQ(result.iterations, 0);
+  EXPECT_EQ(result.last.iteration, 0);
+  EXPECT_EQ(calls, 0);
 }
 
 }  // namespace

@@ -6,19 +6,45 @@
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 
-std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points, const Domain& domain,
+namespace {
+
+// Outside the domain a point's bucket was clamped to the border, where the ring search did not
+// look for it: periodic points are taken as their copy inside (the same torus distances), bounded
+// ones are refused. Returns the points to measure: `given`, or `wrapped` filled with the copies.
+const std::vector<Point>& points_inside(const std::vector<Point>& given, const Domain& domain, Boundary boundary,
+                                        std::vector<Point>& wrapped) {
+  for (std::size_t i = 0; i < given.size(); ++i) {
+    const Point p = given[i];
+    if (p.x >= 0.0 && p.x < domain.size.x && p.y >= 0.0 && p.y < domain.size.y) continue;
+    if (boundary == Boundary::bounded)
+      throw Error("nearest-neighbour distances: point " + std::to_string(i) + " (" + shortest_text(p.x) + ", " +
+                  shortest_text(p.y) + ") lies outside the bounded domain " + shortest_text(domain.size.x) + " x " +
+                  shortest_text(domain.size.y));
+    wrapped.resize(given.size());
+    for (std::size_t j = 0; j < given.size(); ++j) wrapped[j] = wrap_point(given[j], domain);
+    return wrapped;
+  }
+  return given;
+}
+
+}  // namespace
+
+std::vector<double> nearest_neighbour_distances(const std::vector<Point>& given, const Domain& domain,
                                                 Boundary boundary) {
-  const std::size_t n = points.size();
+  const std::size_t n = given.size();
   if (n == 0) throw Error("nearest-neighbour distances need at least one point");
   const bool periodic = boundary == Boundary::periodic;
   if (!periodic && n < 2) throw Error("nearest-neighbour distances in a bounded domain need at least two points");
   // A NaN side made the ring search below endless; a zero or negative one gave nonsense distances.
   check_domain(domain, "nearest-neighbour distances");
   // A NaN would never be proved nearest: the ring search below would not end.
-  check_finite_points(points, "nearest-neighbour distances");
+  check_finite_points(given, "nearest-neighbour distances");
+  std::vector<Point> wrapped;
+  const std::vector<Point>& points = points_inside(given, domain, boundary, wrapped);
   // Buckets of side >= the typical spacing; rings grow until the nearest found is provably nearest.
   double side = std::sqrt(2.0 * domain.area() / static_cast<double>(n));
   long columns = std::clamp<long>(static_cast<long>(domain.size.x / side), 1, 1 << 14);

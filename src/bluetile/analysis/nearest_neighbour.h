@@ -15,7 +15,8 @@ namespace bluetile {
 // For each point, the distance to its nearest other point: on the torus (periodic images
 // included, so a lone point's nearest neighbour is its own copy one period away; needs >= 1
 // point), or Euclidean inside the domain rectangle for Boundary::bounded (needs >= 2 points).
-// Throws Error for too few points, a point that is not finite and a domain check_domain refuses.
+// A periodic point outside the domain counts as its copy inside. Throws Error for too few points,
+// a point that is not finite or (bounded) outside the domain, and a domain check_domain refuses.
 std::vector<double> nearest_neighbour_distances(const std::vector<Point>& points, const Domain& domain = {},
                                                 Boundary boundary = Boundary::periodic);
 

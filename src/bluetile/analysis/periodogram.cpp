@@ -121,6 +121,11 @@ int default_periodogram_size(std::size_t count) {
   return 2 * static_cast<int>(half);
 }
 
+void check_periodogram_size(int size) {
+  if (size < 2 || size % 2 != 0 || size > 65536)
+    throw Error("periodogram size must be even, 2 to 65536, got " + std::to_string(size));
+}
+
 Periodogram compute_periodogram(std::span<const Point> points, int size,
                                 const std::function<void(std::size_t, std::size_t)>& progress) {
   if (periodogram_uses_nufft(points.size(), size)) return compute_periodogram_nufft(points, size, progress);
@@ -144,8 +149,7 @@ bool periodogram_uses_nufft(std::size_t count, int size) {
 Periodogram compute_periodogram_direct(std::span<const Point> points, int size,
                                        const std::function<void(std::size_t, std::size_t)>& progress) {
   if (points.empty()) throw Error("periodogram of an empty point set");
-  if (size < 2 || size % 2 != 0 || size > 65536)
-    throw Error("periodogram size must be even, 2 to 65536, got " + std::to_string(size));
+  check_periodogram_size(size);
   // As compute_periodogram_nufft: a NaN gave a NaN spectrum without a word.
   check_finite_points(points, "periodogram");
   const int half = size / 2;

@@ -56,8 +56,13 @@ bool periodogram_uses_nufft(std::size_t count, int size);
 // Side M of the non-uniform FFT's grid for size F.
 std::size_t periodogram_nufft_grid(int size);
 
+// Throws Error("periodogram size must be even, 2 to 65536, got <size>") for a size the
+// periodograms above refuse.
+void check_periodogram_size(int size);
+
 // Bytes compute_periodogram allocates at its peak for `count` points and size F (on the
-// current thread count), for up-front memory checks.
+// current thread count), for up-front memory checks (also for sizes past 65536, which
+// compute_periodogram refuses). Throws Error for a size below 2 (-2 gave 17440 bytes).
 std::size_t periodogram_memory_bytes(std::size_t count, int size);
 
 // Throws Error unless `periodogram` holds size^2 values (a Periodogram filled by hand with fewer

@@ -134,6 +134,8 @@ double unit_coordinate(double c) {
 std::size_t periodogram_nufft_grid(int size) { return grid_size(size); }
 
 std::size_t periodogram_memory_bytes(std::size_t count, int size) {
+  // Sizes past 65536 are estimated, so that a plane too large is refused for its memory first.
+  if (size < 2) throw Error("periodogram memory: size " + std::to_string(size) + ": expected at least 2");
   const auto f = static_cast<double>(size);
   const auto m = static_cast<double>(grid_size(size));
   // The result (F^2 doubles), the half spectrum after the x pass ((M + 8) (F/2 + 1) complex),
@@ -148,8 +150,7 @@ std::size_t periodogram_memory_bytes(std::size_t count, int size) {
 Periodogram compute_periodogram_nufft(std::span<const Point> points, int size,
                                       const std::function<void(std::size_t, std::size_t)>& progress) {
   if (points.empty()) throw Error("periodogram of an empty point set");
-  if (size < 2 || size % 2 != 0 || size > 65536)
-    throw Error("periodogram size must be even, 2 to 65536, got " + std::to_string(size));
+  check_periodogram_size(size);
   const std::size_t n = points.size();
   if (n > std::size_t{0xffffffff}) throw Error("periodogram: more than 2^32 - 1 points");
   const int half = size / 2;

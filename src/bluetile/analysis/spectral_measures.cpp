@@ -12,6 +12,7 @@
 #include "bluetile/analysis/pair_correlation.h"
 #include "bluetile/core/error.h"
 #include "bluetile/core/parallel.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 namespace {
@@ -43,6 +44,9 @@ double blackman(double x, double half_width) {
 }  // namespace
 
 double normalised_frequency(double frequency, std::size_t count, double area) {
+  if (count == 0) throw Error("normalised frequency: no points, so no Nyquist frequency");
+  if (!(area > 0.0 && std::isfinite(area)))
+    throw Error("normalised frequency: area " + exact_text(area) + " is not a finite positive number");
   return frequency / (0.5 * std::sqrt(static_cast<double>(count) / area));
 }
 

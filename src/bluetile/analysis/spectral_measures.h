@@ -35,7 +35,8 @@
 namespace bluetile {
 
 // The Nyquist frequency of a square lattice: |k| = sqrt(N / A) / 2 in integer frequencies is
-// nu = 1 on the periodogram plots' axis (f / (sqrt(N / A) / 2)).
+// nu = 1 on the periodogram plots' axis (f / (sqrt(N / A) / 2)). Throws Error for no points or
+// an area that is not a finite positive number (they gave infinity and NaN).
 double normalised_frequency(double frequency, std::size_t count, double area = 1.0);
 
 // psa's number of RDF bins and of spectrum samples, int(100 sqrt N).

@@ -129,8 +129,7 @@ TilingMetrics measure_tiling(std::span<const Point> points, int period, int tile
 Periodogram tiled_periodogram(std::span<const std::vector<Point>> tile_points, std::span<const int> cell_tiles,
                               int period, int size) {
   if (period < 1) throw Error("tiled periodogram: period must be at least 1");
-  if (size < 2 || size % 2 != 0 || size > 65536)
-    throw Error("periodogram size must be even, 2 to 65536, got " + std::to_string(size));
+  check_periodogram_size(size);
   const std::size_t cells = static_cast<std::size_t>(period) * static_cast<std::size_t>(period);
   if (cell_tiles.size() != cells) throw Error("tiled periodogram: cell list does not match the period");
   const std::size_t tiles = tile_points.size();

@@ -47,6 +47,7 @@ std::uint64_t Rng::below(std::uint64_t bound) {
 }
 
 Point Rng::point(const Domain& domain) {
+  check_domain(domain, "random point");
   double x = uniform() * domain.size.x;
   double y = uniform() * domain.size.y;
   // uniform() < 1, but the product can round up to the period for non-unit domains.

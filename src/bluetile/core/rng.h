@@ -21,7 +21,8 @@ class Rng {
   // Uniform integer in [0, bound), bound > 0, without modulo bias. Throws Error for bound 0 (it
   // divided by zero).
   std::uint64_t below(std::uint64_t bound);
-  // Uniform point in the domain.
+  // Uniform point in the domain. Throws Error for a domain check_domain refuses (a zero, negative
+  // or NaN side gave NaN or zero coordinates).
   Point point(const Domain& domain);
 
  private:

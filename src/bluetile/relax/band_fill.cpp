@@ -406,8 +406,16 @@ class Filler {
 void check_layout(std::span<const std::vector<Point>> tiles, std::span<const std::vector<FillSource>> sources) {
   if (tiles.empty()) throw Error("band fill: no tile");
   if (sources.size() != tiles.size()) throw Error("band fill: one source list per tile is needed");
-  for (const std::vector<Point>& tile : tiles)
-    if (tile.size() != tiles[0].size()) throw Error("band fill: every tile must hold the same number of points");
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    if (tiles[t].size() != tiles[0].size()) throw Error("band fill: every tile must hold the same number of points");
+    // A NaN or a point outside its tile fell out of the grid's buckets without a word.
+    for (std::size_t i = 0; i < tiles[t].size(); ++i) {
+      const Point p = tiles[t][i];
+      if (!(p.x >= 0.0 && p.x < 1.0 && p.y >= 0.0 && p.y < 1.0))
+        throw Error("band fill: tile " + std::to_string(t) + ", point " + std::to_string(i) + " (" + shortest_text(p.x) +
+                    ", " + shortest_text(p.y) + ") lies outside [0, 1)^2");
+    }
+  }
   for (std::size_t t = 0; t < sources.size(); ++t) {
     bool self = false;
     for (const FillSource& s : sources[t]) {
@@ -468,7 +476,9 @@ FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles
 }
 
 std::vector<Point> band_fill_torus(std::span<const Point> existing, std::size_t add, const FillOptions& options) {
-  const std::vector<std::vector<Point>> tiles{std::vector<Point>(existing.begin(), existing.end())};
+  check_finite_points(existing, "band fill");
+  std::vector<std::vector<Point>> tiles{std::vector<Point>(existing.begin(), existing.end())};
+  for (Point& p : tiles[0]) p = wrap_point(p, Domain{});  // on the torus, 1.25 is 0.25
   std::vector<std::vector<FillSource>> sources(1);
   for (int dy = -1; dy <= 1; ++dy)
     for (int dx = -1; dx <= 1; ++dx) sources[0].push_back({0, Point{static_cast<double>(dx), static_cast<double>(dy)}, 1.0});

@@ -60,7 +60,8 @@ struct FillOptions {
 // before the new ones; every tile must hold the same number. sources[t] lists where points count
 // near tile t; it must hold {t, (0, 0), 1}. Returns each tile's new points in rank order: round r
 // gives every tile its point r, tile by tile in index order. The same bits for any thread count.
-// Throws Error for inconsistent input or options outside their ranges.
+// Throws Error for inconsistent input, a point outside [0, 1)^2 or not finite, or options outside
+// their ranges.
 std::vector<std::vector<Point>> band_fill(std::span<const std::vector<Point>> tiles,
                                           std::span<const std::vector<FillSource>> sources, std::size_t add,
                                           const FillOptions& options);
@@ -77,7 +78,9 @@ struct FillCost {
 FillCost band_fill_cost(std::size_t existing, std::size_t add, std::size_t tiles, const FillOptions& options);
 inline constexpr double kFillSecondsPerPlace = 6e-9;
 
-// The untiled form on the unit torus: `existing` points first (kept), then `add` filled ones.
+// The untiled form on the unit torus: the `add` points filled in rank order after `existing`.
+// An existing point outside [0, 1)^2 counts as its copy inside (the result is the same); one that
+// is not finite is an Error.
 std::vector<Point> band_fill_torus(std::span<const Point> existing, std::size_t add, const FillOptions& options);
 
 }  // namespace bluetile

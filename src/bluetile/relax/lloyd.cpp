@@ -210,6 +210,7 @@ LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, cons
   check_whole_field("iterations", options.iterations, 0, std::numeric_limits<int>::max());
   check_real_field("tolerance", options.tolerance, 0.0, std::numeric_limits<double>::infinity());
   LloydResult result;
+  if (scenes.empty()) return result;  // nothing to relax: no iteration runs (it reported 80)
   std::vector<SceneCells> cells(scenes.size());
   // The scenes' own requests, given back however the run ends (an interrupt throws).
   struct Requests {

@@ -117,8 +117,8 @@ inline constexpr std::size_t kGridOrderSites = std::size_t{1} << 13;
 // the result still is: the same bits for any thread count. It is not bit for bit the result of
 // relaxing in the caller's order: a cell's sums start at its neighbour of lowest index
 // (periodic_delaunay.h), and coincident sites leave the cell to the lower index.
-// Throws Error for iterations below 0 or a tolerance that is negative or not a number (both were
-// run as 0).
+// No scenes: no iteration runs (result.iterations 0). Throws Error for iterations below 0 or a
+// tolerance that is negative or not a number (both were run as 0).
 LloydResult relax_lloyd(CentroidEngine& engine, std::vector<Scene>& scenes, const LloydOptions& options);
 
 // One scene, given back however the run ends (an interrupt throws).

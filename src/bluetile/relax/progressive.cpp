@@ -64,6 +64,9 @@ constexpr int kCandidates = 10;
 std::vector<Point> place_new_points(const std::vector<Point>& existing, std::size_t count, Placement placement,
                                     std::uint64_t seed) {
   check_set_points(count, "new points: count");
+  // A NaN fell out of the grid's buckets; a point outside [0, 1)^2 went to the nearest border
+  // bucket, where the search did not look for it.
+  check_finite_points(existing, "new points");
   Rng rng(seed);
   std::vector<Point> added;
   added.reserve(count);
@@ -72,7 +75,7 @@ std::vector<Point> place_new_points(const std::vector<Point>& existing, std::siz
     return added;
   }
   GrowingGrid grid(existing.size() + count);
-  for (Point p : existing) grid.insert(p);
+  for (Point p : existing) grid.insert(wrap_point(p, Domain{}));
   for (std::size_t i = 0; i < count; ++i) {
     Point best{};
     double best_distance = -1.0;

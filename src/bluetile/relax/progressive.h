@@ -66,8 +66,9 @@ struct LevelOptions {
 // for add 0 or above kMaxSetPoints, a base count_levels refuses, and as relax_lloyd does.
 PointSet add_level(CentroidEngine& engine, const PointSet& base, const LevelOptions& options);
 
-// Initial positions of `count` new points among `existing` ones (unit torus). Throws Error above
-// kMaxSetPoints (check_set_points).
+// Initial positions of `count` new points among `existing` ones (unit torus; an existing point
+// outside [0, 1)^2 counts as its copy inside). Throws Error above kMaxSetPoints (check_set_points)
+// and for an existing point that is not finite.
 std::vector<Point> place_new_points(const std::vector<Point>& existing, std::size_t count, Placement placement,
                                     std::uint64_t seed);
 

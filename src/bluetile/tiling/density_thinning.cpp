@@ -19,6 +19,13 @@ void check_fraction(double fraction, const char* what) {
     throw Error(std::string(what) + " must lie in (0, 1], got " + exact_text(fraction));
 }
 
+// A window or map rectangle of no area or with a NaN side placed nothing, or NaN coordinates.
+void check_map_rectangle(const Window& w, std::string_view what) {
+  if (!(std::isfinite(w.x0) && std::isfinite(w.y0) && std::isfinite(w.x1) && std::isfinite(w.y1) && w.x1 > w.x0 &&
+        w.y1 > w.y0))
+    throw Error(std::string(what) + " must be finite with x1 > x0 and y1 > y0");
+}
+
 }  // namespace
 
 MapFit parse_map_fit(const std::string& name) {
@@ -37,7 +44,11 @@ const char* map_fit_name(MapFit fit) {
 }
 
 Window fit_map_rectangle(const Window& window, int width, int height, MapFit fit) {
-  if (fit == MapFit::stretch || width < 1 || height < 1) return window;
+  check_map_rectangle(window, "map window");
+  if (width < 1 || height < 1)
+    throw Error("density map of " + std::to_string(width) + " x " + std::to_string(height) +
+                " texels: expected at least 1 x 1");
+  if (fit == MapFit::stretch) return window;
   const double map_aspect = static_cast<double>(width) / height;
   const double window_aspect = window.width() / window.height();
   // contain spans the window's width when the map is the wider one; cover spans it otherwise.
@@ -94,9 +105,7 @@ Thinning Thinning::from_map(int width, int height, std::span<const float> texels
                             double max_fraction) {
   check_fraction(max_fraction, "maximum density fraction");
   check_density_map(width, height, texels);
-  if (!(std::isfinite(rectangle.x0) && std::isfinite(rectangle.y0) && std::isfinite(rectangle.x1) &&
-        std::isfinite(rectangle.y1) && rectangle.x1 > rectangle.x0 && rectangle.y1 > rectangle.y0))
-    throw Error("density map rectangle must be finite with x1 > x0 and y1 > y0");
+  check_map_rectangle(rectangle, "density map rectangle");
   float largest = 0.0f;
   for (float v : texels) largest = std::max(largest, v);
   Thinning t;

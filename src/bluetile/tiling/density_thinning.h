@@ -45,7 +45,9 @@ const char* map_fit_name(MapFit fit);
 
 // The rectangle of the plane a `width` x `height` texel map covers when placed on `window` by
 // `fit`: the window itself for stretch (and for a map of the window's aspect, to the bit), else the
-// centred rectangle of the map's aspect that fits inside it (contain) or holds it (cover).
+// centred rectangle of the map's aspect that fits inside it (contain) or holds it (cover). Throws
+// Error for a map smaller than 1 x 1 texel or a window that is not finite with x1 > x0 and y1 > y0
+// (they came back as the window, or as NaN).
 Window fit_map_rectangle(const Window& window, int width, int height, MapFit fit);
 
 class Thinning {

@@ -5,11 +5,18 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <string>
+
+#include "bluetile/core/error.h"
+#include "bluetile/core/text.h"
 
 namespace bluetile {
 
 SiteGrid::SiteGrid(std::span<const Point> sites, const Domain& domain, double sites_per_bucket, bool with_search_order)
     : domain_(domain) {
+  check_domain(domain, "site grid");
+  if (!(sites_per_bucket > 0.0 && std::isfinite(sites_per_bucket)))
+    throw Error("site grid: sites per bucket " + exact_text(sites_per_bucket) + ": expected a finite positive number");
   const std::size_t n = sites.size();
   const double bucket_side = std::sqrt(sites_per_bucket * domain_.area() / static_cast<double>(std::max<std::size_t>(n, 1)));
   columns_ = std::clamp<long>(std::lround(domain_.size.x / bucket_side), 1, 1 << 14);

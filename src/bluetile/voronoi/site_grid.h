@@ -22,7 +22,9 @@ class SiteGrid {
  public:
   // Buckets about `sites_per_bucket` sites each on average (at least one bucket, at most
   // 2^14 per axis). Sites must lie inside the domain. Without `with_search_order` the grid has
-  // no search_order() (it costs a sort per grid; only searches from sites need it).
+  // no search_order() (it costs a sort per grid; only searches from sites need it). Throws Error
+  // for a domain check_domain refuses and for sites_per_bucket not finite and positive (0 asked
+  // for 2^28 buckets, NaN for a number of buckets of no value).
   SiteGrid(std::span<const Point> sites, const Domain& domain, double sites_per_bucket, bool with_search_order = true);
 
   // A bucket offset and the least distance from any point of bucket (0,0) to bucket (dx,dy).
