@@ -82,6 +82,10 @@ TEST(PointFile, DomainLinesWithATypoAreRefusedNotTakenForComments) {
             "pts.txt:2: '# domain periodic extra'" + fix);
   EXPECT_EQ(parse_error("# Domain: Bounded\n0.1 0.2\n"), "pts.txt:1: '# Domain: Bounded'" + fix);
   EXPECT_EQ(parse_error("0.1 0.2\n# domain periodc\n"), "pts.txt:2: '# domain periodc'" + fix);
+  // The boundary followed by punctuation and more words was prose: a bounded set went on the torus.
+  EXPECT_EQ(parse_error("# domain bounded, unit square\n0.1 0.2\n"), "pts.txt:1: '# domain bounded, unit square'" + fix);
+  EXPECT_EQ(parse_error("# domain periodic; psa's convention\n0.1 0.2\n"),
+            "pts.txt:1: '# domain periodic; psa's convention'" + fix);
   EXPECT_EQ(parse_error("0.1 0.2 # domain boundd\n"), "");  // after a point: a comment on the point
   // Prose about the domain stays a comment.
   for (const char* prose : {"# domain square\n", "# domain bounds 0 0 64 64\n", "# domain [0, 64)^2\n", "# domain\n",

@@ -200,7 +200,8 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 
 // What a comment (the text after '#') says about the domain. A comment that looks meant as a
 // domain line but is not ("domain bounde", "Domain Bounded", "domain periodic extra") is
-// `malformed`: read as a comment, it left the set on the default torus without a word. Prose that
+// `malformed` ("domain bounded, unit square" too): read as a comment, it left the set on the
+// default torus without a word. Prose that
 // merely starts with "domain" ("domain [0, 64)^2") is `none`, a comment.
 enum class DomainComment { none, periodic, bounded, malformed };
 
@@ -218,7 +219,10 @@ DomainComment classify_comment(std::string_view comment) {
   if (first != "domain" || words.count < 2) return DomainComment::none;
   const std::string second = lower_case(std::string(words.kept[1]));
   constexpr std::size_t kTypoEdits = 2;
-  const bool boundary_word = second == "periodic" || second == "bounded";
+  // "# domain bounded, unit square" too: the word before the comma is the boundary.
+  std::string bare = second;
+  while (!bare.empty() && std::string_view(",;.:").find(bare.back()) != std::string_view::npos) bare.pop_back();
+  const bool boundary_word = bare == "periodic" || bare == "bounded";
   // Words a letter or two from a boundary that mean something of their own ("# domain aperiodic":
   // a tiling of the plane; "# domain unbounded") are prose, not typos.
   constexpr std::string_view kWords[] = {"aperiodic", "unbounded", "bounds", "rounded", "founded", "bound", "period"};
