@@ -25,6 +25,7 @@
 #include "bluetile/relax/lloyd.h"
 #include "bluetile/relax/progressive.h"
 #include "bluetile/relax/stipple.h"
+#include "bluetile/relax/wang_lattice.h"
 #include "bluetile/relax/void_order.h"
 #include "bluetile/sampling/density_sampling.h"
 #include "bluetile/sampling/plot_order.h"
@@ -394,6 +395,41 @@ TEST(ApiContract, RelaxingNoScenesRunsNoIteration) {
   EXPECT_EQ(result.iterations, 0);
   EXPECT_EQ(result.last.iteration, 0);
   EXPECT_EQ(calls, 0);
+}
+
+// decorrelate_filled_level read past the end of a shorter tile and of a short source list, took
+// points outside their tile, NaN or negative spacings, and a level beginning past the tiles' points
+// or a negative step count, without a word (it returned at once or moved nothing).
+TEST(ApiContract, FilledLatticeStepsCheckTheirTilesAndOptions) {
+  TilePoints tiles{uniform_random_points(12, 1), uniform_random_points(12, 2)};
+  std::vector<std::vector<FillSource>> sources(2);
+  for (std::size_t t = 0; t < 2; ++t)
+    for (int dx = -1; dx <= 1; ++dx) sources[t].push_back({t, Point{static_cast<double>(dx), 0.0}, 1.0});
+  FilledLatticeOptions options;
+  options.iterations = 2;
+  TilePoints moved = tiles;
+  decorrelate_filled_level(moved, 6, sources, options);
+  EXPECT_NE(moved, tiles);  // the good case moves points
+
+  TilePoints uneven = tiles;
+  uneven[1].pop_back();
+  EXPECT_EQ(error_of([&] { decorrelate_filled_level(uneven, 6, sources, options); }),
+            "filled lattice steps: every tile must hold the same number of points");
+  EXPECT_EQ(error_of([&] { decorrelate_filled_level(tiles, 6, std::span(sources).first(1), options); }),
+            "filled lattice steps: one source list per tile is needed");
+  TilePoints outside = tiles;
+  outside[1][3] = {1.5, 0.5};
+  EXPECT_EQ(error_of([&] { decorrelate_filled_level(outside, 6, sources, options); }),
+            "filled lattice steps: tile 1, point 3 (1.5, 0.5) lies outside [0, 1)^2");
+  EXPECT_EQ(error_of([&] { decorrelate_filled_level(tiles, 13, sources, options); }),
+            "filled lattice steps: the level begins at point 13, past the tiles' 12 points");
+  FilledLatticeOptions bad = options;
+  bad.spacing = kNaN;
+  EXPECT_EQ(error_of([&] { decorrelate_filled_level(tiles, 6, sources, bad); }),
+            "spacing: expected 0.01 to 2 hexagonal spacings, got nan");
+  bad = options;
+  bad.iterations = -1;
+  EXPECT_EQ(error_of([&] { decorrelate_filled_level(tiles, 6, sources, bad); }), "iterations: expected 0 to 100000, got -1");
 }
 
 }  // namespace

@@ -403,30 +403,6 @@ class Filler {
 };
 
 // Checks shared by band_fill and band_rank.
-void check_layout(std::span<const std::vector<Point>> tiles, std::span<const std::vector<FillSource>> sources) {
-  if (tiles.empty()) throw Error("band fill: no tile");
-  if (sources.size() != tiles.size()) throw Error("band fill: one source list per tile is needed");
-  for (std::size_t t = 0; t < tiles.size(); ++t) {
-    if (tiles[t].size() != tiles[0].size()) throw Error("band fill: every tile must hold the same number of points");
-    // A NaN or a point outside its tile fell out of the grid's buckets without a word.
-    for (std::size_t i = 0; i < tiles[t].size(); ++i) {
-      const Point p = tiles[t][i];
-      if (!(p.x >= 0.0 && p.x < 1.0 && p.y >= 0.0 && p.y < 1.0))
-        throw Error("band fill: tile " + std::to_string(t) + ", point " + std::to_string(i) + " (" + shortest_text(p.x) +
-                    ", " + shortest_text(p.y) + ") lies outside [0, 1)^2");
-    }
-  }
-  for (std::size_t t = 0; t < sources.size(); ++t) {
-    bool self = false;
-    for (const FillSource& s : sources[t]) {
-      if (s.tile >= tiles.size()) throw Error("band fill: a source names tile " + std::to_string(s.tile));
-      if (std::abs(s.shift.x) > 1.0 || std::abs(s.shift.y) > 1.0) throw Error("band fill: a source is shifted past a neighbour");
-      self = self || (s.tile == t && s.shift.x == 0.0 && s.shift.y == 0.0);
-    }
-    if (!self) throw Error("band fill: tile " + std::to_string(t) + " does not count its own points");
-  }
-}
-
 void validate(const FillOptions& options) {
   check_real_field("fill_floor", options.floor, 0.0, 1.0, " hexagonal spacings");
   check_real_field("fill_window", options.window, 1.0, 8.0, " hexagonal spacings");
@@ -437,11 +413,37 @@ void validate(const FillOptions& options) {
 
 }  // namespace
 
+void check_fill_layout(std::span<const std::vector<Point>> tiles, std::span<const std::vector<FillSource>> sources,
+                       std::string_view what) {
+  const std::string prefix = std::string(what) + ": ";
+  if (tiles.empty()) throw Error(prefix + "no tile");
+  if (sources.size() != tiles.size()) throw Error(prefix + "one source list per tile is needed");
+  for (std::size_t t = 0; t < tiles.size(); ++t) {
+    if (tiles[t].size() != tiles[0].size()) throw Error(prefix + "every tile must hold the same number of points");
+    // A NaN or a point outside its tile fell out of the grid's buckets without a word.
+    for (std::size_t i = 0; i < tiles[t].size(); ++i) {
+      const Point p = tiles[t][i];
+      if (!(p.x >= 0.0 && p.x < 1.0 && p.y >= 0.0 && p.y < 1.0))
+        throw Error(prefix + "tile " + std::to_string(t) + ", point " + std::to_string(i) + " (" + shortest_text(p.x) +
+                    ", " + shortest_text(p.y) + ") lies outside [0, 1)^2");
+    }
+  }
+  for (std::size_t t = 0; t < sources.size(); ++t) {
+    bool self = false;
+    for (const FillSource& s : sources[t]) {
+      if (s.tile >= tiles.size()) throw Error(prefix + "a source names tile " + std::to_string(s.tile));
+      if (!(std::abs(s.shift.x) <= 1.0 && std::abs(s.shift.y) <= 1.0)) throw Error(prefix + "a source is shifted past a neighbour");
+      self = self || (s.tile == t && s.shift.x == 0.0 && s.shift.y == 0.0);
+    }
+    if (!self) throw Error(prefix + "tile " + std::to_string(t) + " does not count its own points");
+  }
+}
+
 std::vector<std::vector<Point>> band_fill(std::span<const std::vector<Point>> tiles,
                                           std::span<const std::vector<FillSource>> sources, std::size_t add,
                                           const FillOptions& options) {
   validate(options);
-  check_layout(tiles, sources);
+  check_fill_layout(tiles, sources, "band fill");
   if (add == 0) return std::vector<std::vector<Point>>(tiles.size());
   return Filler(tiles, sources, add, options).run();
 }

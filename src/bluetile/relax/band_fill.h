@@ -20,6 +20,7 @@
 #include <cstdint>
 #include <functional>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "bluetile/core/torus.h"
@@ -65,6 +66,13 @@ struct FillOptions {
 std::vector<std::vector<Point>> band_fill(std::span<const std::vector<Point>> tiles,
                                           std::span<const std::vector<FillSource>> sources, std::size_t add,
                                           const FillOptions& options);
+
+// Throws Error("<what>: ...") unless `tiles` is not empty, its tiles hold the same number of points,
+// each in [0, 1)^2, and `sources` holds one list per tile that names known tiles, shifted by at
+// most a tile, and the tile itself unshifted: band_fill's input, and the lattice steps'
+// (wang_lattice.h).
+void check_fill_layout(std::span<const std::vector<Point>> tiles, std::span<const std::vector<FillSource>> sources,
+                       std::string_view what);
 
 // What filling `add` points per tile onto `existing` costs, for checks before the work: the grids'
 // memory, and about how many grid places the stamps and the choices visit (they grow as

@@ -6,9 +6,13 @@
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
 
 #include "bluetile/analysis/tiling_metrics.h"
+#include "bluetile/core/error.h"
+#include "bluetile/core/field_checks.h"
 #include "bluetile/core/torus.h"
+#include "bluetile/relax/wang_relax.h"
 
 namespace bluetile {
 namespace {
@@ -235,7 +239,13 @@ double filled_lattice_phases(std::size_t tiles, std::size_t begin, std::size_t c
 
 void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<const std::vector<FillSource>> sources,
                               const FilledLatticeOptions& options) {
-  if (options.iterations <= 0 || tiles.empty() || tiles[0].size() <= begin) return;
+  check_whole_field("iterations", options.iterations, 0, kMaxLatticeSteps);
+  check_real_field("spacing", options.spacing, kMinSeamSpacing, kMaxSeamSpacing, " hexagonal spacings");
+  check_fill_layout(tiles, sources, "filled lattice steps");
+  if (begin > tiles[0].size())
+    throw Error("filled lattice steps: the level begins at point " + std::to_string(begin) + ", past the tiles' " +
+                std::to_string(tiles[0].size()) + " points");
+  if (options.iterations == 0 || tiles[0].size() == begin) return;
   const std::size_t n = tiles[0].size(), moving = n - begin;
   // The level's middle prefix and its boundary, and the peak's band of each: 0 < |m|^2 < k.
   const std::array<std::size_t, 2> prefixes{begin + (moving + 1) / 2, n};

@@ -67,7 +67,8 @@ struct FilledLatticeOptions {
 // mean of the tiles' own |F_t(m)|^2 / k), P the level's middle prefix and its boundary, each step
 // moving the point that moves most by kFilledLatticeStep hexagonal spacings of the tile's count.
 // `sources` are the fill's (band_fill.h): where the points of each tile can lie near it. One
-// thread; the same bits every run.
+// thread; the same bits every run. Throws Error for a layout check_fill_layout refuses, `begin`
+// past the tiles' points, and iterations or a spacing outside WangRefinement's ranges.
 void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<const std::vector<FillSource>> sources,
                               const FilledLatticeOptions& options);
 
