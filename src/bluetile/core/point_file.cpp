@@ -199,10 +199,9 @@ std::size_t edit_distance(std::string_view a, std::string_view b) {
 }
 
 // What a comment (the text after '#') says about the domain. A comment that looks meant as a
-// domain line but is not ("domain bounde", "Domain Bounded", "domain periodic extra") is
-// `malformed` ("domain bounded, unit square" too): read as a comment, it left the set on the
-// default torus without a word. Prose that
-// merely starts with "domain" ("domain [0, 64)^2") is `none`, a comment.
+// domain line but is not ("domain bounde", "Domain Bounded", "domain periodic extra", "domain
+// bounded, unit square") is `malformed`: read as a comment, it left the set on the default torus
+// without a word. Prose that merely starts with "domain" ("domain [0, 64)^2") is `none`, a comment.
 enum class DomainComment { none, periodic, bounded, malformed };
 
 DomainComment classify_comment(std::string_view comment) {
@@ -219,7 +218,7 @@ DomainComment classify_comment(std::string_view comment) {
   if (first != "domain" || words.count < 2) return DomainComment::none;
   const std::string second = lower_case(std::string(words.kept[1]));
   constexpr std::size_t kTypoEdits = 2;
-  // "# domain bounded, unit square" too: the word before the comma is the boundary.
+  // The boundary with punctuation after it ("bounded,") is the boundary too.
   std::string bare = second;
   while (!bare.empty() && std::string_view(",;.:").find(bare.back()) != std::string_view::npos) bare.pop_back();
   const bool boundary_word = bare == "periodic" || bare == "bounded";
