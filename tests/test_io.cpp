@@ -61,6 +61,74 @@ TEST(Canvas, LinesAndDiscsCoverWhatTheyShould) {
   canvas.text(-20, 48, "clipped text", colours::black, 3);
 }
 
+// Every pixel of the canvas is `c`.
+bool all_pixels(const Canvas& canvas, float value) {
+  for (float v : canvas.rgb())
+    if (v != value) return false;
+  return true;
+}
+
+// Coordinates converted to int without a bound: a rectangle or disc over the whole plane drew
+// nothing (1e300 became INT_MIN), NaN was undefined; pixel() read past the pixels; a dash period
+// of 0 never ended and a scale of 2^15 ran a billion steps per font pixel.
+TEST(Canvas, ShapesAnywhereDrawWhatMeetsTheCanvas) {
+  Canvas canvas(64, 48);
+  canvas.fill_rect(-1e300, -1e300, 1e300, 1e300, colours::black);
+  EXPECT_TRUE(all_pixels(canvas, 0.0f));
+  Canvas disc(64, 48);
+  disc.disc({0.0, 0.0}, 1e300, colours::black);
+  EXPECT_TRUE(all_pixels(disc, 0.0f));
+  Canvas line(64, 48);
+  line.line({-1e12, 24.0}, {1e12, 24.0}, colours::black, 1e6);
+  EXPECT_TRUE(all_pixels(line, 0.0f));
+
+  const double nan = std::nan("");
+  Canvas untouched(64, 48);
+  untouched.fill_rect(nan, 0.0, 10.0, 10.0, colours::black);
+  untouched.line({nan, 0.0}, {10.0, 10.0}, colours::black, 3.0);
+  untouched.disc({5.0, nan}, 3.0, colours::black);
+  untouched.dashed_line({0.0, 5.0}, {nan, 5.0}, colours::black, 1.0, 2.0, 2.0);
+  untouched.text(nan, 4.0, "H", colours::black, 2);
+  EXPECT_TRUE(all_pixels(untouched, 1.0f));
+
+  EXPECT_EQ(test::error_of([&] { canvas.pixel(64, 0); }), "pixel (64, 0) lies outside the 64 x 48 canvas");
+  EXPECT_EQ(test::error_of([&] { canvas.pixel(3, -1); }), "pixel (3, -1) lies outside the 64 x 48 canvas");
+  const std::string dash_error = ": expected finite pixels, a dash > 0, a gap >= 0 and a period of at least 1/16 pixel";
+  EXPECT_EQ(test::error_of([&] { canvas.dashed_line({0, 0}, {10, 10}, colours::black, 1.0, 0.0, 0.0); }),
+            "dashed line: dash 0 and gap 0" + dash_error);
+  EXPECT_EQ(test::error_of([&] { canvas.dashed_line({0, 0}, {10, 10}, colours::black, 1.0, 1e-9, 1e-9); }),
+            "dashed line: dash 1e-09 and gap 1e-09" + dash_error);
+  EXPECT_EQ(test::error_of([&] { canvas.dashed_line({0, 0}, {10, 10}, colours::black, 1.0, 2.0, -1.0); }),
+            "dashed line: dash 2 and gap -1" + dash_error);
+  EXPECT_EQ(test::error_of([&] { canvas.text(0, 0, "H", colours::black, 0); }), "text scale 0: expected 1 to 32768");
+  EXPECT_EQ(test::error_of([&] { canvas.text(0, 0, "H", colours::black, 1 << 30); }), "text scale 1073741824: expected 1 to 32768");
+
+  // The largest scale: the top-left block of an 'H' covers the canvas, at once.
+  Canvas big(64, 48);
+  big.text(0, 0, "H", colours::black, kMaxCanvasSide);
+  EXPECT_TRUE(all_pixels(big, 0.0f));
+  // A turned text mostly off the canvas lands where its box says: at scale 2 from x = -12, the
+  // canvas's first two columns show the glyph's row 6 (0x11: its two uprights at y 8-9 and 0-1).
+  Canvas turned(40, 40);
+  turned.text(-12.0, 0.0, "H", colours::black, 2, Align::start, Align::start, true);
+  EXPECT_TRUE(is_dark(turned.pixel(0, 9)));
+  EXPECT_TRUE(is_dark(turned.pixel(1, 0)));
+  EXPECT_FALSE(is_dark(turned.pixel(0, 5)));
+  EXPECT_FALSE(is_dark(turned.pixel(2, 9)));
+}
+
+// Dashes of a line that starts far off the canvas keep their phase from its start: the ones on
+// the canvas are drawn without walking every dash before them.
+TEST(Canvas, DashesOfALongLineKeepTheirPhase) {
+  Canvas near(64, 16), far(64, 16);
+  near.dashed_line({-3.5, 8.0}, {70.0, 8.0}, colours::black, 2.0, 3.0, 3.0);
+  far.dashed_line({-3.5 - 6e6, 8.0}, {70.0, 8.0}, colours::black, 2.0, 3.0, 3.0);
+  // Six-pixel periods from x = -3.5: dark over [2.5, 5.5), [8.5, 11.5), ...
+  EXPECT_TRUE(is_dark(near.pixel(3, 8)));
+  EXPECT_FALSE(is_dark(near.pixel(7, 8)));
+  for (int x = 0; x < 64; ++x) EXPECT_EQ(is_dark(near.pixel(x, 8)), is_dark(far.pixel(x, 8))) << x;
+}
+
 TEST(Image, PngRoundTripsAndFailureLeavesNothing) {
   test::TempDir dir;
   Canvas canvas(7, 5, Colour{0.2f, 0.4f, 0.6f});

@@ -45,20 +45,29 @@ class Canvas {
 
   int width() const { return width_; }
   int height() const { return height_; }
+  // Throws Error for a pixel outside the canvas (it was read past the pixels' end).
   Colour pixel(int x, int y) const;
   void set(int x, int y, Colour c);
   // Mixes c into the pixel with weight alpha in [0, 1]; outside pixels are ignored.
   void blend(int x, int y, Colour c, double alpha);
 
+  // The shapes below draw what falls on the canvas, whatever their coordinates: nothing of a
+  // shape off the canvas or with a NaN coordinate (a huge or NaN coordinate was converted to an
+  // int, undefined behaviour).
   void fill_rect(double x0, double y0, double x1, double y1, Colour c);
   // A segment of the given width with anti-aliased edges.
   void line(Point a, Point b, Colour c, double width = 1.0);
+  // Dashes of `dash` pixels `gap` apart from a. Throws Error unless both are finite, dash > 0,
+  // gap >= 0 and dash + gap >= kMinDashPeriod (a period of 0 never ended, one of 1e-9 pixels
+  // took hours).
   void dashed_line(Point a, Point b, Colour c, double width, double dash, double gap);
+  static constexpr double kMinDashPeriod = 1.0 / 16.0;
   void disc(Point centre, double radius, Colour c);
   void cross(Point centre, double half_size, Colour c, double width = 1.0);
   // Text in the bitmap font at integer `scale`, aligned at (x, y) horizontally by `h` and
   // vertically by `v` (start = top). `vertical` turns it 90 degrees counter-clockwise (for a
-  // y-axis label); alignment then applies to the turned box.
+  // y-axis label); alignment then applies to the turned box. Throws Error for a scale outside
+  // 1..kMaxCanvasSide (a scale of 2^30 overflowed and ran for hours).
   void text(double x, double y, std::string_view s, Colour c, int scale = 2, Align h = Align::start,
             Align v = Align::start, bool vertical = false);
   static int text_width(std::string_view s, int scale) {
