@@ -155,6 +155,27 @@ TEST(Plot, NiceTicks) {
   EXPECT_THROW(nice_ticks(1.0, 1.0, 5), Error);
 }
 
+// A range below the resolution of doubles at its magnitude never ended: each step left the tick
+// where it was (data of 1e15 and 1e15 + 0.25 in a plot hung the drawing). A target of 2^30 ticks
+// ran for minutes.
+TEST(Plot, TicksOfARangeNarrowerThanItsDoublesEnd) {
+  const std::vector<double> t = nice_ticks(1e15, 1e15 + 0.25, 8);
+  ASSERT_FALSE(t.empty());
+  for (double v : t) EXPECT_TRUE(v >= 1e15 - 0.25 && v <= 1e15 + 0.5) << v;
+  Plot plot;
+  PlotPanel panel;
+  PlotSeries series;
+  series.x = {0.0, 1.0, 2.0};
+  series.y = {1e15, 1e15 + 0.125, 1e15 + 0.25};
+  panel.series.push_back(series);
+  plot.panels.push_back(panel);
+  EXPECT_EQ(render_plot(plot, 200, 120).width(), 200);
+  std::swap(plot.panels[0].series[0].x, plot.panels[0].series[0].y);
+  EXPECT_EQ(render_plot(plot, 200, 120).width(), 200);
+  EXPECT_EQ(test::error_of([] { nice_ticks(0.0, 1.0, 0); }), "ticks: target 0: expected 1 to 1000");
+  EXPECT_EQ(test::error_of([] { nice_ticks(0.0, 1.0, 1 << 30); }), "ticks: target 1073741824: expected 1 to 1000");
+}
+
 TEST(Plot, DrawsSeriesInsideTheFrame) {
   Plot plot;
   plot.x_label = "x";

@@ -155,9 +155,18 @@ void SvgPainter::image(double x, double y, double width, double height, const Sv
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
   if (!(hi > lo)) throw Error("plot range is empty");
+  if (target < 1 || target > kMaxTicks)
+    throw Error("ticks: target " + std::to_string(target) + ": expected 1 to " + std::to_string(kMaxTicks));
   double step = nice_step(hi - lo, target);
   std::vector<double> ticks;
-  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step; v += step) ticks.push_back(v);
+  for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step;) {
+    ticks.push_back(v);
+    // A step below the doubles' resolution at v (a range of 0.25 at 1e15) left v where it was,
+    // and the loop never ended.
+    const double next = v + step;
+    if (!(next > v)) break;
+    v = next;
+  }
   return ticks;
 }
 

@@ -117,8 +117,10 @@ Canvas render_plot(const Plot& plot, int width, int height);
 SvgDocument render_plot_svg(const Plot& plot, int width, int height);
 
 // Round tick values (1, 2 or 5 times a power of ten apart) covering [lo, hi], about `target`
-// of them. lo < hi.
+// of them; one where the step is below the resolution of doubles at lo (a range of 0.25 at
+// 1e15). Throws Error unless lo < hi and 1 <= target <= kMaxTicks.
 std::vector<double> nice_ticks(double lo, double hi, int target);
+inline constexpr int kMaxTicks = 1000;
 
 // Ticks of a logarithmic axis over [lo, hi], 0 < lo < hi: the powers of 2 inside it when it spans
 // at most 12 octaves, else the powers of 10 (both ends included when they are such powers).
