@@ -157,7 +157,7 @@ TEST(Plot, NiceTicks) {
 
 // A range below the resolution of doubles at its magnitude never ended: each step left the tick
 // where it was (data of 1e15 and 1e15 + 0.25 in a plot hung the drawing). A target of 2^30 ticks
-// ran for minutes.
+// ran for minutes; a series with fewer y than x values lost its last points without a word.
 TEST(Plot, TicksOfARangeNarrowerThanItsDoublesEnd) {
   const std::vector<double> t = nice_ticks(1e15, 1e15 + 0.25, 8);
   ASSERT_FALSE(t.empty());
@@ -172,6 +172,9 @@ TEST(Plot, TicksOfARangeNarrowerThanItsDoublesEnd) {
   EXPECT_EQ(render_plot(plot, 200, 120).width(), 200);
   std::swap(plot.panels[0].series[0].x, plot.panels[0].series[0].y);
   EXPECT_EQ(render_plot(plot, 200, 120).width(), 200);
+  plot.panels[0].series[0].y.pop_back();
+  plot.panels[0].series[0].label = "energy";
+  EXPECT_EQ(test::error_of([&] { render_plot(plot, 200, 120); }), "plot panel 0, series 0 'energy': 3 x values but 2 y values");
   EXPECT_EQ(test::error_of([] { nice_ticks(0.0, 1.0, 0); }), "ticks: target 0: expected 1 to 1000");
   EXPECT_EQ(test::error_of([] { nice_ticks(0.0, 1.0, 1 << 30); }), "ticks: target 1073741824: expected 1 to 1000");
 }

@@ -182,6 +182,15 @@ std::vector<double> log_ticks(double lo, double hi) {
 
 void paint_plot(const Plot& plot, Painter& painter, double width, double height) {
   if (plot.panels.empty()) throw Error("a plot needs at least one panel");
+  // Pairs past the shorter column were dropped without a word.
+  for (std::size_t p = 0; p < plot.panels.size(); ++p)
+    for (std::size_t k = 0; k < plot.panels[p].series.size(); ++k) {
+      const PlotSeries& s = plot.panels[p].series[k];
+      if (s.x.size() != s.y.size())
+        throw Error("plot panel " + std::to_string(p) + ", series " + std::to_string(k) +
+                    (s.label.empty() ? "" : " '" + s.label + "'") + ": " + std::to_string(s.x.size()) + " x values but " +
+                    std::to_string(s.y.size()) + " y values");
+    }
   const double th = painter.text_height();
   const double left = kLeftMargin * th, right = width - kRightMargin * th;
   const double top = plot.title.empty() ? 1.25 * th : 1.5 * th + th + 1.0 * th;

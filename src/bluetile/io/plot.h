@@ -107,7 +107,8 @@ struct Plot {
 };
 
 // Draws the plot into the rectangle [0, width] x [0, height] of the painter. Throws Error
-// for a plot without panels, and for a log_x plot whose x range is not above 0.
+// for a plot without panels, a series whose x and y differ in length, and for a log_x plot whose
+// x range is not above 0.
 void paint_plot(const Plot& plot, Painter& painter, double width, double height);
 
 // The plot as a white canvas of the given size.
