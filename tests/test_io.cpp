@@ -127,6 +127,9 @@ TEST(Canvas, DashesOfALongLineKeepTheirPhase) {
   EXPECT_TRUE(is_dark(near.pixel(3, 8)));
   EXPECT_FALSE(is_dark(near.pixel(7, 8)));
   for (int x = 0; x < 64; ++x) EXPECT_EQ(is_dark(near.pixel(x, 8)), is_dark(far.pixel(x, 8))) << x;
+  // So far away that a period is below the resolution of doubles there: it ends.
+  Canvas farthest(64, 16);
+  farthest.dashed_line({-1e17, 8.0}, {70.0, 8.0}, colours::black, 2.0, 1.0, 1.0);
 }
 
 TEST(Image, PngRoundTripsAndFailureLeavesNothing) {

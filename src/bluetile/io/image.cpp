@@ -120,8 +120,13 @@ void Canvas::dashed_line(Point a, Point b, Colour c, double width, double dash, 
   }
   if (!(first <= last)) return;
   const double period = dash + gap;
-  for (double s = std::floor(first / period) * period; s < last; s += period)
+  for (double s = std::floor(first / period) * period; s < last;) {
     line(a + s * u, a + std::min(s + dash, length) * u, c, width);
+    // From 1e17 pixels away a period is below the resolution of doubles, and s stood still.
+    const double next = s + period;
+    if (!(next > s)) break;
+    s = next;
+  }
 }
 
 void Canvas::disc(Point centre, double radius, Colour c) {
