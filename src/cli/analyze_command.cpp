@@ -89,16 +89,18 @@ void tile_grid_lines(const TileGrid& grid, PointsFigure& figure) {
   // More lines than this would grey the picture out; a tiling that fine shows no tiles anyway.
   constexpr double kMaxLines = 256.0;
   if (1.0 / grid.spacing.x > kMaxLines || 1.0 / grid.spacing.y > kMaxLines) return;
-  for (double k = std::ceil(-grid.origin.x / grid.spacing.x);; k += 1.0) {
-    double x = grid.origin.x + k * grid.spacing.x;
-    if (x > 1.0) break;
-    figure.grid_x.push_back(x);
-  }
-  for (double k = std::ceil(-grid.origin.y / grid.spacing.y);; k += 1.0) {
-    double y = grid.origin.y + k * grid.spacing.y;
-    if (y > 1.0) break;
-    figure.grid_y.push_back(y);
-  }
+  // At most kMaxLines + 1 steps: from an origin far off (1e20, a hand-edited header) k + 1 was k,
+  // and the same line was added until memory ran out.
+  const auto lines = [&](double origin, double spacing, std::vector<double>& out) {
+    const double first = std::ceil(-origin / spacing);
+    for (int i = 0; i <= static_cast<int>(kMaxLines) + 1; ++i) {
+      const double at = origin + (first + i) * spacing;
+      if (at > 1.0) break;
+      if (out.empty() || at > out.back()) out.push_back(at);
+    }
+  };
+  lines(grid.origin.x, grid.spacing.x, figure.grid_x);
+  lines(grid.origin.y, grid.spacing.y, figure.grid_y);
 }
 
 std::string append_wrap_hint(const std::string& message) {

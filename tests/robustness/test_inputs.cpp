@@ -228,5 +228,20 @@ TEST(Inputs, AnUnusableTmpdirIsNamed) {
   EXPECT_EQ(entries(dir.path()), (Names{"map.png", "o.txt", "tmp/"}));  // the copy removed
 }
 
+// A tile-grid header (what `tile --normalize` writes for analyze's drawing) with its origin far off,
+// as a hand edit can leave it: analyze's grid lines were a loop whose index stood still, and it
+// added the same line until memory ran out ("out of memory" under this limit, all memory without).
+TEST(Inputs, AFarTileGridOriginEndsItsGridLines) {
+  TempDir dir;
+  std::string text = "# tile grid 1e20 1e20 0.01 0.01\n";
+  for (int i = 0; i < 40; ++i) text += std::to_string((i * 37 % 40 + 0.5) / 40.0) + " " + std::to_string((i + 0.5) / 40.0) + "\n";
+  dir.write("far.txt", text);
+  Invocation analyze{{"analyze", "-i", dir.file("far.txt"), "-o", dir.file("out"), "--no-psa-measures"}};
+  analyze.address_space_bytes = 3L << 30;
+  const Outcome r = run(analyze);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(fs::exists(dir.file("out/points.svg")));
+}
+
 }  // namespace
 }  // namespace bluetile::robustness
