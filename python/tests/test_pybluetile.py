@@ -553,6 +553,25 @@ def test_an_interrupt_during_the_first_call_is_keyboard_interrupt(tmp_path):
     assert out == "interrupted\n", (child.returncode, err)
 
 
+def assert_ctrl_c_ends(call, after, within):
+    """A SIGINT `after` seconds into `call` raises KeyboardInterrupt within `within` seconds. Python's
+    own handler is installed for it: a run started in the background (nohup, `cmd &`) inherits
+    SIGINT ignored, and Python then installs none."""
+    def interrupt():
+        time.sleep(after)
+        os.kill(os.getpid(), signal.SIGINT)
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        threading.Thread(target=interrupt).start()
+        started = time.monotonic()
+        with pytest.raises(KeyboardInterrupt):
+            call()
+        assert time.monotonic() - started < within
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
 @pytest.mark.parametrize("call", [
     lambda: bt.relax(count=100000, iterations=100000, engine="exact"),
     lambda: bt.progressive(count=50000, levels=3, iterations=100000, engine="exact"),
@@ -562,38 +581,14 @@ def test_an_interrupt_during_the_first_call_is_keyboard_interrupt(tmp_path):
     lambda: bt.dart(5 * 10**6),
 ])
 def test_ctrl_c_ends_a_long_call(call):
-    # Long calls ran to their last iteration before a Ctrl-C was seen. Python's own handler is
-    # installed for the test: a run started in the background (nohup, `cmd &`) inherits SIGINT
-    # ignored, and Python then installs none.
-    def interrupt():
-        time.sleep(0.5)
-        os.kill(os.getpid(), signal.SIGINT)
-
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    try:
-        threading.Thread(target=interrupt).start()
-        started = time.monotonic()
-        with pytest.raises(KeyboardInterrupt):
-            call()
-        assert time.monotonic() - started < 60  # the calls as asked would take hours
-    finally:
-        signal.signal(signal.SIGINT, previous)
+    # Long calls ran to their last iteration before a Ctrl-C was seen; as asked they take hours.
+    assert_ctrl_c_ends(call, after=0.5, within=60)
 
 
 def test_ctrl_c_ends_the_filled_levels_lattice_steps():
     # The steps of a filled level come after its last fill round (whose callback answered Ctrl-C):
     # asked for 100000 of them (about 2 minutes here), the call now ends within a step. The signal
     # comes after 4 s, when level 0 and the fill (about 1.5 s) are done.
-    def interrupt():
-        time.sleep(4)
-        os.kill(os.getpid(), signal.SIGINT)
-
-    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
-    try:
-        threading.Thread(target=interrupt).start()
-        started = time.monotonic()
-        with pytest.raises(KeyboardInterrupt):
-            bt.wang_tiles("corner81", points=16, iterations=1, warm=0, levels=2, filled_lattice_steps=100000)
-        assert time.monotonic() - started < 30
-    finally:
-        signal.signal(signal.SIGINT, previous)
+    assert_ctrl_c_ends(
+        lambda: bt.wang_tiles("corner81", points=16, iterations=1, warm=0, levels=2, filled_lattice_steps=100000),
+        after=4, within=30)
