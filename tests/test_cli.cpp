@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "bluetile/core/point_file.h"
 #include "bluetile/io/image_file.h"
@@ -209,6 +210,138 @@ TEST(Cli, OptionsARunWouldNotUseAreRefused) {
   auto r = run_bluetile({"relax", "-n", "64", "-k", "1", "--engine", "exact", "--resolution", "64", "--id-image",
                          dir.file("id.png"), "-o", out});
   EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(Cli, SettingsOfPartsARunDoesNotHaveAreRefused) {
+  // wang's level, strategy, order and step settings, stipple's and tile's drawing settings were
+  // accepted where the run had no such part, and changed nothing (--void-sigma with the fill
+  // order, --png-width without --png, --image-size without a render).
+  TempDir dir;
+  write_image_file(dir.file("map.png"), 4, 4, 1, std::vector<float>(16, 0.5f), SampleFormat::uint8);
+  const std::string tiles = dir.file("t.tiles"), points = dir.file("p.txt"), map = dir.file("map.png");
+  const std::vector<std::string> wang = {"wang", "-n", "8", "-k", "1", "--warm", "0", "-o", tiles};
+  const std::vector<std::string> stipple = {"stipple", "--image", map, "-n", "20", "-k", "1", "-o", points};
+  const std::vector<std::string> tile = {"tile", "--region", "0", "0", "1", "1", "--density", "50"};
+  struct Case {
+    std::vector<std::string> base, more;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {wang, {"--ratio", "3"}, "--ratio 3: only with --levels 2 or more (this run: --levels 1)"},
+      {wang, {"--period", "6"}, "--period 6: only with --strategy instances (this run: --strategy auto, exact for wang8)"},
+      {wang, {"--strategy", "rounds", "--period", "6"},
+       "--period 6: only with --strategy instances (this run: --strategy rounds)"},
+      {wang, {"--void-sigma", "0.7"}, "--void-sigma 0.7: only with --rank-order voids (this run: --rank-order fill)"},
+      {wang, {"--lattice-steps", "0", "--lattice-steps-per-iteration", "0", "--lattice-step", "0.01"},
+       "--lattice-step 0.01: only with --lattice-steps or --lattice-steps-per-iteration above 0 (this run: "
+       "--lattice-steps 0, --lattice-steps-per-iteration 0)"},
+      {wang, {"--seam-steps", "0", "--seam-spacing", "0.7"},
+       "--seam-spacing 0.7: only with --seam-steps above 0 (this run: --seam-steps 0)"},
+      {wang, {"--levels", "2", "--level-seam-spacing", "0.7"},
+       "--level-seam-spacing 0.7: only with --seam-steps above 0, --levels 2 or more and --rank-order farthest or "
+       "voids, whose later levels are relaxed, not filled (this run: --seam-steps 20, --levels 2, --rank-order fill)"},
+      {wang, {"--rank-order", "voids", "--level-seam-spacing", "0.7"},
+       "--level-seam-spacing 0.7: only with --seam-steps above 0, --levels 2 or more and --rank-order farthest or "
+       "voids, whose later levels are relaxed, not filled (this run: --seam-steps 20, --levels 1, --rank-order voids)"},
+      {wang, {"--filled-lattice-steps", "9"},
+       "--filled-lattice-steps 9: only with --rank-order fill and --levels 2 or more (this run: --rank-order fill, "
+       "--levels 1)"},
+      {wang, {"--levels", "2", "--rank-order", "voids", "--filled-lattice-steps", "9"},
+       "--filled-lattice-steps 9: only with --rank-order fill and --levels 2 or more (this run: --rank-order voids, "
+       "--levels 2)"},
+      {wang, {"--levels", "2", "--filled-lattice-steps", "0", "--filled-lattice-up-to", "64"},
+       "--filled-lattice-up-to 64: only with --rank-order fill, --levels 2 or more and --filled-lattice-steps above 0 "
+       "(this run: --rank-order fill, --levels 2, --filled-lattice-steps 0)"},
+      {wang, {"--filled-lattice-spacing", "0.5"},
+       "--filled-lattice-spacing 0.5: only with --rank-order fill, --levels 2 or more and --filled-lattice-steps "
+       "above 0 (this run: --rank-order fill, --levels 1, --filled-lattice-steps 150)"},
+      {stipple, {"--png-width", "64"}, "--png-width 64: only with --png, the render it sizes"},
+      {stipple, {"--size", "10cm"}, "--size 10cm: only with --svg, the drawing it shapes"},
+      {stipple, {"--png", dir.file("s.png"), "--dot-shape", "stroke"}, "--dot-shape stroke: only with --svg, the drawing it shapes"},
+      {stipple, {"--plot-order"}, "--plot-order: only with --svg, the drawing it shapes"},
+      {stipple, {"--dot-radius", "0.01"}, "--dot-radius 0.01: only with --svg or --png, whose dots it sizes"},
+      {stipple, {"--dots-follow-density"}, "--dots-follow-density: only with --svg or --png, whose dots it sizes"},
+      {tile, {"-o", points, "--image-size", "64"},
+       "--image-size 64: only with a render output (.png .tif .tiff .jpg .jpeg .exr .bmp)"},
+      {tile, {"-o", dir.file("t.svg"), "--image-size", "64"},
+       "--image-size 64: only with a render output (.png .tif .tiff .jpg .jpeg .exr .bmp)"},
+      {tile, {"-o", points, "--dot-radius", "0.1"},
+       "--dot-radius 0.1: only with a drawing or render output (.svg .pdf .png .tif .tiff .jpg .jpeg .exr .bmp)"},
+      {tile, {"-o", "-", "--dots-follow-density"},
+       "--dots-follow-density: only with a drawing or render output (.svg .pdf .png .tif .tiff .jpg .jpeg .exr .bmp)"},
+      {tile, {"-o", dir.file("t.png"), "--columns", "x,y,rank"},
+       "--columns x,y,rank: only with a point-file output (.txt .dat .pts .bin, no extension, or -)"},
+      {tile, {"-o", dir.file("t.svg"), "--normalize"},
+       "--normalize: only with a point-file output (.txt .dat .pts .bin, no extension, or -)"},
+  };
+  for (const Case& c : cases) {
+    std::vector<std::string> args = c.base;
+    args.insert(args.end(), c.more.begin(), c.more.end());
+    const auto r = run_bluetile(args);
+    EXPECT_EQ(r.exit_code, 1) << c.message;
+    EXPECT_EQ(r.err, "bluetile: " + c.message + "\n");
+    EXPECT_EQ(r.out, "");
+  }
+  EXPECT_EQ(dir.list(), std::vector<std::string>{"map.png"});
+
+  // Where the run has the part, each is taken.
+  const std::vector<std::vector<std::string>> taken = {
+      {"--levels", "2", "--ratio", "3", "--filled-lattice-steps", "2", "--filled-lattice-spacing", "0.5",
+       "--filled-lattice-up-to", "64", "--lattice-step", "0.01", "--seam-spacing", "0.7"},
+      {"--levels", "2", "--rank-order", "voids", "--void-sigma", "0.7", "--level-seam-spacing", "0.7"},
+      {"--levels", "2", "--rank-order", "farthest", "--level-seam-spacing", "0.7", "--strategy", "instances",
+       "--period", "4"},
+      {"--set", "corner81", "--period", "4"},  // auto is instances for corner81
+  };
+  for (const auto& more : taken) {
+    std::vector<std::string> args = wang;
+    args.insert(args.end(), more.begin(), more.end());
+    const auto r = run_bluetile(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+  }
+  auto r = run_bluetile({"stipple", "--image", map, "-n", "20", "-k", "1", "--svg", dir.file("s.svg"), "--size", "5cm",
+                         "--dot-shape", "stroke", "--plot-order", "--dot-radius", "0.01", "--dots-follow-density"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_bluetile({"stipple", "--image", map, "-n", "20", "-k", "1", "--png", dir.file("s.png"), "--png-width", "32",
+                    "--dot-radius", "0.01"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_bluetile({"tile", "--region", "0", "0", "1", "1", "--density", "50", "-o", dir.file("t.bin"), "-o",
+                    dir.file("t.png"), "--columns", "x,y,rank", "--normalize", "--image-size", "32", "--dot-radius",
+                    "0.05", "--dots-follow-density"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+TEST(Cli, WangMadeByLinesRunAsWritten) {
+  // The tile set's second line names the options that shaped it, each where the run used it, so
+  // that it is accepted as written and makes the same set (it named --level-seam-spacing with
+  // the fill order, which fills the later levels and takes no seam steps there).
+  TempDir dir;
+  const std::vector<std::vector<std::string>> runs = {
+      {"--levels", "3"},
+      {"--levels", "2", "--rank-order", "voids", "--strategy", "instances", "--period", "4", "--margin", "0.05"},
+      {"--levels", "2", "--rank-order", "farthest", "--seam-steps", "0", "--lattice-steps", "0",
+       "--lattice-steps-per-iteration", "0"},
+      {"--levels", "3", "--filled-lattice-steps", "0"},
+  };
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const std::string first = dir.file("first" + std::to_string(k) + ".tiles");
+    std::vector<std::string> args = {"wang", "-n", "8", "-k", "2", "--warm", "1", "-o", first};
+    args.insert(args.end(), runs[k].begin(), runs[k].end());
+    auto r = run_bluetile(args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string text = read_text(first);
+    const std::string prefix = "# bluetile tiles 1\n# made by: bluetile ";
+    ASSERT_EQ(text.rfind(prefix, 0), 0u) << text.substr(0, 200);
+    const std::string line = text.substr(prefix.size(), text.find('\n', prefix.size()) - prefix.size());
+    std::vector<std::string> again;
+    std::istringstream words(line);
+    for (std::string word; words >> word;) again.push_back(word);
+    const std::string second = dir.file("second" + std::to_string(k) + ".tiles");
+    again.insert(again.end(), {"-o", second});
+    r = run_bluetile(again);
+    ASSERT_EQ(r.exit_code, 0) << line << ": " << r.err;
+    EXPECT_EQ(read_text(second), text) << line;
+  }
 }
 
 TEST(Cli, BoundedSetsSayTheirDomainAndStayBounded) {

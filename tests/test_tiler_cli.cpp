@@ -451,7 +451,7 @@ TEST(TileCommand, BadInputFailsWithOneLineAndWritesNothing) {
       {{"--region", "0", "2", "1", "2"}, "Y1 must be greater than Y0"},
       {{"--region", "0", "0", "1"}, "region"},
       {{"--region", "0", "0", "1", "1", "--density", "0"}, "--density 0: out of range; expected a finite number > 0"},
-      {{"--region", "0", "0", "2", "1", "--dot-radius", "1e20"},
+      {{"--region", "0", "0", "2", "1", "--dot-radius", "1e20", "-o", dir.file("out.svg")},
        "--dot-radius 1e+20: expected at most the region's larger side, 2"},
       // Extremes that ended in the library's inner messages ("thinning fraction must lie in (0, 1],
       // got 0", "tile size must be positive and finite, got inf").

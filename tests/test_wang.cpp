@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <map>
 #include <set>
@@ -337,6 +338,81 @@ TEST_P(WangStepRaster, MeasuresTheExactEnginesStep) {
   if (on_device()) {
     EXPECT_GT(raster_engine.stats().boundary_pixels, 0u);  // the device split them
   }
+}
+
+TEST(WangOptions, SettingsOnlySomeRunsUseChangeTheSetExactlyWhereUsed) {
+  // wang_setting_used is what the front ends refuse by and what the tool's made-by line names:
+  // held against the sets themselves. Where a run uses a setting, another value changes its
+  // points; where it does not, another value gives the same bits.
+  ExactEngine engine;
+  const auto points_of = [&engine](const WangOptions& o) {
+    std::vector<Point> all;
+    for (const Tile& tile : relax_wang_tiles(engine, o).tiles) all.insert(all.end(), tile.points.begin(), tile.points.end());
+    return all;
+  };
+  WangOptions small;
+  small.points = 8;
+  small.level.iterations = 2;
+  small.level.warm_iterations = 0;
+  small.level.refine.filled_lattice_steps = 5;
+  small.seed = 3;
+  using Change = std::function<void(WangOptions&)>;
+  const auto with = [&small](const Change& change) {
+    WangOptions o = small;
+    change(o);
+    return o;
+  };
+  const auto two_levels = [](WangOptions& o) { o.levels = 2; };
+  struct Case {
+    std::string_view setting;
+    Change unused, used, other_value;
+  };
+  const std::vector<Case> cases = {
+      {"ratio", [](WangOptions&) {}, two_levels, [](WangOptions& o) { o.ratio = 2.5; }},
+      {"period", [](WangOptions&) {}, [](WangOptions& o) { o.level.strategy = WangStrategy::instances; },
+       [](WangOptions& o) { o.level.period = 4; }},
+      {"void_sigma", [](WangOptions&) {}, [](WangOptions& o) { o.level.rank_order = RankOrder::voids; },
+       [](WangOptions& o) { o.level.void_sigma = 0.1; }},
+      {"lattice_step",
+       [](WangOptions& o) { o.level.refine.lattice_iterations = o.level.refine.lattice_steps_per_iteration = 0; },
+       [](WangOptions&) {}, [](WangOptions& o) { o.level.refine.lattice_step = 0.05; }},
+      {"seam_spacing", [](WangOptions& o) { o.level.refine.seam_iterations = 0; }, [](WangOptions&) {},
+       [](WangOptions& o) { o.level.refine.seam_spacing = 1.5; }},
+      {"level_seam_spacing", two_levels,
+       [](WangOptions& o) {
+         o.levels = 2;
+         o.level.rank_order = RankOrder::farthest;
+       },
+       [](WangOptions& o) { o.level.refine.later_seam_spacing = 1.5; }},
+      {"filled_lattice_steps", [](WangOptions&) {}, two_levels,
+       [](WangOptions& o) { o.level.refine.filled_lattice_steps = 0; }},
+      {"filled_lattice_spacing",
+       [](WangOptions& o) {
+         o.levels = 2;
+         o.level.refine.filled_lattice_steps = 0;
+       },
+       two_levels, [](WangOptions& o) { o.level.refine.filled_lattice_spacing = 1.5; }},
+      {"filled_lattice_up_to",
+       [](WangOptions& o) {
+         o.levels = 2;
+         o.level.refine.filled_lattice_steps = 0;
+       },
+       two_levels, [](WangOptions& o) { o.level.refine.filled_lattice_up_to = 8; }},
+  };
+  ASSERT_EQ(cases.size(), std::size(kConditionalWangSettings));
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const Case& c = cases[k];
+    ASSERT_EQ(c.setting, kConditionalWangSettings[k]);
+    const WangOptions unused = with(c.unused), used = with(c.used);
+    EXPECT_FALSE(wang_setting_used(unused, c.setting)) << c.setting;
+    EXPECT_TRUE(wang_setting_used(used, c.setting)) << c.setting;
+    WangOptions unused_other = unused, used_other = used;
+    c.other_value(unused_other);
+    c.other_value(used_other);
+    EXPECT_TRUE(points_of(unused_other) == points_of(unused)) << c.setting;
+    EXPECT_TRUE(points_of(used_other) != points_of(used)) << c.setting;
+  }
+  EXPECT_THROW(wang_setting_used(small, "points"), Error);
 }
 
 TEST(WangOptions, EveryFieldIsCheckedByItsNameAndRange) {

@@ -150,6 +150,46 @@ std::string wang_tiles(const Text& set_arg, const Whole& points_arg, const Whole
     throw bluetile::Error("ratio: expected above 1 to " + bluetile::number_text(bluetile::kMaxWangRatio) + ", got " +
                           bluetile::number_text(ratio));
   bluetile::validate(w);
+  // As the tool's wang: a setting this call would not use (bluetile::wang_setting_used) is refused
+  // where it differs from its default (the tool refuses it given at all; a default cannot be told
+  // from one given here): what makes a call use it, and this call's arguments it depends on.
+  const auto real = [](double v) { return bluetile::shortest_text(v); };
+  const std::string levels_text = "levels=" + std::to_string(levels), order_text = "rank_order='" + rank_order + "'";
+  const std::string seams_text = "seam_steps=" + std::to_string(seam_steps);
+  std::string strategy_text = "strategy='" + strategy + "'";
+  if (strategy == "auto") strategy_text += ", " + std::string(bluetile::wang_strategy_name(w.level.strategy)) + " for " + set;
+  const std::string filled_steps = "rank_order='fill', levels=2 or more and filled_lattice_steps above 0";
+  const std::string filled_call = order_text + ", " + levels_text + ", filled_lattice_steps=" + std::to_string(filled_lattice_steps);
+  const bluetile::WangRefinement& r = d.level.refine;
+  struct Rule {
+    const char* setting;
+    bool differs;
+    std::string value, needs, this_call;
+  };
+  const Rule rules[] = {
+      {"ratio", ratio != d.ratio, real(ratio), "levels=2 or more", levels_text},
+      {"period", period != d.level.period, std::to_string(period), "strategy='instances'", strategy_text},
+      {"void_sigma", void_sigma != d.level.void_sigma, real(void_sigma), "rank_order='voids'", order_text},
+      {"lattice_step", lattice_step != r.lattice_step, real(lattice_step),
+       "lattice_steps or lattice_steps_per_iteration above 0",
+       "lattice_steps=" + std::to_string(lattice_steps) +
+           ", lattice_steps_per_iteration=" + std::to_string(lattice_steps_per_iteration)},
+      {"seam_spacing", seam_spacing != r.seam_spacing, real(seam_spacing), "seam_steps above 0", seams_text},
+      {"level_seam_spacing", level_seam_spacing != r.later_seam_spacing, real(level_seam_spacing),
+       "seam_steps above 0, levels=2 or more and rank_order='farthest' or 'voids', whose later levels are relaxed, "
+       "not filled",
+       seams_text + ", " + levels_text + ", " + order_text},
+      {"filled_lattice_steps", filled_lattice_steps != r.filled_lattice_steps, std::to_string(filled_lattice_steps),
+       "rank_order='fill' and levels=2 or more", order_text + ", " + levels_text},
+      {"filled_lattice_spacing", filled_lattice_spacing != r.filled_lattice_spacing, real(filled_lattice_spacing),
+       filled_steps, filled_call},
+      {"filled_lattice_up_to", filled_lattice_up_to != r.filled_lattice_up_to, std::to_string(filled_lattice_up_to),
+       filled_steps, filled_call},
+  };
+  for (const Rule& rule : rules)
+    if (rule.differs && !bluetile::wang_setting_used(w, rule.setting))
+      throw bluetile::Error(std::string(rule.setting) + "=" + rule.value + ": only with " + rule.needs + " (this call: " +
+                            rule.this_call + ")");
   std::string text;
   {
     nb::gil_scoped_release release;
@@ -356,7 +396,9 @@ points bit for bit), returned as the text of its tile-set file: write it to a fi
 ``bluetile tile --tiles``, or pass it to ``tile_set`` and ``tile``. The paper's section 3: every
 tile's points are relaxed by Lloyd's method under the constraints of the tiles that can border it.
 None for any argument means its default. Each argument is the tool's option of the same name
-(``--lattice-steps`` for lattice_steps).
+(``--lattice-steps`` for lattice_steps). A setting the call would not use (ratio with one level,
+period without "instances", void_sigma without "voids", level_seam_spacing where the fill order
+fills the later levels, ...) is refused where it differs from its default, as the tool refuses it.
 
 set: the tile set, "wang8" (the paper's: 8 tiles, 2 colours per edge), "wang16" (every edge
     combination), "corner16" (corner colours) or "corner81" (3 corner colours: 81 tiles).

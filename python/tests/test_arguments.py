@@ -316,6 +316,40 @@ def test_relax_refuses_a_seed_or_weight_exponent_that_would_change_nothing():
     assert bt.relax(count=5, seed=7, weight_exponent=3, density_map=np.ones((2, 2)), iterations=1).shape == (5, 2)
 
 
+def test_wang_tiles_refuses_settings_the_call_would_not_use(tool, tmp_path):
+    # void_sigma with the fill order, ratio with one level, period without the instances strategy
+    # and the rest were ignored without a word, where the tool refuses them.
+    cli = tool("wang", "--points", 8, "--void-sigma", 0.7, "-o", tmp_path / "t.tiles", check=False)
+    assert cli.returncode != 0
+    assert "--void-sigma 0.7: only with --rank-order voids (this run: --rank-order fill)" in cli.stderr
+    small = {"points": 8, "iterations": 1, "warm": 0}
+    cases = [
+        ({"ratio": 3}, r"ratio=3: only with levels=2 or more \(this call: levels=1\)"),
+        ({"period": 6}, r"period=6: only with strategy='instances' \(this call: strategy='auto', exact for wang8\)"),
+        ({"void_sigma": 0.7}, r"void_sigma=0.7: only with rank_order='voids' \(this call: rank_order='fill'\)"),
+        ({"lattice_steps": 0, "lattice_steps_per_iteration": 0, "lattice_step": 0.01},
+         r"lattice_step=0.01: only with lattice_steps or lattice_steps_per_iteration above 0 \(this call: "
+         r"lattice_steps=0, lattice_steps_per_iteration=0\)"),
+        ({"seam_steps": 0, "seam_spacing": 0.7}, r"seam_spacing=0.7: only with seam_steps above 0 \(this call: seam_steps=0\)"),
+        ({"levels": 2, "level_seam_spacing": 0.7},
+         r"level_seam_spacing=0.7: only with seam_steps above 0, levels=2 or more and rank_order='farthest' or "
+         r"'voids', whose later levels are relaxed, not filled \(this call: seam_steps=20, levels=2, rank_order='fill'\)"),
+        ({"filled_lattice_steps": 9},
+         r"filled_lattice_steps=9: only with rank_order='fill' and levels=2 or more \(this call: rank_order='fill', levels=1\)"),
+        ({"levels": 2, "filled_lattice_steps": 0, "filled_lattice_up_to": 64},
+         r"filled_lattice_up_to=64: only with rank_order='fill', levels=2 or more and filled_lattice_steps above 0 "
+         r"\(this call: rank_order='fill', levels=2, filled_lattice_steps=0\)"),
+        ({"filled_lattice_spacing": 0.5}, r"filled_lattice_spacing=0.5: only with rank_order='fill', levels=2 or more"),
+    ]
+    for arguments, message in cases:
+        with pytest.raises(ValueError, match="^" + message):
+            bt.wang_tiles(**small, **arguments)
+    # Their defaults, given or not, are the same call; where the call uses them, they are taken.
+    assert bt.wang_tiles(**small, ratio=2, period=16, void_sigma=0.5) == bt.wang_tiles(**small)
+    bt.wang_tiles(**small, levels=2, rank_order="voids", void_sigma=0.7, level_seam_spacing=0.7, ratio=3)
+    bt.wang_tiles(**small, set="corner81", period=4)  # strategy 'auto' is instances for corner81
+
+
 @pytest.mark.parametrize("dtype", [np.int8, np.int16, np.int32, np.int64])
 def test_negative_levels_are_quoted_as_given(tmp_path, dtype):
     # An int32 -1 was read as uint32 and quoted as 4294967295.

@@ -433,9 +433,10 @@ def test_wang_tiles_match_the_tool(tool, tmp_path):
     out = tmp_path / "set.tiles"
     tool("wang", "--set", "wang8", "--points", 8, "--iterations", 3, "--warm", 2, "--levels", 2, "--ratio", 2,
          "--strategy", "instances", "--period", 4, "--lattice-steps", 3, "--lattice-steps-per-iteration", 2, "--lattice-step", 0.01, "--seam-steps", 5, "--seam-spacing", 0.75,
-         "--level-seam-spacing", 0.6, "--engine", "exact", "--seed", 3, "--output", out)
+         "--level-seam-spacing", 0.6, "--rank-order", "farthest", "--engine", "exact", "--seed", 3, "--output", out)
     text = bt.wang_tiles("wang8", points=8, iterations=3, warm=2, levels=2, ratio=2, strategy="instances", period=4,
-                         lattice_steps=3, lattice_steps_per_iteration=2, lattice_step=0.01, seam_steps=5, seam_spacing=0.75, level_seam_spacing=0.6, seed=3)
+                         lattice_steps=3, lattice_steps_per_iteration=2, lattice_step=0.01, seam_steps=5, seam_spacing=0.75,
+                         level_seam_spacing=0.6, rank_order="farthest", seed=3)
     assert tile_set_body(text) == tile_set_body(out.read_text())
     tiles = bt.tile_set(text)
     assert tiles["kind"] == "wang8" and len(tiles["tiles"]) == 8

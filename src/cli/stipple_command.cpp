@@ -13,6 +13,7 @@
 #include "cli/engine_options.h"
 #include "cli/file_options.h"
 #include "cli/numeric_options.h"
+#include "cli/option_rules.h"
 #include "cli/output_names.h"
 #include "cli/point_output.h"
 #include "cli/relax_log.h"
@@ -186,6 +187,13 @@ void add_stipple_command(CLI::App& app) {
   add_stipple_drawing_options(cmd, o->drawing);
   cmd->callback([o, cmd] {
     refuse_unused_raster_options(*cmd, o->engine, cmd->count("--engine") ? "" : ", the default for stipple");
+    // The drawing's settings need the drawing they shape: the render's width, the SVG's print size,
+    // dot shape and pen order, and the dots' size in either.
+    refuse_unless_used(*cmd, "--png-width", !o->png.empty(), "--png, the render it sizes");
+    for (const char* name : {"--size", "--dot-shape", "--plot-order"})
+      refuse_unless_used(*cmd, name, !o->svg.empty(), "--svg, the drawing it shapes");
+    for (const char* name : {"--dot-radius", "--dots-follow-density"})
+      refuse_unless_used(*cmd, name, !o->svg.empty() || !o->png.empty(), "--svg or --png, whose dots it sizes");
     run_stipple(*o, *cmd);
   });
 }

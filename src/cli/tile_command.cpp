@@ -13,6 +13,7 @@
 #include "cli/density_options.h"
 #include "cli/file_options.h"
 #include "cli/numeric_options.h"
+#include "cli/option_rules.h"
 #include "cli/output_names.h"
 #include "cli/progress.h"
 #include "bluetile/core/error.h"
@@ -163,6 +164,23 @@ void write_points(OutputFile& file, const Plan& plan, const TiledFormat& format,
                  file.path().c_str(), times.points, times.bytes, times.generate, times.format, times.write);
 }
 
+// The settings of one kind of output need an output of that kind: the columns and normalization a
+// point file, the dots a drawing or render, --image-size a render.
+void refuse_unused_output_options(const CLI::App& command, const std::vector<std::string>& paths) {
+  bool point_file = false, drawing = false, render = false;
+  for (const std::string& path : paths) {
+    const OutputFormat kind = output_kind(path);
+    point_file = point_file || kind == OutputFormat::points_text || kind == OutputFormat::raw_columns;
+    drawing = drawing || kind == OutputFormat::svg || kind == OutputFormat::pdf || kind == OutputFormat::image;
+    render = render || kind == OutputFormat::image;
+  }
+  for (const char* name : {"--columns", "--normalize"})
+    refuse_unless_used(command, name, point_file, "a point-file output (.txt .dat .pts .bin, no extension, or -)");
+  for (const char* name : {"--dot-radius", "--dots-follow-density"})
+    refuse_unless_used(command, name, drawing, "a drawing or render output (.svg .pdf .png .tif .tiff .jpg .jpeg .exr .bmp)");
+  refuse_unless_used(command, "--image-size", render, "a render output (.png .tif .tiff .jpg .jpeg .exr .bmp)");
+}
+
 void run_tile(const TileOptions& o, const CLI::App& command) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   TiledFormat format;
@@ -293,6 +311,7 @@ void add_tile_command(CLI::App& app) {
   cmd->callback([o, fit, cmd] {
     if (fit->count() > 0 && o->density_map.empty()) throw Error("--fit " + o->fit + " places a --density-map: give one");
     refuse_transfer_without_map(*cmd, !o->density_map.empty());
+    refuse_unused_output_options(*cmd, o->outputs);
     run_tile(*o, *cmd);
   });
 }

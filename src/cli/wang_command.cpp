@@ -6,6 +6,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <string_view>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/memory_budget.h"
@@ -20,6 +21,7 @@
 #include "cli/engine_options.h"
 #include "cli/file_options.h"
 #include "cli/numeric_options.h"
+#include "cli/option_rules.h"
 #include "cli/output_names.h"
 #include "cli/progress.h"
 #include "cli/seam_report.h"
@@ -79,10 +81,8 @@ void check_points_per_tile(const WangCommandOptions& o, int tiles) {
 // What --output writes.
 constexpr OutputFormat kTileSetFormats[] = {OutputFormat::tile_set};
 
-void run_wang(const WangCommandOptions& o) {
-  output_format("--output", o.output, kTileSetFormats);
-  OutputSet outputs;  // checked before the work, written at the end
-  OutputFile& output = outputs.add(o.output, {.allow_stdout = true});
+// The library's options from the command's (the callbacks are set by run_wang).
+WangOptions wang_options(const WangCommandOptions& o) {
   WangOptions w;
   w.kind = *parse_tile_set_kind(o.kind);
   w.points = static_cast<std::size_t>(o.points);
@@ -97,6 +97,52 @@ void run_wang(const WangCommandOptions& o) {
   w.level.refine = o.refine;
   w.level.rank_order = parse_wang_rank_order(o.rank_order);
   w.level.void_sigma = o.void_sigma;
+  return w;
+}
+
+// The settings this run would not use (wang_setting_used), refused by name (option_rules.h): what
+// makes a run use each, and this run's settings it depends on.
+void refuse_unused_wang_options(const CLI::App& command, const WangCommandOptions& o, const WangOptions& w) {
+  const std::string levels = "--levels " + std::to_string(o.levels);
+  const std::string order = "--rank-order " + o.rank_order;
+  const std::string seams = "--seam-steps " + std::to_string(o.refine.seam_iterations);
+  std::string strategy = "--strategy " + o.strategy;
+  if (o.strategy == "auto") strategy += ", " + std::string(wang_strategy_name(w.level.strategy)) + " for " + o.kind;
+  const std::string filled_steps = "--rank-order fill, --levels 2 or more and --filled-lattice-steps above 0";
+  const std::string filled_run =
+      order + ", " + levels + ", --filled-lattice-steps " + std::to_string(o.refine.filled_lattice_steps);
+  struct Rule {
+    std::string_view setting;
+    std::string needs, this_run;
+  };
+  const Rule rules[] = {
+      {"ratio", "--levels 2 or more", levels},
+      {"period", "--strategy instances", strategy},
+      {"void_sigma", "--rank-order voids", order},
+      {"lattice_step", "--lattice-steps or --lattice-steps-per-iteration above 0",
+       "--lattice-steps " + std::to_string(o.refine.lattice_iterations) + ", --lattice-steps-per-iteration " +
+           std::to_string(o.refine.lattice_steps_per_iteration)},
+      {"seam_spacing", "--seam-steps above 0", seams},
+      {"level_seam_spacing",
+       "--seam-steps above 0, --levels 2 or more and --rank-order farthest or voids, whose later levels are relaxed, "
+       "not filled",
+       seams + ", " + levels + ", " + order},
+      {"filled_lattice_steps", "--rank-order fill and --levels 2 or more", order + ", " + levels},
+      {"filled_lattice_spacing", filled_steps, filled_run},
+      {"filled_lattice_up_to", filled_steps, filled_run},
+  };
+  for (const Rule& rule : rules) {
+    std::string option = "--" + std::string(rule.setting);
+    std::replace(option.begin(), option.end(), '_', '-');
+    refuse_unless_used(command, option, wang_setting_used(w, rule.setting), rule.needs, rule.this_run);
+  }
+}
+
+void run_wang(const WangCommandOptions& o) {
+  output_format("--output", o.output, kTileSetFormats);
+  OutputSet outputs;  // checked before the work, written at the end
+  OutputFile& output = outputs.add(o.output, {.allow_stdout = true});
+  WangOptions w = wang_options(o);
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
   check_points_per_tile(o, TileRules(w.kind).tile_count());
   if (w.level.rank_order == RankOrder::fill && o.levels > 1) {
@@ -156,30 +202,28 @@ void run_wang(const WangCommandOptions& o) {
   };
   TileSet set = relax_wang_tiles(*engine, w);
   progress.finish();
+  // Each setting that only some runs use is named where this one used it, so that the line runs
+  // again as written.
+  const auto used = [&w](std::string_view setting) { return wang_setting_used(w, setting); };
   std::ostringstream command;
   command << "bluetile wang --set " << o.kind << " --points " << o.points << " --iterations " << o.iterations
           << " --warm " << o.warm << " --levels " << o.levels;
-  if (o.levels > 1) command << " --ratio " << o.ratio;
+  if (used("ratio")) command << " --ratio " << o.ratio;
   command << " --strategy " << wang_strategy_name(w.level.strategy);
-  if (w.level.strategy == WangStrategy::instances) command << " --period " << o.period;
+  if (used("period")) command << " --period " << o.period;
   if (o.margin > 0.0) command << " --margin " << o.margin;
   const WangRefinement& r = o.refine;
   command << " --lattice-steps " << r.lattice_iterations << " --lattice-steps-per-iteration "
           << r.lattice_steps_per_iteration;
-  if (r.lattice_iterations > 0 || r.lattice_steps_per_iteration > 0) command << " --lattice-step " << r.lattice_step;
+  if (used("lattice_step")) command << " --lattice-step " << r.lattice_step;
   command << " --seam-steps " << r.seam_iterations;
-  if (r.seam_iterations > 0) {
-    command << " --seam-spacing " << r.seam_spacing;
-    if (o.levels > 1) command << " --level-seam-spacing " << r.later_seam_spacing;
-  }
+  if (used("seam_spacing")) command << " --seam-spacing " << r.seam_spacing;
+  if (used("level_seam_spacing")) command << " --level-seam-spacing " << r.later_seam_spacing;
   command << " --rank-order " << o.rank_order;
-  if (o.rank_order == "voids") command << " --void-sigma " << o.void_sigma;
-  if (o.rank_order == "fill" && o.levels > 1) {
-    command << " --filled-lattice-steps " << r.filled_lattice_steps;
-    if (r.filled_lattice_steps > 0)
-      command << " --filled-lattice-spacing " << r.filled_lattice_spacing << " --filled-lattice-up-to "
-              << r.filled_lattice_up_to;
-  }
+  if (used("void_sigma")) command << " --void-sigma " << o.void_sigma;
+  if (used("filled_lattice_steps")) command << " --filled-lattice-steps " << r.filled_lattice_steps;
+  if (used("filled_lattice_spacing")) command << " --filled-lattice-spacing " << r.filled_lattice_spacing;
+  if (used("filled_lattice_up_to")) command << " --filled-lattice-up-to " << r.filled_lattice_up_to;
   // The raster settings too: they shape the points (the header was "--engine raster" alone).
   command << " --seed " << o.seed << " " << engine_arguments(*engine, o.engine);
   set.header = {"made by: " + command.str()};
@@ -262,6 +306,7 @@ void add_wang_command(CLI::App& app) {
   add_engine_options(cmd, o->engine);
   cmd->callback([o, cmd] {
     refuse_unused_raster_options(*cmd, o->engine, cmd->count("--engine") ? "" : ", the default for wang");
+    refuse_unused_wang_options(*cmd, *o, wang_options(*o));
     run_wang(*o);
   });
 }

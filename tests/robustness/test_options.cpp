@@ -97,10 +97,10 @@ TEST(Options, WangTakesCountsAsRelaxDoes) {
   TempDir dir;
   // "wang --points 1e3" was refused where "relax -n 1e3" is accepted.
   Outcome r = run({"wang", "-n", "1.3e1", "-k", "0", "--warm", "0", "--lattice-steps", "0", "--seam-steps", "0",
-                   "--ratio", "+2", "-o", dir.file("a.tiles")});
+                   "--levels", "2", "--ratio", "+2", "-o", dir.file("a.tiles")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  r = run({"wang", "-n", "13", "-k", "0", "--warm", "0", "--lattice-steps", "0", "--seam-steps", "0", "-o",
-           dir.file("b.tiles")});
+  r = run({"wang", "-n", "13", "-k", "0", "--warm", "0", "--lattice-steps", "0", "--seam-steps", "0", "--levels", "2",
+           "-o", dir.file("b.tiles")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(read_text(dir.file("a.tiles")), read_text(dir.file("b.tiles")));
 }

@@ -230,6 +230,22 @@ Value parse_named(const char* field, const std::string& name, std::initializer_l
 
 }  // namespace
 
+bool wang_setting_used(const WangOptions& options, std::string_view setting) {
+  const WangLevelOptions& l = options.level;
+  const WangRefinement& r = l.refine;
+  const bool filled = l.rank_order == RankOrder::fill && options.levels > 1;
+  if (setting == "ratio") return options.levels > 1;
+  if (setting == "period") return l.strategy == WangStrategy::instances;
+  if (setting == "void_sigma") return l.rank_order == RankOrder::voids;
+  if (setting == "lattice_step") return r.lattice_iterations > 0 || r.lattice_steps_per_iteration > 0;
+  if (setting == "seam_spacing") return r.seam_iterations > 0;
+  if (setting == "level_seam_spacing")
+    return r.seam_iterations > 0 && options.levels > 1 && l.rank_order != RankOrder::fill;
+  if (setting == "filled_lattice_steps") return filled;
+  if (setting == "filled_lattice_spacing" || setting == "filled_lattice_up_to") return filled && r.filled_lattice_steps > 0;
+  throw Error("internal: no conditional Wang setting is called '" + std::string(setting) + "'");
+}
+
 void validate(const WangOptions& options) {
   const WangLevelOptions& l = options.level;
   check_whole_field("points", static_cast<long long>(options.points), 1, static_cast<long long>(kMaxWangPoints));

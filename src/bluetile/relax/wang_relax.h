@@ -143,6 +143,20 @@ WangStrategy parse_wang_strategy(const std::string& name, TileSetKind kind);
 RankOrder parse_wang_rank_order(const std::string& name);
 const char* wang_rank_order_name(RankOrder order);
 
+// The settings that only some runs use, by the Python module's names of the fields (the tool's
+// options are the same with "--" and "-" for "_"): ratio (levels 2 or more), period (the
+// instances strategy), void_sigma (the voids order), lattice_step (lattice steps, after or during
+// the iterations), seam_spacing (seam steps), level_seam_spacing (seam steps in relaxed later
+// levels: not the fill order's, which are filled), filled_lattice_steps (filled levels: the fill
+// order and levels 2 or more), filled_lattice_spacing and filled_lattice_up_to (filled levels with
+// lattice steps). The front ends refuse such a setting where a run would not use it, rather than
+// drop it without a word, and the tool's made-by line names each only where it was used.
+inline constexpr std::string_view kConditionalWangSettings[] = {
+    "ratio", "period", "void_sigma", "lattice_step", "seam_spacing", "level_seam_spacing",
+    "filled_lattice_steps", "filled_lattice_spacing", "filled_lattice_up_to"};
+// Whether a run with `options` uses `setting`, one of kConditionalWangSettings (Error otherwise).
+bool wang_setting_used(const WangOptions& options, std::string_view setting);
+
 // A whole set: level 0, then levels 1 .. levels-1. The seed of level l is derive_seed(seed, l), so
 // a set with more levels starts with the same points as one with fewer.
 TileSet relax_wang_tiles(CentroidEngine& engine, const WangOptions& options);
