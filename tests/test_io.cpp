@@ -40,6 +40,8 @@ TEST(Canvas, TextLandsInItsBox) {
   EXPECT_TRUE(is_dark(canvas.pixel(14, 11)));  // the crossbar
   EXPECT_FALSE(is_dark(canvas.pixel(9, 5)));
   EXPECT_EQ(Canvas::text_width("ab", 2), 22);
+  EXPECT_EQ(Canvas::text_width("", 2), 0);
+  EXPECT_EQ(Canvas::text_width(std::string(20000, 'a'), 32768), 3932127232LL);  // past an int: it overflowed
   // Turned text: the box is 16 wide and 10 tall (one glyph), bottom-up.
   Canvas turned(40, 40);
   turned.text(0, 0, "H", colours::black, 2, Align::start, Align::start, true);
@@ -155,7 +157,15 @@ TEST(Plot, NiceTicks) {
   t = nice_ticks(-4.3, 2.2, 5);
   EXPECT_DOUBLE_EQ(t.front(), -4.0);
   EXPECT_DOUBLE_EQ(t[1] - t[0], 2.0);
-  EXPECT_THROW(nice_ticks(1.0, 1.0, 5), Error);
+  EXPECT_EQ(test::error_of([] { nice_ticks(1.0, 1.0, 5); }), "plot range 1 to 1 is empty");
+  // NaN was "plot range is empty"; a range wider than the largest double gave no ticks.
+  EXPECT_EQ(test::error_of([] { nice_ticks(std::nan(""), 1.0, 5); }), "plot range nan to 1: not finite");
+  EXPECT_EQ(test::error_of([] { nice_ticks(0.0, INFINITY, 5); }), "plot range 0 to inf: not finite");
+  t = nice_ticks(-1e308, 1e308, 5);
+  ASSERT_EQ(t.size(), 5u);
+  EXPECT_EQ(t.front(), -1e308);
+  EXPECT_EQ(t[2], 0.0);
+  EXPECT_EQ(t.back(), 1e308);
 }
 
 // A range below the resolution of doubles at its magnitude never ended: each step left the tick

@@ -152,8 +152,7 @@ void Canvas::text(double x, double y, std::string_view s, Colour c, int scale, A
   if (scale < 1 || scale > kMaxCanvasSide)
     throw Error("text scale " + std::to_string(scale) + ": expected 1 to " + std::to_string(kMaxCanvasSide));
   if (s.empty() || std::isnan(x) || std::isnan(y)) return;
-  // In 64 bits: a long text at a large scale passes an int.
-  const long long w = (static_cast<long long>(s.size()) * glyph_advance - 1) * scale, ht = text_height(scale);
+  const long long w = text_width(s, scale), ht = text_height(scale);
   // Size of the box on the canvas (turned when vertical).
   const long long box_w = vertical ? ht : w, box_h = vertical ? w : ht;
   auto offset = [](Align a, long long size) {

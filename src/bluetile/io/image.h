@@ -70,8 +70,10 @@ class Canvas {
   // 1..kMaxCanvasSide (a scale of 2^30 overflowed and ran for hours).
   void text(double x, double y, std::string_view s, Colour c, int scale = 2, Align h = Align::start,
             Align v = Align::start, bool vertical = false);
-  static int text_width(std::string_view s, int scale) {
-    return s.empty() ? 0 : (static_cast<int>(s.size()) * 6 - 1) * scale;
+  // Glyphs advance 6 font pixels (font.h). In 64 bits: a long text at a large scale passes an int
+  // (it overflowed).
+  static long long text_width(std::string_view s, int scale) {
+    return s.empty() ? 0 : (static_cast<long long>(s.size()) * 6 - 1) * scale;
   }
   static int text_height(int scale) { return 8 * scale; }
 

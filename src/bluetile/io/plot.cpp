@@ -93,7 +93,7 @@ void CanvasPainter::fill_rect(double x0, double y0, double x1, double y1, Colour
 void CanvasPainter::text(double x, double y, std::string_view s, Colour c, Align h, Align v, bool vertical) {
   canvas_.text(x, y, s, c, scale_, h, v, vertical);
 }
-double CanvasPainter::text_width(std::string_view s) const { return Canvas::text_width(s, scale_); }
+double CanvasPainter::text_width(std::string_view s) const { return static_cast<double>(Canvas::text_width(s, scale_)); }
 double CanvasPainter::text_height() const { return Canvas::text_height(scale_); }
 void CanvasPainter::image(double x, double y, double width, double height, const SvgImage& image) {
   // Nearest pixel: the images drawn are periodograms, whose cells should stay sharp.
@@ -154,10 +154,15 @@ void SvgPainter::image(double x, double y, double width, double height, const Sv
 // --- plots -----------------------------------------------------------------------------------
 
 std::vector<double> nice_ticks(double lo, double hi, int target) {
-  if (!(hi > lo)) throw Error("plot range is empty");
+  // NaN and -1e308 to 1e308 said "plot range is empty", and the latter gave no ticks.
+  if (!std::isfinite(lo) || !std::isfinite(hi))
+    throw Error("plot range " + shortest_text(lo) + " to " + shortest_text(hi) + ": not finite");
+  if (!(hi > lo)) throw Error("plot range " + shortest_text(lo) + " to " + shortest_text(hi) + " is empty");
   if (target < 1 || target > kMaxTicks)
     throw Error("ticks: target " + std::to_string(target) + ": expected 1 to " + std::to_string(kMaxTicks));
-  double step = nice_step(hi - lo, target);
+  // A span past the largest double is measured in tenths: the step stays 1, 2 or 5 times a power of 10.
+  const double span = hi - lo;
+  const double step = std::isfinite(span) ? nice_step(span, target) : 10.0 * nice_step(hi / 10.0 - lo / 10.0, target);
   std::vector<double> ticks;
   for (double v = std::ceil(lo / step - 1e-9) * step; v <= hi + 1e-9 * step;) {
     ticks.push_back(v);
