@@ -240,6 +240,21 @@ TEST(TileCommand, FitKeepsTheMapsAspectOnARegionOfAnother) {
   r = run_bluetile({"tile", "--region", "0", "0", "2", "1", "--fit", "cover", "-o", dir.file("bad.txt")});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "bluetile: --fit cover places a --density-map: give one\n");
+  // The density settings by their options' names (the library's words named none: "max density
+  // and count need a density map").
+  for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--count", "300"}, "--count 300 needs a --density-map: give one"},
+           {{"--max-density", "5e2"}, "--max-density 5e2 needs a --density-map: give one"},
+           {{"--density-map", dir.file("white.png"), "--density", "50"},
+            "--density 50 is for uniform tilings; with a --density-map give --max-density or --count"},
+           {{"--density-map", dir.file("white.png"), "--count", "300", "--max-density", "50"},
+            "--count and --max-density exclude each other: give one"}}) {
+    std::vector<std::string> run = {"tile", "--region", "0", "0", "2", "1", "-o", dir.file("bad.txt")};
+    run.insert(run.end(), args.begin(), args.end());
+    r = run_bluetile(run);
+    EXPECT_EQ(r.exit_code, 1) << message;
+    EXPECT_EQ(r.err, "bluetile: " + message + "\n");
+  }
   // So do the transfer options (they were ignored without a word), in tile and in relax.
   for (const char* option : {"--invert", "--no-invert", "--gamma", "--transfer"}) {
     std::vector<std::string> args = {"tile", "--region", "0", "0", "2", "1", option};

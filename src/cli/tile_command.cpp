@@ -181,6 +181,20 @@ void refuse_unused_output_options(const CLI::App& command, const std::vector<std
   refuse_unless_used(command, "--image-size", render, "a render output (.png .tif .tiff .jpg .jpeg .exr .bmp)");
 }
 
+// plan_tiling's checks of the density settings, in the options' names (its messages name none:
+// "max density and count need a density map").
+void refuse_density_options(const CLI::App& command, bool map) {
+  const auto given = [&command](const char* name) {
+    return command.count(name) > 0 ? std::string(name) + " " + command.get_option(name)->as<std::string>() : "";
+  };
+  const std::string density = given("--density"), max_density = given("--max-density"), count = given("--count");
+  if (map && !density.empty())
+    throw Error(density + " is for uniform tilings; with a --density-map give --max-density or --count");
+  if (!map && (!max_density.empty() || !count.empty()))
+    throw Error((max_density.empty() ? count : max_density) + " needs a --density-map: give one");
+  if (!max_density.empty() && !count.empty()) throw Error("--count and --max-density exclude each other: give one");
+}
+
 void run_tile(const TileOptions& o, const CLI::App& command) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   TiledFormat format;
@@ -310,6 +324,7 @@ void add_tile_command(CLI::App& app) {
                 "drawing or render its time");
   cmd->callback([o, fit, cmd] {
     if (fit->count() > 0 && o->density_map.empty()) throw Error("--fit " + o->fit + " places a --density-map: give one");
+    refuse_density_options(*cmd, !o->density_map.empty());
     refuse_transfer_without_map(*cmd, !o->density_map.empty());
     refuse_unused_output_options(*cmd, o->outputs);
     run_tile(*o, *cmd);
