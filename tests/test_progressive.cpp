@@ -182,7 +182,7 @@ TEST(Progressive, CommandLineBadInput) {
       {{"progressive", "-i", base, "--add", "0", "-o", out}, "--add"},
       {{"progressive", "-i", base, "--add", "5", "--levels", "1", "-o", out}, "already has 1 level(s)"},
       {{"progressive", "-i", base, "--ratio", "0.5", "-o", out}, "--ratio 0.5: out of range; expected a number above 1"},
-      {{"progressive", "-i", base, "--ratio", "1.1", "-o", out}, "adds no point to a set of 2"},
+      {{"progressive", "-i", base, "--ratio", "1.1", "-o", out}, "--ratio 1.1 adds no point to a set of 2"},
       {{"progressive", "-n", "10", "--add", "100000000", "--levels", "3", "-o", out}, "more than the limit"},
       {{"progressive", "-o", out}, "--input or --count"},
   };

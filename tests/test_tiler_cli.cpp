@@ -480,8 +480,11 @@ TEST(TileCommand, BadInputFailsWithOneLineAndWritesNothing) {
       {{"--region", "0", "0", "1", "1", "--density-map", garbage}, "garbage.png"},
       {{"--region", "0", "0", "1", "1", "--tiles", bad_tiles}, "bad.tiles:"},
       {{"--region", "0", "0", "1", "1", "--tiles", dir.file("none.tiles")}, "none.tiles"},
-      {{"--region", "0", "0", "1", "1", "--tile-size", "1", "--density", "1e9"}, "more than tiles"},
-      {{"--region", "0", "0", "1", "1", "--columns", "x,y,colour"}, "unknown column 'colour'"},
+      {{"--region", "0", "0", "1", "1", "--tile-size", "1", "--density", "1e9"},
+       "more than tiles of size 1 hold (2048 points per unit area): use a smaller --tile-size or leave it out"},
+      {{"--region", "0", "0", "1", "1", "--columns", "x,y,colour"},
+       "--columns 'x,y,colour': unknown column 'colour' (known: x, y, i, j, tile, level, rank)"},
+      {{"--region", "0", "0", "1", "1", "--columns", "x,y,x"}, "--columns 'x,y,x': column 'x' given twice"},
       {{"--region", "3e9", "0", "3.1e9", "1"}, "tiles from the origin"},
   };
   for (const Case& c : cases) {

@@ -547,7 +547,7 @@ def test_tile_names_its_own_arguments(tool, tmp_path):
     # The tool says the same with its own option names.
     cli = tool("tile", "--region", 0, 0, 1, 1, "--tile-size", 1, "--density", 1e9, "--output", tmp_path / "t.txt",
                check=False)
-    assert "use a smaller tile size or leave it out" in cli.stderr
+    assert "use a smaller --tile-size or leave it out" in cli.stderr
 
 
 def test_float32_values_in_messages_are_the_float32s_shortest():

@@ -76,7 +76,10 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     try {
       sizes = hierarchy_level_sizes(set, options);
     } catch (const Error& e) {
-      throw Error(o.input.empty() ? std::string(e.what()) : input_name(o.input) + ": " + e.what());
+      // The library names the ratio as its field ("ratio 1.0000001 adds no point ..."): here the option.
+      std::string message = e.what();
+      if (message.starts_with("ratio ")) message.insert(0, "--");
+      throw Error(o.input.empty() ? message : input_name(o.input) + ": " + message);
     }
     total += static_cast<double>(set.points.size());
     for (std::size_t add : sizes) total += static_cast<double>(add);

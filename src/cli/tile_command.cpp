@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <string>
+#include <string_view>
 
 #include "cli/commands.h"
 #include "cli/density_options.h"
@@ -84,9 +86,18 @@ Plan make_plan(const TileOptions& o) {
   request.fit = parse_map_fit(o.fit);
   DensityGrid grid;
   if (!o.density_map.empty()) grid = load_density_map(o.density_map, density_transfer(o.transfer));
+  TileSet set = o.tiles.empty() ? default_tile_set() : read_tile_set(o.tiles);
   Plan plan;
-  static_cast<TilingPlan&>(plan) =
-      plan_tiling(o.tiles.empty() ? default_tile_set() : read_tile_set(o.tiles), o.density_map.empty() ? nullptr : &grid, request);
+  try {
+    static_cast<TilingPlan&>(plan) = plan_tiling(std::move(set), o.density_map.empty() ? nullptr : &grid, request);
+  } catch (const Error& e) {
+    // The library's advice names the tile size in words ("use a smaller tile size"): here the option.
+    std::string message = e.what();
+    for (const char* advice : {"use a smaller tile size", "use a larger tile size"})
+      if (const std::size_t at = message.find(advice); at != std::string::npos)
+        message.replace(at + std::string_view(advice).size() - 9, 9, "--tile-size");
+    throw Error(message);
+  }
   plan.tiles_name = o.tiles.empty() ? std::string("default (") + kDefaultTileSetName + ")" : o.tiles;
   return plan;
 }
@@ -198,7 +209,12 @@ void refuse_density_options(const CLI::App& command, bool map) {
 void run_tile(const TileOptions& o, const CLI::App& command) {
   if (o.threads > 0) set_thread_count(static_cast<std::size_t>(o.threads));
   TiledFormat format;
-  format.columns = parse_tiled_columns(o.columns);
+  try {
+    format.columns = parse_tiled_columns(o.columns);
+  } catch (const Error& e) {
+    // "columns: column 'x' given twice": here the option as given.
+    throw Error("--columns '" + o.columns + "'" + std::string(e.what()).substr(std::string_view("columns").size()));
+  }
   format.normalize = o.normalize;
   // Every output is declared, and so checked (folders, the same file twice), before any work;
   // all of them are published together at the end.
