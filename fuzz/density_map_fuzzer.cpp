@@ -60,7 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     BLUETILE_FUZZ_CHECK(std::fclose(file) == 0);
   }
   bluetile::DensityTransfer transfer;
-  const int curve = (choice / kExtensions.size()) % 3;
+  const std::size_t curve = (choice / kExtensions.size()) % 3;
   transfer.curve = curve == 0 ? bluetile::TransferCurve::automatic
                    : curve == 1 ? bluetile::TransferCurve::srgb
                                 : bluetile::TransferCurve::linear;

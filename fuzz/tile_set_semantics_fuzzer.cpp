@@ -108,7 +108,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::size_t point = 0;
   for (const TileText& tile : tiles) {
     text += "# tile " + std::to_string(tile.id) + (rules.corner_coloured() ? " corners" : "");
-    for (std::uint8_t c : tile.colours) text += " " + std::to_string(c);
+    // Appended piecewise: GCC 12 warns falsely (-Wrestrict) on a literal + string chain.
+    for (std::uint8_t c : tile.colours) {
+      text += ' ';
+      text += std::to_string(c);
+    }
     text += "\n";
     for (std::size_t k = 0; k < tile.ranks.size(); ++k, ++point) {
       // Distinct points inside the tile; where they lie is no concern of these checks.
