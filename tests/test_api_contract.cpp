@@ -6,6 +6,7 @@
 #include <climits>
 #include <cmath>
 #include <limits>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -30,6 +31,7 @@
 #include "bluetile/sampling/density_sampling.h"
 #include "bluetile/sampling/plot_order.h"
 #include "bluetile/tiling/density_thinning.h"
+#include "bluetile/tiling/tiler.h"
 #include "bluetile/voronoi/exact_engine.h"
 #include "bluetile/voronoi/site_grid.h"
 #include "test_support.h"
@@ -430,6 +432,32 @@ TEST(ApiContract, FilledLatticeStepsCheckTheirTilesAndOptions) {
   bad = options;
   bad.iterations = -1;
   EXPECT_EQ(error_of([&] { decorrelate_filled_level(tiles, 6, sources, bad); }), "iterations: expected 0 to 100000, got -1");
+}
+
+// A default-made result or input struct of the public headers is zero throughout: Cell's centroid,
+// TiledPoint's positions and FillSource's shift were glm vectors left uninitialised (glm's
+// default constructor does not initialise), where every other field of them starts at 0.
+template <typename T>
+T* made_over_garbage(unsigned char (&storage)[sizeof(T)]) {
+  std::fill(std::begin(storage), std::end(storage), static_cast<unsigned char>(0xff));  // NaN as doubles
+  return new (storage) T;  // default-initialised, as `T value;` is
+}
+
+TEST(ApiContract, DefaultMadeStructsAreZeroThroughout) {
+  alignas(Cell) unsigned char cell_bytes[sizeof(Cell)];
+  const Cell* cell = made_over_garbage<Cell>(cell_bytes);
+  EXPECT_EQ(cell->centroid, Point(0.0, 0.0));
+  EXPECT_EQ(cell->area, 0.0);
+  cell->~Cell();
+  alignas(TiledPoint) unsigned char tiled_bytes[sizeof(TiledPoint)];
+  const TiledPoint* tiled = made_over_garbage<TiledPoint>(tiled_bytes);
+  EXPECT_EQ(tiled->position, Point(0.0, 0.0));
+  EXPECT_EQ(tiled->local, Point(0.0, 0.0));
+  EXPECT_EQ(tiled->rank, 0u);
+  alignas(FillSource) unsigned char source_bytes[sizeof(FillSource)];
+  const FillSource* source = made_over_garbage<FillSource>(source_bytes);
+  EXPECT_EQ(source->shift, Point(0.0, 0.0));
+  EXPECT_EQ(source->weight, 1.0);
 }
 
 }  // namespace

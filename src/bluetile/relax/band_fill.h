@@ -32,7 +32,7 @@ namespace bluetile {
 // that place; 1 for the tile itself at shift 0). Every source blocks the floor in full.
 struct FillSource {
   std::size_t tile = 0;
-  Point shift;
+  Point shift{0.0, 0.0};
   double weight = 1.0;
 };
 

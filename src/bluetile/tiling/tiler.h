@@ -50,12 +50,12 @@ struct CellRange {
 
 // One point of a tiled window, with where it comes from.
 struct TiledPoint {
-  Point position;          // plane coordinates
+  Point position{0.0, 0.0}; // plane coordinates
   std::int64_t i = 0, j = 0;  // its cell
   int tile = 0;            // the tile id in that cell
   int level = 0;           // its level in the tile
   std::uint32_t rank = 0;  // its rank in the tile (0 = first in the progressive order)
-  Point local;             // tile-local coordinates in [0,1)^2, exact as in the tile set
+  Point local{0.0, 0.0};    // tile-local coordinates in [0,1)^2, exact as in the tile set
 };
 
 // The kept points of one cell, as the fast path hands them out: positions[k] has rank ranks[k].

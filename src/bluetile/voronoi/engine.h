@@ -78,7 +78,7 @@ enum class CellStatus : std::uint8_t {
 
 // The cell of one wanted site. Units are domain units; rho is the scene's density (1 without).
 struct Cell {
-  Point centroid;              // centre of mass under rho, inside the domain
+  Point centroid{0.0, 0.0};    // centre of mass under rho, inside the domain
   double area = 0.0;           // cell area (geometric, whatever the density)
   double mass = 0.0;           // integral of rho over the cell (the area when there is no density)
   double second_moment = 0.0;  // integral of rho |x - site|^2 over the cell (its Lloyd energy)
