@@ -344,6 +344,45 @@ TEST(Cli, WangMadeByLinesRunAsWritten) {
   }
 }
 
+TEST(Cli, BoundedSetsAreNotWrappedIntoTheSquare) {
+  // relax --bounded (or a file declaring '# domain bounded') moved a point at x = 1.5 to 0.5 and
+  // relaxed it there; analyze --bounded --wrap did the same before measuring in the square.
+  TempDir dir;
+  const std::string plain = dir.write("plain.txt", "0.5 0.5\n1.5 0.25\n0.2 0.8\n");
+  const std::string declared = dir.write("declared.txt", "# domain bounded\n0.5 0.5\n1.5 0.25\n0.2 0.8\n");
+  const std::string out = dir.file("o.txt");
+  const std::string square = " is outside [0, 1) (the set is declared '# domain bounded': its points lie in the square, "
+                             "and are not wrapped onto a torus)\n";
+  struct Case {
+    std::vector<std::string> args;
+    std::string message;
+  };
+  const std::vector<Case> cases = {
+      {{"relax", "-i", plain, "--bounded", "-k", "1", "-o", out},
+       plain + ":2: x = 1.5 is outside [0, 1) (--bounded: the points lie in the unit square, and are not wrapped onto a "
+               "torus)\n"},
+      {{"relax", "-i", declared, "-k", "1", "-o", out}, declared + ":3: x = 1.5" + square},
+      {{"centroids", "-i", declared, "--engine", "exact", "-o", out}, declared + ":3: x = 1.5" + square},
+      {{"analyze", "-i", declared, "-o", dir.file("a")}, declared + ":3: x = 1.5" + square},
+      {{"analyze", "-i", declared, "--wrap", "-o", dir.file("a")}, declared + ":3: x = 1.5" + square},
+      {{"analyze", "-i", plain, "--bounded", "-o", dir.file("a")},
+       plain + ":2: x = 1.5 is outside [0, 1) (--domain X0 Y0 X1 Y1 rescales points made in another rectangle)\n"},
+      {{"analyze", "-i", plain, "--bounded", "--wrap", "-o", dir.file("a")},
+       "--wrap wraps points onto the torus, and --bounded measures them in the square: give one\n"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run_bluetile(c.args);
+    EXPECT_EQ(r.exit_code, 1) << c.message;
+    EXPECT_EQ(r.err, "bluetile: " + c.message);
+  }
+  EXPECT_EQ(dir.list(), (std::vector<std::string>{"declared.txt", "plain.txt"}));
+  // On the torus a point outside is still wrapped: relax as before, analyze with --wrap.
+  auto r = run_bluetile({"relax", "-i", plain, "-k", "1", "--engine", "exact", "-o", out});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = run_bluetile({"analyze", "-i", plain, "--wrap", "--no-psa-measures", "--no-discrepancy", "-o", dir.file("a")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 TEST(Cli, BoundedSetsSayTheirDomainAndStayBounded) {
   // relax --bounded and stipple wrote no line that analyze reads ("# domain bounded"), so their
   // sets were analysed, relaxed and measured on the torus unless told again.

@@ -72,6 +72,22 @@ TEST(PointFile, OutOfRangeRefusedWhenAskedAndDomainDeclared) {
   EXPECT_EQ(sets[1].declared_boundary, Boundary::bounded);
 }
 
+TEST(PointFile, BoundedSetsAreNotWrapped) {
+  // A set declared bounded lies in its square: a point outside it was wrapped into the square
+  // (1.5 to 0.5) and relaxed or measured there without a word.
+  const std::string bounded = " (the set is declared '# domain bounded': its points lie in the square, and are not wrapped "
+                              "onto a torus)";
+  EXPECT_EQ(parse_error("# domain bounded\n0.5 0.5\n1.5 0.25\n"), "pts.txt:3: x = 1.5 is outside [0, 1)" + bounded);
+  EXPECT_EQ(parse_error("# domain bounded\n0.5 -0.25\n"), "pts.txt:2: y = -0.25 is outside [0, 1)" + bounded);
+  // The line holds for the later sets of the file; a periodic or undeclared set is wrapped as before.
+  EXPECT_THROW(parse_point_sets("# domain bounded\n# set 0\n0.1 0.2\n# set 1\n1 0.4\n", "x"), Error);
+  EXPECT_EQ(parse_points("# domain periodic\n1.5 -0.25\n", "x").points, std::vector<Point>{Point(0.5, 0.75)});
+  EXPECT_EQ(parse_points("1.5 -0.25\n", "x").points, std::vector<Point>{Point(0.5, 0.75)});
+  // Inside, a bounded set reads as before; a CSV's domain line counts the same.
+  EXPECT_EQ(parse_points("# domain bounded\n0 0.999\n", "x").points, std::vector<Point>{Point(0.0, 0.999)});
+  EXPECT_THROW(parse_csv_points("# domain bounded\nx,y\n1.5,0.25\n", "p.csv"), Error);
+}
+
 TEST(PointFile, DomainLinesWithATypoAreRefusedNotTakenForComments) {
   // "# domain bounde" was a comment: the set was analysed on the torus without a word.
   const std::string fix =

@@ -87,12 +87,15 @@ PointSets point_sets(const AnyArray& array, const char* name, OutsideTorus outsi
           throw nb::value_error(
               (element_name(k, i) + ": not a finite number '" + value_text(xy[c], !is_double) + "'").c_str());
       }
-      for (std::size_t c = 0; c < 2 && outside == OutsideTorus::refuse; ++c)
+      for (std::size_t c = 0; c < 2 && (outside == OutsideTorus::refuse || outside == OutsideTorus::square); ++c)
         if (!(xy[c] >= 0.0 && xy[c] < 1.0)) {
           const std::string value = value_text(xy[c], !is_double);
+          const std::string why = outside == OutsideTorus::square
+                                      ? "bounded=True: the points lie in the unit square, and are not wrapped onto a torus"
+                                      : name + std::string(" % 1.0 % 1.0 wraps them onto the torus; a single % 1.0 gives "
+                                                           "1.0 for a tiny negative");
           throw nb::value_error((element_name(k, i) + ": " + (c == 0 ? "x" : "y") + " = " + value + " is outside [0, 1) (" +
-                                 name + " % 1.0 % 1.0 wraps them onto the torus; a single % 1.0 gives 1.0 for a "
-                                 "tiny negative)")
+                                 why + ")")
                                     .c_str());
         }
       points[i] = outside == OutsideTorus::keep ? bluetile::Point{xy[0], xy[1]}

@@ -31,6 +31,7 @@ enum class OutsideTorus {
   wrap,    // wrapped onto the torus, as `relax` wraps point files
   refuse,  // refused, as `analyze` refuses them (wrapping (1, 1) onto (0, 0) would measure a pair that is not there)
   keep,    // kept as given: a table to be saved holds plane coordinates too, as `bluetile tile` writes them
+  square,  // refused, as `relax --bounded` refuses them: a bounded set lies in the square, no torus to wrap onto
 };
 
 // float64 or float32 values, shape (N, 2) or (K, N, 2) with N >= 1, every value finite, placed

@@ -148,7 +148,7 @@ nb::object relax(std::optional<ArrayArg> points_arg, const Whole& count_arg, con
                            " weights the cells by a density_map: give one").c_str());
   PointSets input;
   if (points_arg) {
-    input = point_sets(*points_array, "points");
+    input = point_sets(*points_array, "points", bounded ? OutsideTorus::square : OutsideTorus::wrap);
     check_cells_memory(input, choice.engine, "relax");
   } else {
     // As the tool's relax --count --sets: refused at once with the estimate, not a MemoryError

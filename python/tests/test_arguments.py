@@ -350,6 +350,16 @@ def test_wang_tiles_refuses_settings_the_call_would_not_use(tool, tmp_path):
     bt.wang_tiles(**small, set="corner81", period=4)  # strategy 'auto' is instances for corner81
 
 
+def test_bounded_relaxation_refuses_points_outside_the_square():
+    # bounded=True wrapped a point at x = 1.5 to 0.5 and relaxed it there, as relax --bounded did.
+    points = np.array([[0.5, 0.5], [1.5, 0.25], [0.2, 0.8]])
+    with pytest.raises(ValueError, match=r"^points\[1\]: x = 1.5 is outside \[0, 1\) \(bounded=True: the points lie in "
+                                         r"the unit square, and are not wrapped onto a torus\)$"):
+        bt.relax(points, iterations=1, bounded=True)
+    assert bt.relax(points, iterations=1, engine="exact").shape == (3, 2)  # on the torus: wrapped, as before
+    assert bt.relax(points % 1.0, iterations=1, bounded=True).shape == (3, 2)
+
+
 @pytest.mark.parametrize("dtype", [np.int8, np.int16, np.int32, np.int64])
 def test_negative_levels_are_quoted_as_given(tmp_path, dtype):
     # An int32 -1 was read as uint32 and quoted as 4294967295.

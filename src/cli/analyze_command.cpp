@@ -103,21 +103,26 @@ void tile_grid_lines(const TileGrid& grid, PointsFigure& figure) {
   lines(grid.origin.y, grid.spacing.y, figure.grid_y);
 }
 
-std::string append_wrap_hint(const std::string& message) {
-  if (message.find("is outside [") == std::string::npos) return message;
+// `bounded`: --bounded was given, which --wrap may not go with; a set declared bounded says so in
+// the reader's message (kBoundedNotWrapped) and takes no hint.
+std::string append_wrap_hint(const std::string& message, bool bounded) {
+  if (message.find("is outside [") == std::string::npos || message.find(kBoundedNotWrapped) != std::string::npos)
+    return message;
   if (message.find("is outside [0, 1)") != std::string::npos)
-    return message + " (--domain X0 Y0 X1 Y1 rescales points made in another rectangle; --wrap wraps them onto the torus)";
-  return message + " (--wrap wraps such points into --domain)";
+    return message + (bounded ? " (--domain X0 Y0 X1 Y1 rescales points made in another rectangle)"
+                              : " (--domain X0 Y0 X1 Y1 rescales points made in another rectangle; --wrap wraps them "
+                                "onto the torus)");
+  return bounded ? message : message + " (--wrap wraps such points into --domain)";
 }
 
-std::vector<PointSet> read_sets(const std::string& path, const ReadOptions& read) {
+std::vector<PointSet> read_sets(const std::string& path, const ReadOptions& read, bool bounded) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw Error(path + ": is a folder, not a point file");
   std::vector<PointSet> sets;
   try {
     sets = read_points_by_extension(path, read);
   } catch (const Error& e) {
-    throw Error(append_wrap_hint(e.what()));
+    throw Error(append_wrap_hint(e.what(), bounded));
   }
   if (sets.empty()) throw Error(path + ": no points");
   for (const PointSet& s : sets) {
@@ -679,7 +684,10 @@ AnalyzeInputs read_inputs(const AnalyzeOptions& o) {
   ReadOptions read;
   read.wrap = o.wrap;
   read.domain = domain_option(o.domain);
-  for (const std::string& path : o.inputs) inputs.push_back(read_sets(path, read));
+  // The torus's wrap and the square's edges do not go together.
+  if (o.wrap && o.bounded)
+    throw Error("--wrap wraps points onto the torus, and --bounded measures them in the square: give one");
+  for (const std::string& path : o.inputs) inputs.push_back(read_sets(path, read, o.bounded));
   for (const auto& sets : inputs) in.total_sets += sets.size();
   const std::string files = std::to_string(o.inputs.size()) + (o.inputs.size() == 1 ? " file" : " files");
   // --by-level takes one set; of the modes that take several, --by-rank is the one that measures
@@ -721,7 +729,7 @@ AnalyzeInputs read_inputs(const AnalyzeOptions& o) {
         in.from = read_point_file(o.from, read).points;
       }
     } catch (const Error& e) {
-      throw Error(append_wrap_hint(e.what()));
+      throw Error(append_wrap_hint(e.what(), o.bounded));
     }
     if (in.from.size() != inputs[0][0].points.size())
       throw Error(o.from + ": --from has " + std::to_string(in.from.size()) + " points but the input has " +
@@ -1083,7 +1091,9 @@ void add_analyze_command(CLI::App& app) {
   cmd->add_flag("--bounded", o->bounded,
                 "The sets were made in the bounded unit square: Euclidean distances, edge-corrected RDF (also "
                 "chosen by a '# domain bounded' line in the file)");
-  cmd->add_flag("--wrap", o->wrap, "Wrap points outside [0, 1) (or --domain) onto the torus (else they are an error)");
+  cmd->add_flag("--wrap", o->wrap,
+                "Wrap points outside [0, 1) (or --domain) onto the torus (else they are an error; not with --bounded or "
+                "a set declared bounded)");
   cmd->add_option("--domain", o->domain,
                   "X0 Y0 X1 Y1: the rectangle the points were made in, rescaled onto the unit torus (a non-square "
                   "one is stretched); points outside are an error (or wrapped with --wrap)")

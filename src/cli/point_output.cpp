@@ -190,8 +190,8 @@ void check_cells_memory(const std::vector<PointSet>& sets, const std::string& en
                command + " of the " + std::to_string(n) + " points of " + input_name(path));
 }
 
-std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command) {
-  std::vector<PointSet> sets = read_point_table(path);
+std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command, const ReadOptions& options) {
+  std::vector<PointSet> sets = read_point_table(path, options);
   if (sets.empty()) throw Error(input_name(path) + ": no points");
   for (std::size_t k = 0; k < sets.size(); ++k) {
     if (!sets[k].points.empty()) continue;

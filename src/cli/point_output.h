@@ -38,8 +38,10 @@ void add_point_output_options(CLI::App* command, PointOutputOptions& options, co
                               bool required = true, bool several_sets = true);
 
 // The point sets of --input `path` (every format read_point_table reads), refused unless every
-// set holds at least one point: `command` is named in the message ("relax needs ...").
-std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command);
+// set holds at least one point: `command` is named in the message ("relax needs ..."). `options`:
+// read_point_table's (points wrapped onto the torus unless options.wrap is false).
+std::vector<PointSet> read_input_sets(const std::string& path, const std::string& command,
+                                      const ReadOptions& options = {});
 
 // The up-front memory check of computing the cells of all `sets` with `engine` (relax_memory_bytes):
 // "<command> of the N points of PATH needs about ...".

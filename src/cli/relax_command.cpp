@@ -62,7 +62,17 @@ void run_relax(RelaxOptions o, const CLI::App& command) {
   std::vector<PointSet> inputs;
   bool declared_bounded = false;
   if (!o.input.empty()) {
-    inputs = read_input_sets(o.input, "relax");
+    // With --bounded the points lie in the square: one outside it is refused, not wrapped into it.
+    ReadOptions read;
+    read.wrap = !o.bounded;
+    try {
+      inputs = read_input_sets(o.input, "relax", read);
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      if (!o.bounded || message.find("is outside [") == std::string::npos || message.find(kBoundedNotWrapped) != std::string::npos)
+        throw;
+      throw Error(message + " (--bounded: the points lie in the unit square, and are not wrapped onto a torus)");
+    }
     // A bounded set (relax --bounded, stipple) stays bounded, as analyze measures it.
     const std::optional<Boundary> declared = declared_domain(inputs, o.input);
     if (declared == Boundary::periodic && o.bounded)

@@ -105,7 +105,9 @@ bool parse_integer(std::string_view token, long long& value) {
 // Incrementally builds one set, checking each line.
 class SetParser {
  public:
-  SetParser(const std::string& name, const ReadOptions& options) : name_(name), options_(options) {}
+  SetParser(const std::string& name, const ReadOptions& options) : name_(name), options_(options), bounded_(options) {
+    bounded_.wrap = false;
+  }
 
   void declare(std::optional<Boundary> boundary) { set_.declared_boundary = boundary; }
 
@@ -148,11 +150,14 @@ class SetParser {
              std::string(kThirdColumnIsTheLevel));
       set_.levels.push_back(static_cast<int>(level));
     }
+    // A set declared bounded lies in its square, not on a torus: a point outside it is refused, not
+    // wrapped (it was moved into the square without a word).
+    const bool bounded = set_.declared_boundary == Boundary::bounded;
     int outside = -1;
-    const Point placed = place_read_point(p, options_, outside);
+    const Point placed = place_read_point(p, bounded ? bounded_ : options_, outside);
     if (outside >= 0)
       fail(std::string(outside == 0 ? "x" : "y") + " = " + shortened(tokens.kept[outside]) + " is outside " +
-           read_range_text(outside, options_));
+           read_range_text(outside, options_) + (bounded ? std::string(kBoundedNotWrapped) : ""));
     set_.points.push_back(placed);
   }
 
@@ -176,6 +181,7 @@ class SetParser {
  private:
   std::string name_;
   ReadOptions options_;
+  ReadOptions bounded_;  // options_ for a set declared bounded: nothing wrapped
   PointSet set_;
   bool levels_seen_ = false;
   std::size_t declared_count_ = 0;

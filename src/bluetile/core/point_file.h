@@ -44,12 +44,17 @@ struct CoordinateBox {
 
 struct ReadOptions {
   // false: a coordinate outside [0, 1) (outside `domain` when there is one) is an error naming
-  // the file, line and value, instead of being wrapped onto the torus.
+  // the file, line and value, instead of being wrapped onto the torus. A set after a "# domain
+  // bounded" line is never wrapped: it lies in its square, and a point outside is an error, said
+  // with kBoundedNotWrapped.
   bool wrap = true;
   // The domain the set was made in: every coordinate is mapped linearly from [x0, x1) x [y0, y1)
   // onto the unit torus (a non-square box is stretched). None: the file is on the unit torus.
   std::optional<CoordinateBox> domain{};
 };
+
+inline constexpr std::string_view kBoundedNotWrapped =
+    " (the set is declared '# domain bounded': its points lie in the square, and are not wrapped onto a torus)";
 
 // A point as read, placed on the unit torus as `options` says. `outside` is set to the axis
 // (0 x, 1 y) of a coordinate outside the domain when options.wrap is false (the point is then

@@ -755,11 +755,12 @@ std::vector<PointSet> read_by_content(const std::string& path, const ReadOptions
 
 }  // namespace
 
-std::vector<PointSet> read_point_table(const std::string& path) {
-  if (path != "-" && is_rps_path(path)) return {read_rps_file(path)};
+std::vector<PointSet> read_point_table(const std::string& path, const ReadOptions& options) {
+  if (path != "-" && is_rps_path(path)) return {read_rps_file(path, options)};
   // By its extension, as analyze reads it: its lines were text's "expected 'x y'".
-  if (path != "-" && file_extension(path) == ".csv") return same_columns(parse_csv_points(read_input(path), path), path);
-  return same_columns(read_by_content(path, {}), path);
+  if (path != "-" && file_extension(path) == ".csv")
+    return same_columns(parse_csv_points(read_input(path), path, options), path);
+  return same_columns(read_by_content(path, options), path);
 }
 
 namespace {

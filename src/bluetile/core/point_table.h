@@ -127,8 +127,9 @@ std::string checked_table_name(const std::string& path, const std::string& name)
 // Error("<path>: <what>") for a damaged file: short, wrong magic, sizes that do not match,
 // unknown value types, non-finite values, levels that are not whole numbers; and for a zip archive
 // (NumPy's .npz), an npy of other values (integers, a structured or one-dimensional array), saying
-// how NumPy saves the array read here.
-std::vector<PointSet> read_point_table(const std::string& path);
+// how NumPy saves the array read here. `options`: as read_points_by_extension's (by default
+// points are wrapped onto the unit torus).
+std::vector<PointSet> read_point_table(const std::string& path, const ReadOptions& options = {});
 
 // The same decoders over bytes in memory; `name` stands for the file in messages.
 // `options`: the domain and range check of ReadOptions (point_file.h); by default points are
