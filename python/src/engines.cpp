@@ -385,7 +385,8 @@ centroid of its periodic Voronoi cell, ``iterations`` times, or until no site mo
 With ``density_map`` (a 2-D array of densities, row 0 at the top, stretched over the unit square,
 as ``--density-map`` with the image's densities) random starts follow the map and the cells are
 weighted by map^``weight_exponent`` (2 keeps the point density proportional to the map; refused
-without a map), as ``bluetile relax --density-map``. ``bounded=True``: cells end at the square's border (``--bounded``).
+without a map), as ``bluetile relax --density-map``. ``bounded=True``: cells end at the square's border (``--bounded``),
+and points outside [0, 1)^2 are refused, not wrapped onto the torus as they are otherwise.
 
 engine: "raster" (Vulkan, lavapipe by default) or "exact" (CPU, exact polygons); None picks the
 tool's default: raster, or exact with a density map or bounded cells. resolution,
