@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "bluetile/core/error.h"
 #include "bluetile/core/memory_budget.h"
@@ -138,11 +139,10 @@ void refuse_unused_wang_options(const CLI::App& command, const WangCommandOption
   }
 }
 
-void run_wang(const WangCommandOptions& o) {
+void run_wang(const WangCommandOptions& o, WangOptions w) {
   output_format("--output", o.output, kTileSetFormats);
   OutputSet outputs;  // checked before the work, written at the end
   OutputFile& output = outputs.add(o.output, {.allow_stdout = true});
-  WangOptions w = wang_options(o);
   if (o.levels > 1 && !(o.ratio > 1.0)) throw Error("--ratio must be above 1, got " + std::to_string(o.ratio));
   check_points_per_tile(o, TileRules(w.kind).tile_count());
   if (w.level.rank_order == RankOrder::fill && o.levels > 1) {
@@ -306,8 +306,9 @@ void add_wang_command(CLI::App& app) {
   add_engine_options(cmd, o->engine);
   cmd->callback([o, cmd] {
     refuse_unused_raster_options(*cmd, o->engine, cmd->count("--engine") ? "" : ", the default for wang");
-    refuse_unused_wang_options(*cmd, *o, wang_options(*o));
-    run_wang(*o);
+    WangOptions w = wang_options(*o);
+    refuse_unused_wang_options(*cmd, *o, w);
+    run_wang(*o, std::move(w));
   });
 }
 
