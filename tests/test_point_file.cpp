@@ -88,6 +88,19 @@ TEST(PointFile, BoundedSetsAreNotWrapped) {
   EXPECT_THROW(parse_csv_points("# domain bounded\nx,y\n1.5,0.25\n", "p.csv"), Error);
 }
 
+TEST(PointFile, ACoordinateJustInsideTheDomainsEndStaysAtThatEnd) {
+  // (0.9999999999999999 + 1) / 2 rounds to 1: the point read at the right side of a [-1, 1) box
+  // was placed at 0, the left side, which a bounded set's analysis took as written there.
+  const double below_one = std::nextafter(1.0, 0.0);
+  const ReadOptions box{.wrap = true, .domain = CoordinateBox{-1, -1, 1, 1}};
+  for (const char* header : {"", "# domain bounded\n", "# domain periodic\n"}) {
+    const PointSet set = parse_points(std::string(header) + "0.9999999999999999 -1\n0 0.9999999999999999\n", "x", box);
+    EXPECT_EQ(set.points, (std::vector<Point>{{below_one, 0.0}, {0.5, below_one}})) << header;
+  }
+  // Outside the box a periodic set still wraps: the box's end is its start.
+  EXPECT_EQ(parse_points("1 3\n", "x", box).points, (std::vector<Point>{{0.0, 0.0}}));
+}
+
 TEST(PointFile, DomainLinesWithATypoAreRefusedNotTakenForComments) {
   // "# domain bounde" was a comment: the set was analysed on the torus without a word.
   const std::string fix =

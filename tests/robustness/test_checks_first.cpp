@@ -282,7 +282,9 @@ TEST(ChecksFirst, TwoOutputsIntoOnePipeAreRefused) {
   test::CommandResult piped = test::run_command(
       "(timeout 60 '" BLUETILE_BINARY "' relax -n 50 -k 100000000 --engine exact -o - --log - | cat)");
   EXPECT_EQ(piped.out, "");
-  EXPECT_EQ(piped.err, "bluetile: -: is the same file as the output -\n");
+  EXPECT_EQ(piped.err,
+            "bluetile: -: two outputs go to standard output, where their bytes would interleave: write one of them to "
+            "a file\n");
 }
 
 TEST(ChecksFirst, SmallWordingsAndMinusZero) {

@@ -457,6 +457,8 @@ void OutputSet::remember(const Identity& id, const std::string& path, bool is_in
     const std::string& output = is_input ? known->path : path;
     const std::string& other = is_input ? path : known->path;
     if (is_input || known->is_input) throw Error(output + ": is the same file as the input " + other);
+    if (output == "-" && other == "-")
+      throw Error("-: two outputs go to standard output, where their bytes would interleave: write one of them to a file");
     throw Error(output + ": is the same file as the output " + other);
   }
   known_.push_back(std::make_unique<Known>(Known{id, path, is_input}));

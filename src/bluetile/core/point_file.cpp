@@ -269,9 +269,12 @@ Point place_read_point(Point read, const ReadOptions& options, int& outside) {
       outside = axis;
       return read;
     }
-    if (options.domain) unit[axis] = (read[axis] - low[axis]) / (high[axis] - low[axis]);
+    if (!options.domain) continue;
+    unit[axis] = (read[axis] - low[axis]) / (high[axis] - low[axis]);
+    // A coordinate just below the box's end may round to 1, which the wrap below would take to 0,
+    // the other side of a bounded square: it stays at the end.
+    if (unit[axis] == 1.0 && read[axis] < high[axis]) unit[axis] = std::nextafter(1.0, 0.0);
   }
-  // A coordinate just below the domain's end may round to 1: the torus's 0.
   return wrap_point(unit, Domain{});
 }
 

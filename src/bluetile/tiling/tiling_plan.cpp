@@ -83,6 +83,10 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
                 " points per tile would need tiles of size " + exact_text(tile_size) + "): give a higher density");
   plan.tiler = std::make_unique<Tiler>(std::move(set), request.seed, tile_size);
   const double full = plan.tiler->full_density();
+  // Tiles so small that their density overflows: every density would read as "too low" beside inf.
+  if (!std::isfinite(full))
+    throw Error("tile size " + exact_text(tile_size) + " is too small: " + exact_text(points_per_tile) +
+                " points per tile would be more points per unit area than a double holds; use a larger tile size");
   if (target == 0.0) target = full;
   // A hair of rounding (sqrt then square) must not refuse the density it came from.
   if (target > full * (1.0 + 1e-12))
