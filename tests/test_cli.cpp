@@ -38,6 +38,22 @@ TEST(Cli, HelpOnEverySubcommand) {
   }
 }
 
+TEST(Cli, AFileGivenWithoutItsOptionIsNamed) {
+  // "analyze points.txt -o out" said only "--input is required".
+  TempDir dir;
+  auto r = run_bluetile({"analyze", "points.txt", "-o", dir.file("out")});
+  EXPECT_EQ(r.exit_code, 106);
+  EXPECT_EQ(r.err,
+            "bluetile: --input is required; 'points.txt' was given without an option: --input points.txt? (see "
+            "--help)\n");
+  r = run_bluetile({"relax", "-n", "10", "p.txt"});
+  EXPECT_EQ(r.err, "bluetile: --output is required; 'p.txt' was given without an option: --output p.txt? (see --help)\n");
+  // Nothing stray: CLI11's words alone.
+  r = run_bluetile({"analyze", "-o", dir.file("out")});
+  EXPECT_EQ(r.err, "bluetile: --input is required (see --help)\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("out")));
+}
+
 TEST(Cli, RelaxIsDeterministicAcrossThreadCounts) {
   TempDir dir;
   auto a = run_bluetile({"relax", "-n", "500", "-k", "20", "--seed", "9", "--engine", "exact", "--threads", "1",

@@ -95,6 +95,20 @@ int main(int argc, char** argv) {
     return checked_standard_output(app.exit(e));
   } catch (const bluetile::ReaderGone&) {
     return kReaderGoneStatus;
+  } catch (const CLI::RequiredError& e) {
+    // "analyze points.txt -o out" was "--input is required": the file given without its option.
+    std::string stray;
+    for (const CLI::App* command : app.get_subcommands())
+      for (const std::string& word : command->remaining())
+        if (stray.empty() && !word.empty() && word[0] != '-') stray = word;
+    const std::string said = e.what();
+    const std::size_t option_end = said.find(" is required");
+    if (!stray.empty() && said.rfind("--", 0) == 0 && option_end != std::string::npos)
+      std::fprintf(stderr, "bluetile: %s; '%s' was given without an option: %s %s? (see --help)\n", said.c_str(),
+                   stray.c_str(), said.substr(0, option_end).c_str(), stray.c_str());
+    else
+      std::fprintf(stderr, "bluetile: %s (see --help)\n", said.c_str());
+    return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
   } catch (const CLI::ParseError& e) {
     std::fprintf(stderr, "bluetile: %s (see --help)\n", e.what());
     return e.get_exit_code() != 0 ? e.get_exit_code() : 2;
