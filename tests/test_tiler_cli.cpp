@@ -471,7 +471,7 @@ TEST(TileCommand, BadInputFailsWithOneLineAndWritesNothing) {
       // Extremes that ended in the library's inner messages ("thinning fraction must lie in (0, 1],
       // got 0", "tile size must be positive and finite, got inf").
       {{"--region", "0", "0", "10", "10", "--tile-size", "1e-170", "--density", "1"},
-       "tile size 9.9999999999999998e-171 is too small: 2048 points per tile would be more points per unit area than "
+       "tile size 1e-170 is too small: 2048 points per tile would be more points per unit area than "
        "a double holds; use a larger --tile-size"},
       {{"--region", "0", "0", "10", "10", "--density", "4e-324"}, "is too low to set a tile size from"},
       {{"--region", "0", "0", "1", "1", "--density", "-5"}, "--density -5: out of range; expected a finite number > 0"},

@@ -296,15 +296,6 @@ void check_tiling_arguments(const bluetile::TilingRequest& request, bool map) {
     throw nb::value_error("count and max_density exclude each other: give one");
 }
 
-// The library's advice "use a smaller tile size", in the name of the argument.
-std::string with_argument_names(std::string message) {
-  for (const char* advice : {"use a smaller tile size", "use a larger tile size"}) {
-    const std::size_t at = message.find(advice);
-    if (at != std::string::npos) message.replace(at + std::string_view(advice).size() - 9, 9, "tile_size");
-  }
-  return message;
-}
-
 nb::object tile(const RegionArg& region, const std::optional<PathArg>& tiles_arg, const Real& tile_size,
                 const Real& density, const Whole& seed, std::optional<ArrayArg> density_map, const Real& max_density,
                 const Real& count, const Text& fit_arg, const Flag& columns_arg) {
@@ -333,12 +324,7 @@ nb::object tile(const RegionArg& region, const std::optional<PathArg>& tiles_arg
   {
     nb::gil_scoped_release release;
     SignalChecks signal_checks;  // Ctrl-C inside the loops
-    bluetile::TilingPlan plan;
-    try {
-      plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request);
-    } catch (const bluetile::Error& e) {
-      throw bluetile::Error(with_argument_names(e.what()));
-    }
+    bluetile::TilingPlan plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request, "tile_size");
     bluetile::check_tiling_size(plan, "region", "tile_size");  // as the tool: refused, not a MemoryError
     // The tool streams its points; here they are held: the tiler's (with the slack of a growing
     // vector), the (M, 2) array and with `columns` i, j, tile, level and rank.

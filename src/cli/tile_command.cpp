@@ -88,16 +88,8 @@ Plan make_plan(const TileOptions& o) {
   if (!o.density_map.empty()) grid = load_density_map(o.density_map, density_transfer(o.transfer));
   TileSet set = o.tiles.empty() ? default_tile_set() : read_tile_set(o.tiles);
   Plan plan;
-  try {
-    static_cast<TilingPlan&>(plan) = plan_tiling(std::move(set), o.density_map.empty() ? nullptr : &grid, request);
-  } catch (const Error& e) {
-    // The library's advice names the tile size in words ("use a smaller tile size"): here the option.
-    std::string message = e.what();
-    for (const char* advice : {"use a smaller tile size", "use a larger tile size"})
-      if (const std::size_t at = message.find(advice); at != std::string::npos)
-        message.replace(at + std::string_view(advice).size() - 9, 9, "--tile-size");
-    throw Error(message);
-  }
+  static_cast<TilingPlan&>(plan) =
+      plan_tiling(std::move(set), o.density_map.empty() ? nullptr : &grid, request, "--tile-size");
   plan.tiles_name = o.tiles.empty() ? std::string("default (") + kDefaultTileSetName + ")" : o.tiles;
   return plan;
 }

@@ -28,19 +28,20 @@ double mean_fraction_over(const DensityGrid& grid, const Window& window, MapFit 
 
 void check_amount(const char* field, double v) {
   if (!(v >= 0.0) || !std::isfinite(v))
-    throw Error(std::string(field) + ": expected a finite number >= 0 (0: not given), got " + exact_text(v));
+    throw Error(std::string(field) + ": expected a finite number >= 0 (0: not given), got " + number_text(v));
 }
 
 }  // namespace
 
-TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request) {
+TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request,
+                       std::string_view tile_size_name) {
   TilingPlan plan;
   plan.window = request.window;
   const Window& w = plan.window;
   for (double v : {w.x0, w.y0, w.x1, w.y1})
-    if (!std::isfinite(v)) throw Error("region: coordinates must be finite, got " + exact_text(v));
-  if (!(w.x1 > w.x0)) throw Error("region: X1 must be greater than X0, got X0 " + exact_text(w.x0) + ", X1 " + exact_text(w.x1));
-  if (!(w.y1 > w.y0)) throw Error("region: Y1 must be greater than Y0, got Y0 " + exact_text(w.y0) + ", Y1 " + exact_text(w.y1));
+    if (!std::isfinite(v)) throw Error("region: coordinates must be finite, got " + number_text(v));
+  if (!(w.x1 > w.x0)) throw Error("region: X1 must be greater than X0, got X0 " + number_text(w.x0) + ", X1 " + number_text(w.x1));
+  if (!(w.y1 > w.y0)) throw Error("region: Y1 must be greater than Y0, got Y0 " + number_text(w.y0) + ", Y1 " + number_text(w.y1));
   check_amount("tile size", request.tile_size);
   check_amount("density", request.density);
   check_amount("max density", request.max_density);
@@ -79,24 +80,26 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
   }
   if (tile_size == 0.0) tile_size = target > 0.0 ? std::sqrt(points_per_tile / target) : 1.0;
   if (!std::isfinite(tile_size))
-    throw Error("density " + exact_text(target) + " is too low to set a tile size from (" + exact_text(points_per_tile) +
-                " points per tile would need tiles of size " + exact_text(tile_size) + "): give a higher density");
+    throw Error("density " + number_text(target) + " is too low to set a tile size from (" + number_text(points_per_tile) +
+                " points per tile would need tiles of size " + number_text(tile_size) + "): give a higher density");
   plan.tiler = std::make_unique<Tiler>(std::move(set), request.seed, tile_size);
   const double full = plan.tiler->full_density();
   // Tiles so small that their density overflows: every density would read as "too low" beside inf.
   if (!std::isfinite(full))
-    throw Error("tile size " + exact_text(tile_size) + " is too small: " + exact_text(points_per_tile) +
-                " points per tile would be more points per unit area than a double holds; use a larger tile size");
+    throw Error("tile size " + number_text(tile_size) + " is too small: " + number_text(points_per_tile) +
+                " points per tile would be more points per unit area than a double holds; use a larger " +
+                std::string(tile_size_name));
   if (target == 0.0) target = full;
   // A hair of rounding (sqrt then square) must not refuse the density it came from.
   if (target > full * (1.0 + 1e-12))
-    throw Error("density " + exact_text(target) + " is more than tiles of size " + exact_text(tile_size) + " hold (" +
-                exact_text(full) + " points per unit area): use a smaller tile size or leave it out");
+    throw Error("density " + number_text(target) + " is more than tiles of size " + number_text(tile_size) + " hold (" +
+                number_text(full) + " points per unit area): use a smaller " + std::string(tile_size_name) + " or leave it out");
   // Within rounding of the full density: every point, no thinning.
   const double fraction = target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
   if (!(fraction > 0.0))
-    throw Error("density " + exact_text(target) + " is too low for tiles of size " + exact_text(tile_size) + " (" +
-                exact_text(full) + " points per unit area): no point would be kept; use a larger tile size");
+    throw Error("density " + number_text(target) + " is too low for tiles of size " + number_text(tile_size) + " (" +
+                number_text(full) + " points per unit area): no point would be kept; use a larger " +
+                std::string(tile_size_name));
   plan.max_density = target;
   plan.mean_density = target * mean / largest;
   if (map) {
@@ -110,17 +113,17 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
 
 void check_tiling_size(const TilingPlan& plan, const std::string& region, const std::string& tile_size) {
   const Window& w = plan.window;
-  const std::string name = region + " " + exact_text(w.x0) + " " + exact_text(w.y0) + " " + exact_text(w.x1) + " " +
-                           exact_text(w.y1);
+  const std::string name = region + " " + number_text(w.x0) + " " + number_text(w.y0) + " " + number_text(w.x1) + " " +
+                           number_text(w.y1);
   const CellRange range = plan.tiler->cells(w);  // first: refuses windows off the plane's range
   const double points = w.area() * plan.mean_density;
   if (!(points <= kMaxTiledPoints))
-    throw Error(name + " holds about " + count_text(points) + " points (" + exact_text(plan.mean_density) +
+    throw Error(name + " holds about " + count_text(points) + " points (" + number_text(plan.mean_density) +
                 " per unit area), more than the limit of " + count_text(kMaxTiledPoints) +
                 " points: use a smaller region or a lower density");
   const double cells = static_cast<double>(range.columns()) * static_cast<double>(range.rows());
   if (!(cells <= kMaxTiledPoints))
-    throw Error(name + " spans about " + count_text(cells) + " tiles of size " + exact_text(plan.tiler->tile_size()) +
+    throw Error(name + " spans about " + count_text(cells) + " tiles of size " + number_text(plan.tiler->tile_size()) +
                 ", more than the limit of " + count_text(kMaxTiledPoints) +
                 " tiles: use a larger " + tile_size + " or a smaller region");
 }

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string_view>
 
 #include "bluetile/core/density_grid.h"
 #include "bluetile/tiling/density_thinning.h"
@@ -40,8 +41,10 @@ struct TilingPlan {
 // The plan for `request` over `set`, thinned by `map` when given (texels as in DensityGrid, the
 // map placed on the window by request.fit). Throws Error naming the field (window, tile_size,
 // density, max_density, count) for a bad or contradictory request, and for a density the tiles
-// cannot hold.
-TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request);
+// cannot hold; the advice there names `tile_size_name`, the option or argument that sets the tile
+// size ("use a smaller --tile-size").
+TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request,
+                       std::string_view tile_size_name = "tile size");
 
 // The most points, or cells, one window may hold: the other commands' limit on a point set, past
 // which a run fills a disk or memory, or runs for hours, instead of being refused.
