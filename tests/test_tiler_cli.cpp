@@ -487,6 +487,9 @@ TEST(TileCommand, BadInputFailsWithOneLineAndWritesNothing) {
        "--columns 'x,y,colour': unknown column 'colour' (known: x, y, i, j, tile, level, rank)"},
       {{"--region", "0", "0", "1", "1", "--columns", "x,y,x"}, "--columns 'x,y,x': column 'x' given twice"},
       {{"--region", "3e9", "0", "3.1e9", "1"}, "tiles from the origin"},
+      // The distance was signed: "window reaches -220970869122 tiles from the origin".
+      {{"--region", "-1e12", "0", "-999999999999", "1", "--density", "100"},
+       "window reaches 220970869122 tiles from the origin (at most 2147483648 keep"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args = {"tile"};

@@ -65,7 +65,7 @@ CellRange Tiler::cells(const Window& w) const {
   double lo_y = std::floor(w.y0 / tile_size_) - 1.0, hi_y = std::floor(w.y1 / tile_size_) + 2.0;
   for (double c : {lo_x, hi_x, lo_y, hi_y})
     if (!(std::fabs(c) <= kMaxCellIndex))
-      throw Error("window reaches " + exact_text(c) + " tiles from the origin (at most " + exact_text(kMaxCellIndex) +
+      throw Error("window reaches " + number_text(std::fabs(c)) + " tiles from the origin (at most " + number_text(kMaxCellIndex) +
                   " keep tile-local positions exact enough)");
   return {static_cast<std::int64_t>(lo_x), static_cast<std::int64_t>(lo_y), static_cast<std::int64_t>(hi_x),
           static_cast<std::int64_t>(hi_y)};
