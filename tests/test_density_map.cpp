@@ -112,11 +112,18 @@ TEST(DensityMap, BadSamplesNameTheirPixel) {
   EXPECT_EQ(error_of([&] { density_from_image(grey_image(0, 0, {}), t, "e.png"); }),
             "e.png: the image is empty (0 x 0 pixels)");
   EXPECT_EQ(error_of([&] { density_from_image(grey_image(2, 1, {0, 0}), t, "z.png"); }),
-            "z.png: the density is zero everywhere");
+            "z.png: the density is zero everywhere (the image is black everywhere, and its bright parts are the dense "
+            "ones)");
   DensityTransfer inverted;
   inverted.invert = true;
   EXPECT_EQ(error_of([&] { density_from_image(grey_image(1, 1, {1.0f}), inverted, "w.png"); }),
-            "w.png: the density is zero everywhere");
+            "w.png: the density is zero everywhere (the image is white everywhere, and its dark parts are the dense "
+            "ones)");
+  // Zero after the gamma alone: no reason guessed.
+  DensityTransfer steep;
+  steep.gamma = 400.0;
+  EXPECT_EQ(error_of([&] { density_from_image(grey_image(1, 1, {0.05f}, true), steep, "s.exr"); }),
+            "s.exr: the density is zero everywhere");
   EXPECT_NE(error_of([&] { density_from_image(grey_image(1, 1, {2.5f}, true), inverted, "h.exr"); })
                 .find("luminance 2.5, above 1"),
             std::string::npos);

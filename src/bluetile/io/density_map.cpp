@@ -49,6 +49,8 @@ DensityGrid density_from_image(const ImageFile& image, const DensityTransfer& tr
 
   DensityGrid grid(image.width, image.height);
   bool any_positive = false;
+  // Every pixel at the blank end (white when inverted, else black): said so, the usual cause.
+  bool all_blank = true;
   for (int r = 0; r < image.height; ++r) {
     const int row = image.height - 1 - r;  // y up
     for (int column = 0; column < image.width; ++column) {
@@ -71,6 +73,7 @@ DensityGrid density_from_image(const ImageFile& image, const DensityTransfer& tr
         linear[c] = decode_srgb ? srgb_to_linear(v + paper) : v + paper;
       }
       double density = colour_channels == 3 ? 0.2126 * linear[0] + 0.7152 * linear[1] + 0.0722 * linear[2] : linear[0];
+      all_blank = all_blank && density == (transfer.invert ? 1.0 : 0.0);
       if (transfer.invert) {
         if (density > 1.0)
           throw Error(name + ": " + pixel_name(column, r) + " has luminance " + number(density) +
@@ -86,7 +89,12 @@ DensityGrid density_from_image(const ImageFile& image, const DensityTransfer& tr
       any_positive |= texel > 0.0f;
     }
   }
-  if (!any_positive) throw Error(name + ": the density is zero everywhere");
+  if (!any_positive) {
+    const char* why = !all_blank       ? ""
+                      : transfer.invert ? " (the image is white everywhere, and its dark parts are the dense ones)"
+                                        : " (the image is black everywhere, and its bright parts are the dense ones)";
+    throw Error(name + ": the density is zero everywhere" + why);
+  }
   return grid;
 }
 
