@@ -180,7 +180,7 @@ TEST(Progressive, CommandLineBadInput) {
   const std::vector<Case> cases = {
       {{"progressive", "-i", base, "-o", out}, "--input needs --add M or --ratio R"},
       {{"progressive", "-i", base, "--add", "0", "-o", out}, "--add"},
-      {{"progressive", "-i", base, "--add", "5", "--levels", "1", "-o", out}, "already has 1 level(s)"},
+      {{"progressive", "-i", base, "--add", "5", "--levels", "1", "-o", out}, "already has 1 level; --levels is the total to reach (2 or more)"},
       {{"progressive", "-i", base, "--ratio", "0.5", "-o", out}, "--ratio 0.5: out of range; expected a number above 1"},
       {{"progressive", "-i", base, "--ratio", "1.1", "-o", out}, "--ratio 1.1 adds no point to a set of 2"},
       {{"progressive", "-n", "10", "--add", "100000000", "--levels", "3", "-o", out}, "more than the limit"},

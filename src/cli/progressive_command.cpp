@@ -70,7 +70,8 @@ void run_progressive(const ProgressiveOptions& o, const CLI::App& command) {
     target_levels = o.levels ? o.levels : std::max(base_levels + 1, o.input.empty() ? 4 : 1);
     if (target_levels <= base_levels) {
       throw Error("--levels " + std::to_string(target_levels) + ": " + (o.input.empty() ? "" : input_name(o.input) + " ") +
-                  "already has " + std::to_string(base_levels) + " level(s); --levels is the total to reach");
+                  "already has " + counted(base_levels, "level") + "; --levels is the total to reach (" +
+                  std::to_string(base_levels + 1) + " or more)");
     }
     std::vector<std::size_t> sizes;
     try {

@@ -159,8 +159,8 @@ std::vector<std::size_t> hierarchy_level_sizes(const PointSet& base, const Hiera
   const int base_levels = count_levels(base);
   const int target_levels = options.levels ? options.levels : std::max(base_levels + 1, from_scratch ? 4 : 1);
   if (target_levels <= base_levels) {
-    throw Error(std::to_string(target_levels) + " levels: the base already has " + std::to_string(base_levels) +
-                " level(s); the number of levels is the total to reach");
+    throw Error(counted(target_levels, "level") + ": the base already has " + counted(base_levels, "level") +
+                "; the number of levels is the total to reach (" + std::to_string(base_levels + 1) + " or more)");
   }
   // A level the point-file reader would refuse is not written.
   if (target_levels - 1 > kMaxLevel) {
