@@ -111,9 +111,54 @@ TEST(Formats, ChosenByNameOrExtensionAndUnknownOnesRefused) {
   EXPECT_EQ(table_format_for("a.h"), TableFormat::header);
   EXPECT_EQ(table_format_for("a.hpp"), TableFormat::header);
   EXPECT_EQ(table_format_for("a.anything", "npy"), TableFormat::npy);
+  EXPECT_EQ(table_format_for("a.CSV"), TableFormat::csv);
   EXPECT_EQ(error_of([] { table_format_for("a.png"); }),
-            "a.png: unknown extension '.png' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header; or say --format)");
-  EXPECT_EQ(error_of([] { table_format_for("a.txt", "csv"); }), "unknown table format 'csv' (text, npy, binary, header)");
+            "a.png: unknown extension '.png' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header, .csv; or say "
+            "--format)");
+  EXPECT_EQ(error_of([] { table_format_for("a.txt", "tsv"); }), "unknown table format 'tsv' (text, npy, binary, header, csv)");
+}
+
+TEST(Formats, CsvIsWrittenAsSpreadsheetsReadItAndReadBackExactly) {
+  // CSV was read, never written: a table for a spreadsheet, pandas or R took a conversion.
+  std::vector<PointSet> one{PointSet{{{0.25, 0.5}, {0.75, 0.125}}, {}}};
+  EXPECT_EQ(encode(TableFormat::csv, one, {.float32 = false, .name = "", .comment = {"made by a test"}}),
+            "# made by a test\nx,y\n0.25,0.5\n0.75,0.125\n");
+  one[0].levels = {0, 3};
+  EXPECT_EQ(encode(TableFormat::csv, one), "x,y,level\n0.25,0.5,0\n0.75,0.125,3\n");
+  for (bool levels : {false, true}) {
+    SCOPED_TRACE(levels ? "with levels" : "x y");
+    std::vector<PointSet> sets = sample_sets(3, 50, levels);
+    sets[2].points.pop_back();  // as text, sets of any sizes
+    if (levels) sets[2].levels.pop_back();
+    std::string bytes;
+    write_point_table(TableFormat::csv, sets, {.float32 = false, .name = "", .comment = {"domain periodic"}}, "t.csv",
+                      [&](std::string_view piece) { bytes += piece; });
+    EXPECT_EQ(bytes.substr(0, bytes.find("# set 1")).find("# domain periodic\nx,y" + std::string(levels ? ",level" : "") +
+                                                         "\n# set 0\n"),
+              0u);
+    const std::vector<PointSet> back = parse_csv_points(bytes, "t.csv");
+    expect_same_sets(back, sets);
+    EXPECT_EQ(back[0].declared_boundary, Boundary::periodic);
+  }
+  // A comment the readers would refuse is refused before any byte, as in text.
+  std::string bytes;
+  EXPECT_NE(error_of([&] {
+              write_point_table(TableFormat::csv, one, {.float32 = false, .name = "", .comment = {"domain: bounded"}}, "t.csv",
+                                [&](std::string_view piece) { bytes += piece; });
+            }),
+            "");
+  EXPECT_EQ(bytes, "");
+  // A table of named columns gets their names.
+  TableView table;
+  table.sets = 1;
+  table.columns = 3;
+  table.column_names = "cx cy area";
+  table.named_fields = true;
+  table.rows = [](std::size_t) { return std::size_t{1}; };
+  table.value = [](std::size_t, std::size_t, std::size_t c) { return 0.5 / static_cast<double>(c + 1); };
+  bytes.clear();
+  write_table(TableFormat::csv, table, {}, "c.csv", [&](std::string_view piece) { bytes += piece; });
+  EXPECT_EQ(bytes, "cx,cy,area\n0.5,0.25,0.16666666666666666\n");
 }
 
 TEST(Formats, NpyBytesAreNumpysLayout) {
@@ -198,7 +243,7 @@ TEST(Formats, PointsThatAreNotFiniteAreNeverWritten) {
   // A NaN went into text and .bpt tables, which every reader then refused.
   std::vector<PointSet> sets = sample_sets(2, 4, false);
   sets[1].points[2].y = std::nan("");
-  for (TableFormat format : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header})
+  for (TableFormat format : kTableFormats)
     EXPECT_EQ(error_of([&] { write_point_table(format, sets, {}, "t", [](std::string_view) {}); }),
               "t: set 1, point 2 (" + exact_text(sets[1].points[2].x) + ", nan) is not finite: no reader would take it back");
 }
@@ -219,7 +264,7 @@ TEST(Formats, TableValuesThatAreNotFiniteAreNeverWritten) {
     const std::string message = "c: set 1, row 2: area is " + exact_text(bad) + ", not a finite number: no reader would take it back";
     std::string bytes;
     const ByteSink sink = [&](std::string_view piece) { bytes += piece; };
-    for (TableFormat format : {TableFormat::npy, TableFormat::binary, TableFormat::header}) {
+    for (TableFormat format : {TableFormat::npy, TableFormat::binary, TableFormat::header, TableFormat::csv}) {
       EXPECT_EQ(error_of([&] { write_table(format, table, {}, "c", sink); }), message);
       EXPECT_EQ(bytes, "") << table_format_name(format);
     }
@@ -481,8 +526,8 @@ TEST(Formats, CsvIsReadByItsExtensionWithPandasAndRIndexColumns) {
 
 TEST(Formats, CsvOfQuotedNumbersTrailingCommasOrBlankSeparatedTextIsRead) {
   // Quoted numbers (Python's csv.QUOTE_ALL) were "header names other columns" or "not a number
-  // '"0.25"'"; a ',' ending every line "an empty field"; and the text points `relax --format text
-  // -o points.csv` writes (read as text before .csv was read as CSV) "expected 'x,y'".
+  // '"0.25"'"; a ',' ending every line "an empty field"; and the text points `relax -o - >
+  // points.csv` writes (read as text before .csv was read as CSV) "expected 'x,y'".
   test::TempDir dir;
   const std::vector<Point> points{{0.25, 0.5}, {0.75, 0.125}};
   for (const char* csv : {"\"0.25\",\"0.5\"\n\"0.75\",\"0.125\"\n", "\"x\",\"y\"\n\" 0.25\",\"0.5\"\n\"0.75\",\"0.125\"\n",

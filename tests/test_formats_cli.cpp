@@ -65,9 +65,11 @@ TEST(FormatsCli, EveryFormatHoldsTheSamePoints) {
   run("t.data", {"--format", "npy"});
   run("t32.npy", {"--float32"});
   run("t.h", {"--name", "table"});
+  run("t.csv");
+  run("csv-points", {"--format", "csv"});
   auto text = read_point_table(dir.file("t.txt"));
   ASSERT_EQ(text.size(), 6u);
-  for (const char* name : {"t.npy", "t.bpt", "t.data"}) {
+  for (const char* name : {"t.npy", "t.bpt", "t.data", "t.csv"}) {
     auto sets = read_point_table(dir.file(name));
     ASSERT_EQ(sets.size(), 6u) << name;
     for (std::size_t k = 0; k < 6; ++k) expect_same_points(sets[k], text[k]);
@@ -77,6 +79,11 @@ TEST(FormatsCli, EveryFormatHoldsTheSamePoints) {
   std::string header = read_text(dir.file("t.h"));
   EXPECT_NE(header.find("static const float table[6][16][2] = {"), std::string::npos);
   EXPECT_NE(header.find("// bluetile relax: 6 sets of 16 points"), std::string::npos) << header.substr(0, 200);
+  // CSV (written since it was read): the provenance, the column names, the sets apart.
+  const std::string csv = read_text(dir.file("t.csv"));
+  EXPECT_EQ(csv.rfind("# bluetile relax: 6 sets of 16 points, 3 iterations, engine exact, seed 1\nx,y\n# set 0\n", 0), 0u)
+      << csv.substr(0, 200);
+  EXPECT_EQ(read_text(dir.file("csv-points")), csv);
 }
 
 TEST(FormatsCli, StandardInputIsRecognisedByContentLikeAFile) {
@@ -115,12 +122,12 @@ TEST(FormatsCli, UnknownExtensionsAreRefusedBeforeAnyWork) {
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.err, "bluetile: --output '" + dir.file("points.png") +
                        "': this output writes .txt .dat .pts (text points), .npy (NumPy), .bpt (point table), .h .hpp "
-                       "(C header), not '.png'\n");
+                       "(C header), .csv (CSV), not '.png'\n");
   r = run_bluetile({"relax", "-n", "10", "--engine", "exact", "-o", dir.file("points.data")});
   EXPECT_NE(r.exit_code, 0);
   EXPECT_EQ(r.err, "bluetile: --output '" + dir.file("points.data") +
                        "': this output writes .txt .dat .pts (text points), .npy (NumPy), .bpt (point table), .h .hpp "
-                       "(C header), not '.data'; or say --format\n");
+                       "(C header), .csv (CSV), not '.data'; or say --format\n");
   EXPECT_TRUE(dir.list().empty());
 }
 
@@ -154,13 +161,18 @@ TEST(FormatsCli, CentroidsAreANamedTableNotPoints) {
     args.insert(args.end(), more.begin(), more.end());
     auto r = run_bluetile(args);
     EXPECT_EQ(r.exit_code, 1) << r.err;
-    EXPECT_NE(r.err.find(more[0] == "-o" ? "': this output writes .txt .dat .pts (text points), .npy (NumPy), .h .hpp (C header), not '.bpt'\n"
+    EXPECT_NE(r.err.find(more[0] == "-o" ? "': this output writes .txt .dat .pts (text points), .npy (NumPy), .h .hpp (C header), .csv (CSV), not "
+                                           "'.bpt'\n"
                                            : "--format binary: a bluetile point table (.bpt) holds x y or x y level"),
               std::string::npos)
         << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("c.bpt")));
   EXPECT_FALSE(std::filesystem::exists(dir.file("c.data")));
+  // A CSV names the columns.
+  ok({"centroids", "-i", points, "--engine", "exact", "-o", dir.file("c.csv")});
+  const std::string csv = read_text(dir.file("c.csv"));
+  EXPECT_EQ(csv.substr(csv.find('\n') + 1, 11), "cx,cy,area\n") << csv;
   // Read back, it is refused as no point table.
   auto r = run_bluetile({"analyze", "-i", dir.file("c.npy"), "-o", dir.file("a")});
   EXPECT_EQ(r.exit_code, 1);
@@ -184,6 +196,9 @@ TEST(FormatsCli, AFormatTheNameContradictsIsRefusedBeforeAnyWork) {
       {"f.bpt", "header", "is named as point table ('.bpt'); give it .h or .hpp for header"},
       {"f.png", "text", "is named as image ('.png'); give it .txt, .dat, .pts or no extension for text"},
       {"f.tiles", "npy", "is named as tile set ('.tiles'); give it .npy for npy"},
+      // A .csv is CSV since it is written: text points in one were read back as blank-separated text.
+      {"f.csv", "text", "is named as CSV ('.csv'); give it .txt, .dat, .pts or no extension for text"},
+      {"f.txt", "csv", "is named as text points ('.txt'); give it .csv for csv"},
   };
   for (const Case& c : cases) {
     auto r = run_bluetile({"dart", "-n", "10", "--format", c.format, "-o", dir.file(c.name)});
@@ -232,6 +247,9 @@ TEST(FormatsCli, OptionsOfAnotherFormatAreRefusedBeforeAnyWork) {
   r = run_bluetile({"dart", "-n", "10", "-o", dir.file("p.h"), "--float32"});
   EXPECT_EQ(r.err, "bluetile: --float32: --output '" + dir.file("p.h") +
                        "' is header; 4-byte floats are for npy and binary outputs\n");
+  r = run_bluetile({"dart", "-n", "10", "-o", dir.file("p.csv"), "--name", "table"});
+  EXPECT_EQ(r.err, "bluetile: --name 'table': --output '" + dir.file("p.csv") +
+                       "' is csv; the array name is for header outputs (.h, .hpp)\n");
   EXPECT_TRUE(dir.list().empty());
   ok({"dart", "-n", "10", "-o", dir.file("p.bpt"), "--float32"});
   ok({"dart", "-n", "10", "-o", dir.file("p.h"), "--name", "table"});

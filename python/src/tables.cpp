@@ -48,14 +48,11 @@ std::vector<std::string> comment_lines(const CommentArg& comment) {
   return lines;
 }
 
-constexpr bluetile::TableFormat kFormats[] = {bluetile::TableFormat::text, bluetile::TableFormat::npy,
-                                               bluetile::TableFormat::binary, bluetile::TableFormat::header};
-
 // The library's table_format_for, with messages that name the argument `format` where the
 // library's name the tool's --format.
 bluetile::TableFormat table_format(const std::string& path, const std::string& format) {
   std::string names;
-  for (bluetile::TableFormat f : kFormats) {
+  for (bluetile::TableFormat f : bluetile::kTableFormats) {
     const std::string_view name = bluetile::table_format_name(f);
     if (!format.empty() && format == name) return f;
     names += (names.empty() ? "'" : ", '") + std::string(name) + "'";
@@ -66,7 +63,7 @@ bluetile::TableFormat table_format(const std::string& path, const std::string& f
   } catch (const bluetile::Error&) {
     // An extension that names no format: the same list as the library's message, from its table.
     std::string known;
-    for (bluetile::TableFormat f : kFormats) {
+    for (bluetile::TableFormat f : bluetile::kTableFormats) {
       std::string extensions;
       for (std::string_view e : bluetile::table_format_extensions(f))
         if (!e.empty()) extensions += (extensions.empty() ? "" : " ") + std::string(e);
@@ -101,11 +98,12 @@ void save_table(const PathArg& path_arg, const ArrayArg& points, std::optional<A
     throw bluetile::Error("float32: " + is + "; 4-byte floats are for npy and binary tables");
   if (!name.empty() && f != bluetile::TableFormat::header)
     throw bluetile::Error("name: " + is + "; the array name is for C headers (.h, .hpp)");
-  if (!comment.empty() && f != bluetile::TableFormat::text && f != bluetile::TableFormat::header)
-    throw bluetile::Error("comment: " + is + "; comment lines are for text tables and C headers");
+  const bool text = f == bluetile::TableFormat::text || f == bluetile::TableFormat::csv;
+  if (!comment.empty() && !text && f != bluetile::TableFormat::header)
+    throw bluetile::Error("comment: " + is + "; comment lines are for text and CSV tables and C headers");
   // A line the reader refuses ('domain: bounded') made a file load_table could not read back; a C
   // header is not read back, its '//' lines are free.
-  if (f == bluetile::TableFormat::text)
+  if (text)
     for (std::size_t i = 0; i < comment.size(); ++i)
       bluetile::check_comment_line(comment[i], PyUnicode_Check(comment_arg.ptr()) ? "comment" : "comment[" + std::to_string(i) + "]");
   nb::gil_scoped_release release;
@@ -159,10 +157,12 @@ void bind_tables(nb::module_& m) {
         R"(Writes point sets as the tool does with ``--output`` (and ``--format``).
 
 ``points``: shape (N, 2) or (K, N, 2); ``levels``: (N,) whole numbers for one set. The format is
-``format`` ("text", "npy", "binary", "header") or the extension (.txt .dat .pts, .npy, .bpt, .h
-.hpp; anything else is refused). ``float32``: 4-byte values in npy and binary; ``name``: the C
+``format`` ("text", "npy", "binary", "header", "csv") or the extension (.txt .dat .pts, .npy, .bpt,
+.h .hpp, .csv; anything else is refused). A CSV has a header line ``x,y`` (``x,y,level``) and a
+``# set k`` line before each set when there are several (``pandas.read_csv(path, comment='#')``).
+``float32``: 4-byte values in npy and binary; ``name``: the C
 array of a header (default from the file name); ``comment``: a str (one line) or a sequence of
-str (one line each) at the top (text, header; refused for the others); a line break or other
+str (one line each) at the top (text, CSV, header; refused for the others); a line break or other
 control character in one is written escaped (\n, \xNN), as the tool writes one in a file name,
 so that a comment adds no point or code. In a text table, ``"domain periodic"`` or ``"domain
 bounded"`` alone declares the domain, as the tool's header line does; a line that looks meant as
@@ -177,8 +177,8 @@ The file appears whole or not at all.)");
         nb::sig("def load_table(path: str | os.PathLike[str], *, levels: bool = False) "
                 "-> list[NDArray[numpy.float64]] | list[tuple[NDArray[numpy.float64], NDArray[numpy.int32] | None]]"),
         "path"_a.none(), nb::kw_only(), "levels"_a.none() = false,
-        R"(Reads every set of a point file (text, with '#' lines between sets), an .npy file or a
-binary point table, recognised by content. Returns a list of arrays of shape (N, 2), one per set;
+        R"(Reads every set of a point file (text, with '#' lines between sets), an .npy file, a
+binary point table (recognised by content) or a CSV (by its extension, .csv). Returns a list of arrays of shape (N, 2), one per set;
 with ``levels=True`` a list of (points, levels) where levels is an (N,) int32 array or None.
 A file with no points (empty, or comments only) raises pybluetile.Error '<path>: no points', as the
 tool refuses it.)");

@@ -224,12 +224,12 @@ def test_what_is_not_an_array_is_refused_by_name(tmp_path):
 def test_save_table_names_its_format_argument(tmp_path):
     # Both messages named the tool's --format, which a Python caller never passed.
     points = bt.random_points(4)
-    with pytest.raises(bt.Error, match=r"^format: expected one of 'text', 'npy', 'binary', 'header', got 'png'$"):
+    with pytest.raises(bt.Error, match=r"^format: expected one of 'text', 'npy', 'binary', 'header', 'csv', got 'png'$"):
         bt.save_table(tmp_path / "t.npy", points, format="png")
     with pytest.raises(bt.Error) as caught:
         bt.save_table(tmp_path / "t.png", points)
     assert str(caught.value) == (f"{tmp_path / 't.png'}: unknown extension '.png' (.txt .dat .pts: text, .npy: npy, "
-                                 ".bpt: binary, .h .hpp: header; or pass format=)")
+                                 ".bpt: binary, .h .hpp: header, .csv: csv; or pass format=)")
     assert not (tmp_path / "t.png").exists()
     bt.save_table(tmp_path / "t.png", points, format="npy")
     assert np.array_equal(np.load(tmp_path / "t.png")[0], points)
@@ -247,7 +247,7 @@ def test_save_table_refuses_options_its_format_ignores(tmp_path):
     bt.save_table(tmp_path / "t.h", points, name="table")
     # A comment was dropped without a word where the format holds none.
     for name, kind in (("c.npy", "npy"), ("c.bpt", "binary")):
-        with pytest.raises(bt.Error, match=rf"^comment: .*{name} is {kind}; comment lines are for text tables and C headers$"):
+        with pytest.raises(bt.Error, match=rf"^comment: .*{name} is {kind}; comment lines are for text and CSV tables and C headers$"):
             bt.save_table(tmp_path / name, points, comment=["made here"])
         assert not (tmp_path / name).exists()
     bt.save_table(tmp_path / "c.txt", points, comment=["made here"])

@@ -1,5 +1,6 @@
 """pybluetile against the bluetile tool (bit for bit, same seeds), NumPy as an independent
 reader and writer of .npy, bad input, and the GIL released while the library works."""
+import csv
 import json
 import os
 import pickle
@@ -262,11 +263,21 @@ def test_tables_round_trip_and_numpy_reads_them(tmp_path):
     bt.save_table(str(tmp_path / "t32.npy"), sets, float32=True)
     loaded32 = np.load(tmp_path / "t32.npy")
     assert loaded32.dtype == np.float32 and np.array_equal(loaded32, sets.astype(np.float32))
-    for name in ("t.npy", "t.bpt", "t.txt"):
+    for name in ("t.npy", "t.bpt", "t.txt", "t.csv"):
         path = str(tmp_path / name)
         bt.save_table(path, sets)
         back = bt.load_table(path)
         assert len(back) == 5 and all(np.array_equal(back[k], sets[k]) for k in range(5)), name
+    # A CSV as the csv module (and pandas with comment='#') reads it: a header, then x,y rows.
+    bt.save_table(str(tmp_path / "one.csv"), sets[0], comment="made here")
+    with open(tmp_path / "one.csv", newline="") as f:
+        rows = list(csv.reader(line for line in f if not line.startswith("#")))
+    assert rows[0] == ["x", "y"] and np.array_equal(np.array(rows[1:], dtype=float), sets[0])
+    assert (tmp_path / "one.csv").read_text().startswith("# made here\nx,y\n")
+    points, levels = bt.progressive(count=8, levels=2, iterations=2, engine="exact")
+    bt.save_table(str(tmp_path / "l.csv"), points, levels=levels)
+    (back, back_levels), = bt.load_table(str(tmp_path / "l.csv"), levels=True)
+    assert np.array_equal(back, points) and np.array_equal(back_levels, levels)
     # Writing leaves the signals to Python: none blocked (they were, for good, after a first
     # write, so Ctrl-C ended the interpreter and every process it started could not be stopped).
     assert signal.pthread_sigmask(signal.SIG_BLOCK, []) == set()

@@ -13,6 +13,7 @@ std::string_view output_format_label(OutputFormat format) {
     case OutputFormat::points_npy: return "NumPy";
     case OutputFormat::points_binary: return "point table";
     case OutputFormat::points_header: return "C header";
+    case OutputFormat::points_csv: return "CSV";
     case OutputFormat::raw_columns: return "raw float64 columns";
     case OutputFormat::svg: return "SVG";
     case OutputFormat::image: return "image";
@@ -46,7 +47,8 @@ std::span<const std::string_view> output_format_extensions(OutputFormat format) 
     case OutputFormat::points_text:
     case OutputFormat::points_npy:
     case OutputFormat::points_binary:
-    case OutputFormat::points_header: return table_format_extensions(table_format_of(format));
+    case OutputFormat::points_header:
+    case OutputFormat::points_csv: return table_format_extensions(table_format_of(format));
     case OutputFormat::raw_columns: return raw_columns;
     case OutputFormat::svg: return svg;
     case OutputFormat::image: return image;
@@ -85,8 +87,8 @@ OutputFormat output_format(std::string_view option, const std::string& path, std
 bool extension_names_a_format(const std::string& extension) {
   if (extension.empty()) return false;
   for (OutputFormat format : {OutputFormat::points_text, OutputFormat::points_npy, OutputFormat::points_binary,
-                              OutputFormat::points_header, OutputFormat::raw_columns, OutputFormat::svg,
-                              OutputFormat::image, OutputFormat::pdf, OutputFormat::tile_set}) {
+                              OutputFormat::points_header, OutputFormat::points_csv, OutputFormat::raw_columns,
+                              OutputFormat::svg, OutputFormat::image, OutputFormat::pdf, OutputFormat::tile_set}) {
     const auto names = output_format_extensions(format);
     if (std::find(names.begin(), names.end(), extension) != names.end()) return true;
   }
@@ -113,6 +115,7 @@ TableFormat table_format_of(OutputFormat format) {
     case OutputFormat::points_binary: return TableFormat::binary;
     case OutputFormat::points_header: return TableFormat::header;
     case OutputFormat::points_text: return TableFormat::text;
+    case OutputFormat::points_csv: return TableFormat::csv;
     default: assert(false && "not a point-table format"); return TableFormat::text;
   }
 }
@@ -123,6 +126,7 @@ OutputFormat output_format_of(TableFormat format) {
     case TableFormat::npy: return OutputFormat::points_npy;
     case TableFormat::binary: return OutputFormat::points_binary;
     case TableFormat::header: return OutputFormat::points_header;
+    case TableFormat::csv: return OutputFormat::points_csv;
   }
   return OutputFormat::points_text;
 }

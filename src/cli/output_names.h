@@ -18,6 +18,7 @@ enum class OutputFormat {
   points_npy,     // sample tables (core/point_table.h)
   points_binary,  // .bpt
   points_header,  // C/C++ header
+  points_csv,     // comma-separated values with a header line
   raw_columns,    // tile's raw float64 columns
   svg,            // an SVG drawing
   image,          // a raster image through OpenImageIO
@@ -38,12 +39,13 @@ std::span<const std::string_view> output_format_extensions(OutputFormat format);
 
 // The point-table formats, in the order a point output lists them (text first: "-" is text).
 inline constexpr OutputFormat kPointTableFormats[] = {OutputFormat::points_text, OutputFormat::points_npy,
-                                                      OutputFormat::points_binary, OutputFormat::points_header};
+                                                      OutputFormat::points_binary, OutputFormat::points_header,
+                                                      OutputFormat::points_csv};
 
 // A table that is no point table (centroids' cx cy area): the point-table formats but binary,
 // whose columns are x y or x y level (TableView::named_fields).
 inline constexpr OutputFormat kNamedTableFormats[] = {OutputFormat::points_text, OutputFormat::points_npy,
-                                                      OutputFormat::points_header};
+                                                      OutputFormat::points_header, OutputFormat::points_csv};
 
 // The format `path`, given to the output option `option`, is written in: the first of `accepted`
 // whose extensions hold the path's; "-" and a name without an extension the first of `accepted`.
@@ -56,8 +58,8 @@ OutputFormat output_format(std::string_view option, const std::string& path, std
 bool extension_names_a_format(const std::string& extension);
 
 // For an output of one text format (a CSV log, psa's point text) that takes any other name:
-// refuses an extension that names one of the formats above other than text points (.npy, .svg,
-// .png, ...), which the file would not be, with "<option> '<path>': this output writes <what>, not
+// refuses an extension that names one of the formats above other than text points and CSV (.npy,
+// .svg, .png, ...), which the file would not be, with "<option> '<path>': this output writes <what>, not
 // '<extension>'".
 void check_text_output_name(std::string_view option, const std::string& path, std::string_view what);
 

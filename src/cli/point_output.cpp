@@ -37,8 +37,8 @@ void check_format_agrees(const std::string& path, TableFormat format, const Poin
   const std::string extension = file_extension(path);
   if (extension.empty() || extension == ".dat" || extension == ".bin") return;
   for (OutputFormat named : {OutputFormat::points_text, OutputFormat::points_npy, OutputFormat::points_binary,
-                             OutputFormat::points_header, OutputFormat::raw_columns, OutputFormat::svg,
-                             OutputFormat::image, OutputFormat::pdf, OutputFormat::tile_set}) {
+                             OutputFormat::points_header, OutputFormat::points_csv, OutputFormat::raw_columns,
+                             OutputFormat::svg, OutputFormat::image, OutputFormat::pdf, OutputFormat::tile_set}) {
     const auto names = output_format_extensions(named);
     if (std::find(names.begin(), names.end(), extension) == names.end()) continue;
     if (named == output_format_of(format)) return;
@@ -96,9 +96,9 @@ void add_point_output_options(CLI::App* command, PointOutputOptions& options, co
       several_sets ? what + " (every {} becomes the set index: one file per set)" : what);
   if (required) output->required();
   command->add_option("--format", options.format,
-                      "text, npy (shape K x N x 2, or K x N x 3 with a level column), binary (.bpt, see README) or header (C/C++); "
-                      "default: by the extension (.txt .dat .pts, .npy, .bpt, .h .hpp)")
-      ->check(CLI::IsMember({"text", "npy", "binary", "header"}));
+                      "text, npy (shape K x N x 2, or K x N x 3 with a level column), binary (.bpt, see README), header (C/C++) "
+                      "or csv (a header line x,y or x,y,level); default: by the extension (.txt .dat .pts, .npy, .bpt, .h .hpp, .csv)")
+      ->check(CLI::IsMember({"text", "npy", "binary", "header", "csv"}));
   command->add_flag("--float32", options.float32, "npy and binary: 4-byte floats instead of 8");
   command->add_option("--name", options.name, "header: the array's name (default: from the file name)");
 }

@@ -36,19 +36,20 @@ struct OutputCase {
   std::vector<Accepted> accepted;
   std::vector<std::string> refused;
   std::string list;
-  // The message's last words, after an extension no format owns (.csv): --format is refused for
+  // The message's last words, after an extension no format owns (.tsv): --format is refused for
   // one that another format owns (.png).
   std::string alternative;
 };
 
-const std::string kPointList = ".txt .dat .pts (text points), .npy (NumPy), .bpt (point table), .h .hpp (C header)";
+const std::string kPointList =
+    ".txt .dat .pts (text points), .npy (NumPy), .bpt (point table), .h .hpp (C header), .csv (CSV)";
 const std::string kNpy = std::string("\x93NUMPY", 6);
 const std::string kBpt = std::string("\x89" "BTP\r\n\x1a\n", 8);
 const std::string kPng = std::string("\x89PNG", 4);
 
 std::vector<Accepted> point_formats(const std::string& text_start, const std::string& header_start) {
   return {{".txt", text_start}, {".pts", text_start}, {".npy", kNpy}, {".bpt", kBpt}, {".h", header_start},
-          {".NPY", kNpy}};
+          {".NPY", kNpy}, {".csv", text_start}};
 }
 
 // Every output option whose format is picked by its extension. Inputs are made in `dir`.
@@ -57,7 +58,7 @@ std::vector<OutputCase> output_cases(const TempDir& dir) {
   const std::string map = dir.file("map.png");
   write_image_file(map, 4, 4, 1, std::vector<std::uint8_t>{0, 50, 100, 150, 200, 250, 0, 50, 100, 150, 200, 250,
                                                             0, 50, 100, 150});
-  const std::vector<std::string> refused_points = {".svg", ".png", ".pdf", ".csv", ".bin", ".tiles"};
+  const std::vector<std::string> refused_points = {".svg", ".png", ".pdf", ".bin", ".tiles", ".tsv"};
   const std::vector<std::string> stipple = {"stipple", "--image", map, "-n", "12", "-k", "1"};
   auto with = [](std::vector<std::string> base, std::vector<std::string> more) {
     base.insert(base.end(), more.begin(), more.end());
@@ -73,8 +74,8 @@ std::vector<OutputCase> output_cases(const TempDir& dir) {
        "; or say --format"},
       // cx cy area is no point table: no .bpt, whose third column is the level.
       {{"centroids", "-i", points, "--engine", "exact"}, "--output",
-       {{".txt", "# bluetile centroids"}, {".npy", kNpy}, {".h", "//"}, {".NPY", kNpy}},
-       with(refused_points, {".bpt"}), ".txt .dat .pts (text points), .npy (NumPy), .h .hpp (C header)",
+       {{".txt", "# bluetile centroids"}, {".npy", kNpy}, {".h", "//"}, {".NPY", kNpy}, {".csv", "# bluetile centroids"}},
+       with(refused_points, {".bpt"}), ".txt .dat .pts (text points), .npy (NumPy), .h .hpp (C header), .csv (CSV)",
        "; or say --format"},
       {stipple, "--output", point_formats("# bluetile stipple", "// bluetile stipple"), refused_points, kPointList,
        "; or say --format"},
@@ -162,7 +163,7 @@ TEST(OutputNames, RefusedExtensionsFailBeforeAnyWorkNamingTheOptionFileAndList) 
       const std::string name = c.command[0] + " " + c.option + " " + extension;
       EXPECT_EQ(r.exit_code, 1) << name;
       EXPECT_EQ(r.err, "bluetile: " + c.option + " '" + path + "': this output writes " + c.list + ", not '" +
-                           extension + "'" + (extension == ".csv" ? c.alternative : "") + "\n")
+                           extension + "'" + (extension == ".tsv" ? c.alternative : "") + "\n")
           << name;
       EXPECT_EQ(dir.list(), inputs) << name << ": something was written";
     }

@@ -423,28 +423,30 @@ std::span<const std::string_view> table_format_extensions(TableFormat format) {
   static constexpr std::string_view npy[] = {".npy"};
   static constexpr std::string_view binary[] = {".bpt"};
   static constexpr std::string_view header[] = {".h", ".hpp"};
+  static constexpr std::string_view csv[] = {".csv"};
   switch (format) {
     case TableFormat::text: return text;
     case TableFormat::npy: return npy;
     case TableFormat::binary: return binary;
     case TableFormat::header: return header;
+    case TableFormat::csv: return csv;
   }
   return text;
 }
 
 TableFormat table_format_for(const std::string& path, const std::string& requested) {
   if (!requested.empty()) {
-    for (TableFormat f : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header})
+    for (TableFormat f : kTableFormats)
       if (requested == table_format_name(f)) return f;
-    throw Error("unknown table format '" + requested + "' (text, npy, binary, header)");
+    throw Error("unknown table format '" + requested + "' (text, npy, binary, header, csv)");
   }
   if (path == "-") return TableFormat::text;
   const std::string ext = file_extension(path);
-  for (TableFormat f : {TableFormat::text, TableFormat::npy, TableFormat::binary, TableFormat::header})
+  for (TableFormat f : kTableFormats)
     for (std::string_view named : table_format_extensions(f))
       if (ext == named) return f;
   throw Error(path + ": unknown extension '" + ext +
-              "' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header; or say --format)");
+              "' (.txt .dat .pts: text, .npy, .bpt: binary, .h .hpp: C header, .csv; or say --format)");
 }
 
 std::string_view table_format_name(TableFormat format) {
@@ -453,6 +455,7 @@ std::string_view table_format_name(TableFormat format) {
     case TableFormat::npy: return "npy";
     case TableFormat::binary: return "binary";
     case TableFormat::header: return "header";
+    case TableFormat::csv: return "csv";
   }
   return "text";
 }
@@ -502,9 +505,44 @@ void write_text_table(const TableView& table, const std::string& path, const Byt
   out.flush();
 }
 
+namespace {
+
+// CSV as write_table says: the rows of write_text_table with ',' between values, after the comment
+// lines (checked as a point file's, so that the reader takes them back) and the column names.
+void write_csv_table(const TableView& table, const std::vector<std::string>& comment, const std::string& path,
+                     const ByteSink& sink) {
+  check_values(table, path);
+  std::string head = format_points(PointSet{}, comment);
+  std::string names = table.column_names;
+  std::replace(names.begin(), names.end(), ' ', ',');
+  head += names + "\n";
+  sink(head);
+  ChunkedWriter out(sink);
+  const ClassicNumbers classic;
+  char value[32];
+  for (std::size_t k = 0; k < table.sets; ++k) {
+    if (table.sets > 1) out.write("# set " + std::to_string(k) + "\n");
+    const std::size_t rows = table.rows(k);
+    for (std::size_t i = 0; i < rows; ++i) {
+      for (std::size_t c = 0; c < table.columns; ++c) {
+        // Levels are whole numbers: "3", as the text format writes them.
+        const int len = std::snprintf(value, sizeof value, c + 1 < table.columns ? "%.17g," : "%.17g\n", table.value(k, i, c));
+        out.write(value, static_cast<std::size_t>(len));
+      }
+    }
+  }
+  out.flush();
+}
+
+}  // namespace
+
 void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options, const std::string& path,
                  const ByteSink& sink) {
   if (format == TableFormat::text) throw Error(path + ": text tables are written as point files (point_file.h)");
+  if (format == TableFormat::csv) {
+    write_csv_table(table, options.comment, path, sink);
+    return;
+  }
   check_columns(table.columns, path);
   if (format == TableFormat::binary && table.named_fields)
     throw Error(path + ": a bluetile point table's columns are x y or x y level, not " + table.column_names +
@@ -516,7 +554,8 @@ void write_table(TableFormat format, const TableView& table, const TableWriteOpt
     case TableFormat::npy: write_npy(out, table, rows, options.float32); break;
     case TableFormat::binary: write_binary(out, table, rows, options.float32); break;
     case TableFormat::header: write_header(out, table, rows, options, path); break;
-    case TableFormat::text: break;
+    case TableFormat::text:
+    case TableFormat::csv: break;
   }
   out.flush();
 }
@@ -821,8 +860,8 @@ CsvFirstLine csv_first_line(const std::vector<std::string_view>& fields) {
 }
 
 // Whether the lines holding data (before any '#') hold blanks between their values and no ',' or
-// ';': bluetile's text points in a file named .csv (relax --format text -o points.csv writes
-// them, as does '> points.csv'), which no line of a CSV can be.
+// ';': bluetile's text points in a file named .csv ('relax -o - > points.csv' writes them, as did
+// 'relax --format text -o points.csv' before CSV was written), which no line of a CSV can be.
 bool blank_separated(std::string_view text) {
   bool data = false;
   while (!text.empty()) {

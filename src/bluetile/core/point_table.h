@@ -34,7 +34,11 @@
 
 namespace bluetile {
 
-enum class TableFormat { text, npy, binary, header };
+// csv: comma-separated text with a header naming the columns (x,y or x,y,level), what spreadsheets,
+// pandas and R read; parse_csv_points reads it back.
+enum class TableFormat { text, npy, binary, header, csv };
+inline constexpr TableFormat kTableFormats[] = {TableFormat::text, TableFormat::npy, TableFormat::binary,
+                                                TableFormat::header, TableFormat::csv};
 
 // The largest level a table may hold: as point files.
 inline constexpr int kMaxTableLevel = kMaxLevel;
@@ -44,16 +48,16 @@ inline constexpr int kMaxTableLevel = kMaxLevel;
 std::string file_extension(const std::string& path);
 
 // The extensions (as file_extension gives them) that name `format` when a table is written;
-// "" stands for a name without one: .txt .dat .pts and "" for text, .npy, .bpt, .h .hpp.
+// "" stands for a name without one: .txt .dat .pts and "" for text, .npy, .bpt, .h .hpp, .csv.
 std::span<const std::string_view> table_format_extensions(TableFormat format);
 
 // The format to write `path` in: `requested` when not empty ("text", "npy", "binary",
-// "header"), else by the extension: .txt .dat .pts or none -> text, .npy -> npy, .bpt -> binary,
-// .h .hpp -> header; "-" (standard output) -> text. Throws Error naming the path or the name for
+// "header", "csv"), else by the extension: .txt .dat .pts or none -> text, .npy -> npy, .bpt ->
+// binary, .h .hpp -> header, .csv -> csv; "-" (standard output) -> text. Throws Error naming the path or the name for
 // an unknown one: a table is never written in a format nobody asked for.
 TableFormat table_format_for(const std::string& path, const std::string& requested = "");
 
-// "text", "npy", "binary", "header".
+// "text", "npy", "binary", "header", "csv".
 std::string_view table_format_name(TableFormat format);
 
 // The words for a format whose bytes are binary ("NumPy (.npy)", "point table (.bpt)"), "" for
@@ -92,21 +96,24 @@ struct TableWriteOptions {
   bool float32 = false;  // npy and binary: 4-byte floats instead of 8 (header: always float)
   // header: the array's name; empty picks one from the file name (table_name_for_path).
   std::string name{};
-  // header: comment lines at the top of the file.
+  // header and csv: comment lines at the top of the file.
   std::vector<std::string> comment{};
 };
 
-// Writes `table` in a binary or code format (npy, binary, header; text goes through
-// point_file.h). Every set must have the same number of rows. `path` names the output in
-// messages and gives the header's default name. Throws Error("<path>: <what>"), before any byte,
-// for a value that is not finite (as write_text_table) and sets of different sizes.
+// Writes `table` in a binary, code or CSV format (npy, binary, header, csv; text goes through
+// point_file.h). Every set must have the same number of rows, but in CSV. A CSV holds the comment
+// lines ('# ...'), a header of the column names joined by ',' ("x,y", "cx,cy,area"), then one row
+// a line with 17 significant digits, a '# set k' line before each set when there are several (pandas:
+// read_csv(path, comment='#')). `path` names the output in messages and gives the header's default
+// name. Throws Error("<path>: <what>"), before any byte, for a value that is not finite (as
+// write_text_table) and sets of different sizes.
 void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options,
                  const std::string& path, const ByteSink& sink);
 
 // Writes point sets in any format: text as point files with a '# set k' line before each set
 // when there are several (UTK's convention), the others by write_table. options.comment: header
-// lines of text and C headers; in text, one the readers refuse (check_comment_line, point_file.h)
-// throws Error before any byte. `path` names the output in messages.
+// lines of text, CSV and C headers; in text and CSV, one the readers refuse (check_comment_line,
+// point_file.h) throws Error before any byte. `path` names the output in messages.
 void write_point_table(TableFormat format, std::span<const PointSet> sets, const TableWriteOptions& options,
                        const std::string& path, const ByteSink& sink);
 
