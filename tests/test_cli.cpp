@@ -286,9 +286,9 @@ TEST(Cli, SettingsOfPartsARunDoesNotHaveAreRefused) {
       {tile, {"-o", "-", "--dots-follow-density"},
        "--dots-follow-density: only with a drawing or render output (.svg .pdf .png .tif .tiff .jpg .jpeg .exr .bmp)"},
       {tile, {"-o", dir.file("t.png"), "--columns", "x,y,rank"},
-       "--columns x,y,rank: only with a point-file output (.txt .dat .pts .bin, no extension, or -)"},
+       "--columns x,y,rank: only with a point-file output (.txt .dat .pts .csv .bin, no extension, or -)"},
       {tile, {"-o", dir.file("t.svg"), "--normalize"},
-       "--normalize: only with a point-file output (.txt .dat .pts .bin, no extension, or -)"},
+       "--normalize: only with a point-file output (.txt .dat .pts .csv .bin, no extension, or -)"},
   };
   for (const Case& c : cases) {
     std::vector<std::string> args = c.base;

@@ -14,6 +14,7 @@
 
 #include "bluetile/analysis/tiling_metrics.h"
 #include "bluetile/core/point_file.h"
+#include "bluetile/core/point_table.h"
 #include "bluetile/io/image.h"
 #include "bluetile/io/image_file.h"
 #include "bluetile/tiling/default_tile_set.h"
@@ -109,6 +110,16 @@ TEST(TileCommand, SameOutputWhateverTheThreadsAndTheDestination) {
   }
   // 300 points per unit area over 36: within the rank dither's spread.
   EXPECT_NEAR(static_cast<double>(rows.size()), 300.0 * 36.0, 300.0);
+  // CSV (tile wrote none): the text's lines, ',' between values, the columns named after the header.
+  auto d = with({"--columns", "x,y,level", "-o", dir.file("d.csv"), "-o", dir.file("d.txt")});
+  ASSERT_EQ(d.exit_code, 0) << d.err;
+  const std::string csv = read_text(dir.file("d.csv")), level_text = read_text(dir.file("d.txt"));
+  const std::size_t names = csv.find("\nx,y,level\n");
+  ASSERT_NE(names, std::string::npos) << csv.substr(0, 300);
+  EXPECT_EQ(csv.substr(0, names + 1), level_text.substr(0, names + 1));  // the same header lines
+  std::string spaced = csv.substr(names + 11);
+  std::replace(spaced.begin(), spaced.end(), ',', ' ');
+  EXPECT_EQ(spaced, level_text.substr(names + 1));
 }
 
 TEST(TileCommand, VerboseSaysSomethingOfEveryOutput) {
@@ -144,6 +155,14 @@ TEST(TileCommand, NormalizedWindowIsAPointFileOnTheUnitSquare) {
   }
   EXPECT_NE(text.find("# tile grid "), std::string::npos);
   EXPECT_NE(text.find("(normalized onto the unit square)"), std::string::npos);
+  // A CSV of x,y,level reads back as the same points.
+  r = run_bluetile({"tile", "--region", "1000000", "-1000001", "1000004", "-999997", "--density", "64",
+                    "--normalize", "--columns", "x,y,level", "-o", dir.file("unit.csv")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::vector<PointSet> csv = read_point_table(dir.file("unit.csv"));
+  ASSERT_EQ(csv.size(), 1u);
+  EXPECT_EQ(csv[0].points, set.points);
+  EXPECT_EQ(csv[0].levels, set.levels);
   // Square to rounding is square: 0.4 - 0.1 and 0.5 - 0.2 differ in their last bit.
   r = run_bluetile({"tile", "--region", "0.1", "0.2", "0.4", "0.5", "--density", "500", "--normalize", "-o",
                     dir.file("rounded.txt")});

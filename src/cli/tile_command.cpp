@@ -65,8 +65,8 @@ struct TileOptions {
 
 // What -o writes, by the output-name rule (cli/output_names.h): "-" and names without an
 // extension are point files.
-constexpr OutputFormat kTileFormats[] = {OutputFormat::points_text, OutputFormat::raw_columns, OutputFormat::svg,
-                                         OutputFormat::image, OutputFormat::pdf};
+constexpr OutputFormat kTileFormats[] = {OutputFormat::points_text, OutputFormat::points_csv, OutputFormat::raw_columns,
+                                         OutputFormat::svg, OutputFormat::image, OutputFormat::pdf};
 
 OutputFormat output_kind(const std::string& path) { return output_format("--output", path, kTileFormats); }
 
@@ -173,12 +173,13 @@ void refuse_unused_output_options(const CLI::App& command, const std::vector<std
   bool point_file = false, drawing = false, render = false;
   for (const std::string& path : paths) {
     const OutputFormat kind = output_kind(path);
-    point_file = point_file || kind == OutputFormat::points_text || kind == OutputFormat::raw_columns;
+    point_file = point_file || kind == OutputFormat::points_text || kind == OutputFormat::points_csv ||
+                 kind == OutputFormat::raw_columns;
     drawing = drawing || kind == OutputFormat::svg || kind == OutputFormat::pdf || kind == OutputFormat::image;
     render = render || kind == OutputFormat::image;
   }
   for (const char* name : {"--columns", "--normalize"})
-    refuse_unless_used(command, name, point_file, "a point-file output (.txt .dat .pts .bin, no extension, or -)");
+    refuse_unless_used(command, name, point_file, "a point-file output (.txt .dat .pts .csv .bin, no extension, or -)");
   for (const char* name : {"--dot-radius", "--dots-follow-density"})
     refuse_unless_used(command, name, drawing, "a drawing or render output (.svg .pdf .png .tif .tiff .jpg .jpeg .exr .bmp)");
   refuse_unless_used(command, "--image-size", render, "a render output (.png .tif .tiff .jpg .jpeg .exr .bmp)");
@@ -252,9 +253,13 @@ void run_tile(const TileOptions& o, const CLI::App& command) {
     bool drawn = true;  // a drawing or render, whose time -v reports here
     switch (output_kind(file->path())) {
       case OutputFormat::points_text:
+      case OutputFormat::points_csv:
       case OutputFormat::raw_columns: {
         TiledFormat f = format;
-        f.binary = output_kind(file->path()) == OutputFormat::raw_columns;
+        const OutputFormat kind = output_kind(file->path());
+        f.encoding = kind == OutputFormat::raw_columns ? TiledFormat::Encoding::binary
+                     : kind == OutputFormat::points_csv ? TiledFormat::Encoding::csv
+                                                        : TiledFormat::Encoding::text;
         write_points(*file, plan, f, o.verbose);
         drawn = false;
         break;
@@ -314,8 +319,8 @@ void add_tile_command(CLI::App& app) {
       ->default_str("");
   add_seed_option(cmd, o->seed, "Seed of the tiling");
   add_output_option(cmd, "-o,--output", o->outputs, {.formats = kTileFormats, .standard_output = true},
-                    "Output, by extension: .txt .dat .pts (or none, or - for stdout) a point file, .bin raw float64 "
-                    "columns, .svg or .pdf dots, .png .tif .tiff .jpg .jpeg .exr .bmp a render; repeat for several")
+                    "Output, by extension: .txt .dat .pts (or none, or - for stdout) a point file, .csv the same "
+                    "with a header line, .bin raw float64 columns, .svg or .pdf dots, .png .tif .tiff .jpg .jpeg .exr .bmp a render; repeat for several")
       ->required();
   cmd->add_option("--columns", o->columns, "Point-file columns, from x,y,i,j,tile,level,rank (i j: the cell)")
       ->capture_default_str();

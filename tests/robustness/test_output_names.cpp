@@ -92,11 +92,11 @@ std::vector<OutputCase> output_cases(const TempDir& dir) {
        ".png .tif .tiff .jpg .jpeg .exr .bmp (image)"},
       {{"tile", "--region", "0", "0", "2", "1", "--density", "20"},
        "--output",
-       {{".txt", "# bluetile tile"}, {".dat", "# bluetile tile"}, {".bin", ""}, {".svg", "<?xml"}, {".png", kPng},
-        {".pdf", "%PDF-"}},
-       {".npy", ".bpt", ".h", ".csv", ".tiles", ".gif"},
-       ".txt .dat .pts (text points), .bin (raw float64 columns), .svg (SVG), .png .tif .tiff .jpg .jpeg .exr .bmp "
-       "(image), .pdf (PDF)"},
+       {{".txt", "# bluetile tile"}, {".dat", "# bluetile tile"}, {".csv", "# bluetile tile"}, {".bin", ""},
+        {".svg", "<?xml"}, {".png", kPng}, {".pdf", "%PDF-"}},
+       {".npy", ".bpt", ".h", ".tiles", ".gif"},
+       ".txt .dat .pts (text points), .csv (CSV), .bin (raw float64 columns), .svg (SVG), .png .tif .tiff .jpg .jpeg "
+       ".exr .bmp (image), .pdf (PDF)"},
       {{"wang", "-n", "4", "-k", "1", "--warm", "0"},
        "--output",
        {{".tiles", "# bluetile tiles 1\n"}, {".txt", "# bluetile tiles 1\n"}},

@@ -75,11 +75,12 @@ void format_text(const Chunk& chunk, std::size_t begin, std::size_t end, const C
   text.clear();
   char line[40 * 7 + 8];
   const auto& columns = values.format.columns;
+  const char separator = values.format.encoding == TiledFormat::Encoding::csv ? ',' : ' ';
   for (std::size_t k = begin; k < end; ++k) {
     const Chunk::Cell& cell = chunk.cell_of(k);
     char* at = line;
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (c > 0) *at++ = ' ';
+      if (c > 0) *at++ = separator;
       TiledColumn column = columns[c];
       if (column == TiledColumn::x || column == TiledColumn::y) {
         double v = column == TiledColumn::x ? values.coordinate(chunk.positions[k].x, values.window.x0, values.window.width())
@@ -150,9 +151,15 @@ StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const 
   StreamTimes times;
   const CellRange range = tiler.cells(window);
   const ColumnValues values{tiler, window, format};
-  if (!format.binary) {
+  const bool binary = format.encoding == TiledFormat::Encoding::binary;
+  if (!binary) {
     std::string header;
     for (const std::string& line : format.header) header += "# " + comment_line(line) + "\n";
+    if (format.encoding == TiledFormat::Encoding::csv) {
+      std::string names = tiled_column_names(format.columns);
+      std::replace(names.begin(), names.end(), ' ', ',');
+      header += names + "\n";
+    }
     out.write(header);
     times.bytes += header.size();
   }
@@ -173,7 +180,7 @@ StreamTimes stream_tiled_points(const Tiler& tiler, const Window& window, const 
     parallel_for(parts, 1, [&](std::size_t begin, std::size_t end) {
       for (std::size_t p = begin; p < end; ++p) {
         std::size_t a = n * p / parts, b = n * (p + 1) / parts;
-        if (format.binary)
+        if (binary)
           format_binary(chunk, a, b, values, texts[p]);
         else
           format_text(chunk, a, b, values, texts[p]);

@@ -1,6 +1,6 @@
-// Writing a tiled window as points: text point files streamed chunk by chunk (bounded memory
-// whatever the window's size; formatting split across threads, chunks written in order) and a raw
-// binary form. Drawings of the points are in tiled_drawing.h.
+// Writing a tiled window as points: text point files or CSV streamed chunk by chunk (bounded
+// memory whatever the window's size; formatting split across threads, chunks written in order)
+// and a raw binary form. Drawings of the points are in tiled_drawing.h.
 #pragma once
 
 #include <cstdint>
@@ -30,10 +30,11 @@ struct TiledFormat {
   // Coordinates relative to the window, divided by its width (a square window becomes [0,1)^2,
   // the unit torus `analyze` reads).
   bool normalize = false;
-  // Raw little-endian float64 values, the columns of each point in order, no header; otherwise
-  // text (point-file conventions: 17 significant digits, `#` header lines).
-  bool binary = false;
-  std::vector<std::string> header;  // text only: written as "# " lines first
+  // text: point-file conventions (17 significant digits, blanks between values, `#` header
+  // lines); csv: the same with ',' between values and a line of the column names after the
+  // header; binary: raw little-endian float64 values, the columns of each point in order, no header.
+  enum class Encoding { text, csv, binary } encoding = Encoding::text;
+  std::vector<std::string> header;  // text and csv: written as "# " lines first
 };
 
 // Where a streamed write spent its time (seconds of wall time on the calling thread).
