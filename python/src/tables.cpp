@@ -160,11 +160,10 @@ void bind_tables(nb::module_& m) {
 ``format`` ("text", "npy", "binary", "header", "csv") or the extension (.txt .dat .pts, .npy, .bpt,
 .h .hpp, .csv; anything else is refused). A CSV has a header line ``x,y`` (``x,y,level``) and a
 ``# set k`` line before each set when there are several (``pandas.read_csv(path, comment='#')``).
-``float32``: 4-byte values in npy and binary; ``name``: the C
-array of a header (default from the file name); ``comment``: a str (one line) or a sequence of
-str (one line each) at the top (text, CSV, header; refused for the others); a line break or other
-control character in one is written escaped (\n, \xNN), as the tool writes one in a file name,
-so that a comment adds no point or code. In a text table, ``"domain periodic"`` or ``"domain
+``float32``: 4-byte values in npy and binary; ``name``: the C array of a header (default from the
+file name); ``comment``: a str (one line) or a sequence of str (one line each) at the top (text,
+CSV, header; refused for the others); a line break or other control character in one is written
+escaped (\n, \xNN), as the tool writes one in a file name, so that a comment adds no point or code. In a text table, ``"domain periodic"`` or ``"domain
 bounded"`` alone declares the domain, as the tool's header line does; a line that looks meant as
 one but is not (``"domain: bounded"``, ``"Domain Bounded"``, ``"domain bounde"``), which
 ``load_table`` would refuse, raises pybluetile.Error naming it before anything is written.
@@ -178,8 +177,8 @@ The file appears whole or not at all.)");
                 "-> list[NDArray[numpy.float64]] | list[tuple[NDArray[numpy.float64], NDArray[numpy.int32] | None]]"),
         "path"_a.none(), nb::kw_only(), "levels"_a.none() = false,
         R"(Reads every set of a point file (text, with '#' lines between sets), an .npy file, a
-binary point table (recognised by content) or a CSV (by its extension, .csv). Returns a list of arrays of shape (N, 2), one per set;
-with ``levels=True`` a list of (points, levels) where levels is an (N,) int32 array or None.
+binary point table (recognised by content) or a CSV (by its extension, .csv). Returns a list of
+arrays of shape (N, 2), one per set; with ``levels=True`` a list of (points, levels) where levels is an (N,) int32 array or None.
 A file with no points (empty, or comments only) raises pybluetile.Error '<path>: no points', as the
 tool refuses it.)");
 }

@@ -487,8 +487,11 @@ TableView point_sets_table(std::span<const PointSet> sets) {
   return view;
 }
 
-void write_text_table(const TableView& table, const std::string& path, const ByteSink& sink) {
-  check_values(table, path);
+namespace {
+
+// The rows of a text or CSV table: a '# set k' line before each set when there are several, values
+// with 17 significant digits and `separator` between them (levels, whole numbers, come out "3").
+void write_rows(const TableView& table, char separator, const ByteSink& sink) {
   ChunkedWriter out(sink);
   const ClassicNumbers classic;
   char value[32];
@@ -497,7 +500,8 @@ void write_text_table(const TableView& table, const std::string& path, const Byt
     const std::size_t rows = table.rows(k);
     for (std::size_t i = 0; i < rows; ++i) {
       for (std::size_t c = 0; c < table.columns; ++c) {
-        int len = std::snprintf(value, sizeof value, c + 1 < table.columns ? "%.17g " : "%.17g\n", table.value(k, i, c));
+        int len = std::snprintf(value, sizeof value - 1, "%.17g", table.value(k, i, c));
+        value[len++] = c + 1 < table.columns ? separator : '\n';
         out.write(value, static_cast<std::size_t>(len));
       }
     }
@@ -505,36 +509,23 @@ void write_text_table(const TableView& table, const std::string& path, const Byt
   out.flush();
 }
 
-namespace {
-
-// CSV as write_table says: the rows of write_text_table with ',' between values, after the comment
-// lines (checked as a point file's, so that the reader takes them back) and the column names.
+// CSV as write_table says: the comment lines (checked as a point file's, so that the reader takes
+// them back), the column names, then the rows with ',' between values.
 void write_csv_table(const TableView& table, const std::vector<std::string>& comment, const std::string& path,
                      const ByteSink& sink) {
   check_values(table, path);
-  std::string head = format_points(PointSet{}, comment);
   std::string names = table.column_names;
   std::replace(names.begin(), names.end(), ' ', ',');
-  head += names + "\n";
-  sink(head);
-  ChunkedWriter out(sink);
-  const ClassicNumbers classic;
-  char value[32];
-  for (std::size_t k = 0; k < table.sets; ++k) {
-    if (table.sets > 1) out.write("# set " + std::to_string(k) + "\n");
-    const std::size_t rows = table.rows(k);
-    for (std::size_t i = 0; i < rows; ++i) {
-      for (std::size_t c = 0; c < table.columns; ++c) {
-        // Levels are whole numbers: "3", as the text format writes them.
-        const int len = std::snprintf(value, sizeof value, c + 1 < table.columns ? "%.17g," : "%.17g\n", table.value(k, i, c));
-        out.write(value, static_cast<std::size_t>(len));
-      }
-    }
-  }
-  out.flush();
+  sink(format_points(PointSet{}, comment) + names + "\n");
+  write_rows(table, ',', sink);
 }
 
 }  // namespace
+
+void write_text_table(const TableView& table, const std::string& path, const ByteSink& sink) {
+  check_values(table, path);
+  write_rows(table, ' ', sink);
+}
 
 void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options, const std::string& path,
                  const ByteSink& sink) {

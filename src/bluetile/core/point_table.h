@@ -53,8 +53,8 @@ std::span<const std::string_view> table_format_extensions(TableFormat format);
 
 // The format to write `path` in: `requested` when not empty ("text", "npy", "binary",
 // "header", "csv"), else by the extension: .txt .dat .pts or none -> text, .npy -> npy, .bpt ->
-// binary, .h .hpp -> header, .csv -> csv; "-" (standard output) -> text. Throws Error naming the path or the name for
-// an unknown one: a table is never written in a format nobody asked for.
+// binary, .h .hpp -> header, .csv -> csv; "-" (standard output) -> text. Throws Error naming the
+// path or the name for an unknown one: a table is never written in a format nobody asked for.
 TableFormat table_format_for(const std::string& path, const std::string& requested = "");
 
 // "text", "npy", "binary", "header", "csv".
@@ -101,12 +101,12 @@ struct TableWriteOptions {
 };
 
 // Writes `table` in a binary, code or CSV format (npy, binary, header, csv; text goes through
-// point_file.h). Every set must have the same number of rows, but in CSV. A CSV holds the comment
-// lines ('# ...'), a header of the column names joined by ',' ("x,y", "cx,cy,area"), then one row
-// a line with 17 significant digits, a '# set k' line before each set when there are several (pandas:
-// read_csv(path, comment='#')). `path` names the output in messages and gives the header's default
-// name. Throws Error("<path>: <what>"), before any byte, for a value that is not finite (as
-// write_text_table) and sets of different sizes.
+// point_file.h). Every set must have the same number of rows (a CSV takes any). A CSV holds the
+// comment lines ('# ...'), a header of the column names joined by ',' ("x,y", "cx,cy,area"), then
+// one row a line with 17 significant digits, a '# set k' line before each set when there are
+// several (pandas: read_csv(path, comment='#')). `path` names the output in messages and gives the
+// header's default name. Throws Error("<path>: <what>"), before any byte, for a value that is not
+// finite (as write_text_table) and sets of different sizes.
 void write_table(TableFormat format, const TableView& table, const TableWriteOptions& options,
                  const std::string& path, const ByteSink& sink);
 
