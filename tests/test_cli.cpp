@@ -25,7 +25,30 @@ TEST(Cli, HelpOnEverySubcommand) {
     EXPECT_NE(r.out.find("Usage: "), std::string::npos) << sub << ": " << r.out;
     EXPECT_EQ(r.out.find("--output") != std::string::npos, sub != "devices") << sub;
   }
-  EXPECT_NE(run_bluetile({}).exit_code, 0);
+  const std::string commands =
+      "(commands: relax, centroids, analyze, dart, progressive, devices, wang, wang-check, tile, stipple";
+  // No command was CLI11's "A subcommand is required", which named none.
+  auto none = run_bluetile({});
+  EXPECT_EQ(none.exit_code, 2);
+  EXPECT_EQ(none.err, "bluetile: a command is required " + commands + "; see --help)\n");
+  // "bluetile help" was an unknown command; now the help of the tool or of the command, as --help.
+  auto main_help = run_bluetile({"--help"});
+  EXPECT_NE(main_help.out.find("A command's options: bluetile help COMMAND"), std::string::npos) << main_help.out;
+  auto help = run_bluetile({"help"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_EQ(help.out, main_help.out);
+  auto relax_help = run_bluetile({"relax", "--help"});
+  help = run_bluetile({"help", "relax"});
+  EXPECT_EQ(help.exit_code, 0);
+  EXPECT_EQ(help.out, relax_help.out);
+  EXPECT_EQ(relax_help.out.find("bluetile help COMMAND"), std::string::npos) << "the footer is the tool's only";
+  help = run_bluetile({"help", "frobnicate"});
+  EXPECT_EQ(help.exit_code, 2);
+  EXPECT_EQ(help.err, "bluetile: unknown command 'frobnicate' " + commands + "; see --help)\n");
+  help = run_bluetile({"help", "relax", "tile"});
+  EXPECT_EQ(help.exit_code, 2);
+  EXPECT_EQ(help.err, "bluetile: help takes one command, got 'relax' and 'tile' " + commands + ")\n");
+  EXPECT_EQ(help.out, "");
   // An unknown command was "A subcommand is required", and with --help after it the main help
   // and status 0.
   for (auto arguments : {std::vector<std::string>{"frobnicate"}, std::vector<std::string>{"compare", "--help"}}) {

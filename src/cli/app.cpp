@@ -44,6 +44,8 @@ std::unique_ptr<CLI::App> make_app() {
   add_wang_check_command(*app);
   add_tile_command(*app);
   add_stipple_command(*app);
+  // After the commands: a command's help would inherit it.
+  app->footer("A command's options: bluetile help COMMAND, or bluetile COMMAND --help.");
   return app;
 }
 

@@ -11,6 +11,7 @@
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <vector>
 
 #include "cli/app.h"
 #include "bluetile/core/error.h"
@@ -54,13 +55,13 @@ int main(int argc, char** argv) {
     // ends the run quietly (kReaderGoneStatus), the second is reported.
     std::signal(SIGPIPE, SIG_IGN);
     std::signal(SIGXFSZ, SIG_IGN);
-    // A malformed BLUETILE_THREADS is refused before any work, unless it is not used: --help and
+    // A malformed BLUETILE_THREADS is refused before any work, unless it is not used: help and
     // --version do no work, and an explicit --threads wins over it.
     bool uses_environment = true;
     for (int k = 1; k < argc; ++k) {
       const std::string_view word = argv[k];
       if (word == "-h" || word == "--help" || word == "--version" || word == "--threads" ||
-          word.rfind("--threads=", 0) == 0)
+          word.rfind("--threads=", 0) == 0 || (k == 1 && word == "help"))
         uses_environment = false;
     }
     if (uses_environment) bluetile::thread_count();
@@ -71,22 +72,38 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<CLI::App> made = bluetile::cli::make_app();
   CLI::App& app = *made;
-  // CLI11 takes an unknown first word for a stray argument and asks for a subcommand (or, with
-  // --help after it, prints the main help and exits 0): name the word and the commands instead.
-  if (argc > 1 && argv[1][0] != '-') {
-    std::string commands;
-    bool known = false;
-    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; })) {
-      commands += (commands.empty() ? "" : ", ") + command->get_name();
-      known = known || command->check_name(argv[1]);
+  std::string commands;
+  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
+    commands += (commands.empty() ? "" : ", ") + command->get_name();
+  // "bluetile help" and "bluetile help COMMAND", as git and cargo take them: the tool's help or
+  // the command's.
+  std::vector<char*> words(argv, argv + argc);
+  static char help_flag[] = "--help";
+  if (argc > 1 && std::string_view(argv[1]) == "help") {
+    if (argc > 3) {
+      std::fprintf(stderr, "bluetile: help takes one command, got '%s' and '%s' (commands: %s)\n", argv[2], argv[3],
+                   commands.c_str());
+      return 2;
     }
+    words = argc == 2 ? std::vector<char*>{argv[0], help_flag} : std::vector<char*>{argv[0], argv[2], help_flag};
+  }
+  // CLI11 asks for "A subcommand" when there is none, and takes an unknown first word for a stray
+  // argument (or, with --help after it, prints the main help and exits 0): name the commands.
+  if (words.size() == 1) {
+    std::fprintf(stderr, "bluetile: a command is required (commands: %s; see --help)\n", commands.c_str());
+    return 2;
+  }
+  if (words[1][0] != '-') {
+    bool known = false;
+    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
+      known = known || command->check_name(words[1]);
     if (!known) {
-      std::fprintf(stderr, "bluetile: unknown command '%s' (commands: %s; see --help)\n", argv[1], commands.c_str());
+      std::fprintf(stderr, "bluetile: unknown command '%s' (commands: %s; see --help)\n", words[1], commands.c_str());
       return 2;
     }
   }
   try {
-    app.parse(argc, argv);
+    app.parse(static_cast<int>(words.size()), words.data());
   } catch (const CLI::CallForHelp& e) {
     return checked_standard_output(app.exit(e));
   } catch (const CLI::CallForAllHelp& e) {

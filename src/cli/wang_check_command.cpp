@@ -251,7 +251,10 @@ void add_wang_check_command(CLI::App& app) {
   auto c = std::make_shared<CheckOptions>();
   CLI::App* check = app.add_subcommand(
       "wang-check", "Seam check of a tile set (every admissible 2x2 block) and the analysis of a tiled plane");
-  add_input_option(check, "tiles", c->input, InputKind::tiles, "Tile-set file ('-': standard input)")->required();
+  // -i as every other command takes its input; the tile set alone as the argument as before.
+  add_input_option(check, "-i,--input,tiles", c->input, InputKind::tiles,
+                   "Tile-set file ('-': standard input), alone or as -i,--input FILE")
+      ->required();
   add_integer_option(check, "--period", c->period, 1, 1024, "The analysed plane is an M x M torus tiling");
   add_seed_option(check, c->seed, "Seed of the tiling");
   add_output_folder_option(check, "-o,--output", c->output,

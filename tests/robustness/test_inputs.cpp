@@ -117,7 +117,7 @@ TEST(Inputs, EnvironmentIsCheckedNotIgnored) {
   // ...but only where it is used: --help and --version work whatever it holds, an explicit
   // --threads wins over it, and empty is unset (it stopped every command, --help included).
   for (const std::vector<std::string>& unused :
-       {std::vector<std::string>{"--help"}, {"--version"}, {"relax", "--help"},
+       {std::vector<std::string>{"--help"}, {"--version"}, {"relax", "--help"}, {"help"}, {"help", "relax"},
         {"relax", "-n", "10", "-k", "1", "--engine", "exact", "--threads", "2", "-o", dir.file("t.txt")},
         {"relax", "-n", "10", "-k", "1", "--engine", "exact", "--threads=1", "-o", dir.file("t1.txt")}}) {
     Invocation bad{unused};
