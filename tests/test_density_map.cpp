@@ -2,6 +2,7 @@
 // errors for bad images, and bilinear lookup.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <limits>
@@ -166,6 +167,71 @@ TEST(DensityMap, FilesOfEveryDepthReadBack) {
   const DensityGrid logo = load_density_map(dir.file("rgba.png"), ink);
   EXPECT_EQ(logo.at(0, 0), 0.0f);
   EXPECT_EQ(logo.at(1, 0), 1.0f);
+}
+
+// A 3 x 2 grey TIFF of 8-bit samples 10 20 30 / 40 50 60 (rows top first, as stored), its
+// Orientation tag `orientation`, written byte by byte (little-endian, one uncompressed strip).
+std::string oriented_tiff(int orientation) {
+  std::string bytes = "II";
+  auto u16 = [&](unsigned v) {
+    bytes.push_back(static_cast<char>(v & 0xff));
+    bytes.push_back(static_cast<char>(v >> 8));
+  };
+  auto u32 = [&](unsigned v) {
+    u16(v & 0xffff);
+    u16(v >> 16);
+  };
+  u16(42);
+  u32(8);  // the directory follows the header
+  const unsigned width = 3, height = 2, entries = 10, pixels_at = 8 + 2 + entries * 12 + 4;
+  u16(entries);
+  const unsigned short_type = 3, long_type = 4;
+  for (auto [tag, type, value] : {std::array<unsigned, 3>{256, short_type, width}, {257, short_type, height},
+                                  {258, short_type, 8}, {259, short_type, 1}, {262, short_type, 1},
+                                  {273, long_type, pixels_at}, {274, short_type, static_cast<unsigned>(orientation)},
+                                  {277, short_type, 1}, {278, short_type, height}, {279, long_type, width * height}}) {
+    u16(tag);
+    u16(type);
+    u32(1);
+    u32(value);  // a SHORT sits in the first two bytes of the field
+  }
+  u32(0);  // no next directory
+  for (int sample : {10, 20, 30, 40, 50, 60}) bytes.push_back(static_cast<char>(sample));
+  return bytes;
+}
+
+TEST(DensityMap, PhotographsAreTurnedUprightAsTheirOrientationTagSays) {
+  // A phone stores its photographs as the sensor read them and tags how to show them: a portrait
+  // was stippled lying on its side (the tag was ignored). Stored a b c / d e f; each orientation's
+  // upright picture by hand (EXIF 2.3, tag 274: where the stored row 0 and column 0 are shown).
+  struct Case {
+    int orientation, width, height;
+    std::string upright;  // rows top first
+  };
+  const std::vector<Case> cases = {{1, 3, 2, "abcdef"}, {2, 3, 2, "cbafed"}, {3, 3, 2, "fedcba"}, {4, 3, 2, "defabc"},
+                                   {5, 2, 3, "adbecf"}, {6, 2, 3, "daebfc"}, {7, 2, 3, "fcebda"}, {8, 2, 3, "cfbead"}};
+  test::TempDir dir;
+  for (const Case& c : cases) {
+    const std::string path = dir.write(std::to_string(c.orientation) + "-oriented.tif", oriented_tiff(c.orientation));
+    const ImageFile image = read_image_file(path);
+    ASSERT_EQ(image.width, c.width) << c.orientation;
+    ASSERT_EQ(image.height, c.height) << c.orientation;
+    ASSERT_EQ(image.channels, 1);
+    for (std::size_t k = 0; k < c.upright.size(); ++k)
+      EXPECT_FLOAT_EQ(image.values[k], static_cast<float>(10 * (c.upright[k] - 'a' + 1)) / 255.0f)
+          << "orientation " << c.orientation << ", pixel " << k;
+  }
+  // The density map of a tagged photograph is the map of the same picture stored upright.
+  DensityTransfer linear;
+  linear.curve = TransferCurve::linear;
+  const std::vector<float> upright = {40 / 255.0f, 10 / 255.0f, 50 / 255.0f, 20 / 255.0f, 60 / 255.0f, 30 / 255.0f};
+  write_image_file(dir.file("upright.png"), 2, 3, 1, upright, SampleFormat::uint8);
+  const DensityGrid tagged = load_density_map(dir.file("6-oriented.tif"), linear);
+  const DensityGrid plain = load_density_map(dir.file("upright.png"), linear);
+  ASSERT_EQ(tagged.width, plain.width);
+  ASSERT_EQ(tagged.height, plain.height);
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) EXPECT_EQ(tagged.at(x, y), plain.at(x, y)) << x << ", " << y;
 }
 
 TEST(DensityMap, BadFilesGiveOneClearError) {

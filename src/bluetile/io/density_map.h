@@ -12,8 +12,9 @@
 //      (under --invert, stipple's default, that made the background the densest ink);
 //   3. `invert`: density 1 - Y, for maps where dark means dense (Y must then lie in [0, 1]);
 //   4. `gamma`: density^gamma (1 keeps it).
-// Orientation: the image's row 0 is the top of the picture and the plane's y is up, so image
-// row r becomes grid row height - 1 - r (density_grid.h); columns keep their order.
+// Orientation: the image's row 0 is the top of the picture as a viewer shows it (a photograph's
+// EXIF or TIFF orientation tag applied, read_image_file) and the plane's y is up, so image row r
+// becomes grid row height - 1 - r (density_grid.h); columns keep their order.
 #pragma once
 
 #include <string>

@@ -47,8 +47,9 @@ void write_image_file(const std::string& path, int width, int height, int channe
 
 struct ImageFile {
   int width = 0, height = 0, channels = 0;
-  // `channels` interleaved, row 0 at the top: integer samples scaled to [0, 1], float samples
-  // (EXR, HDR, float TIFF) as stored, which may be anything, NaN included.
+  // `channels` interleaved, row 0 at the top, turned upright as the file's orientation tag (EXIF,
+  // TIFF) says, as viewers show it (width and height as shown): integer samples scaled to
+  // [0, 1], float samples (EXR, HDR, float TIFF) as stored, which may be anything, NaN included.
   std::vector<float> values;
   bool floating_point = false;  // the file stores floating-point samples
 };

@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sys/mman.h>
@@ -108,6 +109,34 @@ void pass_on(const std::string& printed) {
   if (!printed.empty()) std::fwrite(printed.data(), 1, printed.size(), stderr);
 }
 
+// The orientation a viewer shows the image in: EXIF's and TIFF's Orientation tag (1 to 8, 1 when
+// absent or out of range). A phone stores its photographs as the sensor read them and sets the
+// tag; every viewer turns them upright, and so does the reader here.
+int display_orientation(const OIIO::ImageSpec& spec) {
+  const int tag = spec.get_int_attribute("Orientation", 1);
+  return tag >= 1 && tag <= 8 ? tag : 1;
+}
+
+// Orientations 5 to 8 turn the image a quarter: width and height change places.
+bool quarter_turn(int orientation) { return orientation >= 5; }
+
+// Where the pixel at column x, row y of the upright image (width w, height h) lies in the stored
+// image, for each orientation (the tag names where the stored row 0 and column 0 are shown:
+// 2 mirrored, 3 turned half, 4 flipped, 5 transposed, 6 turned a quarter clockwise to be
+// upright, 7 transverse, 8 a quarter counter-clockwise).
+void stored_position(int orientation, long x, long y, long w, long h, long* sx, long* sy) {
+  switch (orientation) {
+    case 2: *sx = w - 1 - x; *sy = y; break;
+    case 3: *sx = w - 1 - x; *sy = h - 1 - y; break;
+    case 4: *sx = x; *sy = h - 1 - y; break;
+    case 5: *sx = y; *sy = x; break;
+    case 6: *sx = y; *sy = w - 1 - x; break;
+    case 7: *sx = h - 1 - y; *sy = w - 1 - x; break;
+    case 8: *sx = h - 1 - y; *sy = x; break;
+    default: *sx = x; *sy = y; break;
+  }
+}
+
 }  // namespace
 
 extern "C" __attribute__((visibility("default"))) int bluetile_oiio_encode(const char* name, int width, int height,
@@ -164,8 +193,9 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_info(const c
     const std::string why = OIIO::geterror();
     return fail(why + "\n" + capture.finish(), error, error_size);
   }
-  *width = in->spec().width;
-  *height = in->spec().height;
+  const bool turned = quarter_turn(display_orientation(in->spec()));
+  *width = turned ? in->spec().height : in->spec().width;
+  *height = turned ? in->spec().width : in->spec().height;
   *channels = in->spec().nchannels;
   in->close();
   pass_on(capture.finish());
@@ -206,8 +236,29 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const c
     return fail(why + "\n" + capture.finish(), error, error_size,
                 "its pixels could not be read: the file is cut short or damaged");
   }
-  *width = spec.width;
-  *height = spec.height;
+  const int orientation = display_orientation(spec);
+  long w = spec.width, h = spec.height;
+  if (quarter_turn(orientation)) std::swap(w, h);
+  if (orientation != 1) {
+    auto* upright = static_cast<float*>(std::malloc(count * sizeof(float)));
+    if (!upright) {
+      std::free(data);
+      return fail("out of memory: turning its " + std::to_string(spec.width) + " x " + std::to_string(spec.height) +
+                      " pixels upright (EXIF orientation " + std::to_string(orientation) + ") needs a second copy",
+                  error, error_size);
+    }
+    const long c = spec.nchannels;
+    for (long y = 0; y < h; ++y)
+      for (long x = 0; x < w; ++x) {
+        long sx = 0, sy = 0;
+        stored_position(orientation, x, y, w, h, &sx, &sy);
+        std::memcpy(upright + (y * w + x) * c, data + (sy * spec.width + sx) * c, static_cast<size_t>(c) * sizeof(float));
+      }
+    std::free(data);
+    data = upright;
+  }
+  *width = static_cast<int>(w);
+  *height = static_cast<int>(h);
   *channels = spec.nchannels;
   *is_float = spec.format.is_floating_point() ? 1 : 0;
   *values = data;
