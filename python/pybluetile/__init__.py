@@ -10,7 +10,7 @@ function releases the GIL while it computes; bad input raises ``pybluetile.Error
 # NumPy first: nanobind would import it lazily on the first array returned, and an interrupt
 # (Ctrl-C) caught during a first long call then surfaces from that import as a TypeError
 # instead of KeyboardInterrupt.
-import numpy  # noqa: F401
+import numpy as _numpy  # noqa: F401  (private: the module's names are its functions)
 
 from ._core import (
     Error,
