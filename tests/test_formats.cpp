@@ -389,7 +389,14 @@ TEST(Formats, DamagedNpyFilesGiveClearErrors) {
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 1, 2, 2), }", data)),
             "d.npy: shape of 4 dimensions; expected (N, C) or (K, N, C)");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (4, 1), }", data)),
-            "d.npy: 1 columns per point; expected 2 (x y) or 3 (x y level)");
+            "d.npy: 1 column per point; expected 2 (x y) or 3 (x y level)");
+  // x and y as rows (numpy.array([xs, ys])) was "4 columns per point", with no word of the cause.
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 4), }", data + data)),
+            "d.npy: shape (2, 4) holds 4 columns per point; expected 2 (x y) or 3 (x y level): coordinates as rows? "
+            "save a.T");
+  EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (1, 3, 5), }", data)),
+            "d.npy: shape (1, 3, 5) holds 5 columns per point; expected 2 (x y) or 3 (x y level): coordinates as "
+            "rows? save a.transpose(0, 2, 1)");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (3, 2), }", data)),
             "d.npy: shape (1, 3, 2) needs 48 data bytes but the file has 32");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'shape': (2, 2), }", data)), "d.npy: bad .npy header: no 'fortran_order'");

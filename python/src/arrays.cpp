@@ -59,9 +59,16 @@ PointSets point_sets(const AnyArray& array, const char* name, OutsideTorus outsi
                           dtype_name(array.dtype()) + "; convert with .astype(numpy.float64)").c_str());
   const std::size_t ndim = array.ndim();
   if ((ndim != 2 && ndim != 3) || array.shape(ndim - 1) != 2 || array.shape(ndim - 2) == 0 ||
-      (ndim == 3 && array.shape(0) == 0))
+      (ndim == 3 && array.shape(0) == 0)) {
+    // x and y as two rows (numpy.array([xs, ys])): say how to turn them.
+    const bool as_rows = (ndim == 2 || ndim == 3) && array.shape(ndim - 2) == 2 && array.shape(ndim - 1) > 2;
     throw nb::value_error((std::string(name) + ": expected shape (N, 2) or (K, N, 2) with N >= 1, got " +
-                           shape_text(array)).c_str());
+                           shape_text(array) +
+                           (as_rows ? std::string("; coordinates as rows? pass ") + name +
+                                          (ndim == 2 ? ".T" : ".transpose(0, 2, 1)")
+                                    : std::string()))
+                              .c_str());
+  }
   PointSets result;
   result.batched = ndim == 3;
   const std::size_t sets = result.batched ? array.shape(0) : 1, count = array.shape(ndim - 2);

@@ -314,6 +314,12 @@ def test_bad_input_raises_clear_exceptions(tool, tmp_path):
         bt.relax(np.zeros((10, 2), dtype=np.int64), engine="exact")
     with pytest.raises(ValueError, match=r"points: expected shape \(N, 2\) or \(K, N, 2\) with N >= 1, got \(10, 3\)"):
         bt.centroids(np.zeros((10, 3)), engine="exact")
+    # x and y as rows, numpy.array([xs, ys]): the way to turn them is said.
+    rows = r"expected shape \(N, 2\) or \(K, N, 2\) with N >= 1, got \(2, 50\); coordinates as rows\? pass points\.T$"
+    with pytest.raises(ValueError, match=rows):
+        bt.relax(np.zeros((2, 50)), engine="exact")
+    with pytest.raises(ValueError, match=r"got \(4, 2, 50\); coordinates as rows\? pass points\.transpose\(0, 2, 1\)$"):
+        bt.analyze(np.zeros((4, 2, 50)))
     bad = bt.random_points(5)
     bad[3, 1] = np.nan
     with pytest.raises(ValueError, match=r"points\[3\]: not a finite number 'nan'"):

@@ -305,7 +305,8 @@ class SetBuilder {
 
 void check_columns(std::size_t columns, const std::string& name) {
   if (columns != 2 && columns != 3)
-    throw Error(name + ": " + std::to_string(columns) + " columns per point; expected 2 (x y) or 3 (x y level)");
+    throw Error(name + ": " + std::to_string(columns) + (columns == 1 ? " column" : " columns") +
+                " per point; expected 2 (x y) or 3 (x y level)");
 }
 
 // sets * rows * columns * bytes without overflow, or Error.
@@ -677,10 +678,17 @@ std::vector<PointSet> parse_npy_table(std::string_view bytes, const std::string&
   if (shape.size() == 1)
     throw Error(name + ": shape (" + std::to_string(shape[0]) +
                 ",) is one-dimensional; expected (N, 2), (N, 3) or (K, N, C): save a.reshape(-1, 2) for x y pairs");
-  if (shape.size() == 2) shape.insert(shape.begin(), 1);
+  const bool one_set = shape.size() == 2;
+  if (one_set) shape.insert(shape.begin(), 1);
   if (shape.size() != 3)
     throw Error(name + ": shape of " + std::to_string(shape.size()) + " dimensions; expected (N, C) or (K, N, C)");
   const std::uint64_t sets = shape[0], rows = shape[1], columns = shape[2];
+  // x and y as two rows (numpy.array([xs, ys]), or a.T saved by mistake): say so.
+  if (columns != 2 && columns != 3 && (rows == 2 || rows == 3))
+    throw Error(name + ": shape (" + (one_set ? "" : std::to_string(sets) + ", ") + std::to_string(rows) + ", " +
+                std::to_string(columns) + ") holds " + std::to_string(columns) +
+                " columns per point; expected 2 (x y) or 3 (x y level): coordinates as rows? save " +
+                (one_set ? "a.T" : "a.transpose(0, 2, 1)"));
   check_columns(columns, name);
   std::size_t payload = payload_bytes(sets, rows, columns, value_bytes, name);
   std::size_t data_start = header_start + header_size;
