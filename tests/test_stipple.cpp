@@ -208,6 +208,39 @@ TEST(Stipple, BadImagesGiveOneClearLineAndNoOutput) {
   EXPECT_NE(r.err.find("channel 0 is nan"), std::string::npos) << r.err;
 }
 
+TEST(Stipple, AnImageFromStandardInputIsTheImageOfItsFile) {
+  // `convert photo.jpg -resize 50% png:- | bluetile stipple --image -` was "--image: File does not
+  // exist: -"; standard input is read once, its format found from its bytes.
+  TempDir dir;
+  std::vector<float> ramp(24 * 16);
+  for (std::size_t i = 0; i < ramp.size(); ++i) ramp[i] = static_cast<float>(i % 24) / 23.0f;
+  write_image_file(dir.file("ramp.png"), 24, 16, 1, ramp, SampleFormat::uint8);
+  auto from_file = run_bluetile({"stipple", "--image", dir.file("ramp.png"), "-n", "60", "-k", "3", "-o", dir.file("file.txt")});
+  ASSERT_EQ(from_file.exit_code, 0) << from_file.err;
+  // The tool with `arguments` and the PNG on its standard input.
+  auto piped = [&](const std::string& arguments) {
+    return test::run_command("sh -c '\"$0\" " + arguments + " < \"$1\"' '" BLUETILE_BINARY "' '" + dir.file("ramp.png") + "'");
+  };
+  auto stippled = piped("stipple --image - -n 60 -k 3 -o \"" + dir.file("pipe.txt") + "\"");
+  ASSERT_EQ(stippled.exit_code, 0) << stippled.err;
+  auto points = [](const std::string& text) { return text.substr(text.find('\n')); };  // past the provenance line
+  EXPECT_EQ(points(read_text(dir.file("pipe.txt"))), points(read_text(dir.file("file.txt"))));
+  EXPECT_NE(read_text(dir.file("pipe.txt")).find(", image - ("), std::string::npos) << read_text(dir.file("pipe.txt"));
+  auto relaxed = piped("relax -n 30 -k 2 --density-map - -o \"" + dir.file("r.txt") + "\"");
+  EXPECT_EQ(relaxed.exit_code, 0) << relaxed.err;
+  // Two readers of standard input: the second would find it empty.
+  auto twice = piped("relax -i - --density-map - -o \"" + dir.file("t.txt") + "\"");
+  EXPECT_EQ(twice.exit_code, 1);
+  EXPECT_EQ(twice.err,
+            "bluetile: -: --input and --density-map both read standard input, which can be read once: give one of "
+            "them a file\n");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("t.txt")));
+  // A missing image is said as for every other input (it was CLI11's "File does not exist").
+  auto missing = run_bluetile({"stipple", "--image", dir.file("nope.png"), "-n", "10", "-o", dir.file("m.txt")});
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_EQ(missing.err, "bluetile: " + dir.file("nope.png") + ": cannot open: No such file or directory\n");
+}
+
 TEST(Stipple, RelaxFollowsADensityMapPeriodicOrBounded) {
   TempDir dir;
   // Bright means dense for relax: the right half of this map is dense.

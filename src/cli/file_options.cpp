@@ -2,6 +2,8 @@
 
 #include <map>
 
+#include "bluetile/core/error.h"
+
 namespace bluetile::cli {
 namespace {
 
@@ -66,10 +68,18 @@ CLI::Option* add_output_folder_option(CLI::App* command, const std::string& name
 }
 
 void add_declared_inputs(OutputSet& outputs, const CLI::App& command) {
+  std::string reads_standard_input;  // the option that took "-" first
   for (const CLI::Option* option : command.get_options()) {
     const FileOption* file = find_file_option(option);
     if (file == nullptr || file->role != FileOption::Role::input) continue;
-    for (const std::string& path : file->values()) outputs.add_input(path);
+    for (const std::string& path : file->values()) {
+      // The second reader would find standard input already read to its end.
+      if (path == "-" && !reads_standard_input.empty())
+        throw Error("-: " + reads_standard_input + " and " + file->name +
+                    " both read standard input, which can be read once: give one of them a file");
+      if (path == "-") reads_standard_input = file->name;
+      outputs.add_input(path);
+    }
   }
 }
 

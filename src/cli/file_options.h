@@ -73,7 +73,8 @@ CLI::Option* add_output_folder_option(CLI::App* command, const std::string& name
                                       const std::string& help);
 
 // Declares every input `command` was given (by the options above) in `outputs`, so that no output
-// may be the same file as one of them. Call it before declaring the outputs.
+// may be the same file as one of them, and refuses '-' given to two of them (standard input can
+// be read once). Call it before declaring the outputs.
 void add_declared_inputs(OutputSet& outputs, const CLI::App& command);
 
 }  // namespace bluetile::cli

@@ -196,8 +196,7 @@ void add_relax_command(CLI::App& app) {
   cmd->add_flag("-v,--verbose", o->verbose, "Print energy and displacement of every iteration on stderr");
   add_input_option(cmd, "--density-map", o->density_map, InputKind::image,
                    "Relax toward this image's density (bright means dense unless --invert), stretched over the unit "
-                   "square; random starts are drawn from it")
-      ->check(CLI::ExistingFile);
+                   "square; random starts are drawn from it ('-': standard input)");
   cmd->add_flag("--bounded", o->bounded,
                 "Cells end at the unit square's border instead of wrapping around (also chosen by the input's '# "
                 "domain bounded' line, which the output gets)");

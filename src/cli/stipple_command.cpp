@@ -157,9 +157,8 @@ void add_stipple_command(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "stipple", "Stipple an image: dots whose density follows its darkness, relaxed by weighted Lloyd (Secord 2002)");
   add_input_option(cmd, "--image", o->image, InputKind::image,
-                   "Image to stipple (PNG, TIFF, EXR, ...: anything OpenImageIO reads)")
-      ->required()
-      ->check(CLI::ExistingFile);
+                   "Image to stipple (PNG, TIFF, EXR, ...: anything OpenImageIO reads; '-': standard input)")
+      ->required();
   add_integer_option(cmd, "-n,--count", o->count, 1LL, kMaxCount, "Number of dots")->required();
   add_integer_option(cmd, "-k,--iterations", o->iterations, 0, kMaxIterations, "Lloyd iterations");
   add_seed_option(cmd, o->seed, "Seed of the density-proportional start");

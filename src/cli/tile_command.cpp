@@ -302,7 +302,8 @@ void add_tile_command(CLI::App& app) {
                   "Points per unit area of a uniform tiling (with --tile-size: thinned to it by rank)")
       ->default_str("");
   add_input_option(cmd, "--density-map", o->density_map, InputKind::image,
-                   "Image whose values set the density (any format OpenImageIO reads), placed on the region by --fit");
+                   "Image whose values set the density (any format OpenImageIO reads; '-': standard input), placed on "
+                   "the region by --fit");
   CLI::Option* fit = cmd->add_option("--fit", o->fit,
                   "How --density-map meets a region of another aspect: contain (the whole picture, centred, its "
                   "aspect kept; no points beside it), cover (the region filled, aspect kept, the overflow cut off "

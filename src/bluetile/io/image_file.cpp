@@ -345,6 +345,13 @@ ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
   // its format: a FIFO or pipe (a process substitution's /dev/fd/N) would be empty the second
   // time, or wait for a writer gone, without a word. Such an input is read once (read_input says
   // when it waits for a writer) into a regular temporary copy.
+  if (path == "-") {
+    // Standard input, a pipe or a file, is read once like a FIFO; OpenImageIO finds the format
+    // from the bytes. Messages name it "stdin", as the point readers do.
+    const std::string folder = temporary_folder("stdin: standard input, so read into a temporary copy");
+    const TemporaryCopy copy(folder, read_input(path), "stdin");
+    return read_regular_image(copy.path(), "stdin", max_pixels);
+  }
   struct stat status {};
   const bool found = stat(path.c_str(), &status) == 0;
   // OpenImageIO would say it knows no format for a folder's name.

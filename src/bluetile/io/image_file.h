@@ -60,7 +60,7 @@ inline constexpr std::uint64_t kMaxImagePixels = 2147483647;
 // Reads any image OpenImageIO knows. Throws Error("<path>: ...") on one line when the file cannot
 // be opened or decoded (what the image libraries print goes into the message, not on stderr),
 // when it is empty, and when its header claims more than `max_pixels` pixels (before anything is
-// decoded).
+// decoded). "-" is standard input (named "stdin" in messages).
 ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels = kMaxImagePixels);
 
 }  // namespace bluetile
