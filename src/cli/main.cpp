@@ -1,4 +1,5 @@
 // bluetile: blue-noise point sets by Lloyd relaxation (Hiller, Deussen, Keller 2001).
+#include <algorithm>
 #include <cerrno>
 #include <csignal>
 #include <cstdlib>
@@ -72,9 +73,9 @@ int main(int argc, char** argv) {
 
   std::unique_ptr<CLI::App> made = bluetile::cli::make_app();
   CLI::App& app = *made;
+  const std::vector<CLI::App*> subcommands = app.get_subcommands([](const CLI::App*) { return true; });
   std::string commands;
-  for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
-    commands += (commands.empty() ? "" : ", ") + command->get_name();
+  for (const CLI::App* command : subcommands) commands += (commands.empty() ? "" : ", ") + command->get_name();
   // "bluetile help" and "bluetile help COMMAND", as git and cargo take them: the tool's help or
   // the command's.
   std::vector<char*> words(argv, argv + argc);
@@ -94,9 +95,8 @@ int main(int argc, char** argv) {
     return 2;
   }
   if (words[1][0] != '-') {
-    bool known = false;
-    for (const CLI::App* command : app.get_subcommands([](const CLI::App*) { return true; }))
-      known = known || command->check_name(words[1]);
+    const bool known =
+        std::any_of(subcommands.begin(), subcommands.end(), [&](CLI::App* command) { return command->check_name(words[1]); });
     if (!known) {
       std::fprintf(stderr, "bluetile: unknown command '%s' (commands: %s; see --help)\n", words[1], commands.c_str());
       return 2;

@@ -344,23 +344,20 @@ ImageFile read_image_file(const std::string& path, std::uint64_t max_pixels) {
   // OpenImageIO opens an image twice (its header, then its pixels) and reads a little to probe
   // its format: a FIFO or pipe (a process substitution's /dev/fd/N) would be empty the second
   // time, or wait for a writer gone, without a word. Such an input is read once (read_input says
-  // when it waits for a writer) into a regular temporary copy.
-  if (path == "-") {
-    // Standard input, a pipe or a file, is read once like a FIFO; OpenImageIO finds the format
-    // from the bytes. Messages name it "stdin", as the point readers do.
-    const std::string folder = temporary_folder("stdin: standard input, so read into a temporary copy");
-    const TemporaryCopy copy(folder, read_input(path), "stdin");
-    return read_regular_image(copy.path(), "stdin", max_pixels);
-  }
+  // when it waits for a writer) into a regular temporary copy. So is standard input ("-", named
+  // "stdin" as the point readers name it), a pipe or a file; OpenImageIO finds the format from
+  // the bytes.
+  const bool standard_input = path == "-";
   struct stat status {};
-  const bool found = stat(path.c_str(), &status) == 0;
+  const bool found = !standard_input && stat(path.c_str(), &status) == 0;
   // OpenImageIO would say it knows no format for a folder's name.
   if (found && S_ISDIR(status.st_mode)) throw Error(path + ": is a folder, not an image");
-  if (found && !S_ISREG(status.st_mode)) {
+  if (standard_input || (found && !S_ISREG(status.st_mode))) {
+    const std::string name = standard_input ? "stdin" : path;
     // Before the input is read: a FIFO's bytes are not lost to a TMPDIR that cannot take them.
-    const std::string folder = temporary_folder(path + ": not a regular file, so read into a temporary copy");
-    const TemporaryCopy copy(folder, read_input(path), path);
-    return read_regular_image(copy.path(), path, max_pixels);
+    const std::string folder = temporary_folder(name + ": not a regular file, so read into a temporary copy");
+    const TemporaryCopy copy(folder, read_input(path), name);
+    return read_regular_image(copy.path(), name, max_pixels);
   }
   return read_regular_image(path, path, max_pixels);
 }
