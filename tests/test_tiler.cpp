@@ -378,6 +378,52 @@ TEST(Tiler, BadInputIsRefused) {
             "density map: texel 1, 0 is nan (must be finite and >= 0)");
 }
 
+// The request's rules, in the library's words and in a front end's names (the tool and the Python
+// module each wrote them again, in their own words, before calling the plan).
+TEST(TilingPlan, RequestRulesSpeakEachFrontEndsNames) {
+  const TilingNames options{"--tile-size", "--density", "--max-density", "--count", "--density-map", " "};
+  const TilingNames arguments{"tile_size", "density", "max_density", "count", "density_map", "="};
+  const auto error = [](TilingRequest r, bool map, const TilingNames& names) {
+    return test::error_of([&] { check_tiling_request(r, map, names); });
+  };
+  TilingRequest ok;
+  ok.window = {0, 0, 2, 1};
+  EXPECT_EQ(error(ok, false, {}), "");
+  TilingRequest r = ok;
+  r.density = 50;
+  EXPECT_EQ(error(r, true, {}), "density 50 is for uniform tilings; with a density map give max density or count");
+  EXPECT_EQ(error(r, true, options), "--density 50 is for uniform tilings; with a --density-map give --max-density or --count");
+  EXPECT_EQ(error(r, true, arguments), "density=50 is for uniform tilings; with a density_map give max_density or count");
+  EXPECT_EQ(error(r, false, arguments), "");
+  r = ok;
+  r.max_density = 500;
+  r.count = 300;
+  EXPECT_EQ(error(r, false, {}), "max density 500 needs a density map: give one");
+  EXPECT_EQ(error(r, true, arguments), "count and max_density exclude each other: give one");
+  r.max_density = 0;
+  EXPECT_EQ(error(r, false, options), "--count 300 needs a --density-map: give one");
+  EXPECT_EQ(error(r, true, options), "");
+  r = ok;
+  r.tile_size = -0.5;
+  EXPECT_EQ(error(r, false, arguments), "tile_size: expected a finite number >= 0 (0: not given), got -0.5");
+  r = ok;
+  r.count = NAN;
+  EXPECT_EQ(error(r, true, options), "--count: expected a finite number >= 0 (0: not given), got nan");
+  r = ok;
+  r.window.y1 = 0;
+  EXPECT_EQ(error(r, false, options), "region: Y1 must be greater than Y0, got Y0 0, Y1 0");
+  // plan_tiling holds to the same rules, in the names it is given.
+  const TileSet set = make_test_tile_set(TileSetKind::wang8, 4, 7);
+  r = ok;
+  r.density = 50;
+  DensityGrid map(2, 2, 1.0f);
+  EXPECT_EQ(test::error_of([&] { plan_tiling(set, &map, r, options); }), error(r, true, options));
+  r.density = 1e9;
+  r.tile_size = 1;
+  EXPECT_EQ(test::error_of([&] { plan_tiling(set, nullptr, r, arguments); }),
+            "density 1000000000 is more than tiles of size 1 hold (16 points per unit area): use a smaller tile_size or leave it out");
+}
+
 }  // namespace
 }  // namespace bluetile
 

@@ -260,10 +260,13 @@ TEST(TileCommand, FitKeepsTheMapsAspectOnARegionOfAnother) {
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_EQ(r.err, "bluetile: --fit cover places a --density-map: give one\n");
   // The density settings by their options' names (the library's words named none: "max density
-  // and count need a density map").
+  // and count need a density map"), with the value as the tool reads it.
   for (const auto& [args, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
            {{"--count", "300"}, "--count 300 needs a --density-map: give one"},
-           {{"--max-density", "5e2"}, "--max-density 5e2 needs a --density-map: give one"},
+           {{"--max-density", "5e2"}, "--max-density 500 needs a --density-map: give one"},
+           {{"--density-map", dir.file("none.png"), "--density", "50"},
+            "--density 50 is for uniform tilings; with a --density-map give --max-density or --count"},
+
            {{"--density-map", dir.file("white.png"), "--density", "50"},
             "--density 50 is for uniform tilings; with a --density-map give --max-density or --count"},
            {{"--density-map", dir.file("white.png"), "--count", "300", "--max-density", "50"},
@@ -274,6 +277,11 @@ TEST(TileCommand, FitKeepsTheMapsAspectOnARegionOfAnother) {
     EXPECT_EQ(r.exit_code, 1) << message;
     EXPECT_EQ(r.err, "bluetile: " + message + "\n");
   }
+  // The request is checked before any image is read: the map named here does not exist (a bad
+  // region was refused only after the map was read).
+  r = run_bluetile({"tile", "--region", "0", "0", "-1", "1", "--density-map", dir.file("none.png"), "-o", dir.file("bad.txt")});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_EQ(r.err, "bluetile: region: X1 must be greater than X0, got X0 0, X1 -1\n");
   // So do the transfer options (they were ignored without a word), in tile and in relax.
   for (const char* option : {"--invert", "--no-invert", "--gamma", "--transfer"}) {
     std::vector<std::string> args = {"tile", "--region", "0", "0", "2", "1", option};

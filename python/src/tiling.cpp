@@ -277,24 +277,8 @@ bluetile::Window window_of(const RegionArg& region) {
   return {v[0], v[1], v[2], v[3]};
 }
 
-// As plan_tiling checks them (tiling_plan.cpp), in the Python arguments' names: the library's
-// messages name the tool's ("max density", "tile size").
-void check_tiling_arguments(const bluetile::TilingRequest& request, bool map) {
-  for (const auto& [name, v] : {std::pair{"tile_size", request.tile_size}, std::pair{"density", request.density},
-                                std::pair{"max_density", request.max_density}, std::pair{"count", request.count}})
-    if (!(v >= 0.0) || !std::isfinite(v))
-      throw nb::value_error(
-          (std::string(name) + ": expected a finite number >= 0 (0: not given), got " + bluetile::number_text(v)).c_str());
-  if (map && request.density > 0.0)
-    throw nb::value_error("density is for uniform tilings; with a density_map give max_density or count");
-  if (!map && (request.max_density > 0.0 || request.count > 0.0))
-    throw nb::value_error(((request.max_density > 0.0 ? "max_density=" + bluetile::number_text(request.max_density)
-                                                       : "count=" + bluetile::number_text(request.count)) +
-                           " needs a density_map: give one")
-                              .c_str());
-  if (request.count > 0.0 && request.max_density > 0.0)
-    throw nb::value_error("count and max_density exclude each other: give one");
-}
+// The module's names for a request's fields, in the library's messages.
+constexpr bluetile::TilingNames kArgumentNames{"tile_size", "density", "max_density", "count", "density_map", "="};
 
 nb::object tile(const RegionArg& region, const std::optional<PathArg>& tiles_arg, const Real& tile_size,
                 const Real& density, const Whole& seed, std::optional<ArrayArg> density_map, const Real& max_density,
@@ -316,7 +300,7 @@ nb::object tile(const RegionArg& region, const std::optional<PathArg>& tiles_arg
   request.fit = bluetile::parse_map_fit(fit);
   // As the tool's --fit without --density-map: refused, not ignored.
   if (!density_map && fit != "contain") throw nb::value_error(("fit='" + fit + "' places a density_map: give one").c_str());
-  check_tiling_arguments(request, density_map.has_value());
+  bluetile::check_tiling_request(request, density_map.has_value(), kArgumentNames);
   std::optional<bluetile::DensityGrid> map;
   if (density_map) map = density_grid(array_arg(*density_map, "density_map", ArrayKind::density), "density_map");
 
@@ -324,7 +308,7 @@ nb::object tile(const RegionArg& region, const std::optional<PathArg>& tiles_arg
   {
     nb::gil_scoped_release release;
     SignalChecks signal_checks;  // Ctrl-C inside the loops
-    bluetile::TilingPlan plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request, "tile_size");
+    bluetile::TilingPlan plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request, kArgumentNames);
     bluetile::check_tiling_size(plan, "region", "tile_size");  // as the tool: refused, not a MemoryError
     // The tool streams its points; here they are held: the tiler's (with the slack of a growing
     // vector), the (M, 2) array and with `columns` i, j, tile, level and rank.

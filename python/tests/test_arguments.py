@@ -548,7 +548,7 @@ def test_tile_names_its_own_arguments(tool, tmp_path):
         (dict(max_density=5.0), r"^max_density=5 needs a density_map: give one$"),
         (dict(count=100.0), r"^count=100 needs a density_map: give one$"),
         (dict(count=100.0, max_density=5.0, density_map=ones), r"^count and max_density exclude each other: give one$"),
-        (dict(density=5.0, density_map=ones), r"^density is for uniform tilings; with a density_map give max_density or count$"),
+        (dict(density=5.0, density_map=ones), r"^density=5 is for uniform tilings; with a density_map give max_density or count$"),
         (dict(tile_size=1.0, density=1e9), r"\): use a smaller tile_size or leave it out$"),
         # Tiles too small for a finite density were "density 1 is too low for tiles of size 1e-170 (inf ...)".
         (dict(tile_size=1e-170, density=1.0), r"^tile size 1e-170 is too small: .* than a double holds; use a larger tile_size$"),

@@ -75,7 +75,10 @@ struct Plan : TilingPlan {
   std::string tiles_name;
 };
 
-Plan make_plan(const TileOptions& o) {
+// The tool's names for a request's fields, in the library's messages.
+constexpr TilingNames kOptionNames{"--tile-size", "--density", "--max-density", "--count", "--density-map", " "};
+
+TilingRequest tiling_request(const TileOptions& o) {
   TilingRequest request;
   request.window = {o.region[0], o.region[1], o.region[2], o.region[3]};
   request.tile_size = o.tile_size;
@@ -84,12 +87,17 @@ Plan make_plan(const TileOptions& o) {
   request.count = o.count;
   request.seed = o.seed;
   request.fit = parse_map_fit(o.fit);
+  return request;
+}
+
+Plan make_plan(const TileOptions& o) {
+  const TilingRequest request = tiling_request(o);
   DensityGrid grid;
   if (!o.density_map.empty()) grid = load_density_map(o.density_map, density_transfer(o.transfer));
   TileSet set = o.tiles.empty() ? default_tile_set() : read_tile_set(o.tiles);
   Plan plan;
   static_cast<TilingPlan&>(plan) =
-      plan_tiling(std::move(set), o.density_map.empty() ? nullptr : &grid, request, "--tile-size");
+      plan_tiling(std::move(set), o.density_map.empty() ? nullptr : &grid, request, kOptionNames);
   plan.tiles_name = o.tiles.empty() ? std::string("default (") + kDefaultTileSetName + ")" : o.tiles;
   return plan;
 }
@@ -123,10 +131,7 @@ double render_height(const TileOptions& o, int width_pixels) {
 void check_render_height(const TileOptions& o, const std::vector<OutputFile*>& files) {
   bool render = false;
   for (const OutputFile* file : files) render = render || output_kind(file->path()) == OutputFormat::image;
-  const double width = o.region[2] - o.region[0], height = o.region[3] - o.region[1];
-  for (double v : o.region)
-    if (!std::isfinite(v)) return;  // a bad region is make_plan's to report
-  if (!render || !(width > 0.0) || !(height > 0.0)) return;
+  if (!render) return;  // the region was checked first (check_tiling_request)
   const double pixels = render_height(o, o.image_size);
   if (!(pixels <= kMaxCanvasSide))
     throw Error("--image-size " + std::to_string(o.image_size) + ": a render of the region " + exact_text(o.region[0]) +
@@ -183,20 +188,6 @@ void refuse_unused_output_options(const CLI::App& command, const std::vector<std
   for (const char* name : {"--dot-radius", "--dots-follow-density"})
     refuse_unless_used(command, name, drawing, "a drawing or render output (.svg .pdf .png .tif .tiff .jpg .jpeg .exr .bmp)");
   refuse_unless_used(command, "--image-size", render, "a render output (.png .tif .tiff .jpg .jpeg .exr .bmp)");
-}
-
-// plan_tiling's checks of the density settings, in the options' names (its messages name none:
-// "max density and count need a density map").
-void refuse_density_options(const CLI::App& command, bool map) {
-  const auto given = [&command](const char* name) {
-    return command.count(name) > 0 ? std::string(name) + " " + command.get_option(name)->as<std::string>() : "";
-  };
-  const std::string density = given("--density"), max_density = given("--max-density"), count = given("--count");
-  if (map && !density.empty())
-    throw Error(density + " is for uniform tilings; with a --density-map give --max-density or --count");
-  if (!map && (!max_density.empty() || !count.empty()))
-    throw Error((max_density.empty() ? count : max_density) + " needs a --density-map: give one");
-  if (!max_density.empty() && !count.empty()) throw Error("--count and --max-density exclude each other: give one");
 }
 
 void run_tile(const TileOptions& o, const CLI::App& command) {
@@ -338,7 +329,7 @@ void add_tile_command(CLI::App& app) {
                 "drawing or render its time");
   cmd->callback([o, fit, cmd] {
     if (fit->count() > 0 && o->density_map.empty()) throw Error("--fit " + o->fit + " places a --density-map: give one");
-    refuse_density_options(*cmd, !o->density_map.empty());
+    check_tiling_request(tiling_request(*o), !o->density_map.empty(), kOptionNames);  // before any image is read
     refuse_transfer_without_map(*cmd, !o->density_map.empty());
     refuse_unused_output_options(*cmd, o->outputs);
     run_tile(*o, *cmd);

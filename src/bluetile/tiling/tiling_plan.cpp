@@ -26,30 +26,44 @@ double mean_fraction_over(const DensityGrid& grid, const Window& window, MapFit 
   return sum / (static_cast<double>(kMeanSamplesPerSide) * kMeanSamplesPerSide);
 }
 
-void check_amount(const char* field, double v) {
+void check_amount(std::string_view name, double v) {
   if (!(v >= 0.0) || !std::isfinite(v))
-    throw Error(std::string(field) + ": expected a finite number >= 0 (0: not given), got " + number_text(v));
+    throw Error(std::string(name) + ": expected a finite number >= 0 (0: not given), got " + number_text(v));
+}
+
+// "--count 300", "count=300".
+std::string given(std::string_view name, double v, const TilingNames& names) {
+  return std::string(name) + std::string(names.assign) + number_text(v);
 }
 
 }  // namespace
 
-TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request,
-                       std::string_view tile_size_name) {
-  TilingPlan plan;
-  plan.window = request.window;
-  const Window& w = plan.window;
+void check_tiling_request(const TilingRequest& request, bool has_map, const TilingNames& names) {
+  const Window& w = request.window;
   for (double v : {w.x0, w.y0, w.x1, w.y1})
     if (!std::isfinite(v)) throw Error("region: coordinates must be finite, got " + number_text(v));
   if (!(w.x1 > w.x0)) throw Error("region: X1 must be greater than X0, got X0 " + number_text(w.x0) + ", X1 " + number_text(w.x1));
   if (!(w.y1 > w.y0)) throw Error("region: Y1 must be greater than Y0, got Y0 " + number_text(w.y0) + ", Y1 " + number_text(w.y1));
-  check_amount("tile size", request.tile_size);
-  check_amount("density", request.density);
-  check_amount("max density", request.max_density);
-  check_amount("count", request.count);
-  if (map && request.density > 0.0)
-    throw Error("density is for uniform tilings; with a density map give the max density or the count");
-  if (!map && (request.max_density > 0.0 || request.count > 0.0)) throw Error("max density and count need a density map");
-  if (request.count > 0.0 && request.max_density > 0.0) throw Error("count and max density exclude each other");
+  check_amount(names.tile_size, request.tile_size);
+  check_amount(names.density, request.density);
+  check_amount(names.max_density, request.max_density);
+  check_amount(names.count, request.count);
+  const std::string map_name(names.density_map);
+  if (has_map && request.density > 0.0)
+    throw Error(given(names.density, request.density, names) + " is for uniform tilings; with a " + map_name + " give " +
+                std::string(names.max_density) + " or " + std::string(names.count));
+  if (!has_map && request.max_density > 0.0)
+    throw Error(given(names.max_density, request.max_density, names) + " needs a " + map_name + ": give one");
+  if (!has_map && request.count > 0.0) throw Error(given(names.count, request.count, names) + " needs a " + map_name + ": give one");
+  if (request.count > 0.0 && request.max_density > 0.0)
+    throw Error(std::string(names.count) + " and " + std::string(names.max_density) + " exclude each other: give one");
+}
+
+TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request, const TilingNames& names) {
+  check_tiling_request(request, map != nullptr, names);
+  TilingPlan plan;
+  plan.window = request.window;
+  const Window& w = plan.window;
 
   double points_per_tile = 0.0;
   for (const Tile& t : set.tiles) points_per_tile += static_cast<double>(t.points.size());
@@ -88,18 +102,18 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
   if (!std::isfinite(full))
     throw Error("tile size " + number_text(tile_size) + " is too small: " + number_text(points_per_tile) +
                 " points per tile would be more points per unit area than a double holds; use a larger " +
-                std::string(tile_size_name));
+                std::string(names.tile_size));
   if (target == 0.0) target = full;
   // A hair of rounding (sqrt then square) must not refuse the density it came from.
   if (target > full * (1.0 + 1e-12))
     throw Error("density " + number_text(target) + " is more than tiles of size " + number_text(tile_size) + " hold (" +
-                number_text(full) + " points per unit area): use a smaller " + std::string(tile_size_name) + " or leave it out");
+                number_text(full) + " points per unit area): use a smaller " + std::string(names.tile_size) + " or leave it out");
   // Within rounding of the full density: every point, no thinning.
   const double fraction = target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
   if (!(fraction > 0.0))
     throw Error("density " + number_text(target) + " is too low for tiles of size " + number_text(tile_size) + " (" +
                 number_text(full) + " points per unit area): no point would be kept; use a larger " +
-                std::string(tile_size_name));
+                std::string(names.tile_size));
   plan.max_density = target;
   plan.mean_density = target * mean / largest;
   if (map) {

@@ -38,13 +38,29 @@ struct TilingPlan {
   double mean_density = 0.0;  // points per unit area over the window, on average
 };
 
+// How a front end names a request's fields in its messages, and joins a name to its value: the
+// tool's options ("--max-density 500 needs a --density-map"), the Python module's arguments
+// ("max_density=500 needs a density_map"). The defaults are the library's own words.
+struct TilingNames {
+  std::string_view tile_size = "tile size";
+  std::string_view density = "density";
+  std::string_view max_density = "max density";
+  std::string_view count = "count";
+  std::string_view density_map = "density map";
+  std::string_view assign = " ";  // between a name and its value
+};
+
+// The request's own rules, which need no map and no tile set, so a front end can refuse a bad
+// request before it reads either: a finite window with x1 > x0 and y1 > y0 ("region: ..."); tile
+// size, densities and count finite and >= 0; a density only without a map, a max density or a
+// count only with one, and not both. Throws Error in `names`' words. plan_tiling checks them too.
+void check_tiling_request(const TilingRequest& request, bool has_map, const TilingNames& names = {});
+
 // The plan for `request` over `set`, thinned by `map` when given (texels as in DensityGrid, the
-// map placed on the window by request.fit). Throws Error naming the field (window, tile_size,
-// density, max_density, count) for a bad or contradictory request, and for a density the tiles
-// cannot hold; the advice there names `tile_size_name`, the option or argument that sets the tile
-// size ("use a smaller --tile-size").
-TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request,
-                       std::string_view tile_size_name = "tile size");
+// map placed on the window by request.fit). Throws Error for a bad or contradictory request
+// (check_tiling_request) and for a density the tiles cannot hold, in `names`' words ("use a
+// smaller --tile-size").
+TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest& request, const TilingNames& names = {});
 
 // The most points, or cells, one window may hold: the other commands' limit on a point set, past
 // which a run fills a disk or memory, or runs for hours, instead of being refused.
