@@ -168,11 +168,11 @@ TEST(ApiContract, MoveToCentroidsChecksItsCellsFirst) {
   std::vector<Scene> scenes{make_scene(uniform_random_points(10, 1)), make_scene(uniform_random_points(4, 2))};
   const std::vector<Point> before = scenes[0].sites;
   std::vector<SceneCells> none;
-  EXPECT_EQ(error_of([&] { move_to_centroids(scenes, none); }), "move_to_centroids: 2 scene(s) but cells for 0");
+  EXPECT_EQ(error_of([&] { move_to_centroids(scenes, none); }), "move_to_centroids: 2 scenes but cells for 0");
   std::vector<SceneCells> cells(2);
   cells[0].cells.resize(10);
   cells[1].cells.resize(3);
-  EXPECT_EQ(error_of([&] { move_to_centroids(scenes, cells); }), "move_to_centroids: scene 1 has 4 wanted site(s) but 3 cell(s)");
+  EXPECT_EQ(error_of([&] { move_to_centroids(scenes, cells); }), "move_to_centroids: scene 1 has 4 wanted sites but 3 cells");
   EXPECT_EQ(scenes[0].sites, before);
   cells[1].cells.resize(4);
   scenes[1].wanted_end = 40;

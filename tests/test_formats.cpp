@@ -199,6 +199,9 @@ TEST(Formats, HeaderLiteralsAreExactFloats) {
                             "out/blue-noise 64.h");
   EXPECT_NE(text.find("// made by a test\n"), std::string::npos);
   EXPECT_NE(text.find("static const float blue_noise_64[2][5][2] = {\n"), std::string::npos) << text;
+  EXPECT_NE(text.find("\n// 2 sets of 5 points, columns x y;"), std::string::npos) << text;
+  // One of each, counted as words are ("1 set(s) of 1 points").
+  EXPECT_EQ(encode(TableFormat::header, sample_sets(1, 1, false), {}, "one.h").find("// 1 set of 1 point, columns x y;"), 0u);
   // Every literal, read as C reads it, is the float of the value.
   std::vector<float> literals;
   std::size_t line_start = 0;
@@ -401,7 +404,7 @@ TEST(Formats, DamagedNpyFilesGiveClearErrors) {
             "d.npy: shape (1, 3, 2) needs 48 data bytes but the file has 32");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'shape': (2, 2), }", data)), "d.npy: bad .npy header: no 'fortran_order'");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (281474976710656, 0, 2), }", "")),
-            "d.npy: the table holds 281474976710656 set(s) of 0 points");
+            "d.npy: the table holds 281474976710656 sets of 0 points");
   EXPECT_EQ(npy_error(npy_by_hand("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }", data).substr(0, 40)),
             "d.npy: .npy file cut short in its header");
   std::string nan_data = data;
@@ -419,17 +422,17 @@ TEST(Formats, DamagedBinaryFilesGiveClearErrors) {
   EXPECT_EQ(binary_error(good), "");
   EXPECT_EQ(binary_error(good.substr(0, 20)), "d.bpt: binary point table cut short: 20 bytes, the header alone is 40");
   EXPECT_EQ(binary_error(good.substr(0, 60)),
-            "d.bpt: header says 1 set(s) of 2 points (72 bytes) but the file has 60 bytes");
+            "d.bpt: header says 1 set of 2 points (72 bytes) but the file has 60 bytes");
   std::string wrong_magic = good;
   wrong_magic[3] = 'X';
   EXPECT_EQ(binary_error(wrong_magic), "d.bpt: not a bluetile binary point table (wrong magic)");
   EXPECT_EQ(binary_error(binary_by_hand(8, 2, 1, 3, four)),
-            "d.bpt: header says 1 set(s) of 3 points (88 bytes) but the file has 72 bytes");
+            "d.bpt: header says 1 set of 3 points (88 bytes) but the file has 72 bytes");
   EXPECT_EQ(binary_error(binary_by_hand(8, 2, 1ull << 62, 1ull << 62, four)),
             "d.bpt: sizes 4611686018427387904 x 4611686018427387904 x 2 overflow: a damaged file");
   EXPECT_EQ(binary_error(binary_by_hand(8, 4, 1, 1, four)), "d.bpt: 4 columns per point; expected 2 (x y) or 3 (x y level)");
   // Sets of no points take no bytes: a header may claim 2^48 of them (found by the fuzzer).
-  EXPECT_EQ(binary_error(binary_by_hand(8, 3, 1ull << 48, 0, {})), "d.bpt: the table holds 281474976710656 set(s) of 0 points");
+  EXPECT_EQ(binary_error(binary_by_hand(8, 3, 1ull << 48, 0, {})), "d.bpt: the table holds 281474976710656 sets of 0 points");
   std::string v2 = good;
   v2[8] = 2;
   EXPECT_EQ(binary_error(v2), "d.bpt: binary point table version 2, this reader knows version 1");

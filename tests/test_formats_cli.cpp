@@ -333,7 +333,7 @@ TEST(FormatsCli, DamagedTablesAreRefusedWithTheirFileName) {
   std::string short_file = dir.write("short.bpt", bytes.substr(0, bytes.size() - 3));
   auto r = run_bluetile({"relax", "-i", short_file, "--engine", "exact", "-o", dir.file("out.txt")});
   EXPECT_NE(r.exit_code, 0);
-  EXPECT_EQ(r.err, "bluetile: " + short_file + ": header says 1 set(s) of 8 points (168 bytes) but the file has 165 bytes\n");
+  EXPECT_EQ(r.err, "bluetile: " + short_file + ": header says 1 set of 8 points (168 bytes) but the file has 165 bytes\n");
   EXPECT_FALSE(std::filesystem::exists(dir.file("out.txt")));
 }
 

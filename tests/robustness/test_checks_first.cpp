@@ -241,7 +241,7 @@ TEST(ChecksFirst, AnImageTooLargeForTheMemoryLimitSaysWhatItNeeds) {
   Outcome r = run_or_kill(limited);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_EQ(r.err, "bluetile: " + dir.file("huge.png") +
-                       ": cannot read image: out of memory: its 40000 x 40000 pixels of 1 channel(s) need 6.0 GiB as "
+                       ": cannot read image: out of memory: its 40000 x 40000 pixels of 1 channel needs 6.0 GiB as "
                        "4-byte samples\n");
   EXPECT_EQ(entries(dir.path()), (Names{"huge.png", "small.png"}));
 }

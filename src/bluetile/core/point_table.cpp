@@ -211,7 +211,7 @@ void write_header(ChunkedWriter& out, const TableView& table, std::size_t rows, 
                   const std::string& path) {
   const std::string name = checked_table_name(path, options.name);
   for (const std::string& line : options.comment) out.write("// " + comment_line(line, true) + "\n");
-  out.write("// " + std::to_string(table.sets) + " set(s) of " + std::to_string(rows) + " points, columns " +
+  out.write("// " + counted(static_cast<long long>(table.sets), "set") + " of " + counted(static_cast<long long>(rows), "point") + ", columns " +
             table.column_names + "; coordinates on the unit torus, in [0, 1).\n");
   out.write("#pragma once\n\n");
   out.write("static const float " + name + "[" + std::to_string(table.sets) + "][" + std::to_string(rows) + "][" +
@@ -250,7 +250,7 @@ class SetBuilder {
   // they are allocated.
   static std::size_t checked_set_count(const std::string& name, std::size_t sets, std::size_t rows) {
     if (sets > 0 && rows == 0)
-      throw Error(name + ": the table holds " + std::to_string(sets) + " set(s) of 0 points");
+      throw Error(name + ": the table holds " + counted(static_cast<long long>(sets), "set") + " of 0 points");
     return sets;
   }
 
@@ -623,8 +623,8 @@ std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::stri
   check_columns(columns, name);
   std::size_t payload = payload_bytes(sets, rows, columns, value_bytes, name);
   if (bytes.size() - kBinaryHeaderBytes != payload) {
-    throw Error(name + ": header says " + std::to_string(sets) + " set(s) of " + std::to_string(rows) +
-                " points (" + std::to_string(kBinaryHeaderBytes + payload) + " bytes) but the file has " +
+    throw Error(name + ": header says " + counted(static_cast<long long>(sets), "set") + " of " +
+                counted(static_cast<long long>(rows), "point") + " (" + std::to_string(kBinaryHeaderBytes + payload) + " bytes) but the file has " +
                 std::to_string(bytes.size()) + " bytes");
   }
   SetBuilder builder(name, sets, rows, columns, options);

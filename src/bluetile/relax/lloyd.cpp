@@ -59,7 +59,7 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
   // Checked before any site moves: a shorter `cells` or a scene with fewer cells than wanted sites
   // was read (and its sites written) past the end.
   if (cells.size() != scenes.size())
-    throw Error("move_to_centroids: " + std::to_string(scenes.size()) + " scene(s) but cells for " +
+    throw Error("move_to_centroids: " + counted(static_cast<long long>(scenes.size()), "scene") + " but cells for " +
                 std::to_string(cells.size()));
   for (std::size_t k = 0; k < scenes.size(); ++k) {
     const Scene& scene = scenes[k];
@@ -68,8 +68,8 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
                   ", " + std::to_string(scene.wanted_end) + ") do not lie inside its " + std::to_string(scene.sites.size()) +
                   " sites");
     if (cells[k].cells.size() != scene.wanted_count())
-      throw Error("move_to_centroids: scene " + std::to_string(k) + " has " + std::to_string(scene.wanted_count()) +
-                  " wanted site(s) but " + std::to_string(cells[k].cells.size()) + " cell(s)");
+      throw Error("move_to_centroids: scene " + std::to_string(k) + " has " + counted(static_cast<long long>(scene.wanted_count()), "wanted site") +
+                  " but " + counted(static_cast<long long>(cells[k].cells.size()), "cell"));
   }
   std::vector<Sums> sums;
   for (std::size_t k = 0; k < scenes.size(); ++k) {
