@@ -308,7 +308,8 @@ nb::object tile(const RegionArg& region, const std::optional<PathArg>& tiles_arg
   {
     nb::gil_scoped_release release;
     SignalChecks signal_checks;  // Ctrl-C inside the loops
-    bluetile::TilingPlan plan = bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request, kArgumentNames);
+    bluetile::TilingPlan plan =
+        bluetile::plan_tiling(load_tile_set(tiles), map ? &*map : nullptr, request, kArgumentNames);
     bluetile::check_tiling_size(plan, "region", "tile_size");  // as the tool: refused, not a MemoryError
     // The tool streams its points; here they are held: the tiler's (with the slack of a growing
     // vector), the (M, 2) array and with `columns` i, j, tile, level and rank.

@@ -28,6 +28,11 @@ constexpr char kNpyMagic[6] = {'\x93', 'N', 'U', 'M', 'P', 'Y'};
 // vanishes, small enough to stay in cache.
 constexpr std::size_t kSinkChunk = 1 << 16;
 
+// "1 set of 64 points", "3 sets of 1 point".
+std::string sets_of_points(std::size_t sets, std::size_t rows) {
+  return counted(static_cast<long long>(sets), "set") + " of " + counted(static_cast<long long>(rows), "point");
+}
+
 
 // Buffers bytes for a sink.
 class ChunkedWriter {
@@ -211,8 +216,8 @@ void write_header(ChunkedWriter& out, const TableView& table, std::size_t rows, 
                   const std::string& path) {
   const std::string name = checked_table_name(path, options.name);
   for (const std::string& line : options.comment) out.write("// " + comment_line(line, true) + "\n");
-  out.write("// " + counted(static_cast<long long>(table.sets), "set") + " of " + counted(static_cast<long long>(rows), "point") + ", columns " +
-            table.column_names + "; coordinates on the unit torus, in [0, 1).\n");
+  out.write("// " + sets_of_points(table.sets, rows) + ", columns " + table.column_names +
+            "; coordinates on the unit torus, in [0, 1).\n");
   out.write("#pragma once\n\n");
   out.write("static const float " + name + "[" + std::to_string(table.sets) + "][" + std::to_string(rows) + "][" +
             std::to_string(table.columns) + "] = {\n");
@@ -250,7 +255,7 @@ class SetBuilder {
   // they are allocated.
   static std::size_t checked_set_count(const std::string& name, std::size_t sets, std::size_t rows) {
     if (sets > 0 && rows == 0)
-      throw Error(name + ": the table holds " + counted(static_cast<long long>(sets), "set") + " of 0 points");
+      throw Error(name + ": the table holds " + sets_of_points(sets, 0));
     return sets;
   }
 
@@ -623,9 +628,9 @@ std::vector<PointSet> parse_binary_table(std::string_view bytes, const std::stri
   check_columns(columns, name);
   std::size_t payload = payload_bytes(sets, rows, columns, value_bytes, name);
   if (bytes.size() - kBinaryHeaderBytes != payload) {
-    throw Error(name + ": header says " + counted(static_cast<long long>(sets), "set") + " of " +
-                counted(static_cast<long long>(rows), "point") + " (" + std::to_string(kBinaryHeaderBytes + payload) + " bytes) but the file has " +
-                std::to_string(bytes.size()) + " bytes");
+    throw Error(name + ": header says " + sets_of_points(sets, rows) + " (" +
+                std::to_string(kBinaryHeaderBytes + payload) + " bytes) but the file has " + std::to_string(bytes.size()) +
+                " bytes");
   }
   SetBuilder builder(name, sets, rows, columns, options);
   const char* at = h + kBinaryHeaderBytes;

@@ -226,7 +226,8 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const c
     char gib[48];
     std::snprintf(gib, sizeof gib, "%llu.%llu", tenths / 10, tenths % 10);
     return fail("out of memory: its " + std::to_string(spec.width) + " x " + std::to_string(spec.height) + " pixels of " +
-                    std::to_string(spec.nchannels) + (spec.nchannels == 1 ? " channel needs " : " channels need ") + gib + " GiB as 4-byte samples",
+                    std::to_string(spec.nchannels) + (spec.nchannels == 1 ? " channel needs " : " channels need ") + gib +
+                    " GiB as 4-byte samples",
                 error, error_size);
   }
   if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, data)) {

@@ -68,8 +68,9 @@ LloydIteration move_to_centroids(std::span<Scene> scenes, std::span<const SceneC
                   ", " + std::to_string(scene.wanted_end) + ") do not lie inside its " + std::to_string(scene.sites.size()) +
                   " sites");
     if (cells[k].cells.size() != scene.wanted_count())
-      throw Error("move_to_centroids: scene " + std::to_string(k) + " has " + counted(static_cast<long long>(scene.wanted_count()), "wanted site") +
-                  " but " + counted(static_cast<long long>(cells[k].cells.size()), "cell"));
+      throw Error("move_to_centroids: scene " + std::to_string(k) + " has " +
+                  counted(static_cast<long long>(scene.wanted_count()), "wanted site") + " but " +
+                  counted(static_cast<long long>(cells[k].cells.size()), "cell"));
   }
   std::vector<Sums> sums;
   for (std::size_t k = 0; k < scenes.size(); ++k) {

@@ -54,7 +54,8 @@ void check_tiling_request(const TilingRequest& request, bool has_map, const Tili
                 std::string(names.max_density) + " or " + std::string(names.count));
   if (!has_map && request.max_density > 0.0)
     throw Error(given(names.max_density, request.max_density, names) + " needs a " + map_name + ": give one");
-  if (!has_map && request.count > 0.0) throw Error(given(names.count, request.count, names) + " needs a " + map_name + ": give one");
+  if (!has_map && request.count > 0.0)
+    throw Error(given(names.count, request.count, names) + " needs a " + map_name + ": give one");
   if (request.count > 0.0 && request.max_density > 0.0)
     throw Error(std::string(names.count) + " and " + std::string(names.max_density) + " exclude each other: give one");
 }
@@ -107,7 +108,8 @@ TilingPlan plan_tiling(TileSet set, const DensityGrid* map, const TilingRequest&
   // A hair of rounding (sqrt then square) must not refuse the density it came from.
   if (target > full * (1.0 + 1e-12))
     throw Error("density " + number_text(target) + " is more than tiles of size " + number_text(tile_size) + " hold (" +
-                number_text(full) + " points per unit area): use a smaller " + std::string(names.tile_size) + " or leave it out");
+                number_text(full) + " points per unit area): use a smaller " + std::string(names.tile_size) +
+                " or leave it out");
   // Within rounding of the full density: every point, no thinning.
   const double fraction = target >= full * (1.0 - 1e-12) ? 1.0 : target / full;
   if (!(fraction > 0.0))
