@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 
 #include "bluetile/core/error.h"
@@ -232,6 +234,52 @@ TEST(DensityMap, PhotographsAreTurnedUprightAsTheirOrientationTagSays) {
   ASSERT_EQ(tagged.height, plain.height);
   for (int y = 0; y < plain.height; ++y)
     for (int x = 0; x < plain.width; ++x) EXPECT_EQ(tagged.at(x, y), plain.at(x, y)) << x << ", " << y;
+}
+
+// `jpeg` with an Exif segment (APP1) after its start marker whose one tag is Orientation
+// `orientation`: how a camera tags its photographs.
+std::string with_exif_orientation(const std::string& jpeg, int orientation) {
+  std::string exif = std::string("Exif\0\0", 6) + "II";
+  auto u16 = [&](unsigned v) {
+    exif.push_back(static_cast<char>(v & 0xff));
+    exif.push_back(static_cast<char>(v >> 8));
+  };
+  u16(42);
+  u16(8), u16(0);  // the directory follows the header
+  u16(1);          // one entry: tag 274, SHORT, count 1
+  u16(274), u16(3), u16(1), u16(0), u16(static_cast<unsigned>(orientation)), u16(0);
+  u16(0), u16(0);  // no next directory
+  const std::size_t length = exif.size() + 2;
+  return jpeg.substr(0, 2) + "\xff\xe1" + static_cast<char>(length >> 8) + static_cast<char>(length & 0xff) + exif +
+         jpeg.substr(2);
+}
+
+TEST(DensityMap, AnOrientationTagOutsideOneToEightIsNamedAndTheImageReadAsStored) {
+  // Such a tag means nothing, and viewers show the file as stored; it was read that way without a
+  // word, as if it had said 1. (libtiff drops such a tag from a TIFF itself: a JPEG's Exif keeps it.)
+  test::TempDir dir;
+  write_image_file(dir.file("plain.jpg"), 3, 2, 1, {0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f}, SampleFormat::uint8);
+  std::ifstream stream(dir.file("plain.jpg"), std::ios::binary);
+  const std::string jpeg((std::istreambuf_iterator<char>(stream)), std::istreambuf_iterator<char>());
+  const ImageFile plain = read_image_file(dir.file("plain.jpg"));
+  for (int tag : {0, 9, 300}) {
+    const std::string path = dir.write(std::to_string(tag) + ".jpg", with_exif_orientation(jpeg, tag));
+    testing::internal::CaptureStderr();
+    const ImageFile image = read_image_file(path);
+    EXPECT_EQ(testing::internal::GetCapturedStderr(), "bluetile: warning: " + path + ": its Orientation tag is " +
+                                                          std::to_string(tag) +
+                                                          ", not one of 1 to 8: the image is read as stored\n");
+    EXPECT_EQ(image.width, 3) << tag;
+    EXPECT_EQ(image.height, 2) << tag;
+    EXPECT_EQ(image.values, plain.values) << tag;
+  }
+  // A tag in range says nothing, and is followed (the segment is read).
+  const std::string turned = dir.write("6.jpg", with_exif_orientation(jpeg, 6));
+  testing::internal::CaptureStderr();
+  const ImageFile upright = read_image_file(turned);
+  EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
+  EXPECT_EQ(upright.width, 2);
+  EXPECT_EQ(upright.height, 3);
 }
 
 TEST(DensityMap, BadFilesGiveOneClearError) {

@@ -110,11 +110,16 @@ void pass_on(const std::string& printed) {
 }
 
 // The orientation a viewer shows the image in: EXIF's and TIFF's Orientation tag (1 to 8, 1 when
-// absent or out of range). A phone stores its photographs as the sensor read them and sets the
-// tag; every viewer turns them upright, and so does the reader here.
-int display_orientation(const OIIO::ImageSpec& spec) {
+// absent). A phone stores its photographs as the sensor read them and sets the tag; every viewer
+// turns them upright, and so does the reader here. A tag outside 1 to 8 means nothing: viewers
+// show such a file as stored, and so does the reader, saying so in `warning` where one is given.
+int display_orientation(const OIIO::ImageSpec& spec, const char* path = nullptr, std::string* warning = nullptr) {
   const int tag = spec.get_int_attribute("Orientation", 1);
-  return tag >= 1 && tag <= 8 ? tag : 1;
+  if (tag >= 1 && tag <= 8) return tag;
+  if (warning)
+    *warning = std::string("bluetile: warning: ") + path + ": its Orientation tag is " + std::to_string(tag) +
+               ", not one of 1 to 8: the image is read as stored\n";
+  return 1;
 }
 
 // Orientations 5 to 8 turn the image a quarter: width and height change places.
@@ -237,7 +242,8 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const c
     return fail(why + "\n" + capture.finish(), error, error_size,
                 "its pixels could not be read: the file is cut short or damaged");
   }
-  const int orientation = display_orientation(spec);
+  std::string warning;
+  const int orientation = display_orientation(spec, path, &warning);
   long w = spec.width, h = spec.height;
   if (quarter_turn(orientation)) std::swap(w, h);
   if (orientation != 1) {
@@ -264,6 +270,6 @@ extern "C" __attribute__((visibility("default"))) int bluetile_oiio_read(const c
   *is_float = spec.format.is_floating_point() ? 1 : 0;
   *values = data;
   in->close();
-  pass_on(capture.finish());
+  pass_on(capture.finish() + warning);
   return 0;
 }
