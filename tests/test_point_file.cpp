@@ -40,6 +40,25 @@ TEST(PointFile, ReadsCommentsCountAndLevels) {
   EXPECT_FALSE(plain.has_levels());
 }
 
+TEST(PointFile, TheCommentLinesBeforeTheFirstPointAreKeptAsTheHeader) {
+  PointSet set = parse_points("# made by hand\n#tile grid 0 0 0.5 0.5\n3\n#  after the count\n0.1 0.2\n# later\n0.3 0.4 "
+                              "# trailing\n0.5 0.6\n",
+                              "x");
+  EXPECT_EQ(set.header, (std::vector<std::string>{" made by hand", "tile grid 0 0 0.5 0.5", "  after the count"}));
+  // Each set of a file of several has its own; a long header keeps its first lines.
+  std::string text = "# a\n0.1 0.1\n# b\n# c\n0.2 0.2\n#\n";
+  for (int i = 0; i < 40; ++i) text += "# " + std::to_string(i) + "\n";
+  text += "0.3 0.3\n";
+  TempDir dir;
+  const std::vector<PointSet> sets = read_point_sets(dir.write("sets.txt", text));
+  ASSERT_EQ(sets.size(), 3u);
+  EXPECT_EQ(sets[0].header, (std::vector<std::string>{" a"}));
+  EXPECT_EQ(sets[1].header, (std::vector<std::string>{" b", " c"}));
+  ASSERT_EQ(sets[2].header.size(), PointSet::kHeaderLines);
+  EXPECT_EQ(sets[2].header.front(), "");  // the '#' that ended set 1 begins set 2's header
+  EXPECT_EQ(sets[2].header.back(), " 30");
+}
+
 TEST(PointFile, WrapsCoordinatesOntoTheTorus) {
   PointSet set = parse_points("-0.25 1.5\n1 0\n-1e-20 0.5\n", "x");
   EXPECT_EQ(set.points[0], Point(0.75, 0.5));

@@ -138,6 +138,31 @@ TEST(TileCommand, VerboseSaysSomethingOfEveryOutput) {
   EXPECT_EQ(said[2].rfind("bluetile tile: " + dir.file("c.png") + ": drawn in ", 0), 0u) << said[2];
 }
 
+TEST(TileCommand, AnalyzeDrawsTheTileGridOfAnOutputReadFromAPipe) {
+  // analyze drew the tile grid a `tile --normalize` output declares only when it could open the
+  // file a second time by its name: from a pipe or a FIFO the picture had no grid.
+  TempDir dir;
+  auto r = run_bluetile({"tile", "--region", "0", "0", "2", "2", "--density", "64", "--normalize", "-o",
+                         dir.file("tiled.txt")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_bluetile({"analyze", "-i", dir.file("tiled.txt"), "-o", dir.file("named"), "--no-psa-measures"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const test::CommandResult piped = test::run_command("(cat '" + dir.file("tiled.txt") + "' | '" BLUETILE_BINARY
+                                                      "' analyze -i - -o '" + dir.file("piped") +
+                                                      "' --no-psa-measures)");
+  ASSERT_EQ(piped.exit_code, 0) << piped.err;
+  auto grid_lines = [](const std::string& svg) {
+    const std::string grid_line = "stroke=\"#cc7373\"";  // figures.cpp's grid colour
+    std::size_t lines = 0;
+    for (std::size_t at = svg.find(grid_line); at != std::string::npos; at = svg.find(grid_line, at + 1)) ++lines;
+    return lines;
+  };
+  const std::string named = read_text(dir.file("named/points.svg")), from_pipe = read_text(dir.file("piped/points.svg"));
+  EXPECT_EQ(grid_lines(named), 2u);  // tiles 2.83 wide: one edge inside the square in x, one in y
+  EXPECT_EQ(grid_lines(from_pipe), 2u);
+  EXPECT_TRUE(from_pipe == named);
+}
+
 TEST(TileCommand, NormalizedWindowIsAPointFileOnTheUnitSquare) {
   TempDir dir;
   auto r = run_bluetile({"tile", "--region", "1000000", "-1000001", "1000004", "-999997", "--density", "64",

@@ -860,7 +860,7 @@ AnalyzeDrawings draw_series(const AnalyzeOptions& o, const std::vector<Series>& 
     }
     if (s.sets > 1) figure.note = "set 1 of " + std::to_string(s.sets) + " (the analysis covers all " + std::to_string(s.sets) + ")";
     figure.cells = o.cells;
-    if (std::optional<TileGrid> grid = read_tile_grid(s.input)) tile_grid_lines(*grid, figure);
+    if (std::optional<TileGrid> grid = declared_tile_grid(s.first)) tile_grid_lines(*grid, figure);
     const int size = several ? o.image_size * 2 / 3 : o.image_size;
     point_images.push_back(draw_points(figure, size));
     point_svgs.push_back(points_svg(figure, size));

@@ -110,6 +110,10 @@ class SetParser {
   }
 
   void declare(std::optional<Boundary> boundary) { set_.declared_boundary = boundary; }
+  // A comment line before the set's first point.
+  void header_line(std::string_view comment) {
+    if (set_.points.empty() && set_.header.size() < PointSet::kHeaderLines) set_.header.emplace_back(comment);
+  }
 
   void data_line(std::string_view line, std::size_t number) {
     LineError fail(name_, number);
@@ -383,9 +387,11 @@ class PointTextParser::Impl {
       if (several_) {  // a '#' line ends a set (UTK's convention)
         if (!parser_.empty()) sets_.push_back(parser_.finish());
         if (boundary) parser_.declare(boundary);
+        parser_.header_line(text.substr(hash + 1));
         return;
       }
       if (boundary && parser_.empty()) parser_.declare(boundary);
+      parser_.header_line(text.substr(hash + 1));
     }
     parser_.data_line(data, number_);
   }

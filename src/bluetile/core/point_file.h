@@ -33,6 +33,11 @@ struct PointSet {
 
   // What a "# domain ..." line before the set declared, if any.
   std::optional<Boundary> declared_boundary;
+  // A text file's comment lines before the set's first point, the text after '#' (the first
+  // kHeaderLines of them): what a writer declared there, such as `bluetile tile`'s tile grid. Read
+  // from the one pass over the file, so a FIFO or standard input declares as much as a file.
+  std::vector<std::string> header;
+  static constexpr std::size_t kHeaderLines = 32;
 
   bool has_levels() const { return !levels.empty(); }
 };

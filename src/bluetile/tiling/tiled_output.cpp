@@ -1,14 +1,11 @@
 #include "bluetile/tiling/tiled_output.h"
 
-#include <sys/stat.h>
-
 #include <algorithm>
 #include <bit>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <locale>
 #include <sstream>
 
@@ -236,15 +233,12 @@ std::string tile_grid_comment(const Tiler& tiler, const Window& window, bool nor
   return text;
 }
 
-std::optional<TileGrid> read_tile_grid(const std::string& path) {
-  struct stat status {};
-  if (stat(path.c_str(), &status) != 0 || !S_ISREG(status.st_mode)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  const std::string prefix = std::string("# ") + kTileGridPrefix + " ";
-  // Only the leading comment block: the header `bluetile tile` writes.
-  for (std::string line; std::getline(in, line) && !line.empty() && line[0] == '#';) {
-    if (line.compare(0, prefix.size(), prefix) != 0) continue;
-    std::istringstream fields(line.substr(prefix.size()));
+std::optional<TileGrid> declared_tile_grid(const PointSet& set) {
+  const std::string prefix = std::string(kTileGridPrefix) + " ";
+  for (const std::string& comment : set.header) {
+    const std::size_t start = comment.find_first_not_of(' ');
+    if (start == std::string::npos || comment.compare(start, prefix.size(), prefix) != 0) continue;
+    std::istringstream fields(comment.substr(start + prefix.size()));
     fields.imbue(std::locale::classic());
     TileGrid grid;
     if (fields >> grid.origin.x >> grid.origin.y >> grid.spacing.x >> grid.spacing.y && std::isfinite(grid.origin.x) &&

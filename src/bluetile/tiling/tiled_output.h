@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bluetile/core/output_file.h"
+#include "bluetile/core/point_file.h"
 #include "bluetile/tiling/density_thinning.h"
 #include "bluetile/tiling/tiler.h"
 
@@ -65,10 +66,8 @@ struct TileGrid {
 
 // The header line (without "# ") that declares the grid: "tile grid OX OY SX SY".
 std::string tile_grid_comment(const Tiler& tiler, const Window& window, bool normalize);
-// The grid a point file declares in its leading comment lines, if it does (files `bluetile
-// tile` wrote); nullopt for any other file, or one that cannot be read (its reader reports that).
-// Only a regular file is opened: a FIFO or a device, read once by the points' reader, would
-// wait here for a second writer (nullopt for them: no grid is drawn).
-std::optional<TileGrid> read_tile_grid(const std::string& path);
+// The grid a set's header declares (the leading comment lines of a file `bluetile tile` wrote,
+// PointSet::header), if it does; nullopt for any other set, or a grid line that is not one.
+std::optional<TileGrid> declared_tile_grid(const PointSet& set);
 
 }  // namespace bluetile
