@@ -46,7 +46,7 @@ TEST(PointFile, TheCommentLinesBeforeTheFirstPointAreKeptAsTheHeader) {
                               "x");
   EXPECT_EQ(set.header, (std::vector<std::string>{" made by hand", "tile grid 0 0 0.5 0.5", "  after the count"}));
   // Each set of a file of several has its own; a long header keeps its first lines.
-  std::string text = "# a\n0.1 0.1\n# b\n# c\n0.2 0.2\n#\n";
+  std::string text = "# a\n0.1 0.1\n# b\n#  \n# c\n0.2 0.2\n#\n";
   for (int i = 0; i < 40; ++i) text += "# " + std::to_string(i) + "\n";
   text += "0.3 0.3\n";
   TempDir dir;
@@ -54,9 +54,9 @@ TEST(PointFile, TheCommentLinesBeforeTheFirstPointAreKeptAsTheHeader) {
   ASSERT_EQ(sets.size(), 3u);
   EXPECT_EQ(sets[0].header, (std::vector<std::string>{" a"}));
   EXPECT_EQ(sets[1].header, (std::vector<std::string>{" b", " c"}));
-  ASSERT_EQ(sets[2].header.size(), PointSet::kHeaderLines);
-  EXPECT_EQ(sets[2].header.front(), "");  // the '#' that ended set 1 begins set 2's header
-  EXPECT_EQ(sets[2].header.back(), " 30");
+  ASSERT_EQ(sets[2].header.size(), PointSet::kHeaderLines);  // blank comments ('#' between sets) not kept
+  EXPECT_EQ(sets[2].header.front(), " 0");
+  EXPECT_EQ(sets[2].header.back(), " 31");
 }
 
 TEST(PointFile, WrapsCoordinatesOntoTheTorus) {

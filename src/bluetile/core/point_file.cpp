@@ -110,8 +110,10 @@ class SetParser {
   }
 
   void declare(std::optional<Boundary> boundary) { set_.declared_boundary = boundary; }
-  // A comment line before the set's first point.
+  // A comment line before the set's first point. A bare '#' (between the sets of a file of
+  // several: UTK's files have one before each) says nothing and costs nothing.
   void header_line(std::string_view comment) {
+    if (split_whitespace(comment).count == 0) return;
     if (set_.points.empty() && set_.header.size() < PointSet::kHeaderLines) set_.header.emplace_back(comment);
   }
 

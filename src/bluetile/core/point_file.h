@@ -34,8 +34,8 @@ struct PointSet {
   // What a "# domain ..." line before the set declared, if any.
   std::optional<Boundary> declared_boundary;
   // A text file's comment lines before the set's first point, the text after '#' (the first
-  // kHeaderLines of them): what a writer declared there, such as `bluetile tile`'s tile grid. Read
-  // from the one pass over the file, so a FIFO or standard input declares as much as a file.
+  // kHeaderLines that are not blank): what a writer declared there, such as `bluetile tile`'s
+  // tile grid. Read in the one pass over the file: a FIFO or standard input declares as much.
   std::vector<std::string> header;
   static constexpr std::size_t kHeaderLines = 32;
 
