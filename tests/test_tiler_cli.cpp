@@ -158,7 +158,7 @@ TEST(TileCommand, AnalyzeDrawsTheTileGridOfAnOutputReadFromAPipe) {
     return lines;
   };
   const std::string named = read_text(dir.file("named/points.svg")), from_pipe = read_text(dir.file("piped/points.svg"));
-  EXPECT_EQ(grid_lines(named), 2u);  // tiles 2.83 wide: one edge inside the square in x, one in y
+  EXPECT_EQ(grid_lines(named), 2u);  // a tile is 2.83 squares wide: its edges x = 0 and y = 0 only
   EXPECT_EQ(grid_lines(from_pipe), 2u);
   EXPECT_TRUE(from_pipe == named);
 }
