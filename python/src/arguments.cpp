@@ -157,6 +157,10 @@ AnyArray array_arg(const ArrayArg& value, const char* name, ArrayKind kind) {
                            type_text(value) + " as numbers (" + text_of(e.value()) + ")")
                               .c_str());
   }
+  // An array in the other byte order (a FITS catalogue, np.fromfile of another machine's data):
+  // the array protocols carry only the machine's own, so it is read in that order first.
+  if (!nb::try_cast(converted, array) && !nb::cast<bool>(converted.attr("dtype").attr("isnative")))
+    converted = converted.attr("astype")(converted.attr("dtype").attr("newbyteorder")("="));
   if (!nb::try_cast(converted, array)) {  // a dtype no array protocol carries: object, str
     const std::string dtype = text_of(converted.attr("dtype"));
     // The words of levels_array, density_grid and point_sets for a dtype they refuse.

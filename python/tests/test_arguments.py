@@ -201,6 +201,22 @@ def test_sequences_of_numbers_are_arrays():
     assert np.array_equal(more, bt.progressive(base, levels, add=3, iterations=1, engine="exact")[0])
 
 
+def test_arrays_in_the_other_byte_order_are_read_as_their_values(tmp_path):
+    # A big-endian array (a FITS catalogue, np.fromfile of another machine's file) was refused:
+    # "expected float64 (or float32) values, got >f8".
+    points = bt.random_points(12, seed=3)
+    swapped = points.astype(">f8")
+    assert np.array_equal(bt.relax(swapped, iterations=2, engine="exact"), bt.relax(points, iterations=2, engine="exact"))
+    assert np.array_equal(bt.nearest_neighbour_distances(points.astype(">f4")),
+                          bt.nearest_neighbour_distances(points.astype(np.float32)))
+    density = np.array([[1, 0.5], [0.25, 1]])
+    assert np.array_equal(bt.stipple(density.astype(">f8"), count=10, iterations=1), bt.stipple(density, count=10, iterations=1))
+    levels = np.array([0, 0, 1, 1], dtype=">i8")
+    bt.save_table(tmp_path / "swapped.npy", points[:4], levels=levels)
+    bt.save_table(tmp_path / "native.npy", points[:4], levels=levels.astype(np.int64))
+    assert (tmp_path / "swapped.npy").read_bytes() == (tmp_path / "native.npy").read_bytes()
+
+
 def test_what_is_not_an_array_is_refused_by_name(tmp_path):
     expected = r"points: expected an array of shape \(N, 2\) or \(K, N, 2\), or a sequence of \[x, y\] pairs"
     with pytest.raises(TypeError, match=rf"^{expected}, got str$"):
