@@ -385,15 +385,13 @@ class PointTextParser::Impl {
     std::string_view data = text.substr(0, hash);
     const bool comment_line = hash != std::string_view::npos && split_whitespace(data).count == 0;
     if (comment_line) {
-      const std::optional<Boundary> boundary = declared_boundary(text.substr(hash + 1), LineError(name_, number_));
-      if (several_) {  // a '#' line ends a set (UTK's convention)
-        if (!parser_.empty()) sets_.push_back(parser_.finish());
-        if (boundary) parser_.declare(boundary);
-        parser_.header_line(text.substr(hash + 1));
-        return;
-      }
+      const std::string_view comment = text.substr(hash + 1);
+      const std::optional<Boundary> boundary = declared_boundary(comment, LineError(name_, number_));
+      // In a file of several sets a '#' line ends a set (UTK's convention): it speaks for the next.
+      if (several_ && !parser_.empty()) sets_.push_back(parser_.finish());
       if (boundary && parser_.empty()) parser_.declare(boundary);
-      parser_.header_line(text.substr(hash + 1));
+      parser_.header_line(comment);
+      return;
     }
     parser_.data_line(data, number_);
   }
