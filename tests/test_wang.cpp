@@ -90,6 +90,71 @@ TEST(WangBlocks, Wang16CountsMatchIndependentEdgeColours) {
   for (const auto& c : ne) EXPECT_EQ(c.weight, 4096.0);
 }
 
+TEST(WangBlocks, Corner81CountsAreColouringsOfTheBlocksCornerLattice) {
+  // A 3x3 block of corner81 tiles is a colouring of its 4x4 lattice of corners, 3 colours each,
+  // the centre's 4 fixed: 3^12 blocks, made here from the colourings (not by TileRules'
+  // enumeration), then every partial block's count taken by scanning them.
+  TileRules rules(TileSetKind::corner81);
+  BlockConfigurations configurations(rules);
+  Rng rng(11);
+  std::array<std::int16_t, 81> tile_of{};  // by 27 NW + 9 NE + 3 SE + SW colour digits
+  for (int d = 0; d < 81; ++d)
+    tile_of[static_cast<std::size_t>(d)] = static_cast<std::int16_t>(rules.tile_with(
+        {static_cast<std::uint8_t>(d / 27), static_cast<std::uint8_t>(d / 9 % 3), static_cast<std::uint8_t>(d / 3 % 3),
+         static_cast<std::uint8_t>(d % 3)}));
+  for (int centre : {0, 41, 80}) {
+    const TileColours& c = rules.colours(centre);  // NW, NE, SE, SW
+    std::vector<Tiles> blocks;
+    for (int code = 0; code < 531441; ++code) {
+      std::array<std::array<std::uint8_t, 4>, 4> lattice{};  // [x][y], y = 0 at the bottom
+      int rest = code;
+      for (int x = 0; x < 4; ++x)
+        for (int y = 0; y < 4; ++y) {
+          if ((x == 1 || x == 2) && (y == 1 || y == 2)) continue;
+          lattice[static_cast<std::size_t>(x)][static_cast<std::size_t>(y)] = static_cast<std::uint8_t>(rest % 3);
+          rest /= 3;
+        }
+      lattice[1][2] = c[0], lattice[2][2] = c[1], lattice[2][1] = c[2], lattice[1][1] = c[3];
+      Tiles b;
+      for (std::size_t by = 0; by < 3; ++by)
+        for (std::size_t bx = 0; bx < 3; ++bx)
+          b[by * 3 + bx] = tile_of[27u * lattice[bx][by + 1] + 9u * lattice[bx + 1][by + 1] + 3u * lattice[bx + 1][by] +
+                                   lattice[bx][by]];
+      blocks.push_back(b);
+    }
+    EXPECT_EQ(configurations.block_count(centre), 531441.0);
+    auto agreeing = [&](const Tiles& partial) {
+      double n = 0.0;
+      for (const Tiles& b : blocks) {
+        bool agrees = true;
+        for (std::size_t p = 0; p < b.size() && agrees; ++p) agrees = partial[p] < 0 || partial[p] == b[p];
+        n += agrees;
+      }
+      return n;
+    };
+    for (int trial = 0; trial < 24; ++trial) {
+      // A random block restricted to a random mask; every third one with a random tile at a
+      // known position, which mostly no block agrees with.
+      Tiles partial = restrict_to(blocks[rng.below(blocks.size())], static_cast<PositionMask>(rng.below(512)));
+      if (trial % 3 == 2) {
+        std::size_t p = rng.below(kBlockPositions - 1);
+        p += p >= kBlockCentre;  // any position but the centre
+        partial[p] = static_cast<std::int16_t>(rng.below(81));
+      }
+      EXPECT_EQ(configurations.completions(partial), agreeing(partial)) << "centre " << centre << " trial " << trial;
+    }
+    // The north-east quadrant's projections, as ProjectionsCountTheBlocksThatAgreeWithThem does
+    // for the smaller sets.
+    const PositionMask quadrant = (1u << 5) | (1u << 7) | (1u << 8);
+    std::map<Tiles, double> expected;
+    for (const Tiles& b : blocks) expected[restrict_to(b, quadrant)] += 1.0;
+    std::map<Tiles, double> got;
+    for (const BlockConfiguration& p : configurations.projections(centre, quadrant)) got.emplace(p.tiles, p.weight);
+    EXPECT_EQ(got, expected) << "centre " << centre;
+    EXPECT_EQ(got.size(), 243u);  // the 5 lattice points of E, N and NE not on the centre: 3^5
+  }
+}
+
 TEST(WangBlocks, RoundsCoverEveryFittingNeighbourWithAdmissibleBlocks) {
   for (TileSetKind kind : tile_set_kinds()) {
     TileRules rules(kind);

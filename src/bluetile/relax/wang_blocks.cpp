@@ -29,6 +29,13 @@ constexpr std::size_t kMaxProjections = std::size_t{1} << 16;
 
 BlockConfigurations::BlockConfigurations(const TileRules& rules) : rules_(rules) {
   const int count = rules.tile_count();
+  fits_east_.resize(static_cast<std::size_t>(count * count));
+  fits_north_.resize(static_cast<std::size_t>(count * count));
+  for (int a = 0; a < count; ++a)
+    for (int b = 0; b < count; ++b) {
+      fits_east_[static_cast<std::size_t>(a * count + b)] = rules.fits_east(a, b);
+      fits_north_[static_cast<std::size_t>(a * count + b)] = rules.fits_north(a, b);
+    }
   candidates_.resize(static_cast<std::size_t>(count));
   for (int c = 0; c < count; ++c) {
     for (int p = 0; p < kBlockPositions; ++p) {
@@ -52,10 +59,14 @@ BlockConfigurations::BlockConfigurations(const TileRules& rules) : rules_(rules)
 bool BlockConfigurations::fit(int pa, int a, int pb, int b) const {
   const int dx = block_dx(pb) - block_dx(pa), dy = block_dy(pb) - block_dy(pa);
   assert(std::abs(dx) + std::abs(dy) == 1);
-  if (dx == 1) return rules_.fits_east(a, b);
-  if (dx == -1) return rules_.fits_east(b, a);
-  if (dy == 1) return rules_.fits_north(a, b);
-  return rules_.fits_north(b, a);
+  const std::size_t count = static_cast<std::size_t>(rules_.tile_count());
+  const auto pair = [count](int west_or_south, int east_or_north) {
+    return static_cast<std::size_t>(west_or_south) * count + static_cast<std::size_t>(east_or_north);
+  };
+  if (dx == 1) return fits_east_[pair(a, b)];
+  if (dx == -1) return fits_east_[pair(b, a)];
+  if (dy == 1) return fits_north_[pair(a, b)];
+  return fits_north_[pair(b, a)];
 }
 
 double BlockConfigurations::block_count(int centre) const { return block_counts_[static_cast<std::size_t>(centre)]; }
@@ -63,15 +74,6 @@ double BlockConfigurations::block_count(int centre) const { return block_counts_
 double BlockConfigurations::completions(const std::array<std::int16_t, kBlockPositions>& tiles) const {
   const int centre = tiles[kBlockCentre];
   assert(centre >= 0);
-  const std::size_t count = static_cast<std::size_t>(rules_.tile_count());
-  auto allowed = [&](int position) -> std::vector<int> {
-    if (tiles[static_cast<std::size_t>(position)] >= 0) {
-      int t = tiles[static_cast<std::size_t>(position)];
-      const auto& c = candidates(centre, position);
-      return std::find(c.begin(), c.end(), t) != c.end() ? std::vector<int>{t} : std::vector<int>{};
-    }
-    return candidates(centre, position);
-  };
   // Walk the cycle from a known position when there is one (a single start tile), else sum
   // the closed walks over every start tile.
   std::size_t start = 0;
@@ -80,28 +82,65 @@ double BlockConfigurations::completions(const std::array<std::int16_t, kBlockPos
       start = i;
       break;
     }
-  std::vector<std::vector<int>> options(kRing.size());
-  for (std::size_t i = 0; i < kRing.size(); ++i) options[i] = allowed(kRing[(start + i) % kRing.size()]);
+  // The tiles each ring position may hold, in walk order: its known tile (if it fits the
+  // centre), else every candidate. Views, not copies: the exact strategy's search calls this at
+  // every leaf.
+  struct Options {
+    const int* begin = nullptr;
+    std::size_t size = 0;
+    int known = -1;
+  };
+  std::array<Options, kRing.size()> options;
+  for (std::size_t i = 0; i < kRing.size(); ++i) {
+    const int position = kRing[(start + i) % kRing.size()];
+    const auto& fitting = candidates(centre, position);
+    Options& o = options[i];
+    o.known = tiles[static_cast<std::size_t>(position)];
+    if (o.known < 0) {
+      o.begin = fitting.data();
+      o.size = fitting.size();
+    } else {
+      o.begin = &o.known;
+      o.size = 1;
+    }
+    if (o.size == 0 || (o.known >= 0 && std::find(fitting.begin(), fitting.end(), o.known) == fitting.end()))
+      return 0.0;
+  }
+  // walks[a]: closed-walk counts so far ending in tile a, kept with the list of tiles where it
+  // is not zero, so a step costs (tiles reached) x (tiles allowed next), not tile_count^2.
+  const std::size_t count = static_cast<std::size_t>(rules_.tile_count());
+  std::vector<double> walks(count, 0.0), next(count, 0.0);
+  std::vector<int> reached, reached_next;
+  reached.reserve(count);
+  reached_next.reserve(count);
   double total = 0.0;
-  std::vector<double> walks(count), next(count);
-  for (int first : options[0]) {
-    std::fill(walks.begin(), walks.end(), 0.0);
+  for (std::size_t f = 0; f < options[0].size; ++f) {
+    const int first = options[0].begin[f];
+    for (int a : reached) walks[static_cast<std::size_t>(a)] = 0.0;
+    reached.assign(1, first);
     walks[static_cast<std::size_t>(first)] = 1.0;
     int previous = kRing[start];
-    for (std::size_t i = 1; i <= kRing.size(); ++i) {
+    for (std::size_t i = 1; i <= kRing.size() && !reached.empty(); ++i) {
       const int position = kRing[(start + i) % kRing.size()];
-      std::fill(next.begin(), next.end(), 0.0);
-      const std::vector<int> here = i == kRing.size() ? std::vector<int>{first} : options[i];
-      for (int b : here) {
+      const Options& here = i == kRing.size() ? options[0] : options[i];
+      const std::size_t from = i == kRing.size() ? f : 0, to = i == kRing.size() ? f + 1 : here.size;
+      reached_next.clear();
+      for (std::size_t k = from; k < to; ++k) {
+        const int b = here.begin[k];
         double sum = 0.0;
-        for (std::size_t a = 0; a < count; ++a)
-          if (walks[a] != 0.0 && fit(previous, static_cast<int>(a), position, b)) sum += walks[a];
-        next[static_cast<std::size_t>(b)] = sum;
+        for (int a : reached)
+          if (fit(previous, a, position, b)) sum += walks[static_cast<std::size_t>(a)];
+        if (sum != 0.0) {
+          next[static_cast<std::size_t>(b)] = sum;
+          reached_next.push_back(b);
+        }
       }
+      for (int a : reached) walks[static_cast<std::size_t>(a)] = 0.0;
       walks.swap(next);
+      reached.swap(reached_next);
       previous = position;
     }
-    total += walks[static_cast<std::size_t>(first)];
+    for (int a : reached) total += walks[static_cast<std::size_t>(a)];  // only `first` is left
   }
   return total;
 }

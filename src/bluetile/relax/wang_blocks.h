@@ -76,6 +76,9 @@ class BlockConfigurations {
   bool fit(int pa, int a, int pb, int b) const;
 
   const TileRules& rules_;
+  // TileRules::fits_east / fits_north of every pair (a * tile_count + b), read in the inner loop
+  // of completions().
+  std::vector<std::uint8_t> fits_east_, fits_north_;
   std::vector<std::array<std::vector<int>, kBlockPositions>> candidates_;
   std::vector<double> block_counts_;
   std::map<std::pair<int, PositionMask>, std::vector<BlockConfiguration>> cache_;
