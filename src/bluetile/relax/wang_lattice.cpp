@@ -47,68 +47,120 @@ std::vector<Frequency> frequencies(std::size_t n, bool mid_band) {
   return out;
 }
 
-// exp(-2 pi i a x) for a = 0 .. reach, and for negative a by conjugation: the powers of one
-// point's phase, so that each frequency costs one complex product per point.
-class Phases {
- public:
-  explicit Phases(int reach) : reach_(reach) {}
-  void set(Point p) {
-    x_.resize(static_cast<std::size_t>(reach_ + 1));
-    y_.resize(static_cast<std::size_t>(reach_ + 1));
-    const Complex ex = std::polar(1.0, -2.0 * std::numbers::pi * p.x), ey = std::polar(1.0, -2.0 * std::numbers::pi * p.y);
-    x_[0] = y_[0] = 1.0;
-    for (int a = 1; a <= reach_; ++a) {
-      x_[static_cast<std::size_t>(a)] = x_[static_cast<std::size_t>(a - 1)] * ex;
-      y_[static_cast<std::size_t>(a)] = y_[static_cast<std::size_t>(a - 1)] * ey;
-    }
-  }
-  Complex at(const Frequency& f) const {
-    const Complex y = f.my >= 0 ? y_[static_cast<std::size_t>(f.my)] : std::conj(y_[static_cast<std::size_t>(-f.my)]);
-    return x_[static_cast<std::size_t>(f.mx)] * y;
-  }
-
- private:
-  int reach_;
-  std::vector<Complex> x_, y_;
-};
-
 int reach_of(const std::vector<Frequency>& fs) {
   int reach = 0;
   for (const Frequency& f : fs) reach = std::max({reach, f.mx, std::abs(f.my)});
   return reach;
 }
 
+// exp(-2 pi i m.p) of one point p at every frequency m of a band, in the band's order. The
+// powers of exp(-2 pi i p.x) and exp(-2 pi i p.y) come from one complex product each; a
+// frequency is then x^mx y^my (y^-my the conjugate). The band's frequencies are taken as runs of
+// consecutive my at one mx (a band here is a disc or a ring in half the plane, so a run is one
+// of its rows), each run's products a loop over contiguous y powers that the compiler
+// vectorizes; the products are the ones std::complex computes (ac - bd, ad + bc), bit for bit.
+class BandPhases {
+ public:
+  explicit BandPhases(const std::vector<Frequency>& fs) : reach_(reach_of(fs)), size_(fs.size()) {
+    for (std::size_t k = 0; k < fs.size(); ++k) {
+      if (k > 0 && fs[k].mx == fs[k - 1].mx && fs[k].my == fs[k - 1].my + 1) {
+        ++runs_.back().size;
+      } else {
+        runs_.push_back({fs[k].mx, fs[k].my, k, 1});
+      }
+    }
+    const std::size_t powers = static_cast<std::size_t>(reach_) + 1, row = 2 * powers - 1;
+    x_.resize(powers);
+    y_.resize(powers);
+    y_re_.resize(row);
+    y_im_.resize(row);
+  }
+
+  std::size_t size() const { return size_; }
+
+  // re[k] + i im[k] = exp(-2 pi i fs[k].p) for every k.
+  void compute(Point p, double* re, double* im) {
+    const Complex ex = std::polar(1.0, -2.0 * std::numbers::pi * p.x), ey = std::polar(1.0, -2.0 * std::numbers::pi * p.y);
+    x_[0] = y_[0] = 1.0;
+    for (std::size_t a = 1; a < x_.size(); ++a) {
+      x_[a] = x_[a - 1] * ex;
+      y_[a] = y_[a - 1] * ey;
+    }
+    // y^my for my = -reach .. reach at [reach + my].
+    const std::size_t centre = static_cast<std::size_t>(reach_);
+    for (std::size_t a = 0; a < y_.size(); ++a) {
+      y_re_[centre + a] = y_re_[centre - a] = y_[a].real();
+      y_im_[centre - a] = -y_[a].imag();
+      y_im_[centre + a] = y_[a].imag();  // last: my = 0 keeps the +0 of y^0
+    }
+    for (const Run& run : runs_) {
+      const double a = x_[static_cast<std::size_t>(run.mx)].real(), b = x_[static_cast<std::size_t>(run.mx)].imag();
+      const double* c = y_re_.data() + (reach_ + run.my);
+      const double* d = y_im_.data() + (reach_ + run.my);
+      double* out_re = re + run.begin;
+      double* out_im = im + run.begin;
+      for (std::size_t j = 0; j < run.size; ++j) {
+        out_re[j] = a * c[j] - b * d[j];
+        out_im[j] = a * d[j] + b * c[j];
+      }
+    }
+  }
+
+ private:
+  struct Run {
+    int mx, my;  // the run's first frequency
+    std::size_t begin, size;
+  };
+  int reach_;
+  std::size_t size_;
+  std::vector<Run> runs_;
+  std::vector<Complex> x_, y_;
+  std::vector<double> y_re_, y_im_;
+};
+
 // sum over every point of every tile of exp(-2 pi i m.x), per frequency.
 std::vector<Complex> lattice_sums(const TilePoints& tiles, const std::vector<Frequency>& fs) {
-  std::vector<Complex> sums(fs.size(), 0.0);
-  Phases phases(reach_of(fs));
+  std::vector<double> sum_re(fs.size(), 0.0), sum_im(fs.size(), 0.0), re(fs.size()), im(fs.size());
+  BandPhases phases(fs);
   for (const std::vector<Point>& tile : tiles)
     for (const Point& p : tile) {
-      phases.set(p);
-      for (std::size_t k = 0; k < fs.size(); ++k) sums[k] += phases.at(fs[k]);
+      phases.compute(p, re.data(), im.data());
+      for (std::size_t k = 0; k < fs.size(); ++k) {
+        sum_re[k] += re[k];
+        sum_im[k] += im[k];
+      }
     }
+  std::vector<Complex> sums(fs.size());
+  for (std::size_t k = 0; k < fs.size(); ++k) sums[k] = {sum_re[k], sum_im[k]};
   return sums;
 }
 
 // exp(-2 pi i m.x) of every point of every tile (tile by tile, point by point) at every
-// frequency, into `phase` (point-major), and their sums per frequency as lattice_sums adds them:
-// a lattice step reads each phase twice (the sums, then the gradient of the moving points).
-void point_phases(const TilePoints& tiles, const std::vector<Frequency>& fs, Phases& phases, std::vector<Complex>& phase,
+// frequency, into `re` and `im` (point-major), and their sums per frequency as lattice_sums
+// adds them: a lattice step reads each phase twice (the sums, then the gradient of the moving
+// points).
+void point_phases(const TilePoints& tiles, BandPhases& phases, std::vector<double>& re, std::vector<double>& im,
                   std::vector<Complex>& sums) {
+  const std::size_t band = phases.size();
   std::size_t count = 0;
   for (const std::vector<Point>& tile : tiles) count += tile.size();
-  phase.resize(count * fs.size());
-  sums.assign(fs.size(), 0.0);
-  Complex* e = phase.data();
+  re.resize(count * band);
+  im.resize(count * band);
+  std::vector<double> sum_re(band, 0.0), sum_im(band, 0.0);
+  std::size_t offset = 0;
   for (const std::vector<Point>& tile : tiles)
     for (const Point& p : tile) {
-      phases.set(p);
-      for (std::size_t k = 0; k < fs.size(); ++k) {
-        e[k] = phases.at(fs[k]);
-        sums[k] += e[k];
+      double* e_re = re.data() + offset;
+      double* e_im = im.data() + offset;
+      phases.compute(p, e_re, e_im);
+      for (std::size_t k = 0; k < band; ++k) {
+        sum_re[k] += e_re[k];
+        sum_im[k] += e_im[k];
       }
-      e += fs.size();
+      offset += band;
     }
+  sums.resize(band);
+  for (std::size_t k = 0; k < band; ++k) sums[k] = {sum_re[k], sum_im[k]};
 }
 
 double squared_distance(Point a, Point b) {
@@ -176,26 +228,31 @@ void decorrelate_lattice(WangPoints& points, const LatticeDecorrelationOptions& 
   const std::vector<Frequency> fs = frequencies(n, options.mid_band);
   const double norm = 1.0 / static_cast<double>(points.tiles.size() * n);
   const double largest_move = options.step * hexagonal_spacing(static_cast<double>(n));
-  Phases phases(reach_of(fs));
-  std::vector<Complex> weight(fs.size()), phase, sums;
+  BandPhases phases(fs);
+  std::vector<double> weight_re(fs.size()), weight_im(fs.size()), phase_re, phase_im;
+  std::vector<Complex> sums;
   std::vector<Point> gradient(points.tiles.size() * points.moving_count());
   for (int it = 0; it < options.iterations; ++it) {
     // d/dx_j of (C_m / t)^4 / 4 = (C_m / t)^3 / t * dC_m/dx_j, with
     // dC_m/dx_j = 2 norm Re(conj(S_m) (-2 pi i m) e_j(m)); both halves of the plane count.
-    point_phases(points.tiles, fs, phases, phase, sums);
+    point_phases(points.tiles, phases, phase_re, phase_im, sums);
     for (std::size_t k = 0; k < fs.size(); ++k) {
       const double c = std::norm(sums[k]) * norm / fs[k].target;
-      weight[k] = std::conj(sums[k]) * (2.0 * 2.0 * norm * c * c * c / fs[k].target);
+      const Complex w = std::conj(sums[k]) * (2.0 * 2.0 * norm * c * c * c / fs[k].target);
+      weight_re[k] = w.real();
+      weight_im[k] = w.imag();
     }
     double longest = 0.0;
     for (std::size_t t = 0; t < points.tiles.size(); ++t)
       for (std::size_t m = 0; m < points.moving_count(); ++m) {
         // Every tile holds n points: this point's phases start at (t n + its index) phases in.
-        const Complex* e = phase.data() + (t * n + points.moving_begin + m) * fs.size();
+        const std::size_t offset = (t * n + points.moving_begin + m) * fs.size();
+        const double* e_re = phase_re.data() + offset;
+        const double* e_im = phase_im.data() + offset;
         Point g{0.0, 0.0};
         for (std::size_t k = 0; k < fs.size(); ++k) {
           // Re(w (-2 pi i) e) m = 2 pi Im(w e) m
-          const double s = 2.0 * std::numbers::pi * std::imag(weight[k] * e[k]);
+          const double s = 2.0 * std::numbers::pi * (weight_re[k] * e_im[k] + weight_im[k] * e_re[k]);
           g.x += s * fs[k].mx;
           g.y += s * fs[k].my;
         }
@@ -254,9 +311,11 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
   for (const Frequency& f : fs) squared.push_back(static_cast<std::size_t>(f.mx * f.mx + f.my * f.my));
   const double largest_move = kFilledLatticeStep * hexagonal_spacing(static_cast<double>(n));
   const SpacingCheck check(tiles, sources, options.spacing);
-  Phases phases(reach_of(fs));
+  BandPhases phases(fs);
+  std::vector<double> e_re(fs.size()), e_im(fs.size());
   std::array<std::vector<Complex>, 2> sums, tile_sums, weights;
-  std::array<std::vector<double>, 2> own;
+  std::array<std::vector<double>, 2> own, tile_re, tile_im;
+  std::vector<double> top_re(fs.size()), top_im(fs.size()), both_re(fs.size()), both_im(fs.size());
   std::vector<Point> gradient(tiles.size() * moving);
   for (int it = 0; it < options.iterations; ++it) {
     // Per prefix: the sum over every tile, and the sum of each tile's own |F_t|^2.
@@ -265,17 +324,24 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
       own[p].assign(fs.size(), 0.0);
     }
     for (const std::vector<Point>& tile : tiles) {
-      for (std::size_t p = 0; p < prefixes.size(); ++p) tile_sums[p].assign(fs.size(), 0.0);
+      for (std::size_t p = 0; p < prefixes.size(); ++p) {
+        tile_re[p].assign(fs.size(), 0.0);
+        tile_im[p].assign(fs.size(), 0.0);
+      }
       for (std::size_t i = 0; i < n; ++i) {
-        phases.set(tile[i]);
+        phases.compute(tile[i], e_re.data(), e_im.data());
         for (std::size_t p = 0; p < prefixes.size(); ++p)
           if (i < prefixes[p])
-            for (std::size_t k = 0; k < fs.size(); ++k) tile_sums[p][k] += phases.at(fs[k]);
+            for (std::size_t k = 0; k < fs.size(); ++k) {
+              tile_re[p][k] += e_re[k];
+              tile_im[p][k] += e_im[k];
+            }
       }
       for (std::size_t p = 0; p < prefixes.size(); ++p)
         for (std::size_t k = 0; k < fs.size(); ++k) {
-          sums[p][k] += tile_sums[p][k];
-          own[p][k] += std::norm(tile_sums[p][k]);
+          const Complex tile_sum{tile_re[p][k], tile_im[p][k]};
+          sums[p][k] += tile_sum;
+          own[p][k] += std::norm(tile_sum);
         }
     }
     // The objective is the coherence in excess of independent tiles' (whose C(m) is the mean of
@@ -293,16 +359,25 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
         weights[p][k] = std::conj(sums[p][k]) * (4.0 * norm * excess * excess * excess);
       }
     }
+    // A point's weight: the sum over the prefixes that hold it (the boundary always; the middle
+    // prefix for the level's first half).
+    for (std::size_t k = 0; k < fs.size(); ++k) {
+      top_re[k] = weights[1][k].real();
+      top_im[k] = weights[1][k].imag();
+      const Complex both = weights[1][k] + weights[0][k];
+      both_re[k] = both.real();
+      both_im[k] = both.imag();
+    }
     double longest = 0.0;
     for (std::size_t t = 0; t < tiles.size(); ++t)
       for (std::size_t m = 0; m < moving; ++m) {
         const std::size_t i = begin + m;
-        phases.set(tiles[t][i]);
+        phases.compute(tiles[t][i], e_re.data(), e_im.data());
+        const std::vector<double>& w_re = i < prefixes[0] ? both_re : top_re;
+        const std::vector<double>& w_im = i < prefixes[0] ? both_im : top_im;
         Point g{0.0, 0.0};
         for (std::size_t k = 0; k < fs.size(); ++k) {
-          Complex w = weights[1][k];
-          if (i < prefixes[0]) w += weights[0][k];
-          const double s = 2.0 * std::numbers::pi * std::imag(w * phases.at(fs[k]));
+          const double s = 2.0 * std::numbers::pi * (w_re[k] * e_im[k] + w_im[k] * e_re[k]);  // Im(w e)
           g.x += s * fs[k].mx;
           g.y += s * fs[k].my;
         }
