@@ -313,7 +313,7 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
   const SpacingCheck check(tiles, sources, options.spacing);
   BandPhases phases(fs);
   std::vector<double> e_re(fs.size()), e_im(fs.size());
-  std::array<std::vector<Complex>, 2> sums, tile_sums, weights;
+  std::array<std::vector<Complex>, 2> sums, weights;
   std::array<std::vector<double>, 2> own, tile_re, tile_im;
   std::vector<double> top_re(fs.size()), top_im(fs.size()), both_re(fs.size()), both_im(fs.size());
   std::vector<Point> gradient(tiles.size() * moving);
