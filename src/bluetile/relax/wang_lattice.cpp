@@ -118,21 +118,40 @@ class BandPhases {
   std::vector<double> y_re_, y_im_;
 };
 
+// Per-frequency sums of phases, kept as the real and imaginary arrays BandPhases writes.
+struct BandSums {
+  std::vector<double> re, im;
+
+  void clear(std::size_t band) {
+    re.assign(band, 0.0);
+    im.assign(band, 0.0);
+  }
+  void add(const double* e_re, const double* e_im) {
+    for (std::size_t k = 0; k < re.size(); ++k) {
+      re[k] += e_re[k];
+      im[k] += e_im[k];
+    }
+  }
+  Complex at(std::size_t k) const { return {re[k], im[k]}; }
+  std::vector<Complex> complex() const {
+    std::vector<Complex> out(re.size());
+    for (std::size_t k = 0; k < re.size(); ++k) out[k] = at(k);
+    return out;
+  }
+};
+
 // sum over every point of every tile of exp(-2 pi i m.x), per frequency.
 std::vector<Complex> lattice_sums(const TilePoints& tiles, const std::vector<Frequency>& fs) {
-  std::vector<double> sum_re(fs.size(), 0.0), sum_im(fs.size(), 0.0), re(fs.size()), im(fs.size());
   BandPhases phases(fs);
+  BandSums sums;
+  sums.clear(fs.size());
+  std::vector<double> re(fs.size()), im(fs.size());
   for (const std::vector<Point>& tile : tiles)
     for (const Point& p : tile) {
       phases.compute(p, re.data(), im.data());
-      for (std::size_t k = 0; k < fs.size(); ++k) {
-        sum_re[k] += re[k];
-        sum_im[k] += im[k];
-      }
+      sums.add(re.data(), im.data());
     }
-  std::vector<Complex> sums(fs.size());
-  for (std::size_t k = 0; k < fs.size(); ++k) sums[k] = {sum_re[k], sum_im[k]};
-  return sums;
+  return sums.complex();
 }
 
 // exp(-2 pi i m.x) of every point of every tile (tile by tile, point by point) at every
@@ -146,21 +165,15 @@ void point_phases(const TilePoints& tiles, BandPhases& phases, std::vector<doubl
   for (const std::vector<Point>& tile : tiles) count += tile.size();
   re.resize(count * band);
   im.resize(count * band);
-  std::vector<double> sum_re(band, 0.0), sum_im(band, 0.0);
-  std::size_t offset = 0;
-  for (const std::vector<Point>& tile : tiles)
+  BandSums total;
+  total.clear(band);
+  for (std::size_t offset = 0; const std::vector<Point>& tile : tiles)
     for (const Point& p : tile) {
-      double* e_re = re.data() + offset;
-      double* e_im = im.data() + offset;
-      phases.compute(p, e_re, e_im);
-      for (std::size_t k = 0; k < band; ++k) {
-        sum_re[k] += e_re[k];
-        sum_im[k] += e_im[k];
-      }
+      phases.compute(p, re.data() + offset, im.data() + offset);
+      total.add(re.data() + offset, im.data() + offset);
       offset += band;
     }
-  sums.resize(band);
-  for (std::size_t k = 0; k < band; ++k) sums[k] = {sum_re[k], sum_im[k]};
+  sums = total.complex();
 }
 
 double squared_distance(Point a, Point b) {
@@ -314,7 +327,8 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
   BandPhases phases(fs);
   std::vector<double> e_re(fs.size()), e_im(fs.size());
   std::array<std::vector<Complex>, 2> sums, weights;
-  std::array<std::vector<double>, 2> own, tile_re, tile_im;
+  std::array<std::vector<double>, 2> own;
+  std::array<BandSums, 2> tile_sums;
   std::vector<double> top_re(fs.size()), top_im(fs.size()), both_re(fs.size()), both_im(fs.size());
   std::vector<Point> gradient(tiles.size() * moving);
   for (int it = 0; it < options.iterations; ++it) {
@@ -324,22 +338,15 @@ void decorrelate_filled_level(TilePoints& tiles, std::size_t begin, std::span<co
       own[p].assign(fs.size(), 0.0);
     }
     for (const std::vector<Point>& tile : tiles) {
-      for (std::size_t p = 0; p < prefixes.size(); ++p) {
-        tile_re[p].assign(fs.size(), 0.0);
-        tile_im[p].assign(fs.size(), 0.0);
-      }
+      for (BandSums& t : tile_sums) t.clear(fs.size());
       for (std::size_t i = 0; i < n; ++i) {
         phases.compute(tile[i], e_re.data(), e_im.data());
         for (std::size_t p = 0; p < prefixes.size(); ++p)
-          if (i < prefixes[p])
-            for (std::size_t k = 0; k < fs.size(); ++k) {
-              tile_re[p][k] += e_re[k];
-              tile_im[p][k] += e_im[k];
-            }
+          if (i < prefixes[p]) tile_sums[p].add(e_re.data(), e_im.data());
       }
       for (std::size_t p = 0; p < prefixes.size(); ++p)
         for (std::size_t k = 0; k < fs.size(); ++k) {
-          const Complex tile_sum{tile_re[p][k], tile_im[p][k]};
+          const Complex tile_sum = tile_sums[p].at(k);
           sums[p][k] += tile_sum;
           own[p][k] += std::norm(tile_sum);
         }
